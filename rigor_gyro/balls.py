@@ -1,0 +1,294 @@
+"""Arb balls: working precision, certified predicates, escalation, outward-rounded decimals.
+
+This is the only module that sets ``flint.ctx.prec`` and the only one that compares balls with bare
+operators (a test greps for it). Everything else asks through the named predicates below.
+
+Guarantee: a predicate ``certainly_P(...)`` returns True only when P holds for every point of the
+balls involved; False means "not proved" (P may still hold). Balls that are NaN or infinite never
+decide anything. :func:`decimal_bounds` returns decimal strings ``lo <= x <= hi`` for every point x of
+the ball (outward rounding, exact rational arithmetic; python-flint's ``str()`` is not used).
+
+Precision: :func:`working_precision` and :func:`escalate` restore ``ctx.prec`` on every exit,
+exceptions included.
+
+Fails when: never raises on wide balls; it reports "undecided" (None / False) instead.
+
+Example:
+    >>> from flint import arb
+    >>> certainly_lt(arb(1), arb(2)), certainly_lt(arb(1, 2), arb(2)), certainly_ge(arb(1, 2), arb(2))
+    (True, False, False)
+    >>> compare(arb("nan"), arb(0)) is None
+    True
+    >>> lo, hi = decimal_bounds(arb(1).union(arb(2)))   # str() would print [+/- 2.01]
+    >>> Fraction(lo) <= 1 and Fraction(hi) >= 2
+    True
+"""
+from __future__ import annotations
+
+import contextlib
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Callable, Generic, Iterator, TypeVar
+
+from flint import arb, ctx, fmpq
+
+from .exact import Exact, parse_exact
+
+__all__ = [
+    "DEFAULT_PREC", "DEFAULT_MAXPREC", "working_precision", "current_precision", "ball", "is_finite",
+    "certainly_lt", "certainly_le", "certainly_gt", "certainly_ge", "certainly_positive",
+    "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
+    "overlaps", "certainly_within", "interval", "exact_fraction", "decimal_bounds", "quantity",
+    "rel_width_at_most", "Escalation", "escalate",
+]
+
+DEFAULT_PREC = 64
+DEFAULT_MAXPREC = 4096
+
+T = TypeVar("T")
+
+
+@contextlib.contextmanager
+def working_precision(prec: int) -> Iterator[int]:
+    """Set the working precision to ``prec`` bits inside the block; always restored afterwards."""
+    if not isinstance(prec, int) or prec < 16:
+        raise ValueError(f"precision must be an integer number of bits >= 16, got {prec!r}")
+    saved = ctx.prec
+    try:
+        ctx.prec = prec
+        yield prec
+    finally:
+        ctx.prec = saved
+
+
+def current_precision() -> int:
+    """The working precision in bits (read-only view of ``flint.ctx.prec``)."""
+    return ctx.prec
+
+
+def ball(x: object) -> arb:
+    """The ball of an exact number at the current precision.
+
+    Accepts ``arb`` (returned as is), ``Exact``, ``fmpq``, ``int``, ``Fraction`` or a decimal string;
+    a Python ``float`` raises ParameterError (it is already rounded).
+    """
+    if isinstance(x, arb):
+        return x
+    if isinstance(x, fmpq):
+        return arb(x)
+    if isinstance(x, int) and not isinstance(x, bool):
+        return arb(x)
+    return parse_exact(x).ball()
+
+
+def is_finite(x: arb) -> bool:
+    """True when the ball is finite (not NaN, no infinite endpoint)."""
+    return bool(x.is_finite())
+
+
+def compare(a: object, b: object) -> int | None:
+    """-1 if a < b certainly, 1 if a > b certainly, None if undecided (overlap, NaN or infinity).
+
+    Equality of balls is never decided (two exact equal balls are reported as undecided too: a
+    verdict must not rest on touching balls).
+    """
+    x, y = ball(a), ball(b)
+    if not (x.is_finite() and y.is_finite()):
+        return None
+    if x < y:
+        return -1
+    if x > y:
+        return 1
+    return None
+
+
+def certainly_lt(a: object, b: object) -> bool:
+    return compare(a, b) == -1
+
+
+def certainly_gt(a: object, b: object) -> bool:
+    return compare(a, b) == 1
+
+
+def certainly_le(a: object, b: object) -> bool:
+    """a <= b for every point; touching exact balls count (e.g. exact 1 <= exact 1)."""
+    x, y = ball(a), ball(b)
+    return bool(x.is_finite() and y.is_finite() and x <= y)
+
+
+def certainly_ge(a: object, b: object) -> bool:
+    return certainly_le(b, a)
+
+
+def certainly_positive(x: object) -> bool:
+    return certainly_gt(x, 0)
+
+
+def certainly_negative(x: object) -> bool:
+    return certainly_lt(x, 0)
+
+
+def certainly_nonzero(x: object) -> bool:
+    return compare(x, 0) is not None
+
+
+def possibly_zero(x: object) -> bool:
+    """True unless the ball certainly excludes zero (NaN and infinite balls possibly contain it)."""
+    return not certainly_nonzero(x)
+
+
+def contains(outer: arb, inner: object) -> bool:
+    """True when every point of ``inner`` lies in ``outer`` (both finite)."""
+    y = ball(inner)
+    return bool(outer.is_finite() and y.is_finite() and outer.contains(y))
+
+
+def overlaps(a: arb, b: arb) -> bool:
+    return bool(a.overlaps(b))
+
+
+def certainly_within(x: object, lo: object, hi: object) -> bool:
+    """lo < x < hi for every point of x (strict)."""
+    return certainly_lt(lo, x) and certainly_lt(x, hi)
+
+
+def interval(lo: object, hi: object) -> arb:
+    """The smallest ball (at the current precision) containing [lo, hi]."""
+    return ball(lo).union(ball(hi))
+
+
+def rel_width_at_most(x: arb, tol: object) -> bool:
+    """True when the ball's width 2*rad is certainly <= tol * |x| (relative width), x nonzero."""
+    if not x.is_finite() or possibly_zero(x):
+        return False
+    return certainly_le(2 * x.rad(), ball(tol) * x.abs_lower())
+
+
+# ---------------------------------------------------------------- decimal output, rounded outward
+
+def exact_fraction(x: arb) -> Fraction:
+    """The exact rational value of an exact (radius 0) finite ball such as ``x.lower()``."""
+    man, exp = x.man_exp()
+    man, exp = int(man), int(exp)
+    return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
+
+
+def _exponent10(q: Fraction) -> int:
+    """floor(log10(|q|)) for q != 0, in exact arithmetic."""
+    q = abs(q)
+    e = int((q.numerator.bit_length() - q.denominator.bit_length()) * 0.30102999566398120)
+    while Fraction(10) ** e > q:
+        e -= 1
+    while Fraction(10) ** (e + 1) <= q:
+        e += 1
+    return e
+
+
+def _round_decimal(q: Fraction, digits: int, mode: str) -> str:
+    """q rounded to ``digits`` significant decimal digits: mode 'down', 'up' or 'nearest'."""
+    if q == 0:
+        return "0"
+    e = _exponent10(q)
+    scale = digits - 1 - e
+    scaled = q * Fraction(10) ** scale
+    if mode == "down":
+        n = math.floor(scaled)
+    elif mode == "up":
+        n = math.ceil(scaled)
+    else:
+        n = round(scaled)
+    return _format_scaled(n, scale)
+
+
+def _format_scaled(n: int, scale: int) -> str:
+    """The decimal string of n * 10**(-scale), plain when short, otherwise in e-notation."""
+    if n == 0:
+        return "0"
+    sign = "-" if n < 0 else ""
+    digits = str(abs(n)).rstrip("0")  # n has at most ~60 digits
+    scale -= len(str(abs(n))) - len(digits)
+    exponent = len(digits) - 1 - scale  # value = d.ddd * 10**exponent
+    if -6 <= exponent <= 20:
+        if scale <= 0:
+            return sign + digits + "0" * (-scale)
+        if scale >= len(digits):
+            return sign + "0." + "0" * (scale - len(digits)) + digits
+        return sign + digits[:-scale] + "." + digits[-scale:]
+    mant = digits[0] + ("." + digits[1:] if len(digits) > 1 else "")
+    return f"{sign}{mant}e{exponent:+d}"
+
+
+def _digits_for(x: arb) -> int:
+    bits = x.rel_accuracy_bits()
+    return max(6, min(60, int(bits * 0.30103) + 3))
+
+
+def _endpoints(x: arb) -> tuple[arb, arb]:
+    """Exact endpoint balls of x, read at a precision that keeps all of the midpoint's bits."""
+    with working_precision(max(64, int(x.bits()) + 64)):
+        return x.lower(), x.upper()
+
+
+def decimal_bounds(x: arb, digits: int | None = None) -> tuple[str, str]:
+    """Decimal strings (lo, hi) with lo <= every point of x <= hi, rounded outward.
+
+    ``digits`` significant digits (default: the ball's accuracy plus three). Infinite or NaN balls
+    give ("-inf", "+inf") / ("nan", "nan").
+    """
+    if x.is_nan():
+        return "nan", "nan"
+    lo_ball, hi_ball = _endpoints(x)
+    d = digits or _digits_for(x)
+    lo = _round_decimal(exact_fraction(lo_ball), d, "down") if lo_ball.is_finite() else "-inf"
+    hi = _round_decimal(exact_fraction(hi_ball), d, "up") if hi_ball.is_finite() else "+inf"
+    return lo, hi
+
+
+def quantity(x: arb, digits: int | None = None) -> dict[str, str]:
+    """The certificate form of a ball: outward-rounded ``lo``/``hi``, and the midpoint (nearest) and
+    half-width (rounded up, 3 digits) of the exact interval [x.lower(), x.upper()]."""
+    lo, hi = decimal_bounds(x, digits)
+    if not x.is_finite():
+        return {"lo": lo, "hi": hi, "mid": "nan" if x.is_nan() else "inf", "rad": "inf"}
+    d = digits or _digits_for(x)
+    a, b = (exact_fraction(e) for e in _endpoints(x))
+    mid = _round_decimal((a + b) / 2, d, "nearest")
+    rad = _round_decimal((b - a) / 2, 3, "up")
+    return {"lo": lo, "hi": hi, "mid": mid, "rad": rad}
+
+
+# ---------------------------------------------------------------- precision escalation
+
+@dataclass
+class Escalation(Generic[T]):
+    """The outcome of :func:`escalate`: the last result, the precision it was computed at, whether
+    ``done`` accepted it, and every precision tried."""
+
+    result: T
+    prec: int
+    done: bool
+    tried: list[int] = field(default_factory=list)
+
+
+def escalate(attempt: Callable[[int], T], done: Callable[[T], bool], *, prec: int = DEFAULT_PREC,
+             maxprec: int = DEFAULT_MAXPREC) -> Escalation[T]:
+    """Run ``attempt(p)`` at p = prec, 2 prec, 4 prec, ... <= maxprec until ``done(result)``.
+
+    Guarantee: returns the first accepted result with the precision it needed, or the result at the
+    highest precision tried with ``done=False`` (the caller reports inconclusive and suggests a
+    higher ``maxprec``). ``ctx.prec`` is restored on every exit.
+    """
+    if maxprec < prec:
+        raise ValueError(f"maxprec ({maxprec}) must be >= prec ({prec})")
+    p, tried = prec, []
+    while True:
+        with working_precision(p):
+            result = attempt(p)
+        tried.append(p)
+        if done(result):
+            return Escalation(result, p, True, tried)
+        if 2 * p > maxprec:
+            return Escalation(result, p, False, tried)
+        p *= 2
+

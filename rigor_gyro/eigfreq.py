@@ -1,0 +1,316 @@
+"""Eigenfrequencies of an astatic gyroscope with an elastic gimbal (Rudenko 1976): scene kind
+``eigenfrequencies``.
+
+Model. With lambda = i sqrt(omega) the characteristic equation (1), read as
+
+    lambda^2 P1(lambda^2) + Omega^2 P2(lambda^2) = 0,
+    P1(l) = [l (b-1) + b] [l^2 (a-b)(b-1) + l (eps (a-1) + b (a-b)) + eps a],
+    P2(l) = [l (b-1) + 1] [l^2 (a-b)(b-1) + l (eps (a-1) + a - b) + eps],
+
+is the quartic Q(omega) = -omega P1(-omega) + Omega^2 P2(-omega) = 0 with exact rational coefficients,
+i.e. the paper's form (2) Omega^2 = F(omega) = omega (omega-nu2)(omega-nu5)(omega-nu6) /
+((omega-nu1)(omega-nu3)(omega-nu4)), with nu3 = 1/(b-1), nu5 = b/(b-1), nu1 < nu4 and nu2 < nu6 the
+roots of the two quadratic factors (the paper's (4)).
+
+Guarantee: every claim is decided by Arb balls over the exact rationals a, b, eps, Omega2 (and the
+exact ``hz_scale`` if given). The roots omega_j are isolated by :mod:`rigor_gyro.polyroots` (exact
+squarefreeness, exact sign changes), so "four real, positive, simple roots" is a theorem. Brackets
+and approximations are evaluated in ball arithmetic; a bracket is proved when lo <= omega_j <= hi is
+certain and refuted when a certified strict violation exists.
+
+Precision: the caller's, escalated by :mod:`rigor_gyro.prover` until omega_j and freq_hz_j have
+relative width <= ``rel_width`` (scene option, default 1e-30).
+
+Fails when: parameters leave the domain b > 1, a > b, eps > 0, Omega2 > 0: ParameterError naming the
+parameter (exit 2).
+
+Reference: Rudenko V. M., Opredelenie sobstvennykh chastot astaticheskogo giroskopa s uprugim
+kardanovym podvesom, Izv. AN SSSR MTT, 1976 (seed 002 in shared/seeds).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+from flint import arb, fmpq, fmpq_poly
+
+from . import eigfreq_formulas as fr
+from .audit import audit_printed
+from .balls import (ball, certainly_ge, certainly_gt, certainly_le, certainly_lt, certainly_positive,
+                    decimal_bounds, rel_width_at_most)
+from .certificate import AuditRow, AuditStatus, Claim, Status
+from .errors import ParameterError
+from .exact import Exact, parse_exact
+from .polyroots import isolate_polynomial
+from .prover import Attempt
+
+__all__ = ["CLAIMS", "PARAMETERS", "RudenkoModel", "validate", "attempt", "characteristic_quartic",
+           "nu_quadratics"]
+
+PARAMETERS = {"a": "(A1+A2+A3)/A3", "b": "(A2+A3)/A3", "eps": "K2/K3", "Omega2": "H^2/(K3 A3)",
+              "hz_scale": "optional: Hz per sqrt(omega), i.e. sqrt(K3/A3)/(2 pi)"}
+REQUIRED = ("a", "b", "eps", "Omega2")
+OPTIONS = {"rel_width": "1e-30"}
+
+CLAIMS = {
+    "roots": "The characteristic quartic in omega has exactly four roots, all real, positive and simple; "
+             "they are enclosed as omega_1 < omega_2 < omega_3 < omega_4.",
+    "nu_ordering": "The zeros and poles of F are ordered as the paper assumes: 0 < nu1 < nu2 < nu3 < nu4 < nu5 < nu6.",
+    "branches": "Each root lies on the branch of F the paper assigns it: omega_1 in (0, nu1), omega_2 in "
+                "(nu2, nu3), omega_3 in (nu4, nu5), omega_4 in (nu6, oo).",
+    "nu_bounds": "The bounds (5) hold: nu1- <= nu1 <= nu1+, nu2- <= nu2 <= nu2+, nu4- <= nu4 <= nu4+, nu6- <= nu6 <= nu6+.",
+    "bracket_1": "Bracket (7) contains omega_1.",
+    "bracket_2": "Bracket (8) contains omega_2.",
+    "bracket_3": "Bracket (9) contains omega_3.",
+    "bracket_4": "Bracket (10) contains omega_4.",
+    "approximations": "The relative errors of the approximations (12), (13) (equivalently (14)) against the "
+                      "certified roots are enclosed (quantities approx_rel_error_j).",
+}
+
+
+@dataclass(frozen=True)
+class RudenkoModel:
+    """Validated exact parameters of an eigenfrequency scene."""
+
+    a: Exact
+    b: Exact
+    eps: Exact
+    Omega2: Exact
+    hz_scale: Exact | None
+    rel_width: Exact
+    paper: dict
+
+    def q(self, name: str) -> fmpq:
+        return getattr(self, name).fmpq()
+
+
+def validate(scene) -> RudenkoModel:
+    """Check names and the domain b > 1, a > b, eps > 0, Omega2 > 0 (and hz_scale > 0)."""
+    p = scene.parameters
+    unknown = sorted(set(p) - set(PARAMETERS))
+    if unknown:
+        raise ParameterError(f"unknown parameter(s) {unknown} for kind 'eigenfrequencies'; "
+                             f"expected {list(PARAMETERS)}")
+    missing = [k for k in REQUIRED if k not in p]
+    if missing:
+        raise ParameterError(f"missing parameter(s) {missing} for kind 'eigenfrequencies'")
+    v = {k: parse_exact(p[k], k) for k in p}
+    for k, x in v.items():
+        if not x.is_rational:
+            raise ParameterError(f"parameter {k!r}: must be rational (got {x.text!r})")
+    a, b, eps, W = (v[k].rational for k in REQUIRED)
+    if not b > 1:
+        raise ParameterError(f"parameter 'b' = {p['b']!r}: need b > 1 (b = (A2+A3)/A3)")
+    if not a > b:
+        raise ParameterError(f"parameter 'a' = {p['a']!r}: need a > b = {p['b']} (a = (A1+A2+A3)/A3)")
+    if not eps > 0:
+        raise ParameterError(f"parameter 'eps' = {p['eps']!r}: need eps > 0 (eps = K2/K3)")
+    if not W > 0:
+        raise ParameterError(f"parameter 'Omega2' = {p['Omega2']!r}: need Omega2 > 0 (Omega2 = H^2/(K3 A3))")
+    hz = v.get("hz_scale")
+    if hz is not None and not hz.rational > 0:
+        raise ParameterError(f"parameter 'hz_scale' = {p['hz_scale']!r}: need hz_scale > 0")
+    opts = dict(OPTIONS, **{k: str(x) for k, x in scene.options.items()})
+    unknown_opts = sorted(set(opts) - set(OPTIONS))
+    if unknown_opts:
+        raise ParameterError(f"unknown option(s) {unknown_opts}; this kind has {list(OPTIONS)}")
+    rel = parse_exact(opts["rel_width"], "rel_width")
+    if not rel.rational > 0:
+        raise ParameterError(f"option 'rel_width' = {opts['rel_width']!r}: need > 0")
+    return RudenkoModel(v["a"], v["b"], v["eps"], v["Omega2"], hz, rel, dict(scene.paper))
+
+
+# ------------------------------------------------------------------------------- exact polynomials
+
+def characteristic_quartic(a: fmpq, b: fmpq, eps: fmpq, W: fmpq, factor: str = "Omega2") -> fmpq_poly:
+    """Q(omega) = -omega P1(-omega) + c P2(-omega), exactly, with c = Omega2 (the reading used) or
+    c = -omega (factor='lambda2', the equation as printed: lambda^2 in front of the second product)."""
+    l = fmpq_poly([0, -1])  # lambda^2 = -omega
+    p1 = (l * (b - 1) + b) * (l * l * ((a - b) * (b - 1)) + l * (eps * (a - 1) + b * (a - b)) + eps * a)
+    p2 = (l * (b - 1) + 1) * (l * l * ((a - b) * (b - 1)) + l * (eps * (a - 1) + a - b) + eps)
+    c = fmpq_poly([W]) if factor == "Omega2" else l
+    return l * p1 + c * p2
+
+
+def nu_quadratics(a: fmpq, b: fmpq, eps: fmpq) -> tuple[fmpq_poly, fmpq_poly]:
+    """The paper's (4): roots nu1 < nu4 of the first, nu2 < nu6 of the second (in omega)."""
+    c2 = (a - b) * (b - 1)
+    q14 = fmpq_poly([eps, -(eps * (a - 1) + a - b), c2])
+    q26 = fmpq_poly([eps * a, -(eps * (a - 1) + b * (a - b)), c2])
+    return q14, q26
+
+
+# ------------------------------------------------------------------------------- one attempt
+
+def _claim(cid: str, status: Status, reason: str, **details) -> Claim:
+    return Claim(cid, CLAIMS[cid], status, reason, details=details)
+
+
+def _fmt(x: arb) -> str:
+    lo, hi = decimal_bounds(x, 12)
+    return f"[{lo}, {hi}]"
+
+
+def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
+    """Evaluate the requested claims at the current precision (set by the prover)."""
+    a, b, eps, W = (model.q(k) for k in REQUIRED)
+    claims: list[Claim] = []
+    quantities: dict[str, arb] = {}
+    notes: list[str] = []
+    Q = characteristic_quartic(a, b, eps, W)
+    pr = isolate_polynomial(Q, rel_tol=model.rel_width.fmpq())
+    # --- roots
+    omegas: list[arb] = []
+    if not pr.squarefree:
+        st, why = Status.REFUTED, f"the quartic has a multiple root ({pr.reason}), exactly"
+    elif not pr.verified:
+        st, why = Status.INCONCLUSIVE, pr.reason
+    else:
+        nonpos = [x for x in pr.real if not certainly_positive(x)]
+        if pr.nonreal:
+            st, why = Status.REFUTED, f"{len(pr.nonreal)} roots are certainly non-real: {[str(z) for z in pr.nonreal]}"
+        elif any(certainly_le(x, 0) for x in nonpos):
+            st, why = Status.REFUTED, f"a root is certainly <= 0: {[_fmt(x) for x in nonpos]}"
+        elif nonpos:
+            st, why = Status.INCONCLUSIVE, f"sign of root(s) {[_fmt(x) for x in nonpos]} undecided"
+        else:
+            st, why = Status.PROVED, ("gcd(Q, Q') = 1 exactly (simple roots); Arb isolated 4 roots with "
+                                      "imaginary part exactly 0, each confirmed by an exact sign change of Q")
+            omegas = pr.real
+    if "roots" in wanted:
+        claims.append(_claim("roots", st, why))
+    for j, w in enumerate(pr.real if pr.verified and not pr.nonreal else [], start=1):
+        quantities[f"omega_{j}"] = w
+    widths_met = pr.width_met
+    # --- nus
+    q14, q26 = nu_quadratics(a, b, eps)
+    r14, r26 = isolate_polynomial(q14), isolate_polynomial(q26)
+    nus: dict[int, arb] = {3: arb(1 / (b - 1)), 5: arb(b / (b - 1))}
+    if r14.verified and len(r14.real) == 2:
+        nus[1], nus[4] = r14.real
+    if r26.verified and len(r26.real) == 2:
+        nus[2], nus[6] = r26.real
+    for k in sorted(nus):
+        quantities[f"nu_{k}"] = nus[k]
+    have_nus = len(nus) == 6
+    ordered = None
+    if {"nu_ordering", "branches"} & set(wanted) or any(w.startswith("bracket") for w in wanted):
+        if not have_nus:
+            ordered = None
+            ost, owhy = Status.INCONCLUSIVE, f"nu quadratics not isolated: {r14.reason}; {r26.reason}"
+        else:
+            chain = [arb(0)] + [nus[k] for k in range(1, 7)]
+            names = ["0"] + [f"nu{k}" for k in range(1, 7)]
+            bad = [(names[i], names[i + 1]) for i in range(6) if certainly_ge(chain[i], chain[i + 1])]
+            und = [(names[i], names[i + 1]) for i in range(6)
+                   if not certainly_lt(chain[i], chain[i + 1]) and not certainly_ge(chain[i], chain[i + 1])]
+            if bad:
+                ordered = False
+                ost, owhy = Status.REFUTED, "certified violation(s): " + "; ".join(
+                    f"{x} = {_fmt(chain[names.index(x)])} >= {y} = {_fmt(chain[names.index(y)])}" for x, y in bad)
+            elif und:
+                ost, owhy = Status.INCONCLUSIVE, f"order of {und} undecided at this precision"
+            else:
+                ordered = True
+                ost, owhy = Status.PROVED, "all six strict inequalities certified"
+        if "nu_ordering" in wanted:
+            claims.append(_claim("nu_ordering", ost, owhy))
+    if "branches" in wanted:
+        claims.append(_branch_claim(omegas, nus, ordered))
+    if "nu_bounds" in wanted:
+        claims.append(_nu_bounds_claim(model, nus, quantities))
+    balls = fr.Params(ball(model.a.fmpq()), ball(model.b.fmpq()), ball(model.eps.fmpq()), ball(model.Omega2.fmpq()))
+    for j in range(1, 5):
+        cid = f"bracket_{j}"
+        if cid in wanted:
+            claims.append(_bracket_claim(j, balls, omegas, quantities))
+    if "approximations" in wanted:
+        claims.append(_approx_claim(balls, omegas, quantities))
+    if model.hz_scale is not None and omegas:
+        s = ball(model.hz_scale.fmpq())
+        for j, w in enumerate(omegas, start=1):
+            quantities[f"freq_hz_{j}"] = f = s * w.sqrt()
+            widths_met = widths_met and rel_width_at_most(f, model.rel_width.fmpq())
+    paper, formulas = [], fr.formula_table()
+    if model.paper:
+        paper = fr.audit(model, balls, omegas, nus, Q)
+    return Attempt(claims, quantities, paper, formulas, notes, widths_met)
+
+
+def _branch_claim(omegas: list[arb], nus: dict[int, arb], ordered: bool | None) -> Claim:
+    if len(omegas) != 4 or len(nus) != 6:
+        return _claim("branches", Status.INCONCLUSIVE, "needs the four roots and six nus enclosed")
+    intervals = [(arb(0), nus[1], "(0, nu1)"), (nus[2], nus[3], "(nu2, nu3)"),
+                 (nus[4], nus[5], "(nu4, nu5)"), (nus[6], None, "(nu6, oo)")]
+    fails, undecided = [], []
+    for j, (w, (lo, hi, label)) in enumerate(zip(omegas, intervals), start=1):
+        inside = certainly_lt(lo, w) and (hi is None or certainly_lt(w, hi))
+        outside = certainly_ge(lo, w) or (hi is not None and certainly_ge(w, hi))
+        if outside:
+            fails.append(f"omega_{j} = {_fmt(w)} not in {label}")
+        elif not inside:
+            undecided.append(f"omega_{j} vs {label}")
+    if fails:
+        why = "; ".join(fails) + ("" if ordered else " (the nu ordering the paper assumes fails)")
+        return _claim("branches", Status.REFUTED, why)
+    if undecided:
+        return _claim("branches", Status.INCONCLUSIVE, "undecided: " + "; ".join(undecided))
+    return _claim("branches", Status.PROVED, "each omega_j certainly strictly inside its branch interval")
+
+
+def _check_bounds(items: list[tuple[str, arb, arb, arb]]) -> tuple[Status, str]:
+    """items: (label, lo, x, hi); proved when lo <= x <= hi certainly for all."""
+    fails, und = [], []
+    for label, lo, x, hi in items:
+        if certainly_le(lo, x) and certainly_le(x, hi):
+            continue
+        if certainly_gt(lo, x) or certainly_gt(x, hi):
+            fails.append(f"{label}: {_fmt(x)} not in [{_fmt(lo)}, {_fmt(hi)}]")
+        else:
+            und.append(label)
+    if fails:
+        return Status.REFUTED, "certified violation(s): " + "; ".join(fails)
+    if und:
+        return Status.INCONCLUSIVE, "undecided at this precision: " + ", ".join(und)
+    return Status.PROVED, "all inequalities certified"
+
+
+def _nu_bounds_claim(model: RudenkoModel, nus: dict[int, arb], quantities: dict[str, arb]) -> Claim:
+    if len(nus) != 6:
+        return _claim("nu_bounds", Status.INCONCLUSIVE, "nus not enclosed")
+    p = fr.Params(*(ball(model.q(k)) for k in REQUIRED))
+    bounds = fr.nu_bounds(p)
+    items = []
+    for k in (1, 2, 4, 6):
+        lo, hi = bounds[k]
+        quantities[f"nu_{k}_lower_bound"], quantities[f"nu_{k}_upper_bound"] = lo, hi
+        items.append((f"nu{k}", lo, nus[k], hi))
+    st, why = _check_bounds(items)
+    return _claim("nu_bounds", st, why)
+
+
+def _bracket_claim(j: int, p: "fr.Params", omegas: list[arb], quantities: dict[str, arb]) -> Claim:
+    cid = f"bracket_{j}"
+    if len(omegas) != 4:
+        return _claim(cid, Status.INCONCLUSIVE, "needs the certified roots")
+    lo, hi = fr.bracket(j, p, reading="intended")
+    quantities[f"bracket_{j}_lo"], quantities[f"bracket_{j}_hi"] = lo, hi
+    st, why = _check_bounds([(f"omega_{j}", lo, omegas[j - 1], hi)])
+    if st is Status.PROVED:
+        why = f"{_fmt(lo)} <= omega_{j} <= {_fmt(hi)} certified (reading: {fr.BRACKETS[j].reading_note})"
+    return _claim(cid, st, why)
+
+
+def _approx_claim(p: "fr.Params", omegas: list[arb], quantities: dict[str, arb]) -> Claim:
+    if len(omegas) != 4:
+        return _claim("approximations", Status.INCONCLUSIVE, "needs the certified roots")
+    parts = []
+    for j in range(1, 5):
+        approx = fr.approximation(j, p)
+        err = (approx - omegas[j - 1]) / omegas[j - 1]
+        quantities[f"approx_omega_{j}"] = approx
+        quantities[f"approx_rel_error_{j}"] = err
+        parts.append(f"omega_{j}: {_fmt(err)}")
+    finite = all(quantities[f"approx_rel_error_{j}"].is_finite() for j in range(1, 5))
+    st = Status.PROVED if finite else Status.INCONCLUSIVE
+    return _claim("approximations", st, "relative errors (approx - omega)/omega enclosed: " + "; ".join(parts))

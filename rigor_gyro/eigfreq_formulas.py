@@ -1,0 +1,415 @@
+"""Rudenko (1976)'s formulas (5), (7)-(10), (12)-(14): as printed (OCR) and as read, and the audit.
+
+Each bracket and approximation is written twice where the printed formula is a misprint: the
+printed reading (evaluated for the audit only) and the reading the derivation intends (used by the
+claims). The readings were recovered from the derivation (replace factors of F by extreme values
+from (5), solve the quadratic) and checked against the paper's Hz numbers; see ``BRACKETS`` notes.
+
+Guarantee: every function returns Arb balls containing the exact value of the formula at the given
+ball parameters (no floats). The audit compares printed decimals against these balls with
+:func:`rigor_gyro.audit.audit_printed` (correct rounding at the printed digits).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, NamedTuple
+
+from flint import arb, fmpq
+
+from .audit import audit_printed, half_unit
+from .balls import (ball, certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds,
+                    possibly_zero)
+from .certificate import AuditRow, AuditStatus
+
+__all__ = ["Params", "nu_bounds", "Bracket", "BRACKETS", "bracket", "approximation", "formula_table",
+           "audit", "dimensional_14"]
+
+
+class Params(NamedTuple):
+    """Balls of the exact parameters a, b, eps, Omega^2 (W)."""
+
+    a: arb
+    b: arb
+    eps: arb
+    W: arb
+
+
+def nu_bounds(p: Params) -> dict[int, tuple[arb, arb]]:
+    """The bounds (5): {k: (nu_k^-, nu_k^+)} for k = 1, 2, 4, 6 (printed formulas, no misprint found)."""
+    a, b, e, _ = p
+    n1m, n1p = e / (a - b + e * (a - 1)), e / (a - b)
+    n2m, n2p = e * a / (b * (a - b) + e * (a - 1)), e * a / (b * (a - b))
+    n4m = (1 + e) / (b - 1)
+    n4p = n4m + e * e * (a - 1) / ((a - b) * (a - b + e * (a - 1)))
+    n6m = (b * b + e) / (b * (b - 1))
+    n6p = n6m + e * e * a * (a - 1) / (b * (a - b) * ((a - b) * b + e * (a - 1)))
+    return {1: (n1m, n1p), 2: (n2m, n2p), 4: (n4m, n4p), 6: (n6m, n6p)}
+
+
+# ----------------------------------------------------------------------------- brackets (7)-(10)
+
+def _lo7(p: Params) -> arb:
+    a, b, e, W = p
+    return e * W / ((a - b) * W + e * ((a - 1) * W + a * b))
+
+
+def _hi7(p: Params, sign: int) -> arb:
+    a, b, e, W = p
+    lam = (b * (b - 1) + e) / (b * (b - 1))
+    r = (e * a / (b * (a - b) + sign * (a - 1) * e) + W / (lam * b * b)) / 2
+    return r - (r * r - e * W / ((a - b) * lam * b * b)).sqrt()
+
+
+def _lo8(p: Params, sign: int) -> arb:
+    a, b, e, W = p
+    r1 = a * b * b / ((a - b) * (b - 1) * W)
+    h = (e / (b * (b - 1)) + r1) / 2
+    return 1 / (b - 1) + h - (h * h + r1 * (1 / (b - 1) + sign * e * a / (b * (a - b)))).sqrt()
+
+
+def _hi8(p: Params) -> arb:
+    a, b, e, W = p
+    return (e * a * (b - 1) + W * (1 + e) * (a - b)) / ((a - b) * (b - 1) * (b + W * (1 + e)))
+
+
+def _r2(p: Params) -> arb:
+    a, b, e, W = p
+    return W * (b - 1) / b * (b / (b - 1) - e / (a - b)) / (b / (b - 1) - e * a / (b * (a - b)))
+
+
+def _lo9_10(p: Params, root: int, squared: bool, c_reading: bool) -> arb:
+    """nu5 + (D + R2)/2 -+ sqrt((D + R2)^2/4 + R2 c); printed c = 1 + eps/b, read c = nu5 - nu4^- =
+    1 - eps/(b-1); the printed (10) lacks the square on [D + R2]."""
+    a, b, e, W = p
+    d, r2 = e / (b * (b - 1)), _r2(p)
+    s = d + r2
+    c = 1 - e / (b - 1) if c_reading else 1 + e / b
+    inner = (s * s if squared else s) / 4 + r2 * c
+    return b / (b - 1) + s / 2 + root * inner.sqrt()
+
+
+def _hi9(p: Params, eps_power: int) -> arb:
+    a, b, e, W = p
+    return ((1 + e) / (b - 1) + e ** eps_power * (a - 1) / ((a - b) * (a - b + e * (a - 1)))
+            + (b - e) / (b + (W * (b - 1) * b).sqrt()))
+
+
+def _hi10(p: Params) -> arb:
+    a, b, e, W = p
+    r3 = (e / (b * (b - 1)) + e * e * a * (a - 1) / (b * (a - b) * ((a - b) * b + e * (a - 1))) + W) / 2
+    return b / (b - 1) + r3 + (r3 * r3 + W).sqrt()
+
+
+@dataclass(frozen=True)
+class Bracket:
+    """One two-sided bracket: printed and intended readings of its lower and upper bound."""
+
+    eq: str
+    lo_printed: str
+    hi_printed: str
+    lo: Callable[[Params], arb]
+    hi: Callable[[Params], arb]
+    lo_read: Callable[[Params], arb] | None = None   # None: the printed formula is the reading
+    hi_read: Callable[[Params], arb] | None = None
+    lo_reading: str = ""
+    hi_reading: str = ""
+    reading_note: str = "as printed"
+
+
+BRACKETS: dict[int, Bracket] = {
+    1: Bracket("(7)",
+               "eps W / ((a-b) W + eps((a-1) W + a b))",
+               "R - sqrt(R^2 - eps W/((a-b) Lambda b^2)), R = [eps a/(b(a-b) - (a-1) eps) + W/(Lambda b^2)]/2, "
+               "Lambda = (b(b-1)+eps)/(b(b-1))",
+               _lo7, lambda p: _hi7(p, -1), None, lambda p: _hi7(p, +1), "",
+               "R = [eps a/(b(a-b) + (a-1) eps) + W/(Lambda b^2)]/2, i.e. the first term is nu2^- of (5)",
+               "upper: '+' in R (nu2^-), the sign printed '-' is a misprint"),
+    2: Bracket("(8)",
+               "1/(b-1) + (D+R1)/2 - sqrt(((D+R1)/2)^2 + R1 (1/(b-1) + eps a/(b(a-b)))), D = eps/(b(b-1)), "
+               "R1 = a b^2/((a-b)(b-1) W)",
+               "(eps a (b-1) + W (1+eps)(a-b)) / ((a-b)(b-1)(b + W(1+eps)))",
+               lambda p: _lo8(p, +1), _hi8, lambda p: _lo8(p, -1), None,
+               "... + R1 (1/(b-1) - eps a/(b(a-b))) = R1 (nu3 - nu2^+)", "",
+               "lower: '-' before eps a/(b(a-b)) (the printed '+' makes the bound negative)"),
+    3: Bracket("(9)",
+               "b/(b-1) + (D+R2)/2 - sqrt((D+R2)^2/4 + R2 (1 + eps/b)), R2 = W (b-1)/b (b/(b-1) - eps/(a-b)) "
+               "(b/(b-1) - eps a/(b(a-b)))^-1",
+               "(1+eps)/(b-1) + eps (a-1)/((a-b)(a-b+eps(a-1))) + (b-eps)/(b + sqrt(W (b-1) b))",
+               lambda p: _lo9_10(p, -1, True, False), lambda p: _hi9(p, 1),
+               lambda p: _lo9_10(p, -1, True, True), lambda p: _hi9(p, 2),
+               "... + R2 (1 - eps/(b-1)) = R2 (nu5 - nu4^-)",
+               "(1+eps)/(b-1) + eps^2 (a-1)/(...) + ...: the first two terms are nu4^+ of (5)",
+               "lower: c = nu5 - nu4^- = 1 - eps/(b-1) for the printed 1 + eps/b; upper: eps^2 as in (5)"),
+    4: Bracket("(10)",
+               "b/(b-1) + (D+R2)/2 + sqrt((D+R2)/4 + R2 (1 + eps/b))",
+               "b/(b-1) + R3 + sqrt(R3^2 + W), R3 = [eps/(b(b-1)) + eps^2 a(a-1)/(b(a-b)((a-b)b + eps(a-1))) + W]/2",
+               lambda p: _lo9_10(p, +1, False, False), _hi10,
+               lambda p: _lo9_10(p, +1, True, True), None,
+               "b/(b-1) + (D+R2)/2 + sqrt((D+R2)^2/4 + R2 (1 - eps/(b-1))): the other root of (9)'s quadratic",
+               "", "lower: square restored on [D+R2] and c = nu5 - nu4^- as in (9)"),
+}
+
+
+def bracket(j: int, p: Params, reading: str = "intended") -> tuple[arb, arb]:
+    """(lower, upper) bound of bracket j: reading 'intended' (used by claims) or 'printed'."""
+    br = BRACKETS[j]
+    if reading == "printed":
+        return br.lo(p), br.hi(p)
+    return (br.lo_read or br.lo)(p), (br.hi_read or br.hi)(p)
+
+
+# ----------------------------------------------------------------------------- approximations
+
+def approximation(j: int, p: Params) -> arb:
+    """Approximation of omega_j: (12) for j = 1 (printed under the label omega_4), (13) for 2, 3, 4."""
+    a, b, e, W = p
+    if j == 1:
+        return e * W / (W * (a - b) + e * a * b)
+    if j == 2:
+        return (e * (b - 1) * a + W * (a - b)) / ((a - b) * (b - 1) * (b + W))
+    r3 = (e / (b * (b - 1)) + (b - 1) * W / b) / 2
+    root = (r3 * r3 + (b - 1) * W * (b - e) / (b * b)).sqrt()
+    return b / (b - 1) + r3 + (root if j == 4 else -root)
+
+
+APPROX_TEXT = {
+    1: "(12) eps W [W (a-b) + eps a b]^-1 (printed as 'omega_4 ~'; it is the omega_1 formula)",
+    2: "(13) (eps (b-1) a + W (a-b)) / ((a-b)(b-1)(b+W))",
+    3: "(13) b/(b-1) + R3 - sqrt(R3^2 + (b-1) W (b-eps)/b^2), R3 = (eps/(b(b-1)) + (b-1) W/b)/2",
+    4: "(13) b/(b-1) + R3 + sqrt(R3^2 + (b-1) W (b-eps)/b^2)",
+}
+
+
+def dimensional_14(j: int, A1: fmpq, A2: fmpq, A3: fmpq, K2: fmpq, K3: fmpq, H2: fmpq,
+                   corrected: bool) -> tuple[fmpq, fmpq, fmpq]:
+    """Formula (14) for (lambda_j^0)^2 as exact rationals (q0, q1, q2) with value q0 + s*sqrt(q2)
+    ... returned as (rational part, sign, radicand): (lambda^0)^2 = q0 + sign*sqrt(q2) (q2 = 0 for j = 1, 2).
+
+    ``corrected`` uses A2 H^2/A3^3 in R4 where the paper prints A2 H^2/A3 (dimensionally wrong)."""
+    if j == 1:
+        return H2 / (A1 * H2 / K2 + (A1 + A2 + A3) * (A2 + A3)), fmpq(0), fmpq(0)
+    if j == 2:
+        return (K2 * A2 * (A1 + A2 + A3) + H2 * A1) / (A1 * A2 * (A2 + A3 + H2 / K3)), fmpq(0), fmpq(0)
+    r4 = A3 / (2 * (A2 + A3)) * (K2 / A2 + A2 * H2 / (A3 ** 3 if corrected else A3))
+    rad = r4 * r4 + A2 * H2 / ((A2 + A3) * A3 * A3) * (K3 / A3 - K2 / (A2 + A3))
+    return K3 * (A2 + A3) / (A2 * A3) + r4, fmpq(-1 if j == 3 else 1), rad
+
+
+# ----------------------------------------------------------------------------- formulas for the report
+
+def formula_table() -> list[dict[str, str]]:
+    """Every formula of the scene: as printed and as read, with the evidence for the reading."""
+    rows = [
+        {"id": "(1)", "printed": "lambda^2 [l(b-1)+b][l^2(a-b)(b-1) + l(eps(a-1)+b(a-b)) + eps a] + "
+                                 "lambda^2 [l(b-1)+1][l^2(a-b)(b-1) + l(eps(a-1)+a-b) + eps] = 0",
+         "reading": "lambda^2 P1(lambda^2) + Omega^2 P2(lambda^2) = 0",
+         "note": "The factor of the second product was lost in transcription. Omega^2 reproduces (2) "
+                 "coefficient by coefficient and the ratios of the paper's 'exact' frequencies; the printed "
+                 "lambda^2 makes Omega^2 drop out (see the audit)."},
+        {"id": "(2)", "printed": "Omega^2 = omega (omega-nu2)(omega-nu5)(omega-nu6) / ((omega-nu1)(omega-nu3)(omega-nu4))",
+         "reading": "as printed", "note": "lambda = i sqrt(omega); nu3 = 1/(b-1), nu5 = b/(b-1)."},
+        {"id": "branches", "printed": "branch 3: poles nu5, nu6 and zeros nu5, nu6",
+         "reading": "branch 1 (0, nu1); branch 2 (nu2, nu3); branch 3 (nu4, nu5); branch 4 (nu6, oo)",
+         "note": "Branch 3 is garbled in the text; F > 0 exactly on these four intervals when the nus are ordered."},
+        {"id": "(4)", "printed": "v2^- v1^- = [...] + ... = 0 (garbled)",
+         "reading": "(a-b)(b-1) w^2 - (eps(a-1) + a-b) w + eps = 0 -> nu1 < nu4; "
+                    "(a-b)(b-1) w^2 - (eps(a-1) + b(a-b)) w + eps a = 0 -> nu2 < nu6",
+         "note": "Read off the two quartic factors of (1)."},
+        {"id": "(5)", "printed": "nu1^- = eps/(a-b+eps(a-1)), nu1^+ = eps/(a-b), nu2^- = eps a/(b(a-b)+eps(a-1)), "
+                                 "nu2^+ = eps a/(b(a-b)), nu4^- = (1+eps)/(b-1), nu4^+ = nu4^- + eps^2(a-1)/((a-b)(a-b+eps(a-1))), "
+                                 "nu6^- = (b^2+eps)/(b(b-1)), nu6^+ = nu6^- + eps^2 a(a-1)/(b(a-b)((a-b)b+eps(a-1)))",
+         "reading": "as printed", "note": ""},
+        {"id": "(6)", "printed": "... >= F >= omega(omega-nu2^-)/(omega-nu1^+) [1 + eps/(b(b-1))]",
+         "reading": "factor Lambda b^2 with Lambda = 1 + eps/(b(b-1))",
+         "note": "(7) uses Lambda b^2; with Lambda alone the upper bound of (7) would be far from the printed 43.4 Hz."},
+    ]
+    for j, br in BRACKETS.items():
+        rows.append({"id": f"{br.eq} lower", "printed": br.lo_printed,
+                     "reading": br.lo_reading or "as printed", "note": br.reading_note if br.lo_read else ""})
+        rows.append({"id": f"{br.eq} upper", "printed": br.hi_printed,
+                     "reading": br.hi_reading or "as printed", "note": br.reading_note if br.hi_read else ""})
+    for j, text in APPROX_TEXT.items():
+        rows.append({"id": f"approx omega_{j}", "printed": text, "reading": "as printed", "note": ""})
+    rows.append({"id": "(14) R4", "printed": "R4 = A3/(2(A2+A3)) (K2/A2 + A2 H^2/A3)",
+                 "reading": "R4 = A3/(2(A2+A3)) (K2/A2 + A2 H^2/A3^3)",
+                 "note": "The printed term is not a squared frequency (dimension check); the reading makes (14) "
+                         "equal (13) for every A3, K3 (checked exactly in the audit)."})
+    return rows
+
+
+# ----------------------------------------------------------------------------- the audit
+
+def _fmt(x: arb) -> str:
+    lo, hi = decimal_bounds(x, 8)
+    return f"[{lo}, {hi}]"
+
+
+def _q(x) -> arb:
+    return ball(x)
+
+
+def _hz(s: arb, w: arb) -> arb | None:
+    return s * w.sqrt() if certainly_positive(w) else None
+
+
+def _scale_range(printed: str, w: arb) -> arb:
+    """The set of scales s for which s*sqrt(w) rounds to ``printed``, as a ball (hull)."""
+    h = half_unit(printed)
+    x = _q(printed)
+    hq = arb(fmpq(h.numerator, h.denominator))
+    return ((x - hq) / w.sqrt()).union((x + hq) / w.sqrt())
+
+
+def _number_row(rid: str, printed: str, s: arb, w_printed: arb, w_read: arb | None,
+                printed_text: str, read_text: str) -> AuditRow:
+    """Audit a printed Hz number against the printed formula and (if different) the reading."""
+    hz_p = _hz(s, w_printed)
+    st_p, note_p = (audit_printed(printed, hz_p) if hz_p is not None else (AuditStatus.DISAGREES, "formula value <= 0: no frequency"))
+    note = f"printed formula: {(_fmt(hz_p) + ' Hz, ' + note_p) if hz_p is not None else note_p}"
+    if hz_p is not None:
+        note += f"; reproduced for scales in {_fmt(_scale_range(printed, w_printed))}"
+    if w_read is None:
+        return AuditRow(rid, printed, printed_text, hz_p, st_p, note)
+    hz_r = _hz(s, w_read)
+    st_r, note_r = (audit_printed(printed, hz_r) if hz_r is not None else (AuditStatus.DISAGREES, "<= 0"))
+    note += f"; reading: {_fmt(hz_r)} Hz, {note_r}, reproduced for scales in {_fmt(_scale_range(printed, w_read))}" if hz_r is not None else "; reading <= 0"
+    if st_p is AuditStatus.AGREES:
+        status = AuditStatus.AGREES
+    elif st_r is AuditStatus.AGREES:
+        status = AuditStatus.MISPRINT
+    elif AuditStatus.UNDECIDED in (st_p, st_r):
+        status = AuditStatus.UNDECIDED
+    else:
+        status = AuditStatus.DISAGREES
+    return AuditRow(rid, printed, read_text, hz_r, status, note)
+
+
+def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[AuditRow]:
+    """Audit rows for every number the paper prints in its example (needs ``hz_scale``)."""
+    from .eigfreq import characteristic_quartic  # local: same module family, avoids a cycle
+    from .polyroots import isolate_polynomial
+
+    rows: list[AuditRow] = []
+    paper = model.paper
+    a, b, e, W = (model.q(k) for k in ("a", "b", "eps", "Omega2"))
+    # (1): the printed factor lambda^2 against the reading Omega^2
+    printed_q = characteristic_quartic(a, b, e, W, factor="lambda2")
+    pr = isolate_polynomial(printed_q)
+    pos = [x for x in pr.real if certainly_positive(x)] if pr.squarefree else []
+    rows.append(AuditRow("(1) factor of the second product", "lambda^2", "Omega^2", None, AuditStatus.MISPRINT,
+                         f"as printed the equation does not depend on Omega^2 and has {len(pos)} positive root(s) "
+                         f"{[_fmt(x) for x in pos]} and {len(pr.nonreal)} non-real: not four frequencies; the reading "
+                         "gives (2) and four positive roots"))
+    if len(omegas) != 4:
+        return rows
+    s = ball(model.hz_scale.fmpq()) if model.hz_scale is not None else None
+    exact = paper.get("hz_exact")
+    if s is None:
+        rows.append(AuditRow("Hz values", "", "", None, AuditStatus.UNDECIDED,
+                             "no hz_scale in the scene: printed Hz values not audited"))
+        return rows
+    if exact:
+        ranges = []
+        for j, x in enumerate(exact, start=1):
+            st, note = audit_printed(x, s * omegas[j - 1].sqrt())
+            rng = _scale_range(x, omegas[j - 1])
+            ranges.append(rng)
+            rows.append(AuditRow(f"'exact' lambda_{j} (Hz)", x, f"hz_scale * sqrt(omega_{j})",
+                                 s * omegas[j - 1].sqrt(), st, f"{note}; correct rounding for scales in {_fmt(rng)}"))
+        lo_max = max(ranges, key=lambda r: float(r.lower().mid()))  # float picks; balls decide below
+        hi_min = min(ranges, key=lambda r: float(r.upper().mid()))
+        disjoint = certainly_gt(lo_max.lower(), hi_min.upper())
+        overlap = certainly_le(lo_max.upper(), hi_min.lower())
+        rows.append(AuditRow("'exact' values share one Hz scale", ", ".join(exact),
+                             "intersection of the scale ranges above", None,
+                             AuditStatus.REFUTED if disjoint else AuditStatus.CONFIRMED if overlap else AuditStatus.UNDECIDED,
+                             f"ranges {[_fmt(r) for r in ranges]}; " + (
+                                 "their intersection is certainly empty: no single sqrt(K3/A3)/(2 pi) reproduces all four"
+                                 if disjoint else "a common scale exists")))
+    for key, kind in (("hz_lower", "lower"), ("hz_upper", "upper")):
+        for j, x in enumerate(paper.get(key, []), start=1):
+            br = BRACKETS[j]
+            pf = br.lo if kind == "lower" else br.hi
+            rf = br.lo_read if kind == "lower" else br.hi_read
+            rows.append(_number_row(f"{br.eq} lambda_{j}{'-' if kind == 'lower' else '+'} (Hz)", x, s, pf(p),
+                                    rf(p) if rf else None,
+                                    br.lo_printed if kind == "lower" else br.hi_printed,
+                                    (br.lo_reading if kind == "lower" else br.hi_reading) or "as printed"))
+    for j, x in enumerate(paper.get("hz_approx", []), start=1):
+        rows.append(_number_row(f"{'(12)' if j == 1 else '(13)'} lambda_{j}~ (Hz)", x, s, approximation(j, p), None,
+                                APPROX_TEXT[j], "as printed"))
+    bound = paper.get("error_bound")
+    if bound is not None:
+        rows.extend(_five_percent_rows(bound, p, omegas))
+    rows.append(_label_12_row())
+    rows.extend(_fourteen_rows(model))
+    return rows
+
+
+def _five_percent_rows(bound: str, p: Params, omegas: list[arb]) -> list[AuditRow]:
+    """'The error of the estimates and approximate formulas does not exceed 5%' per root, in Hz
+    (relative error sqrt(value/omega_j) - 1, independent of the scale), on the readings used."""
+    rows = []
+    lim = ball(bound)
+    for j in range(1, 5):
+        lo, hi = bracket(j, p, "intended")
+        vals = {"lower": lo, "approx": approximation(j, p), "upper": hi}
+        errs, fails, und = {}, [], []
+        for k, v in vals.items():
+            if not certainly_positive(v):
+                fails.append(f"{k} <= 0")
+                continue
+            err = (v / omegas[j - 1]).sqrt() - 1
+            errs[k] = err
+            if certainly_gt(abs(err), lim):
+                fails.append(f"{k} {_fmt(100 * err)} %")
+            elif not certainly_le(abs(err), lim):
+                und.append(k)
+        status = AuditStatus.REFUTED if fails else AuditStatus.UNDECIDED if und else AuditStatus.CONFIRMED
+        note = "; ".join(f"{k}: {_fmt(100 * v)} %" for k, v in errs.items())
+        if fails:
+            note = "exceeds: " + ", ".join(fails) + "; all: " + note
+        rows.append(AuditRow(f"error <= {bound} for root {j} (Hz)", f"error does not exceed 5% (root {j})",
+                             "relative error in Hz of the bracket (as read) and the approximation", None, status, note))
+    return rows
+
+
+def _label_12_row() -> AuditRow:
+    return AuditRow("(12) label", "omega_4 ~ eps W [W (a-b) + eps a b]^-1", "omega_1 ~ ...", None,
+                    AuditStatus.MISPRINT, "(11)-(12) derive from the branch of omega_1 (its bound (6)); the formula "
+                    "approximates omega_1 (see approx_rel_error_1), the text says omega_2, omega_3, omega_4 follow")
+
+
+def _fourteen_rows(model) -> list[AuditRow]:
+    """(14) with A3 = K3 = 1 equals (12)/(13) exactly; with other A3, K3 the printed R4 does not, the
+    corrected R4 (A3^3) does. Checked in exact rational arithmetic."""
+    a, b, e, W = (model.q(k) for k in ("a", "b", "eps", "Omega2"))
+    out = []
+    results = {}
+    for A3, K3 in ((fmpq(1), fmpq(1)), (fmpq(2), fmpq(3))):
+        A1, A2, K2, H2 = (a - b) * A3, (b - 1) * A3, e * K3, W * K3 * A3
+        for corrected in (False, True):
+            ok = True
+            for j in range(1, 5):
+                q0, sg, rad = dimensional_14(j, A1, A2, A3, K2, K3, H2, corrected)
+                # dimensionless (12)/(13) in exact form: compare rational part and radicand after / (K3/A3)
+                t = K3 / A3
+                d0, dsg, drad = _approx_exact(j, a, b, e, W)
+                ok = ok and (q0 / t == d0) and (sg == dsg) and (rad / (t * t) == drad)
+            results[(int(A3.p), corrected)] = ok
+    st = AuditStatus.MISPRINT if (results[(1, False)] and not results[(2, False)] and results[(2, True)]) else (
+        AuditStatus.AGREES if results[(2, False)] else AuditStatus.DISAGREES)
+    out.append(AuditRow("(14) R4 term A2 H^2/A3", "A2 H^2/A3", "A2 H^2/A3^3", None, st,
+                        f"exact check: printed (14) = (12)/(13) for A3=K3=1: {results[(1, False)]}; for A3=2, K3=3: "
+                        f"{results[(2, False)]}; corrected R4 for A3=2, K3=3: {results[(2, True)]}"))
+    return out
+
+
+def _approx_exact(j: int, a: fmpq, b: fmpq, e: fmpq, W: fmpq) -> tuple[fmpq, fmpq, fmpq]:
+    """(12)/(13) as rational part, sign, radicand (exact)."""
+    if j == 1:
+        return e * W / (W * (a - b) + e * a * b), fmpq(0), fmpq(0)
+    if j == 2:
+        return (e * (b - 1) * a + W * (a - b)) / ((a - b) * (b - 1) * (b + W)), fmpq(0), fmpq(0)
+    r3 = (e / (b * (b - 1)) + (b - 1) * W / b) / 2
+    return b / (b - 1) + r3, fmpq(-1 if j == 3 else 1), r3 * r3 + (b - 1) * W * (b - e) / (b * b)

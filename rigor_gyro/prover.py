@@ -1,0 +1,91 @@
+"""Prove a scene: validate it, run its kind at escalating precision, assemble the certificate.
+
+Every kind module provides
+
+* ``CLAIMS``: ``{claim_id: statement}`` in report order;
+* ``validate(scene) -> model``: raises :class:`ParameterError` naming the parameter (exit 2);
+* ``attempt(model, claims, prec) -> Attempt``: one evaluation at ``prec`` bits of the requested
+  claims (it must compute only what they need).
+
+Guarantee: :func:`prove_scene` returns the first attempt in which every requested claim is decided
+(proved or refuted), every requested width is met and every audit row is decided, trying
+prec, 2 prec, ... <= maxprec; otherwise the attempt at the highest precision, whose undecided claims
+say ``inconclusive`` with the hint to raise ``--maxprec``. Each claim records the lowest precision at
+which it already had its final status.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+from flint import arb
+
+from .balls import DEFAULT_MAXPREC, DEFAULT_PREC, escalate
+from .certificate import AuditRow, AuditStatus, Certificate, Claim, Status
+from .errors import SceneError
+from .scene import Scene, kind_module
+
+__all__ = ["Attempt", "prove_scene", "requested_claims"]
+
+
+@dataclass
+class Attempt:
+    """What one evaluation at one precision established."""
+
+    claims: list[Claim]
+    quantities: dict[str, arb]
+    paper: list[AuditRow] = field(default_factory=list)
+    formulas: list[dict[str, str]] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    widths_met: bool = True
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def settled(self) -> bool:
+        return (self.widths_met and all(c.status is not Status.INCONCLUSIVE for c in self.claims)
+                and all(r.status is not AuditStatus.UNDECIDED for r in self.paper))
+
+
+def requested_claims(scene: Scene, available: dict[str, str]) -> list[str]:
+    """The claim ids the scene asks for (default: all of its kind), in the kind's order."""
+    if scene.claims_only is None:
+        return list(available)
+    unknown = [c for c in scene.claims_only if c not in available]
+    if unknown:
+        raise SceneError(f"scene {scene.name!r}: unknown claim(s) {unknown}; this kind has {list(available)}")
+    return [c for c in available if c in scene.claims_only]
+
+
+def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAULT_MAXPREC) -> Certificate:
+    """Prove ``scene``; see the module docstring. Bad input raises before any computation."""
+    module = kind_module(scene.kind)
+    model = module.validate(scene)
+    wanted = requested_claims(scene, module.CLAIMS)
+    history: list[tuple[int, Attempt]] = []
+    t0 = time.perf_counter()
+
+    def run(p: int) -> Attempt:
+        a = module.attempt(model, wanted, p)
+        history.append((p, a))
+        return a
+
+    esc = escalate(run, lambda a: a.settled, prec=prec, maxprec=maxprec)
+    elapsed = time.perf_counter() - t0
+    final = esc.result
+    for claim in final.claims:
+        claim.precision_bits = esc.prec
+        for p, a in history:
+            same = [c for c in a.claims if c.id == claim.id and c.status is claim.status]
+            if same and claim.status is not Status.INCONCLUSIVE:
+                claim.precision_bits = p
+                break
+        if claim.status is Status.INCONCLUSIVE:
+            claim.reason += f" [undecided at every precision tried: {esc.tried} bits; try --maxprec {2 * maxprec}]"
+    notes = list(final.notes)
+    if not esc.done and final.widths_met is False:
+        notes.append(f"requested enclosure widths not met by {esc.prec} bits: try --maxprec {2 * maxprec}")
+    return Certificate(scene=scene.header(), precision_bits=esc.prec, claims=final.claims,
+                       quantities=final.quantities, paper=final.paper,
+                       timings={"total_s": round(elapsed, 4)}, precisions_tried=esc.tried,
+                       formulas=final.formulas, notes=notes, extra=final.extra)

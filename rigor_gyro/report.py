@@ -1,0 +1,111 @@
+"""Certificate -> Markdown report, and writing both files into the output folder.
+
+The report is rendered from the certificate's JSON form only, so a report can be re-made from a
+stored certificate (``render_markdown(json.load(f))``) and says nothing the certificate does not.
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+from .certificate import Certificate
+
+__all__ = ["render_markdown", "write_outputs"]
+
+_MARK = {"proved": "PROVED", "refuted": "REFUTED", "inconclusive": "INCONCLUSIVE"}
+
+
+def _esc(text: Any) -> str:
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
+def render_markdown(cert: dict[str, Any]) -> str:
+    """The Markdown report of a certificate given in its JSON form."""
+    scene = cert["scene"]
+    out: list[str] = []
+    out.append(f"# {scene['name']}: {_MARK[cert['verdict']]}")
+    out.append("")
+    out.append(f"*Kind* `{scene['kind']}`. *Source*: {scene.get('source', '')}")
+    out.append("")
+    out.append("Every statement below is a theorem about the exact parameters listed (decimal strings "
+               "read as exact rationals), decided by Arb ball arithmetic (python-flint "
+               f"{cert['software']['python_flint']}, rigor_gyro {cert['software']['rigor_gyro']}). "
+               f"Working precision: {cert['precision_bits']} bits (tried {cert.get('precisions_tried', [])}). "
+               f"Time: {cert['timings'].get('total_s', 0):.3f} s.")
+    out.append("")
+    out.append("## Parameters (exact)")
+    out.append("")
+    out.append("| name | value |")
+    out.append("|---|---|")
+    for k, v in scene["parameters"].items():
+        out.append(f"| `{k}` | `{v}` |")
+    out.append("")
+    out.append("## Claims")
+    out.append("")
+    out.append("| claim | status | statement | reason | bits |")
+    out.append("|---|---|---|---|---|")
+    for c in cert["claims"]:
+        out.append(f"| `{c['id']}` | **{c['status']}** | {_esc(c['statement'])} | {_esc(c['reason'])} | "
+                   f"{c['precision_bits']} |")
+    out.append("")
+    if cert["quantities"]:
+        out.append("## Certified enclosures")
+        out.append("")
+        out.append("Each value certainly lies in [lo, hi] (decimal bounds rounded outward).")
+        out.append("")
+        out.append("| quantity | lo | hi | radius |")
+        out.append("|---|---|---|---|")
+        for k, q in cert["quantities"].items():
+            out.append(f"| `{k}` | {q['lo']} | {q['hi']} | {q['rad']} |")
+        out.append("")
+    if cert.get("formulas"):
+        out.append("## Formulas: as printed and as read")
+        out.append("")
+        for f in cert["formulas"]:
+            out.append(f"- **{f['id']}**. Printed: `{f['printed']}`")
+            if f.get("reading") and f["reading"] != f["printed"]:
+                out.append(f"  Read as: `{f['reading']}`")
+            if f.get("note"):
+                out.append(f"  {f['note']}")
+        out.append("")
+    if cert.get("paper"):
+        out.append("## Audit of the paper")
+        out.append("")
+        out.append("The audit never changes the verdict. Status: *agrees* = the printed number is a "
+                   "correct rounding of the certified value at its printed digits; *misprint* = the "
+                   "printed formula does not give it but the stated reading does; *confirmed* / "
+                   "*refuted* for verbal assertions.")
+        out.append("")
+        out.append("| item | printed | reading | certified lo | certified hi | status | note |")
+        out.append("|---|---|---|---|---|---|---|")
+        for r in cert["paper"]:
+            out.append(f"| {_esc(r['id'])} | {_esc(r['printed'])} | {_esc(r['reading'])} | {r['lo']} | "
+                       f"{r['hi']} | **{r['status']}** | {_esc(r['note'])} |")
+        out.append("")
+    if cert.get("notes"):
+        out.append("## Notes")
+        out.append("")
+        for n in cert["notes"]:
+            out.append(f"- {n}")
+        out.append("")
+    out.append("## How to read this report")
+    out.append("")
+    out.append("*proved*: the ball computation decided the claim for the exact parameters. *refuted*: a "
+               "certified counterexample exists (given in the reason). *inconclusive*: not decided at "
+               "the precisions tried; the reason says what to try. The JSON certificate next to this "
+               "file holds the same data (schema `" + cert["schema"] + "`).")
+    out.append("")
+    return "\n".join(out)
+
+
+def write_outputs(cert: Certificate, out_dir: str | Path) -> tuple[Path, Path]:
+    """Write ``<name>.json`` and ``<name>.md`` into ``out_dir`` (created if needed)."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    data = cert.to_json()
+    name = data["scene"]["name"]
+    jpath, mpath = out / f"{name}.json", out / f"{name}.md"
+    jpath.write_text(json.dumps(data, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
+    mpath.write_text(render_markdown(data), encoding="utf-8")
+    return jpath, mpath
