@@ -54,7 +54,7 @@ OPTIONS = {"rel_width": "1e-30"}
 
 CLAIMS = {
     "roots": "The characteristic quartic in omega has exactly four roots, all real, positive and simple; "
-             "they are enclosed as omega_1 < omega_2 < omega_3 < omega_4.",
+             "they are enclosed as omega_1 < omega_2 < omega_3 < omega_4 to the requested relative width.",
     "nu_ordering": "The zeros and poles of F are ordered as the paper assumes: 0 < nu1 < nu2 < nu3 < nu4 < nu5 < nu6.",
     "branches": "Each root lies on the branch of F the paper assigns it: omega_1 in (0, nu1), omega_2 in "
                 "(nu2, nu3), omega_3 in (nu4, nu5), omega_4 in (nu6, oo).",
@@ -174,9 +174,13 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
         elif nonpos:
             st, why = Status.INCONCLUSIVE, f"sign of root(s) {[_fmt(x) for x in nonpos]} undecided"
         else:
-            st, why = Status.PROVED, ("gcd(Q, Q') = 1 exactly (simple roots); Arb isolated 4 roots with "
-                                      "imaginary part exactly 0, each confirmed by an exact sign change of Q")
             omegas = pr.real
+            st, why = Status.PROVED, ("gcd(Q, Q') = 1 exactly (simple roots); Arb isolated 4 roots with "
+                                      "imaginary part exactly 0, each confirmed by an exact sign change of Q; "
+                                      f"relative widths <= {model.rel_width}")
+            if not pr.width_met:
+                st, why = Status.INCONCLUSIVE, (f"roots isolated but not yet to relative width {model.rel_width} "
+                                                "(raise --maxprec or relax option rel_width)")
     if "roots" in wanted:
         claims.append(_claim("roots", st, why))
     for j, w in enumerate(pr.real if pr.verified and not pr.nonreal else [], start=1):
@@ -293,7 +297,10 @@ def _bracket_claim(j: int, p: "fr.Params", omegas: list[arb], quantities: dict[s
     cid = f"bracket_{j}"
     if len(omegas) != 4:
         return _claim(cid, Status.INCONCLUSIVE, "needs the certified roots")
-    lo, hi = fr.bracket(j, p, reading="intended")
+    try:
+        lo, hi = fr.bracket(j, p, reading="intended")
+    except fr.NotReal as e:
+        return _claim(cid, Status.REFUTED, f"the bracket has no real value for these parameters: {e}")
     quantities[f"bracket_{j}_lo"], quantities[f"bracket_{j}_hi"] = lo, hi
     st, why = _check_bounds([(f"omega_{j}", lo, omegas[j - 1], hi)])
     if st is Status.PROVED:
@@ -306,11 +313,15 @@ def _approx_claim(p: "fr.Params", omegas: list[arb], quantities: dict[str, arb])
         return _claim("approximations", Status.INCONCLUSIVE, "needs the certified roots")
     parts = []
     for j in range(1, 5):
-        approx = fr.approximation(j, p)
+        try:
+            approx = fr.approximation(j, p)
+        except fr.NotReal as e:
+            parts.append(f"omega_{j}: approximation not real ({e})")
+            continue
         err = (approx - omegas[j - 1]) / omegas[j - 1]
         quantities[f"approx_omega_{j}"] = approx
         quantities[f"approx_rel_error_{j}"] = err
         parts.append(f"omega_{j}: {_fmt(err)}")
-    finite = all(quantities[f"approx_rel_error_{j}"].is_finite() for j in range(1, 5))
+    finite = all(quantities.get(f"approx_rel_error_{j}", arb("nan")).is_finite() for j in range(1, 5))
     st = Status.PROVED if finite else Status.INCONCLUSIVE
     return _claim("approximations", st, "relative errors (approx - omega)/omega enclosed: " + "; ".join(parts))

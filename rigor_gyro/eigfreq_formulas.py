@@ -21,8 +21,20 @@ from .balls import (ball, certainly_gt, certainly_le, certainly_lt, certainly_po
                     possibly_zero)
 from .certificate import AuditRow, AuditStatus
 
-__all__ = ["Params", "nu_bounds", "Bracket", "BRACKETS", "bracket", "approximation", "formula_table",
+__all__ = ["NotReal", "Params", "nu_bounds", "Bracket", "BRACKETS", "bracket", "approximation", "formula_table",
            "audit", "dimensional_14"]
+
+
+class NotReal(ArithmeticError):
+    """A formula takes the square root of a certainly negative number: it has no real value."""
+
+
+def _sqrt(x: arb, where: str) -> arb:
+    """sqrt of a ball; raises NotReal when x < 0 certainly (a NaN ball would only say 'undecided')."""
+    if certainly_lt(x, 0):
+        lo, hi = decimal_bounds(x, 8)
+        raise NotReal(f"{where}: radicand in [{lo}, {hi}] is negative")
+    return x.sqrt()
 
 
 class Params(NamedTuple):
@@ -57,14 +69,14 @@ def _hi7(p: Params, sign: int) -> arb:
     a, b, e, W = p
     lam = (b * (b - 1) + e) / (b * (b - 1))
     r = (e * a / (b * (a - b) + sign * (a - 1) * e) + W / (lam * b * b)) / 2
-    return r - (r * r - e * W / ((a - b) * lam * b * b)).sqrt()
+    return r - _sqrt(r * r - e * W / ((a - b) * lam * b * b), "(7) upper")
 
 
 def _lo8(p: Params, sign: int) -> arb:
     a, b, e, W = p
     r1 = a * b * b / ((a - b) * (b - 1) * W)
     h = (e / (b * (b - 1)) + r1) / 2
-    return 1 / (b - 1) + h - (h * h + r1 * (1 / (b - 1) + sign * e * a / (b * (a - b)))).sqrt()
+    return 1 / (b - 1) + h - _sqrt(h * h + r1 * (1 / (b - 1) + sign * e * a / (b * (a - b))), "(8) lower")
 
 
 def _hi8(p: Params) -> arb:
@@ -85,19 +97,19 @@ def _lo9_10(p: Params, root: int, squared: bool, c_reading: bool) -> arb:
     s = d + r2
     c = 1 - e / (b - 1) if c_reading else 1 + e / b
     inner = (s * s if squared else s) / 4 + r2 * c
-    return b / (b - 1) + s / 2 + root * inner.sqrt()
+    return b / (b - 1) + s / 2 + root * _sqrt(inner, "(9)/(10) lower")
 
 
 def _hi9(p: Params, eps_power: int) -> arb:
     a, b, e, W = p
     return ((1 + e) / (b - 1) + e ** eps_power * (a - 1) / ((a - b) * (a - b + e * (a - 1)))
-            + (b - e) / (b + (W * (b - 1) * b).sqrt()))
+            + (b - e) / (b + _sqrt(W * (b - 1) * b, "(9) upper")))
 
 
 def _hi10(p: Params) -> arb:
     a, b, e, W = p
     r3 = (e / (b * (b - 1)) + e * e * a * (a - 1) / (b * (a - b) * ((a - b) * b + e * (a - 1))) + W) / 2
-    return b / (b - 1) + r3 + (r3 * r3 + W).sqrt()
+    return b / (b - 1) + r3 + _sqrt(r3 * r3 + W, "(10) upper")
 
 
 @dataclass(frozen=True)
@@ -168,7 +180,7 @@ def approximation(j: int, p: Params) -> arb:
     if j == 2:
         return (e * (b - 1) * a + W * (a - b)) / ((a - b) * (b - 1) * (b + W))
     r3 = (e / (b * (b - 1)) + (b - 1) * W / b) / 2
-    root = (r3 * r3 + (b - 1) * W * (b - e) / (b * b)).sqrt()
+    root = _sqrt(r3 * r3 + (b - 1) * W * (b - e) / (b * b), f"(13) omega_{j}")
     return b / (b - 1) + r3 + (root if j == 4 else -root)
 
 
@@ -248,8 +260,18 @@ def _q(x) -> arb:
     return ball(x)
 
 
-def _hz(s: arb, w: arb) -> arb | None:
-    return s * w.sqrt() if certainly_positive(w) else None
+def _hz(s: arb, w: arb | None) -> arb | None:
+    return s * w.sqrt() if w is not None and certainly_positive(w) else None
+
+
+def _value(f: Callable[[Params], arb] | None, p: Params) -> arb | None:
+    """The formula's ball, or None when it has no real value (NotReal)."""
+    if f is None:
+        return None
+    try:
+        return f(p)
+    except NotReal:
+        return None
 
 
 def _scale_range(printed: str, w: arb) -> arb:
@@ -264,7 +286,8 @@ def _number_row(rid: str, printed: str, s: arb, w_printed: arb, w_read: arb | No
                 printed_text: str, read_text: str) -> AuditRow:
     """Audit a printed Hz number against the printed formula and (if different) the reading."""
     hz_p = _hz(s, w_printed)
-    st_p, note_p = (audit_printed(printed, hz_p) if hz_p is not None else (AuditStatus.DISAGREES, "formula value <= 0: no frequency"))
+    st_p, note_p = (audit_printed(printed, hz_p) if hz_p is not None
+                    else (AuditStatus.DISAGREES, "formula value not real or not > 0: no frequency"))
     note = f"printed formula: {(_fmt(hz_p) + ' Hz, ' + note_p) if hz_p is not None else note_p}"
     if hz_p is not None:
         note += f"; reproduced for scales in {_fmt(_scale_range(printed, w_printed))}"
@@ -331,12 +354,13 @@ def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[A
             br = BRACKETS[j]
             pf = br.lo if kind == "lower" else br.hi
             rf = br.lo_read if kind == "lower" else br.hi_read
-            rows.append(_number_row(f"{br.eq} lambda_{j}{'-' if kind == 'lower' else '+'} (Hz)", x, s, pf(p),
-                                    rf(p) if rf else None,
+            rows.append(_number_row(f"{br.eq} lambda_{j}{'-' if kind == 'lower' else '+'} (Hz)", x, s,
+                                    _value(pf, p), _value(rf, p),
                                     br.lo_printed if kind == "lower" else br.hi_printed,
                                     (br.lo_reading if kind == "lower" else br.hi_reading) or "as printed"))
     for j, x in enumerate(paper.get("hz_approx", []), start=1):
-        rows.append(_number_row(f"{'(12)' if j == 1 else '(13)'} lambda_{j}~ (Hz)", x, s, approximation(j, p), None,
+        rows.append(_number_row(f"{'(12)' if j == 1 else '(13)'} lambda_{j}~ (Hz)", x, s,
+                                _value(lambda q: approximation(j, q), p), None,
                                 APPROX_TEXT[j], "as printed"))
     bound = paper.get("error_bound")
     if bound is not None:
@@ -352,11 +376,12 @@ def _five_percent_rows(bound: str, p: Params, omegas: list[arb]) -> list[AuditRo
     rows = []
     lim = ball(bound)
     for j in range(1, 5):
-        lo, hi = bracket(j, p, "intended")
-        vals = {"lower": lo, "approx": approximation(j, p), "upper": hi}
+        br = BRACKETS[j]
+        vals = {"lower": _value(br.lo_read or br.lo, p), "approx": _value(lambda q: approximation(j, q), p),
+                "upper": _value(br.hi_read or br.hi, p)}
         errs, fails, und = {}, [], []
         for k, v in vals.items():
-            if not certainly_positive(v):
+            if v is None or not certainly_positive(v):
                 fails.append(f"{k} <= 0")
                 continue
             err = (v / omegas[j - 1]).sqrt() - 1

@@ -1,0 +1,28 @@
+"""Test configuration: hypothesis profiles and a guard that every test leaves the precision as found.
+
+Profiles (select with ``--hypothesis-profile=NAME``; CI uses ``ci``, the default):
+
+* ``ci``: derandomized, no deadline, bounded examples: the default test run stays short and
+  reproducible on 2 cores.
+* ``long``: many more examples, random seeds: a campaign, run by hand
+  (``pytest --hypothesis-profile=long``).
+"""
+import os
+
+import pytest
+from flint import ctx
+from hypothesis import HealthCheck, settings
+
+settings.register_profile("ci", max_examples=40, derandomize=True, deadline=None, print_blob=True,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("long", max_examples=2000, deadline=None, print_blob=True,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
+
+@pytest.fixture(autouse=True)
+def _precision_is_restored():
+    """Every test must leave flint's global precision as it found it."""
+    before = ctx.prec
+    yield
+    assert ctx.prec == before, f"a test leaked ctx.prec = {ctx.prec} (was {before})"

@@ -1,0 +1,80 @@
+"""Certified predicates, precision handling and outward-rounded decimals."""
+from fractions import Fraction
+
+import pytest
+from flint import arb, ctx, fmpq
+from hypothesis import given
+from hypothesis import strategies as st
+
+from rigor_gyro.balls import (certainly_ge, certainly_gt, certainly_le, certainly_lt, compare,
+                              decimal_bounds, escalate, possibly_zero, quantity, working_precision)
+
+
+def test_touching_balls_are_undecided():
+    a, b = arb(1, 1), arb(2, 1)            # [0, 2] and [1, 3]
+    assert compare(a, b) is None
+    assert not certainly_lt(a, b) and not certainly_ge(a, b)
+    assert not certainly_lt(arb(1), arb(1)) and not certainly_gt(arb(1), arb(1))
+
+
+def test_nan_and_infinity_never_decide():
+    nan, inf = arb("nan"), arb("inf")
+    for x in (nan, inf, -inf):
+        assert compare(x, 0) is None
+        assert not certainly_lt(x, 1) and not certainly_gt(x, 1) and not certainly_le(x, 1)
+        assert possibly_zero(x)
+
+
+def test_separated_balls_decide():
+    assert compare(arb(1), arb(2)) == -1 and compare(arb(3, "0.5"), arb(1)) == 1
+    assert certainly_le(arb(1), arb(1))    # exact equal points: <= holds everywhere
+
+
+def test_precision_restored_after_exception():
+    before = ctx.prec
+    with pytest.raises(RuntimeError):
+        with working_precision(300):
+            assert ctx.prec == 300
+            raise RuntimeError("boom")
+    assert ctx.prec == before
+
+
+def test_escalate_records_needed_precision_and_restores():
+    before = ctx.prec
+    target = arb(2) ** -150
+
+    def attempt(p):
+        return arb(fmpq(1, 3)).rad()
+
+    out = escalate(attempt, lambda r: r < target, prec=64, maxprec=1024)
+    assert out.done and out.prec == 256 and out.tried == [64, 128, 256]
+    out = escalate(attempt, lambda r: False, prec=64, maxprec=200)
+    assert not out.done and out.tried == [64, 128]
+    assert ctx.prec == before
+
+
+def test_escalate_restores_precision_when_attempt_raises():
+    before = ctx.prec
+    with pytest.raises(ZeroDivisionError):
+        escalate(lambda p: 1 / 0, lambda r: True)
+    assert ctx.prec == before
+
+
+def test_default_str_collapses_but_bounds_do_not():
+    x = arb(1).union(arb(2))
+    lo, hi = decimal_bounds(x)
+    assert Fraction(lo) <= 1 and Fraction(hi) >= 2 and Fraction(hi) - Fraction(lo) < 2
+
+
+@given(st.integers(-10**30, 10**30), st.integers(1, 10**20), st.integers(0, 120), st.integers(64, 400))
+def test_decimal_bounds_contain_the_ball(num, den, radexp, prec):
+    with working_precision(prec):
+        x = arb(fmpq(num, den)) + arb(0, arb(2) ** -radexp)
+    lo, hi = decimal_bounds(x)
+    q = quantity(x)
+    lo_ball, hi_ball = x.lower(), x.upper()
+    assert Fraction(lo) <= Fraction(q["mid"]) <= Fraction(hi)
+    with working_precision(prec + 64):
+        assert arb(fmpq(Fraction(lo).numerator, Fraction(lo).denominator)) <= x.lower()
+        assert arb(fmpq(Fraction(hi).numerator, Fraction(hi).denominator)) >= x.upper()
+    assert Fraction(q["rad"]) >= 0

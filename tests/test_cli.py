@@ -1,0 +1,96 @@
+"""The command line, end to end: exit codes, files written, user scene files, bad input."""
+import json
+import subprocess
+import sys
+
+import pytest
+
+SCENE = """name = "{name}"
+kind = "eigenfrequencies"
+source = "test scene"
+[parameters]
+{params}
+{extra}
+"""
+
+
+def run(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "rigor_gyro", *args], capture_output=True, text=True, cwd=cwd)
+
+
+def write_scene(tmp_path, name="user", params='a = "15.08"\nb = "6.154"\neps = "0.1076"\nOmega2 = "0.629"', extra=""):
+    path = tmp_path / f"{name}.toml"
+    path.write_text(SCENE.format(name=name, params=params, extra=extra))
+    return path
+
+
+def test_list_shows_builtin_scenes():
+    r = run("list")
+    assert r.returncode == 0 and "rudenko1976" in r.stdout and "eigenfrequencies" in r.stdout
+
+
+def test_prove_builtin_writes_certificate_and_report(tmp_path):
+    r = run("prove", "rudenko1976", "--out", str(tmp_path))
+    assert r.returncode == 0, r.stderr
+    assert "rudenko1976: roots: proved" in r.stdout
+    cert = json.loads((tmp_path / "rudenko1976.json").read_text())
+    assert cert["schema"] == "rigor-gyro/certificate/1" and cert["verdict"] == "proved"
+    assert set(cert) >= {"scene", "software", "precision_bits", "verdict", "claims", "quantities", "paper", "timings"}
+    assert cert["scene"]["parameters"]["a"] == "15.08"
+    assert {"id", "statement", "status", "reason", "precision_bits"} <= set(cert["claims"][0])
+    assert {"lo", "hi", "mid", "rad"} == set(cert["quantities"]["omega_1"])
+    assert {"id", "printed", "reading", "lo", "hi", "status", "note"} <= set(cert["paper"][0])
+    md = (tmp_path / "rudenko1976.md").read_text()
+    assert "PROVED" in md and "Audit of the paper" in md and "15.08" in md
+
+
+def test_user_scene_file(tmp_path):
+    path = write_scene(tmp_path, extra='[claims]\nonly = ["roots", "branches"]')
+    r = run("prove", str(path), "--out", str(tmp_path / "out"))
+    assert r.returncode == 0, r.stderr
+    cert = json.loads((tmp_path / "out" / "user.json").read_text())
+    assert [c["id"] for c in cert["claims"]] == ["roots", "branches"]
+    assert cert["paper"] == [] or all(row["id"].startswith("(1)") for row in cert["paper"])
+
+
+@pytest.mark.parametrize("params, word", [
+    ('a = "15.08"\nb = "0.5"\neps = "0.1"\nOmega2 = "0.6"', "'b'"),
+    ('a = "15.08"\nb = "6"\neps = "0.1"', "Omega2"),
+    ('a = 15.08\nb = "6"\neps = "0.1"\nOmega2 = "0.6"', "'a'"),
+    ('a = "15.08"\nb = "6"\neps = "zero"\nOmega2 = "0.6"', "'eps'"),
+    ('a = "15.08"\nb = "6"\neps = "0.1"\nOmega2 = "0.6"\nfoo = "1"', "foo"),
+])
+def test_bad_input_is_exit_2_naming_the_parameter(tmp_path, params, word):
+    path = write_scene(tmp_path, params=params)
+    r = run("prove", str(path), "--out", str(tmp_path))
+    assert r.returncode == 2
+    assert word in r.stderr and "Traceback" not in r.stderr
+
+
+def test_usage_errors_are_exit_2(tmp_path):
+    assert run("prove").returncode == 2
+    assert run("prove", "no-such-scene").returncode == 2
+    assert run("prove", "rudenko1976", "--prec", "8").returncode == 2
+    assert run("frobnicate").returncode == 2
+
+
+def test_refuted_claim_is_exit_1(tmp_path):
+    path = write_scene(tmp_path, params='a = "3"\nb = "2"\neps = "50"\nOmega2 = "1"')
+    r = run("prove", str(path), "--out", str(tmp_path))
+    assert r.returncode == 1 and "nu_ordering: refuted" in r.stdout
+
+
+def test_inconclusive_is_exit_3(tmp_path):
+    path = write_scene(tmp_path, extra='[options]\nrel_width = "1e-300"')
+    r = run("prove", str(path), "--out", str(tmp_path), "--maxprec", "256")
+    assert r.returncode == 3 and "roots: inconclusive" in r.stdout
+    assert "--maxprec" in r.stdout
+
+
+def test_proving_imports_neither_numpy_nor_scipy():
+    code = ("import sys; from rigor_gyro.prover import prove_scene; from rigor_gyro.scene import load_scene;"
+            "prove_scene(load_scene('rudenko1976'));"
+            "print(sorted(m for m in ('numpy', 'scipy', 'mpmath', 'matplotlib') if m in sys.modules))")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() == "[]"

@@ -1,0 +1,99 @@
+"""The eigenfrequency scene (Rudenko 1976): the example's claims, the audit, bad input."""
+import pytest
+from flint import arb, fmpq
+
+from rigor_gyro.balls import certainly_lt, certainly_positive, working_precision
+from rigor_gyro.certificate import AuditStatus, Status
+from rigor_gyro.eigfreq import characteristic_quartic
+from rigor_gyro.errors import ParameterError
+from rigor_gyro.prover import prove_scene
+from rigor_gyro.scene import load_scene, parse_scene
+
+from .reference_values import REFERENCE
+
+#: the reference values carry 50 significant digits: trust them to 1e-45 relative
+REF_REL_TOL = arb("1e-45")
+
+
+@pytest.fixture(scope="module")
+def cert():
+    return prove_scene(load_scene("rudenko1976"))
+
+
+def test_every_claim_of_the_example_is_proved(cert):
+    assert cert.verdict is Status.PROVED
+    ids = [c.id for c in cert.claims]
+    assert ids == ["roots", "nu_ordering", "branches", "nu_bounds", "bracket_1", "bracket_2", "bracket_3",
+                   "bracket_4", "approximations"]
+
+
+def test_roots_contain_reference_values_and_are_tight(cert):
+    for row in REFERENCE:
+        if row[1] != "eigenfrequencies" or row[3] not in cert.quantities:
+            continue
+        ball = cert.quantities[row[3]]
+        with working_precision(256):
+            ref = arb(row[4])
+            assert ball.overlaps(ref + arb(0, REF_REL_TOL * abs(ref))), row
+    for j in range(1, 5):
+        w = cert.quantities[f"omega_{j}"]
+        assert certainly_positive(w)
+        assert 2 * w.rad() <= arb("1e-30") * w.abs_lower()     # relative width <= 1e-30
+    for j in range(1, 4):
+        assert certainly_lt(cert.quantities[f"omega_{j}"], cert.quantities[f"omega_{j + 1}"])
+
+
+def test_quartic_reading_matches_form_2_exactly():
+    """Q(w) = (a-b)(b-1)^2 [w N(w) - W D(w)] with N, D the products of (2): check at exact points."""
+    a, b, e, W = fmpq(1508, 100), fmpq(6154, 1000), fmpq(1076, 10000), fmpq(629, 1000)
+    Q = characteristic_quartic(a, b, e, W)
+    assert Q.degree() == 4
+    assert Q(fmpq(0)) == W * e                      # lambda = 0: Omega^2 * P2(0) = W * eps
+    assert Q(1 / (b - 1)) != 0                      # nu3 is a pole of F, not a root of Q
+
+
+def test_audit_flags_known_misprints(cert):
+    rows = {r.id: r for r in cert.paper}
+    assert rows["(1) factor of the second product"].status is AuditStatus.MISPRINT
+    assert rows["(7) lambda_1+ (Hz)"].status is AuditStatus.MISPRINT
+    assert rows["(7) lambda_1- (Hz)"].status is AuditStatus.AGREES
+    assert rows["(10) lambda_4- (Hz)"].status is AuditStatus.MISPRINT
+    assert rows["(14) R4 term A2 H^2/A3"].status is AuditStatus.MISPRINT
+    assert rows["'exact' values share one Hz scale"].status is AuditStatus.REFUTED
+    assert rows["error <= 0.05 for root 2 (Hz)"].status is AuditStatus.REFUTED
+    assert rows["error <= 0.05 for root 1 (Hz)"].status is AuditStatus.CONFIRMED
+
+
+def test_every_printed_number_is_audited(cert):
+    printed = {r.printed for r in cert.paper}
+    scene = load_scene("rudenko1976")
+    for key in ("hz_lower", "hz_upper", "hz_approx", "hz_exact"):
+        for x in scene.paper[key]:
+            assert x in printed, (key, x)
+
+
+def _scene(**params):
+    body = "\n".join(f'{k} = "{v}"' for k, v in params.items())
+    return parse_scene(f'name = "t"\nkind = "eigenfrequencies"\n[parameters]\n{body}\n')
+
+
+@pytest.mark.parametrize("params, name", [
+    (dict(a="15", b="1", eps="0.1", Omega2="0.6"), "'b'"),
+    (dict(a="6", b="6.1", eps="0.1", Omega2="0.6"), "'a'"),
+    (dict(a="15", b="6", eps="0", Omega2="0.6"), "'eps'"),
+    (dict(a="15", b="6", eps="0.1", Omega2="-1"), "'Omega2'"),
+    (dict(a="15", b="6", eps="0.1"), "Omega2"),
+    (dict(a="15", b="6", eps="0.1", Omega2="0.6", c="1"), "'c'"),
+    (dict(a="15", b="6", eps="x", Omega2="0.6"), "'eps'"),
+])
+def test_bad_input_names_the_parameter(params, name):
+    with pytest.raises(ParameterError, match=name):
+        prove_scene(_scene(**params))
+
+
+def test_refuted_ordering_is_a_verdict_not_a_crash():
+    """Large eps pushes nu4 past nu5: the paper's ordering fails and is refuted with the witness."""
+    cert = prove_scene(_scene(a="3", b="2", eps="50", Omega2="1"))
+    c = cert.claim("nu_ordering")
+    assert c.status is Status.REFUTED and ">=" in c.reason
+    assert cert.claim("roots").status in (Status.PROVED, Status.REFUTED)

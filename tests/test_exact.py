@@ -1,0 +1,54 @@
+"""Exact parameter parsing: strings become rationals (times pi) with no binary rounding."""
+from fractions import Fraction
+
+import pytest
+from flint import arb, fmpq
+
+from rigor_gyro.balls import working_precision
+from rigor_gyro.errors import ParameterError
+from rigor_gyro.exact import parse_exact
+
+
+@pytest.mark.parametrize("text, rational, pi", [
+    ("15.08", Fraction(1508, 100), 0),
+    ("1e4", Fraction(10000), 0),
+    ("2/15", Fraction(2, 15), 0),
+    ("-3", Fraction(-3), 0),
+    ("pi/6", Fraction(1, 6), 1),
+    ("0.5*pi", Fraction(1, 2), 1),
+    ("2*pi/3", Fraction(2, 3), 1),
+    ("1.5e-3", Fraction(3, 2000), 0),
+    (" 0.1076 ", Fraction(1076, 10000), 0),
+    (7, Fraction(7), 0),
+    (Fraction(1, 3), Fraction(1, 3), 0),
+    (fmpq(2, 7), Fraction(2, 7), 0),
+])
+def test_parses_exactly(text, rational, pi):
+    x = parse_exact(text)
+    assert x.rational == rational and x.pi_power == pi
+
+
+@pytest.mark.parametrize("text", ["15.08", "0.1", "1e-30", "123456789.987654321", "2/15"])
+def test_round_trip_through_fraction(text):
+    """The exact value equals Python's exact reading of the same decimal."""
+    assert parse_exact(text).rational == Fraction(text)
+
+
+def test_ball_contains_exact_value_at_working_precision():
+    with working_precision(200):
+        b = parse_exact("0.1").ball()
+        assert b.contains(arb(fmpq(1, 10)))
+        assert b.rad() < arb(2) ** -190
+        p6 = parse_exact("pi/6").ball()
+        assert (p6 * 6 - arb.pi()).contains(0)
+
+
+@pytest.mark.parametrize("bad", [0.1, "abc", "1..2", "", "pi*pi", "1/0", "0x10", True, None, [1]])
+def test_bad_input_raises_parameter_error(bad):
+    with pytest.raises(ParameterError):
+        parse_exact(bad, name="x")
+
+
+def test_float_error_names_parameter_and_fix():
+    with pytest.raises(ParameterError, match=r"parameter 'eps'.*\"0.1\""):
+        parse_exact(0.1, name="eps")
