@@ -1,0 +1,25 @@
+"""Subdivision: positivity proofs with witnesses, and certified extrema."""
+from flint import arb
+
+from rigor_gyro.balls import working_precision
+from rigor_gyro.certificate import Status
+from rigor_gyro.subdivision import certify_positive, enclose_max, enclose_min, mean_value_form
+
+
+def test_positivity_proved_refuted_and_inconclusive():
+    with working_precision(128):
+        thin = arb("1e-9")
+        assert certify_positive(mean_value_form(lambda x: (x - arb(1) / 2) ** 2 + thin), "-2", "2").status is Status.PROVED
+        r = certify_positive(lambda x: (x - arb(1) / 2) ** 2 - thin, "-2", "2")
+        assert r.status is Status.REFUTED and (r.witness - arb(1) / 2).abs_upper() < arb("1e-4")
+        assert r.witness_value < 0
+        r = certify_positive(lambda x: (x - arb(1) / 3) ** 2, "-2", "2", max_pieces=300)
+        assert r.status is Status.INCONCLUSIVE and r.stuck is not None
+
+
+def test_max_with_removable_singularity_is_enclosed():
+    with working_precision(128):
+        m = enclose_max(lambda x: x.sinc(), "-1", "2", abs_tol="1e-20")     # sin(x)/x, max 1 at 0
+        assert m.converged and m.ball.contains(1) and m.ball.rad() < arb("1e-19")
+        n = enclose_min(lambda x: x.cos(), "0", "4", abs_tol="1e-15")
+        assert n.ball.contains(-1)
