@@ -4,7 +4,8 @@ Guarantee: for a squarefree p in Q[x] (checked exactly: gcd(p, p') = 1), :func:`
 returns disjoint balls, one per root: ``real`` holds every real root (each ball holds exactly one),
 ``nonreal`` every non-real root. A root is reported real only when Arb returns it with an imaginary
 part exactly zero *and* p changes sign, in exact rational arithmetic, between the two endpoints of
-its ball (an independent existence proof); a root is non-real only when its imaginary part excludes
+its ball (an independent existence proof; a point ball, i.e. a rational root, must make p
+exactly zero); a root is non-real only when its imaginary part excludes
 zero. Multiplicity is decided exactly (squarefree factorisation), never from floating point.
 
 Requires: coefficients as ``fmpq`` (parse parameters with :mod:`rigor_gyro.exact`).
@@ -24,6 +25,8 @@ Example:
     ...     ok = (r.real[1] ** 2 - 2).contains(0) and r.real[1].overlaps(arb(2).sqrt())
     >>> len(r.real), len(r.nonreal), r.verified, r.width_met, ok
     (2, 0, True, True, True)
+    >>> isolate_polynomial(fmpq_poly([-1, 4])).verified          # rational root 1/4, exact ball
+    True
     >>> isolate_polynomial(fmpq_poly([1, -2, 1])).squarefree     # (x - 1)^2
     False
 """
@@ -80,7 +83,10 @@ def isolate_polynomial(p: fmpq_poly, rel_tol: object | None = None) -> Polynomia
     # Independent existence proof of each real root: an exact sign change of p across its ball.
     for x in real:
         lo, hi = _fmpq(exact_fraction(x.lower())), _fmpq(exact_fraction(x.upper()))
-        if not (p(lo) * p(hi) < 0):
+        if lo == hi:  # an exact (point) ball: a rational root, verified by exact evaluation
+            if p(lo) != 0:
+                problems.append(f"point ball {x} is not an exact root of p")
+        elif not (p(lo) * p(hi) < 0):
             problems.append(f"no exact sign change of p across {x}")
     for x, y in zip(real, real[1:]):
         if x.overlaps(y):
