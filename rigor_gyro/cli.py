@@ -35,6 +35,8 @@ def _parser() -> argparse.ArgumentParser:
                     help=f"highest precision to escalate to (default {DEFAULT_MAXPREC})")
     pr.add_argument("--out", default="proofs", help="output folder (default: ./proofs)")
     pr.add_argument("--quiet", action="store_true", help="print only the verdict line of each scene")
+    pr.add_argument("--plots", action="store_true",
+                    help="also draw the scene's figures into --out (needs the 'plots' extra: matplotlib)")
     return p
 
 
@@ -72,6 +74,10 @@ def _cmd_prove(args) -> int:
             codes.append(EXIT_BAD_INPUT)
             continue
         jpath, mpath = write_outputs(cert, args.out)
+        if args.plots:
+            code = _plots(scene, cert, args.out)
+            if code:
+                codes.append(code)
         if not args.quiet:
             for c in cert.claims:
                 print(f"{scene.name}: {c.id}: {c.status.value} ({c.precision_bits} bits) - {c.reason}")
@@ -83,6 +89,23 @@ def _cmd_prove(args) -> int:
     for status in (Status.REFUTED, Status.INCONCLUSIVE):
         if EXIT_CODES[status] in codes:
             return EXIT_CODES[status]
+    return 0
+
+
+def _plots(scene, cert, out: str) -> int:
+    """Draw the figures of a proved scene (float drawings of certified objects; never a verdict)."""
+    from .scene import kind_module
+    module = kind_module(scene.kind)
+    if not hasattr(module, "plots"):
+        print(f"rigor-gyro: {scene.name}: kind {scene.kind!r} has no figures; --plots ignored", file=sys.stderr)
+        return 0
+    try:
+        import matplotlib  # noqa: F401  (optional extra, imported only here)
+    except ImportError:
+        print("rigor-gyro: error: --plots needs matplotlib: pip install 'rigor_gyro[plots]'", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    for path in module.plots(scene, cert, out):
+        print(f"{scene.name}: figure -> {path}")
     return 0
 
 
