@@ -40,6 +40,9 @@ class Attempt:
     notes: list[str] = field(default_factory=list)
     widths_met: bool = True
     extra: dict[str, Any] = field(default_factory=dict)
+    #: set by a kind when more precision cannot help the undecided claims (e.g. subdivision budgets
+    #: exhausted on wide pieces): escalation stops there and the claims say what to change instead
+    stalled: bool = False
 
     @property
     def settled(self) -> bool:
@@ -70,7 +73,7 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
         history.append((p, a))
         return a
 
-    esc = escalate(run, lambda a: a.settled, prec=prec, maxprec=maxprec)
+    esc = escalate(run, lambda a: a.settled or a.stalled, prec=prec, maxprec=maxprec)
     elapsed = time.perf_counter() - t0
     final = esc.result
     for claim in final.claims:
@@ -81,7 +84,9 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
                 claim.precision_bits = p
                 break
         if claim.status is Status.INCONCLUSIVE:
-            claim.reason += f" [undecided at every precision tried: {esc.tried} bits; try --maxprec {2 * maxprec}]"
+            hint = ("more precision does not help here (see the reason)" if final.stalled and not final.settled
+                    else f"try --maxprec {2 * maxprec}")
+            claim.reason += f" [undecided at every precision tried: {esc.tried} bits; {hint}]"
     notes = list(final.notes)
     if not esc.done and final.widths_met is False:
         notes.append(f"requested enclosure widths not met by {esc.prec} bits: try --maxprec {2 * maxprec}")

@@ -26,3 +26,18 @@ def _precision_is_restored():
     before = ctx.prec
     yield
     assert ctx.prec == before, f"a test leaked ctx.prec = {ctx.prec} (was {before})"
+
+
+def pytest_addoption(parser):
+    parser.addoption("--runslow", action="store_true", default=False,
+                     help="also run tests marked slow (long campaigns, stiff and extreme cases)")
+
+
+def pytest_collection_modifyitems(config, items):
+    """Tests marked ``slow`` run only with ``--runslow`` (or RIGOR_GYRO_SLOW=1): the default run stays short."""
+    if config.getoption("--runslow") or os.environ.get("RIGOR_GYRO_SLOW") == "1":
+        return
+    skip = pytest.mark.skip(reason="slow: run with --runslow")
+    for item in items:
+        if "slow" in item.keywords:
+            item.add_marker(skip)

@@ -1,0 +1,333 @@
+"""The gimbal gyroscope with viscous friction (Agafonov et al. 2013) in ball arithmetic.
+
+System (2), x1 = alpha-dot, x2 = beta, x3 = beta-dot, D = A0 - C0 sin^2 x2:
+
+    x1' = [C0 sin 2x2 x1 x3 - H cos x2 x3 - k x1 - f(x2)] / D,  x2' = x3,
+    x3' = [-1/2 C0 sin 2x2 x1^2 + H cos x2 x1] / B0;
+
+Lyapunov function (7): V = mu F + x3 f3 + 1/2 f2 x3^2 + mu/2 f1 x3^2 + mu (H/B0) cos x2 x1 x3
++ H^2/(2 B0^2) cos^2 x2 x1^2, f1 = k/D, f2 = H^2 cos^2 x2/(D B0), f3 = H cos x2 f/(D B0),
+F = int_0^x2 f3 = (H/B0) G.
+
+Two independent routes to Vdot = grad V . f:
+
+* :meth:`Gimbal.vdot`: forward-mode automatic differentiation of V (7) along the vector field (2) in
+  ball arithmetic (dual numbers over ``arb``; dF/dx2 = f3 by definition of F): no hand algebra;
+* :meth:`Gimbal.psi_coefficients`: the form Vdot = -Psi1 x1^2 - Psi2 x3^2, Psi_i = ci0 + ci1 x1 + ci3 x3,
+  derived from (7) and (2) by hand and verified as an exact identity symbolically
+  (tests/test_lyapunov_identity.py) and in balls at run time against the first route.
+  The paper's printed (8) is :meth:`Gimbal.psi_printed_coefficients` (audited, never used by a claim).
+
+The decomposition used for positivity: with h = H cos x2 / B0 and S = f2 + mu (f1 - mu),
+
+    V = phi(x2) + 1/2 S (x3 + f3/S)^2 + 1/2 (mu x3 + h x1)^2,   phi = mu F - f3^2/(2 S),
+    phi = (F/S) psi(x2),  psi = (H cos^2 x2/(D B0)) (mu H - q(x2)) + mu^2 (f1 - mu),
+
+with q = f^2/(2 D G), the quotient whose maximum is the paper's M (0/0 at x2 = 0: enclosed through
+the moment law's f(x)/x, see :meth:`Gimbal.q`).
+
+Guarantee: every method returns a ball containing the exact value for every argument in the ball
+arguments, at the current working precision; parameters are exact rationals (x2* may be a rational
+multiple of pi).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from flint import arb, fmpq
+
+from .balls import current_precision
+from .exact import Exact
+from .moments import MomentLaw
+
+__all__ = ["Dual", "Gimbal", "mean_value_enclosure", "hypot_ball"]
+
+
+class Dual:
+    """A first-order dual number v + d eps over ``arb``: forward-mode differentiation in balls."""
+
+    __slots__ = ("v", "d")
+
+    def __init__(self, v, d=0):
+        self.v, self.d = arb(v) if not isinstance(v, arb) else v, d
+
+    @staticmethod
+    def lift(x) -> "Dual":
+        return x if isinstance(x, Dual) else Dual(x, 0)
+
+    def __add__(self, o):
+        o = Dual.lift(o)
+        return Dual(self.v + o.v, self.d + o.d)
+
+    __radd__ = __add__
+
+    def __neg__(self):
+        return Dual(-self.v, -self.d)
+
+    def __sub__(self, o):
+        return self + (-Dual.lift(o))
+
+    def __rsub__(self, o):
+        return Dual.lift(o) - self
+
+    def __mul__(self, o):
+        o = Dual.lift(o)
+        return Dual(self.v * o.v, self.d * o.v + self.v * o.d)
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, o):
+        o = Dual.lift(o)
+        return Dual(self.v / o.v, (self.d * o.v - self.v * o.d) / (o.v * o.v))
+
+    def __rtruediv__(self, o):
+        return Dual.lift(o) / self
+
+    def __pow__(self, n: int):
+        if n != 2:
+            raise ValueError("Dual supports only squares")
+        return self * self
+
+    def sin(self):
+        return Dual(self.v.sin(), self.v.cos() * self.d)
+
+    def cos(self):
+        return Dual(self.v.cos(), -self.v.sin() * self.d)
+
+
+def mean_value_enclosure(fn):
+    """Wrap ``fn`` (written with +, -, *, /, sin, cos, so it accepts both ``arb`` and :class:`Dual`)
+    into the mean-value enclosure fn(m) + fn'(X) (X - m), fn' enclosed over X by forward-mode
+    differentiation, intersected with the direct enclosure. Near an interior or end-point maximum the
+    overestimation is quadratic in the piece width instead of linear, so branch and bound converges."""
+    def g(X: arb) -> arb:
+        direct = fn(X)
+        if X.rad().is_zero():
+            return direct
+        d = fn(Dual(X, arb(1))).d
+        m = X.mid()
+        mv = fn(m) + d * (X - m)
+        return direct.intersection(mv) if direct.overlaps(mv) else mv
+    return g
+
+
+def hypot_ball(a: arb, b: arb) -> arb:
+    """A ball containing sqrt(a^2 + b^2) for all values of a and b in their balls, built from the
+    endpoints of |a| and |b| (so it never takes the square root of a ball reaching below 0)."""
+    def ends(x):
+        ax = abs(x)
+        lo = ax.lower()
+        return (lo if lo > 0 else arb(0)), ax.upper()
+    (al, au), (bl, bu) = ends(a), ends(b)
+    lo = (al * al + bl * bl).sqrt().lower()
+    hi = (au * au + bu * bu).sqrt().upper()
+    return lo.union(hi)
+
+
+@dataclass
+class _Balls:
+    A0: arb
+    B0: arb
+    C0: arb
+    H: arb
+    k: arb
+    a: arb
+    mu: arb
+    x2_star: arb
+
+
+@dataclass
+class Gimbal:
+    """Exact parameters of system (2) and Lyapunov function (7), with ball-valued functions."""
+
+    A0: fmpq
+    B0: fmpq
+    C0: fmpq
+    H: fmpq
+    k: fmpq
+    a: fmpq
+    mu: fmpq
+    x2_star: Exact
+    law: MomentLaw
+
+    def __post_init__(self):
+        self._cache: dict[int, _Balls] = {}
+
+    def with_mu(self, mu: fmpq) -> "Gimbal":
+        return Gimbal(self.A0, self.B0, self.C0, self.H, self.k, self.a, mu, self.x2_star, self.law)
+
+    @property
+    def c(self) -> _Balls:
+        """The parameters as balls at the current precision (cached per precision)."""
+        p = current_precision()
+        if p not in self._cache:
+            self._cache[p] = _Balls(*(arb(v) for v in (self.A0, self.B0, self.C0, self.H, self.k, self.a,
+                                                        self.mu)), self.x2_star.ball())
+        return self._cache[p]
+
+    # --------------------------------------------------------------------- the model's functions
+    def D(self, x2):
+        c = self.c
+        return c.A0 - c.C0 * x2.sin() ** 2
+
+    def f(self, x2):
+        return self.law.f(self.c.a, x2)
+
+    def df(self, x2):
+        return self.law.df(self.c.a, x2)
+
+    def f1(self, x2):
+        return self.c.k / self.D(x2)
+
+    def f2(self, x2):
+        c = self.c
+        return c.H ** 2 * x2.cos() ** 2 / (self.D(x2) * c.B0)
+
+    def f3(self, x2):
+        c = self.c
+        return c.H * x2.cos() * self.f(x2) / (self.D(x2) * c.B0)
+
+    def G(self, x2: arb) -> arb:
+        """int_0^x2 cos f / D: closed form or quadrature on thin balls; on wide balls G is even and
+        increasing in |x2| (integrand > 0 on (0, x2*], certified by the v_positive claim), so it is
+        enclosed by its values at the smallest and largest |x2|."""
+        c = self.c
+        if self.law.G_on_balls or x2.rad() < arb(2) ** (-(current_precision() // 2)):
+            return self.law.G(c.a, c.A0, c.C0, x2)
+        lo_abs = arb(0) if x2.contains(0) else abs(x2).lower()
+        hi_abs = abs(x2).upper()
+        glo = self.law.G(c.a, c.A0, c.C0, lo_abs)
+        ghi = self.law.G(c.a, c.A0, c.C0, hi_abs)
+        return glo.union(ghi)
+
+    def F(self, x2):
+        """F = (H/B0) G; on a Dual its derivative is f3 (the definition of F)."""
+        c = self.c
+        if isinstance(x2, Dual):
+            return Dual(c.H / c.B0 * self.G(x2.v), self.f3(x2.v) * x2.d)
+        return c.H / c.B0 * self.G(x2)
+
+    def rhs(self, x1, x2, x3):
+        """The vector field (2)."""
+        c = self.c
+        D = self.D(x2)
+        s2 = (2 * x2).sin() if not isinstance(x2, Dual) else 2 * x2.sin() * x2.cos()
+        d1 = (c.C0 * s2 * x1 * x3 - c.H * x2.cos() * x3 - c.k * x1 - self.f(x2)) / D
+        d3 = (-(c.C0 * s2 * x1 * x1) / 2 + c.H * x2.cos() * x1) / c.B0
+        return d1, x3, d3
+
+    def V(self, x1, x2, x3):
+        """Lyapunov function (7)."""
+        c = self.c
+        cs = x2.cos()
+        return (c.mu * self.F(x2) + x3 * self.f3(x2) + self.f2(x2) * x3 * x3 / 2 + c.mu * self.f1(x2) * x3 * x3 / 2
+                + c.mu * c.H / c.B0 * cs * x1 * x3 + c.H ** 2 / (2 * c.B0 ** 2) * cs * cs * x1 * x1)
+
+    def vdot(self, x1: arb, x2: arb, x3: arb) -> arb:
+        """grad V . f at (x1, x2, x3) by forward-mode differentiation along f (no hand algebra)."""
+        d1, d2, d3 = self.rhs(x1, x2, x3)
+        return self.V(Dual(x1, d1), Dual(x2, d2), Dual(x3, d3)).d
+
+    # --------------------------------------------------------------------- the Psi form
+    def psi_coefficients(self, x2: arb) -> tuple[tuple[arb, arb, arb], tuple[arb, arb, arb]]:
+        """((c10, c11, c13), (c20, c21, c23)) of Vdot = -Psi1 x1^2 - Psi2 x3^2, Psi_i = ci0 + ci1 x1 + ci3 x3,
+        as Vdot actually is (derived from (7) and (2))."""
+        c = self.c
+        H, B0, C0, A0, k, mu = c.H, c.B0, c.C0, c.A0, c.k, c.mu
+        s, cs = x2.sin(), x2.cos()
+        D = self.D(x2)
+        f, fp = self.f(x2), self.df(x2)
+        P = A0 - C0 - C0 * cs ** 2
+        c10 = H ** 2 * cs ** 2 / B0 ** 2 * (k / D - mu) + C0 * H * cs ** 2 * s * f / (D * B0 ** 2)
+        c11 = mu * H * C0 * s * cs ** 2 / B0 ** 2
+        c13 = (mu * k * B0 * C0 + (A0 - C0) * H ** 2) * s * cs / (D * B0 ** 2)
+        c20 = mu * H ** 2 * cs ** 2 / (B0 * D) - H * cs * fp / (B0 * D) + H * P * s * f / (B0 * D ** 2)
+        c21 = mu * H * P * s / (B0 * D)
+        c23 = ((A0 - C0) * H ** 2 - mu * k * B0 * C0) * s * cs / (B0 * D ** 2)
+        return (c10, c11, c13), (c20, c21, c23)
+
+    def psi_printed_coefficients(self, x2: arb) -> tuple[tuple[arb, arb, arb], tuple[arb, arb, arb]]:
+        """The same coefficients as printed in (8) (the x3 term of Psi2 carries sin 2x2)."""
+        (c10, c11, c13), (c20, c21, _) = self.psi_coefficients(x2)
+        c = self.c
+        D = self.D(x2)
+        c23p = ((c.A0 - c.C0) * c.H ** 2 - c.mu * c.k * c.B0 * c.C0) * (2 * x2).sin() / (c.B0 * D ** 2)
+        return (c10, c11, c13), (c20, c21, c23p)
+
+    def vdot_psi(self, x1, x2, x3, printed: bool = False) -> arb:
+        """-Psi1 x1^2 - Psi2 x3^2 from the coefficient form (derived, or as printed)."""
+        (c10, c11, c13), (c20, c21, c23) = (self.psi_printed_coefficients if printed else self.psi_coefficients)(x2)
+        return -(c10 + c11 * x1 + c13 * x3) * x1 * x1 - (c20 + c21 * x1 + c23 * x3) * x3 * x3
+
+    def vdot_monomials(self, x2: arb) -> dict[str, arb]:
+        """Coefficients of grad V . f as a cubic polynomial in (x1, x3) at fixed x2, extracted from
+        :meth:`vdot` at exact nodes (x1, x3 in {-1, 0, 1, 2}) by exact finite differences:
+        keys '1', 'x1', 'x3', 'x1^2', 'x1x3', 'x3^2', 'x1^3', 'x1^2x3', 'x1x3^2', 'x3^3'."""
+        v = {}
+
+        def P(i, j):
+            if (i, j) not in v:
+                v[(i, j)] = self.vdot(arb(i), x2, arb(j))
+            return v[(i, j)]
+
+        def cubic(vals):  # values at t = -1, 0, 1, 2 -> coefficients of 1, t, t^2, t^3
+            m1, z, p1, p2 = vals
+            c2 = (p1 + m1) / 2 - z
+            c3 = (p2 - 3 * p1 + 3 * z - m1) / 6
+            c1 = (p1 - m1) / 2 - c3
+            return z, c1, c2, c3
+        a0, a1, a2, a3 = cubic([P(t, 0) for t in (-1, 0, 1, 2)])
+        _, b1, b2, b3 = cubic([P(0, t) for t in (-1, 0, 1, 2)])
+
+        def Q(i, j):
+            return P(i, j) - P(i, 0) - P(0, j) + a0
+        p21 = (Q(1, 1) + Q(-1, 1)) / 2
+        p12 = (Q(1, 1) + Q(1, -1)) / 2
+        p11 = Q(1, 1) - p21 - p12
+        return {"1": a0, "x1": a1, "x1^2": a2, "x1^3": a3, "x3": b1, "x3^2": b2, "x3^3": b3,
+                "x1x3": p11, "x1^2x3": p21, "x1x3^2": p12}
+
+    # --------------------------------------------------------------------- positivity pieces
+    def q(self, x2: arb) -> arb:
+        """q = f^2 / (2 D G) on a ball x2 inside [0, x2*] (q is even). Closed form when the law has
+        one; otherwise, for balls touching 0, the removable singularity is enclosed through
+        G(x) = x^2 int_0^1 t g(x t) dt with g = cos f/(x D) > 0, so q in (f/x)^2 / (D hull g([0, |x|])),
+        and away from 0 through the monotonicity of G."""
+        c = self.c
+        closed = self.law.q_closed(c.a, c.A0, c.C0, x2)
+        if closed is not None:
+            return closed
+        fx = self.law.f_over_x(c.a, x2)
+        if x2.contains(0) or not x2.lower() > 0:
+            top = abs(x2).upper()
+            y = arb(0).union(top)
+            g = y.cos() * self.law.f_over_x(c.a, y) / self.D(y)
+            return fx ** 2 / (self.D(x2) * g)
+        return self.f(x2) ** 2 / (2 * self.D(x2) * self.G(x2))
+
+    def S(self, x2):
+        return self.f2(x2) + self.c.mu * (self.f1(x2) - self.c.mu)
+
+    def psi(self, x2: arb) -> arb:
+        """psi = (H cos^2/(D B0)) (mu H - q) + mu^2 (f1 - mu): V > 0 off the origin iff psi > 0 on
+        0 < |x2| <= x2* (given S > 0, G > 0)."""
+        c = self.c
+        return c.H * x2.cos() ** 2 / (self.D(x2) * c.B0) * (c.mu * c.H - self.q(x2)) + c.mu ** 2 * (self.f1(x2) - c.mu)
+
+    def phi(self, x2: arb) -> arb:
+        """phi = min over (x1, x3) of V at fixed x2 = mu F - f3^2/(2 S)."""
+        return self.c.mu * self.F(x2) - self.f3(x2) ** 2 / (2 * self.S(x2))
+
+    def phi_minimiser(self, x2: arb) -> tuple[arb, arb]:
+        """(x1, x3) where V(., x2, .) attains phi(x2): x3 = -f3/S, x1 = -mu x3 B0/(H cos x2)."""
+        c = self.c
+        x3 = -self.f3(x2) / self.S(x2)
+        return -c.mu * x3 * c.B0 / (c.H * x2.cos()), x3
+
+    def m_quotient(self, x2: arb) -> arb:
+        """|cos x2 f'(x2)| / (A0 - C0 sin^2 x2), the reading of m's misprinted definition."""
+        return abs(x2.cos() * self.df(x2)) / self.D(x2)
+
+    def m_signed(self, x2):
+        """cos x2 f'(x2) / (A0 - C0 sin^2 x2) (accepts a Dual: for mean-value enclosures)."""
+        return x2.cos() * self.df(x2) / self.D(x2)

@@ -1,0 +1,607 @@
+"""Attraction estimate of a gimbal gyroscope with viscous friction (Agafonov et al. 2013): scene kind
+``lyapunov``.
+
+Model: system (2) and Lyapunov function (7) of :mod:`rigor_gyro.gimbal`, moment law from
+:mod:`rigor_gyro.moments` (the scene names it). Claims, each decided in Arb ball arithmetic over the
+exact parameters:
+
+* ``constants``: A0, B0, C0 exactly; m, M certified maxima over |x2| <= x2* (branch and bound; the
+  0/0 of M at x2 = 0 enclosed through f(x)/x); p, k_min, the mu interval (16), R1 (13), R2 (14), R.
+* ``damping_condition``: k > p A0 / H (18) and mu inside (16).
+* ``vdot_nonpositive``: Vdot = -Psi1 x1^2 - Psi2 x3^2 <= 0 on region (17) (|x2| <= x2*, x1^2 + x3^2 <= R^2):
+  over an x2 piece X the minimum of Psi_i over the disc is ci0 - R sqrt(ci1^2 + ci3^2), enclosed on X;
+  Psi1, Psi2 > 0 by subdivision of [-x2*, x2*]. Vdot vanishes on the x2 axis (x1 = x3 = 0), the
+  equilibrium included, exactly by the factored form: nothing is evaluated near 0 / 0.
+  Refuted only with a certified point of the region where grad V . f > 0 (evaluated by automatic
+  differentiation, not through the Psi form).
+* ``v_positive``: V > 0 off the origin for |x2| <= x2*, through the exact decomposition
+  V = phi(x2) + 1/2 S (x3 + f3/S)^2 + 1/2 (mu x3 + h x1)^2 (see :mod:`rigor_gyro.gimbal`): certified
+  f1 > mu (so S > 0), f(x)/x > 0 (so F > 0 off 0) and psi > 0 (so phi > 0 off 0; psi is finite at
+  x2 = 0, the removable singularity of phi/F). This is necessary and sufficient, sharper than (9).
+* ``invariant_estimate``: c* = min of V over the boundary of region (17) (faces |x2| = x2* in closed form,
+  the cylinder x1^2 + x3^2 = R^2 by 2-D branch and bound), so {x in (17): V < c*} is positively
+  invariant and (LaSalle, x2 f(x2) > 0) inside the domain of attraction; its certified extents.
+* ``best_mu``: the mu of (16) maximising the radius R_sup(mu) = min over x2 of min_i ci0 / |(ci1, ci3)|
+  for which ``vdot_nonpositive`` holds; R_max certified at mu_best, with the float estimate of the
+  supremum and the gap.
+
+Precision: the caller's, escalated by :mod:`rigor_gyro.prover` until every claim is decided and the
+maxima m, M have relative width <= ``rel_width`` (option, default 1e-15).
+
+Fails when: parameters are outside the model (A0 <= C0, x2* not in (0, pi/2), k, mu, H, a not
+positive, unknown moment, missing names): ParameterError naming the parameter (exit 2). A mu outside
+(16) or k below k_min is not bad input: ``damping_condition`` is refuted.
+
+Reference: Agafonov S. A., Kostyushko I. A., Shvydka S. P., Kuzemko A. V., On the stability of steady
+motion of a gyroscope in gimbals, 2013 (seed 000 in shared/seeds).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+
+from flint import arb, fmpq
+
+from .balls import (certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds,
+                    exact_fraction, interval, rel_width_at_most, working_precision)
+from .certificate import Claim, Status
+from .errors import ParameterError
+from .exact import Exact, parse_exact
+from .gimbal import Gimbal, hypot_ball, mean_value_enclosure
+from .moments import MOMENTS
+from .prover import Attempt
+from .subdivision import certify_positive, enclose_max
+
+__all__ = ["CLAIMS", "PARAMETERS", "LyapunovModel", "validate", "attempt", "gimbal_from_parameters"]
+
+PARAMETERS = {"A": "equatorial moment of inertia of the rotor", "C": "polar moment of inertia of the rotor",
+              "A1": "inner ring", "B1": "inner ring", "C1": "inner ring", "A2": "outer ring about its axis",
+              "H": "cyclic constant (angular momentum)", "k": "viscous friction on the outer axis",
+              "a": "amplitude of the moment f", "x2_star": "half-width of the x2 range, in (0, pi/2)",
+              "mu": "parameter of V (7)", "moment": "moment law: " + ", ".join(sorted(MOMENTS))}
+RATIONAL = ("A", "C", "A1", "B1", "C1", "A2", "H", "k", "a", "mu")
+STALL_PREC = 256    # escalation beyond this only repeats the same subdivision (see attempt)
+OPTIONS = {"rel_width": "1e-15", "R": "", "max_pieces": "20000"}
+
+CLAIMS = {
+    "constants": "Enclosures of A0, B0, C0, m, M, p, k_min = p A0/H, the mu interval (p/H, k/A0), R1, R2 and "
+                 "R = min(R1, R2); m and M are certified maxima over |x2| <= x2*.",
+    "damping_condition": "k > p A0 / H (18) and p/H < mu < k/A0 (16).",
+    "vdot_nonpositive": "Vdot = grad V . f = -Psi1 x1^2 - Psi2 x3^2 <= 0 on region (17) (|x2| <= x2*, "
+                        "x1^2 + x3^2 <= R^2), with Psi1 > 0 and Psi2 > 0 there (so Vdot = 0 only on x1 = x3 = 0).",
+    "v_positive": "V > 0 for |x2| <= x2*, (x1, x2, x3) != 0.",
+    "invariant_estimate": "c* = min of V over the boundary of region (17) is enclosed and positive: "
+                          "{x in (17): V(x) < c*} is positively invariant and lies in the domain of attraction.",
+    "best_mu": "mu_best in (16) maximises the radius for which vdot_nonpositive holds; R_max (a certified "
+               "radius at mu_best) is reported with the float estimate of the supremum.",
+}
+
+
+@dataclass
+class LyapunovModel:
+    gimbal: Gimbal
+    params: dict[str, Exact]
+    text: dict[str, str]
+    rel_width: fmpq
+    R_option: fmpq | None
+    max_pieces: int
+    paper: dict
+
+
+def _err(name, text, need):
+    return ParameterError(f"parameter {name!r} = {text!r}: need {need}")
+
+
+def gimbal_from_parameters(text: dict[str, str]) -> tuple[Gimbal, dict[str, Exact]]:
+    """Parse and check the parameters (exact strings) of the lyapunov kind; ParameterError names the
+    parameter to change."""
+    unknown = sorted(set(text) - set(PARAMETERS))
+    if unknown:
+        raise ParameterError(f"unknown parameter(s) {unknown} for kind 'lyapunov'; expected {list(PARAMETERS)}")
+    missing = [k for k in PARAMETERS if k not in text]
+    if missing:
+        raise ParameterError(f"missing parameter(s) {missing} for kind 'lyapunov'")
+    moment = text["moment"]
+    if not isinstance(moment, str) or moment not in MOMENTS:
+        raise ParameterError(f"parameter 'moment' = {moment!r}: unknown moment law; known: {sorted(MOMENTS)}")
+    v = {k: parse_exact(text[k], k) for k in PARAMETERS if k != "moment"}
+    for k in RATIONAL:
+        if not v[k].is_rational:
+            raise ParameterError(f"parameter {k!r}: must be rational (got {v[k].text!r})")
+    q = {k: v[k].rational for k in RATIONAL}
+    for k in ("A", "C", "H", "k", "a", "mu"):
+        if not q[k] > 0:
+            raise _err(k, text[k], "> 0")
+    for k in ("A1", "B1", "C1", "A2"):
+        if q[k] < 0:
+            raise _err(k, text[k], ">= 0 (a moment of inertia)")
+    A0, B0, C0 = q["A"] + q["A1"] + q["A2"], q["A"] + q["B1"], q["A"] + q["A1"] - q["C1"]
+    if not A0 > C0:
+        raise ParameterError(f"parameters 'A2' = {text['A2']!r}, 'C1' = {text['C1']!r}: need A0 > C0, i.e. "
+                             f"A2 + C1 > 0 (A0 = A + A1 + A2 = {A0}, C0 = A + A1 - C1 = {C0})")
+    xs = v["x2_star"]
+    r, pw = xs.rational, xs.pi_power
+    if pw == 1:
+        ok = 0 < r < Fraction(1, 2)
+    elif pw == 0 and r > 0:
+        with working_precision(256):   # r rational, pi/2 irrational: never equal, decided by balls
+            ok = certainly_lt(arb(fmpq(r.numerator, r.denominator)), arb.pi() / 2)
+    else:
+        ok = False
+    if not ok:
+        raise _err("x2_star", text["x2_star"], "0 < x2_star < pi/2 (e.g. \"pi/6\")")
+    f = {k: fmpq(x.numerator, x.denominator) for k, x in
+         {"A0": A0, "B0": B0, "C0": C0, **q}.items()}
+    g = Gimbal(f["A0"], f["B0"], f["C0"], f["H"], f["k"], f["a"], f["mu"], xs, MOMENTS[moment])
+    return g, v
+
+
+def validate(scene) -> LyapunovModel:
+    g, v = gimbal_from_parameters(dict(scene.parameters))
+    opts = dict(OPTIONS, **{k: str(x) for k, x in scene.options.items()})
+    unknown = sorted(set(opts) - set(OPTIONS))
+    if unknown:
+        raise ParameterError(f"unknown option(s) {unknown}; this kind has {list(OPTIONS)}")
+    rel = parse_exact(opts["rel_width"], "rel_width").fmpq()
+    if not rel > 0:
+        raise ParameterError(f"option 'rel_width' = {opts['rel_width']!r}: need > 0")
+    R = None
+    if opts["R"]:
+        R = parse_exact(opts["R"], "R").fmpq()
+        if not R > 0:
+            raise ParameterError(f"option 'R' = {opts['R']!r}: need R > 0")
+    try:
+        pieces = int(opts["max_pieces"])
+    except ValueError:
+        raise ParameterError(f"option 'max_pieces' = {opts['max_pieces']!r}: need an integer") from None
+    return LyapunovModel(g, v, dict(scene.parameters), rel, R, pieces, dict(scene.paper))
+
+
+# ------------------------------------------------------------------------------------ helpers
+
+def _claim(cid: str, status: Status, reason: str, **details) -> Claim:
+    return Claim(cid, CLAIMS[cid], status, reason, details=details)
+
+
+def _fmt(x: arb, digits: int = 12) -> str:
+    lo, hi = decimal_bounds(x, digits)
+    return lo if lo == hi else f"[{lo}, {hi}]"
+
+
+def _q(x: fmpq) -> arb:
+    return arb(x)
+
+
+def _fmpq(fr: Fraction) -> fmpq:
+    return fmpq(fr.numerator, fr.denominator)
+
+
+class _Ctx:
+    """Everything one attempt computes, each piece only when a claim needs it."""
+
+    def __init__(self, model: LyapunovModel, prec: int):
+        self.m = model
+        self.g = model.gimbal
+        self.prec = prec
+        self._memo: dict = {}
+
+    def memo(self, key, fn):
+        if key not in self._memo:
+            self._memo[key] = fn()
+        return self._memo[key]
+
+    @property
+    def xs(self) -> arb:
+        return self.g.c.x2_star
+
+    def tol(self, value: arb) -> arb:
+        return abs(value) * _q(self.m.rel_width) / 4 + arb(2) ** (-self.prec)
+
+    # ------------------------------------------------------------------ constants
+    def m_max(self):
+        def run():
+            # where cos f' / D > 0 on the whole range (certified), |.| is itself: use the mean-value form
+            fn = self.g.m_quotient
+            signed = mean_value_enclosure(self.g.m_signed)
+            if certify_positive(signed, 0, self.xs, max_pieces=200).status is Status.PROVED:
+                fn = signed
+            return enclose_max(fn, 0, self.xs, abs_tol=self.tol(fn(arb(0))), max_pieces=self.m.max_pieces)
+        return self.memo("m", run)
+
+    def M_max(self):
+        def run():
+            v = self.g.q(self.xs)
+            return enclose_max(self.g.q, 0, self.xs, abs_tol=self.tol(v), max_pieces=self.m.max_pieces)
+        return self.memo("M", run)
+
+    def constants(self) -> dict[str, arb]:
+        def run():
+            g, c = self.g, self.g.c
+            cs2 = self.xs.cos() ** 2
+            m, M = self.m_max().ball, self.M_max().ball
+            pA = c.A0 * m / cs2
+            p = M.max(pA)
+            out = {"A0": c.A0, "B0": c.B0, "C0": c.C0, "m": m, "M": M, "A0_m_over_cos2": pA, "p": p,
+                   "k_min": p * c.A0 / c.H, "mu_min": p / c.H, "mu_max": c.k / c.A0}
+            out.update(self.r12(m))
+            return out
+        return self.memo("constants", run)
+
+    def r12(self, m: arb) -> dict[str, arb]:
+        c = self.g.c
+        A0, B0, C0, H, k, mu = c.A0, c.B0, c.C0, c.H, c.k, c.mu
+        s, cs = self.xs.sin(), self.xs.cos()
+        Ds = A0 - C0 * s ** 2
+        D1 = 108 * A0 * (A0 - C0) * H ** 4 * cs ** 4 * (k / A0 - mu) ** 2
+        D2 = 16 * mu ** 2 * A0 * (A0 - C0) * H ** 2 * C0 ** 2 + 27 * (mu * k * B0 * C0 + (A0 - C0) * H ** 2) ** 2
+        P = A0 - C0 - C0 * cs ** 2
+        E1 = 4 * H ** 2 * (mu * H * cs ** 2 - m * A0) ** 2 * Ds ** 4
+        E2 = A0 ** 2 * (4 * mu ** 2 * H ** 2 * P ** 2 * Ds ** 2 * s ** 2 + (mu * k * B0 * C0 - (A0 - C0) * H ** 2) ** 2)
+        R1, R2 = (D1 / D2).sqrt(), (E1 / E2).sqrt()
+        return {"R1": R1, "R2": R2, "R": R1.min(R2), "R2_base": mu * H * cs ** 2 - m * A0}
+
+    def R_used(self) -> tuple[arb, str]:
+        if self.m.R_option is not None:
+            return _q(self.m.R_option), f"R = {self.m.R_option} (scene option)"
+        R = self.constants()["R"]
+        return R, "R = min(R1, R2) from (13), (14)"
+
+
+# ------------------------------------------------------------------------------------ Vdot
+
+def psi_min_functions(g: Gimbal, R: arb):
+    """x2 piece -> enclosure of min over the disc of radius R of Psi1 (resp. Psi2)."""
+    def psi1(x2):
+        (c10, c11, c13), _ = g.psi_coefficients(x2)
+        return c10 - R * hypot_ball(c11, c13)
+
+    def psi2(x2):
+        _, (c20, c21, c23) = g.psi_coefficients(x2)
+        return c20 - R * hypot_ball(c21, c23)
+    return psi1, psi2
+
+
+def vdot_witness(g: Gimbal, R: arb, x2_points: list[arb]) -> tuple[arb, arb, arb, arb] | None:
+    """A point of region (17) (x1^2 + x3^2 < R^2 exactly, |x2| <= x2*) where grad V . f > 0 certainly,
+    searched on circles of radius R (1 - 2^-20), R/2, R/4 at 48 directions; None if none found."""
+    Rq = exact_fraction(R.lower())
+    for x2 in x2_points:
+        for frac in (Fraction(1) - Fraction(1, 2 ** 20), Fraction(1, 2), Fraction(1, 4)):
+            r = Rq * frac
+            for j in range(48):
+                th = 2 * math.pi * j / 48
+                x1 = Fraction(math.cos(th)).limit_denominator(10 ** 6) * r
+                x3 = Fraction(math.sin(th)).limit_denominator(10 ** 6) * r
+                if not x1 * x1 + x3 * x3 < Rq * Rq:
+                    continue
+                b1, b3 = _q(_fmpq(x1)), _q(_fmpq(x3))
+                v = g.vdot(b1, x2, b3)
+                if certainly_positive(v):
+                    return b1, x2, b3, v
+    return None
+
+
+def _vdot_claim(ctx: _Ctx, R: arb, how: str, extra: dict) -> tuple[Claim, dict]:
+    g = ctx.g
+    psi1, psi2 = psi_min_functions(g, R)
+    results, pieces = {}, 0
+    for name, fn in (("Psi1", psi1), ("Psi2", psi2)):
+        r = certify_positive(fn, -ctx.xs, ctx.xs, max_pieces=ctx.m.max_pieces)
+        results[name] = r
+        pieces += r.pieces
+    info = {"pieces": pieces, "R": R}
+    if all(r.status is Status.PROVED for r in results.values()):
+        return _claim("vdot_nonpositive", Status.PROVED,
+                      f"{how} = {_fmt(R)}: min over the disc of Psi1 and of Psi2 certified > 0 on "
+                      f"{results['Psi1'].pieces} + {results['Psi2'].pieces} x2 pieces of [-x2*, x2*]; "
+                      "Vdot = 0 exactly on x1 = x3 = 0 by the factored form (checked against automatic "
+                      "differentiation of (7) along (2))", pieces=pieces), info
+    points = [r.witness for r in results.values() if r.witness is not None]
+    points += [ctx.xs * arb(j) / 8 for j in range(-8, 9)]
+    w = vdot_witness(g, R, points)
+    if w is not None:
+        x1, x2, x3, v = w
+        info["witness"] = w
+        return _claim("vdot_nonpositive", Status.REFUTED,
+                      f"{how} = {_fmt(R)}: grad V . f = {_fmt(v, 6)} > 0 at the point x1 = {_fmt(x1)}, "
+                      f"x2 = {_fmt(x2)}, x3 = {_fmt(x3)} of the region (certified)",
+                      witness={"x1": _fmt(x1, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3, 20), "vdot": _fmt(v, 8)}), info
+    bad = [f"{k}: {r.reason}" for k, r in results.items() if r.status is not Status.PROVED]
+    return _claim("vdot_nonpositive", Status.INCONCLUSIVE,
+                  f"{how} = {_fmt(R)}: " + "; ".join(bad) + "; no point with certified Vdot > 0 found "
+                  "(try a smaller R, higher --maxprec or a larger max_pieces option)"), info
+
+
+# ------------------------------------------------------------------------------------ V > 0
+
+def _v_positive_claim(ctx: _Ctx) -> Claim:
+    g, xs = ctx.g, ctx.xs
+    c = g.c
+    steps = [("S = f2 + mu (f1 - mu) > 0", g.S),
+             ("f(x2)/x2 > 0 (so F > 0 for x2 != 0)", lambda x: g.law.f_over_x(c.a, x)),
+             ("psi > 0 (so phi = (F/S) psi > 0 for x2 != 0)", g.psi)]
+    pieces = 0
+    for text, fn in steps:
+        r = certify_positive(fn, 0, xs, max_pieces=ctx.m.max_pieces)
+        pieces += r.pieces
+        if r.status is Status.PROVED:
+            continue
+        if r.status is Status.REFUTED and text.startswith("psi") and certainly_gt(r.witness, 0):
+            x2 = r.witness
+            x1, x3 = g.phi_minimiser(x2)
+            x1q, x3q = (_q(_fmpq(exact_fraction(y.mid()))) for y in (x1, x3))
+            v = g.V(x1q, x2, x3q)
+            if certainly_le(v, 0):
+                return _claim("v_positive", Status.REFUTED,
+                              f"V = {_fmt(v, 6)} <= 0 at x1 = {_fmt(x1q)}, x2 = {_fmt(x2)}, x3 = {_fmt(x3q)} "
+                              f"(certified; psi <= 0 there, i.e. mu H - q + ... fails)",
+                              witness={"x1": _fmt(x1q, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3q, 20)})
+        return _claim("v_positive", Status.INCONCLUSIVE,
+                      f"could not certify {text} on [0, x2*]: {r.reason}; try --maxprec or max_pieces")
+    return _claim("v_positive", Status.PROVED,
+                  "on [0, x2*]: " +
+                  "; ".join(t for t, _ in steps) + f" certified on {pieces} pieces (S, f/x and psi are even); hence "
+                  "V = phi(x2) + S/2 (x3 + f3/S)^2 + 1/2 (mu x3 + h x1)^2 > 0 off the origin (at x2 = 0, "
+                  "phi = 0 and the squares vanish only at x1 = x3 = 0; psi is enclosed through x2 = 0 "
+                  "by the removable form of q)", pieces=pieces)
+
+
+# ------------------------------------------------------------------------------------ c*
+
+def cylinder_lower_bound(g: Gimbal, R: arb):
+    """x2 piece -> a lower bound of min over theta of V(R cos theta, x2, R sin theta).
+
+    On the circle V = alpha + beta sin(th) + gamma cos(2 th) + delta sin(2 th) with
+    alpha = mu F + (f2 + mu f1 + h^2) R^2/4, beta = f3 R, gamma = (h^2 - f2 - mu f1) R^2/4,
+    delta = mu h R^2/2 (h = H cos x2 / B0), so V >= alpha - |beta| - sqrt(gamma^2 + delta^2)."""
+    c = g.c
+
+    def lb(x2):
+        h = c.H * x2.cos() / c.B0
+        e = g.f2(x2) + c.mu * g.f1(x2)
+        alpha = c.mu * g.F(x2) + (e + h * h) * R * R / 4
+        gamma = (h * h - e) * R * R / 4
+        delta = c.mu * h * R * R / 2
+        return alpha - abs(g.f3(x2)) * R - hypot_ball(gamma, delta)
+    return lb
+
+
+def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
+    g, xs = ctx.g, ctx.xs
+    face = g.phi(xs)
+    m1, m3 = g.phi_minimiser(xs)
+    inside = certainly_lt(m1 ** 2 + m3 ** 2, R ** 2)
+    # V(-x) = V(x), so the cylinder over [0, x2*] with every theta covers |x2| <= x2*
+    cyl = enclose_max(lambda x: -cylinder_lower_bound(g, R)(x), 0, xs,
+                      abs_tol=abs(face) * arb("1e-6") + R * R * arb("1e-6"), max_pieces=ctx.m.max_pieces)
+    cyl_lb = (-cyl.ball).lower()
+    # an upper bound of the boundary minimum: V at boundary points
+    samples = [g.V(R * arb(math.cos(2 * math.pi * j / 32)), x2, R * arb(math.sin(2 * math.pi * j / 32)))
+               for x2 in (arb(0), xs / 2, xs) for j in range(32)]
+    upper = samples[0]
+    for v in samples[1:]:
+        upper = upper.min(v)
+    if inside:
+        lower = face.lower().min(cyl_lb)
+        upper = upper.upper().min(face.upper())
+    else:   # the face minimum is then on its rim, which belongs to the cylinder
+        lower = cyl_lb
+        upper = upper.upper()
+    if inside and certainly_lt(face.upper(), cyl_lb):
+        cstar, where = face, "attained on the faces |x2| = x2* (minimiser inside the disc), closed form"
+    else:
+        cstar = lower.union(upper)
+        where = "lower bound from the cylinder's certified bound" + (" and the faces' closed form" if inside else "")
+    quantities["c_star"] = cstar
+    quantities["c_star_face"] = face
+    if not certainly_positive(cstar):
+        return _claim("invariant_estimate", Status.INCONCLUSIVE,
+                      f"c* = {_fmt(cstar)} is not certainly positive (cylinder bound on {cyl.pieces} pieces); "
+                      "try a smaller R (scene option) or a larger max_pieces", pieces=cyl.pieces)
+    # the set is {V < c_set}, c_set = c*'s certified lower end rounded down to 10 digits (exact)
+    c_text = decimal_bounds(cstar.lower(), 10)[0]
+    cl = _q(_fmpq(Fraction(c_text)))
+    quantities["c_set"] = cl
+    # inner extents: the set contains these segments of the axes
+    hx = g.c.H / g.c.B0
+    ext = {"x1_axis": ((2 * cl).sqrt() / hx).min(R),
+           "x3_axis": ((2 * cl) / (g.f2(arb(0)) + g.c.mu * g.f1(arb(0)))).sqrt().min(R)}
+    # along x2: the root of mu F(x2) = c_set (F increasing), enclosed by bisection
+    lo, hi = arb(0), xs
+    if certainly_lt(g.c.mu * g.F(xs), cl):
+        ext["x2_axis"] = xs
+    else:
+        for _ in range(80):
+            mid = ((lo + hi) / 2).mid()
+            val = g.c.mu * g.F(mid)
+            if certainly_lt(val, cl):
+                lo = mid
+            elif certainly_gt(val, cl):
+                hi = mid
+            else:
+                break
+        ext["x2_axis"] = lo.union(hi)
+    # outer bounding box: |x1| <= [sqrt(2c(S+mu^2)/S) + mu|f3|/S]/h, |x3| <= sqrt(2c/S) + |f3|/S
+    cu = cl
+    mu = g.c.mu
+
+    def x1_bound(x2):
+        S = g.S(x2)
+        return ((2 * cu * (S + mu ** 2) / S).sqrt() + mu * abs(g.f3(x2)) / S) / (g.c.H * x2.cos() / g.c.B0)
+
+    def x3_bound(x2):
+        S = g.S(x2)
+        return (2 * cu / S).sqrt() + abs(g.f3(x2)) / S
+    ob1 = enclose_max(x1_bound, 0, xs, abs_tol=arb("1e-9") * R, max_pieces=4000).ball.min(R)
+    ob3 = enclose_max(x3_bound, 0, xs, abs_tol=arb("1e-9") * R, max_pieces=4000).ball.min(R)
+    for k, v in ext.items():
+        quantities[f"extent_{k}"] = v
+    quantities["bound_x1"], quantities["bound_x3"] = ob1, ob3
+    return _claim("invariant_estimate", Status.PROVED,
+                  f"c* = {_fmt(cstar)} ({where}; cylinder x1^2 + x3^2 = R^2: V >= {_fmt(cyl_lb, 8)} on {cyl.pieces} "
+                  "x2 pieces). "
+                  f"The set {{V < c_set = {c_text}}} within (17) contains the axis segments "
+                  f"|x1| < {_fmt(ext['x1_axis'], 6)}, |x2| < {_fmt(ext['x2_axis'], 6)}, |x3| < {_fmt(ext['x3_axis'], 6)} "
+                  f"and lies in |x1| <= {decimal_bounds(ob1, 6)[1]}, |x3| <= {decimal_bounds(ob3, 6)[1]}, |x2| <= x2*",
+                  c_set=c_text,
+                  pieces=cyl.pieces)
+
+
+# ------------------------------------------------------------------------------------ best mu
+
+def rho_function(g: Gimbal):
+    """x2 piece -> enclosure of max_i |(ci1, ci3)| / ci0 (1/radius; +inf where ci0 may be <= 0)."""
+    def rho(x2):
+        (c10, c11, c13), (c20, c21, c23) = g.psi_coefficients(x2)
+        r1 = hypot_ball(c11, c13) / c10 if certainly_positive(c10) else arb("inf")
+        r2 = hypot_ball(c21, c23) / c20 if certainly_positive(c20) else arb("inf")
+        return r1.max(r2)
+    return rho
+
+
+def r_sup(g: Gimbal, xs: arb, rel: str = "1e-10", max_pieces: int = 4000):
+    """Enclosure of R_sup(mu) = 1 / max over [0, x2*] of rho (rho is even in x2)."""
+    rho = rho_function(g)
+    e = enclose_max(rho, 0, xs, abs_tol=abs(rho(xs)) * arb(rel), max_pieces=max_pieces)
+    return 1 / e.ball, e
+
+
+def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
+    g, xs = ctx.g, ctx.xs
+    k = ctx.constants()
+    lo, hi = k["mu_min"], k["mu_max"]
+    if not certainly_lt(lo, hi):
+        return _claim("best_mu", Status.REFUTED if certainly_le(hi, lo) else Status.INCONCLUSIVE,
+                      f"the mu interval (16) ({_fmt(lo)}, {_fmt(hi)}) is empty: no admissible mu")
+
+    def est(mu: Fraction) -> float:
+        r, _ = r_sup(g.with_mu(_fmpq(mu)), xs, rel="1e-8", max_pieces=600)
+        return float(r.mid()) if r.is_finite() else 0.0
+    a = exact_fraction(lo.upper())
+    b = exact_fraction(hi.lower())
+    invphi = (math.sqrt(5) - 1) / 2
+    x1 = b - Fraction(invphi).limit_denominator(10 ** 9) * (b - a)
+    x2 = a + Fraction(invphi).limit_denominator(10 ** 9) * (b - a)
+    f1, f2 = est(x1), est(x2)
+    for _ in range(48):         # golden-section search on ball midpoints (a heuristic: it only chooses mu)
+        if f1 < f2:
+            a, x1, f1 = x1, x2, f2
+            x2 = a + Fraction(invphi).limit_denominator(10 ** 9) * (b - a)
+            f2 = est(x2)
+        else:
+            b, x2, f2 = x2, x1, f1
+            x1 = b - Fraction(invphi).limit_denominator(10 ** 9) * (b - a)
+            f1 = est(x1)
+        if (b - a) < Fraction(1, 10 ** 14) * b:
+            break
+    mu_mid = (a + b) / 2
+    mu_text = decimal_bounds(_q(_fmpq(mu_mid)), 12)[0]
+    mu_best = _fmpq(Fraction(mu_text))
+    gb = g.with_mu(mu_best)
+    R_enc, e = r_sup(gb, xs, rel="1e-12", max_pieces=ctx.m.max_pieces)
+    if not (R_enc.is_finite() and certainly_positive(R_enc)):
+        return _claim("best_mu", Status.INCONCLUSIVE, f"R_sup(mu_best) not enclosed: {R_enc}")
+    estimate = max(f1, f2, float(R_enc.mid()))
+    quantities["mu_best"] = _q(mu_best)
+    quantities["R_sup_at_mu_best"] = R_enc
+    quantities["R_sup_float_estimate"] = arb(str(estimate))
+    sub = _Ctx(ctx.m, ctx.prec)
+    sub.g = gb
+    claim = None
+    # R_max: R_sup's certified lower end to 10 digits; if Psi's margin is too thin to re-certify by
+    # subdivision, 1e-6 (then 1e-3) below it
+    for shrink in ("1", "0.999999", "0.999"):
+        R_text = decimal_bounds(R_enc.lower() * arb(shrink), 10)[0]
+        R_max = _fmpq(Fraction(R_text))
+        claim, info = _vdot_claim(sub, _q(R_max), "at mu = mu_best, R = R_max", {})
+        if claim.status is Status.PROVED:
+            break
+    if claim.status is not Status.PROVED:
+        return _claim("best_mu", Status.INCONCLUSIVE, f"R_max could not be re-certified: {claim.reason}")
+    quantities["R_max"] = _q(R_max)
+    gap = estimate - float(R_max.p) / float(R_max.q)
+    return _claim("best_mu", Status.PROVED,
+                  f"mu_best = {mu_text} (golden-section search over (16) on ball midpoints, then fixed as an exact "
+                  f"decimal); at mu_best, R_sup = {_fmt(R_enc, 14)} (certified maximum over x2, {e.pieces} pieces); "
+                  f"R_max = {R_text} certified: Psi1, Psi2 > 0 on the disc of radius R_max "
+                  f"({info['pieces']} pieces). Float estimate of sup over mu of R_sup: {estimate:.12g} "
+                  f"(gap to R_max {gap:.3g})",
+                  mu_best=mu_text, R_max=R_text, float_estimate=f"{estimate:.15g}", gap=f"{gap:.3g}")
+
+
+# ------------------------------------------------------------------------------------ attempt
+
+def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
+    """Evaluate the requested claims at the current precision (set by the prover)."""
+    from . import lyapunov_audit  # the paper's numbers and formula (8): only this kind needs them
+    ctx = _Ctx(model, prec)
+    claims: list[Claim] = []
+    quantities: dict[str, arb] = {}
+    widths_met = True
+    notes: list[str] = []
+    need_constants = any(c in wanted for c in ("constants", "damping_condition", "best_mu")) or model.R_option is None
+    if need_constants:
+        k = ctx.constants()
+        for name in ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R"):
+            quantities[name] = k[name]
+        widths_met = all(rel_width_at_most(k[n], model.rel_width) for n in ("m", "M", "p", "R1", "R2"))
+    if "constants" in wanted:
+        k = ctx.constants()
+        finite = all(v.is_finite() for v in k.values())
+        conv = ctx.m_max().converged and ctx.M_max().converged
+        note = ""
+        if certainly_lt(k["R2_base"], 0):
+            note = "; note: mu H cos^2 x2* < A0 m, so (15) fails and R2 (14) (which squares that difference) is meaningless"
+        claims.append(_claim(
+            "constants", Status.PROVED if finite and conv else Status.INCONCLUSIVE,
+            (f"m = {_fmt(k['m'])} ({ctx.m_max().pieces} pieces), M = {_fmt(k['M'])} ({ctx.M_max().pieces} pieces), "
+             f"p = {_fmt(k['p'])}, k_min = {_fmt(k['k_min'])}, mu in ({_fmt(k['mu_min'])}, {_fmt(k['mu_max'])}), "
+             f"R1 = {_fmt(k['R1'])}, R2 = {_fmt(k['R2'])}" + note) if finite and conv else
+            "the maxima m, M did not converge to the requested width: raise --maxprec or the max_pieces option",
+            m_pieces=ctx.m_max().pieces, M_pieces=ctx.M_max().pieces))
+    if "damping_condition" in wanted:
+        k = ctx.constants()
+        c = ctx.g.c
+        parts = [("k > p A0/H (18)", c.k, k["k_min"]), ("mu > p/H", c.mu, k["mu_min"]), ("mu < k/A0", k["mu_max"], c.mu)]
+        holds = [certainly_gt(x, y) for _, x, y in parts]
+        fails = [certainly_le(x, y) for _, x, y in parts]
+        desc = "; ".join(f"{t}: {_fmt(x)} vs {_fmt(y)}" for t, x, y in parts)
+        if all(holds):
+            st, why = Status.PROVED, "certified: " + desc
+        elif any(fails):
+            bad = [t for (t, _, _), f in zip(parts, fails) if f]
+            st, why = Status.REFUTED, f"fails ({', '.join(bad)}): " + desc
+        else:
+            st, why = Status.INCONCLUSIVE, "not separated at this precision: " + desc
+        margin = c.k / k["k_min"] - 1
+        quantities["damping_margin"] = margin
+        claims.append(_claim("damping_condition", st, why + f"; design margin k/k_min - 1 = {_fmt(margin, 6)}"))
+    R, how = (None, "")
+    if any(c in wanted for c in ("vdot_nonpositive", "invariant_estimate")):
+        R, how = ctx.R_used()
+        quantities["R_used"] = R
+    vclaim = None
+    if "vdot_nonpositive" in wanted or "invariant_estimate" in wanted:
+        vclaim, _ = _vdot_claim(ctx, R, how, {})
+        if "vdot_nonpositive" in wanted:
+            claims.append(vclaim)
+    pclaim = None
+    if "v_positive" in wanted or "invariant_estimate" in wanted:
+        pclaim = _v_positive_claim(ctx)
+        if "v_positive" in wanted:
+            claims.append(pclaim)
+    if "invariant_estimate" in wanted:
+        if vclaim.status is Status.PROVED and pclaim.status is Status.PROVED:
+            claims.append(_invariant(ctx, R, quantities))
+        else:
+            claims.append(_claim("invariant_estimate", Status.INCONCLUSIVE,
+                                 "rests on vdot_nonpositive and v_positive, which are not both proved"))
+    if "best_mu" in wanted:
+        claims.append(_best_mu(ctx, quantities))
+    paper, formulas, audit_notes = lyapunov_audit.audit(ctx, quantities)
+    notes += audit_notes
+    # subdivision budgets do not grow with precision: past 256 bits an undecided claim stays undecided
+    stalled = prec >= STALL_PREC and any(c.status is Status.INCONCLUSIVE for c in claims)
+    return Attempt(claims, quantities, paper, formulas, notes, widths_met=widths_met, stalled=stalled,
+                   extra={"moment": {"name": ctx.g.law.name, "formula": ctx.g.law.formula}})

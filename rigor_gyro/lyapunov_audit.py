@@ -1,0 +1,154 @@
+"""The paper's numbers and formulas (Agafonov et al. 2013) against the certified values.
+
+Every row is decided in ball arithmetic: a printed number ``agrees`` when it is a correct rounding of
+the certified enclosure at its printed digits; a printed formula is compared with what system (2) and
+V (7) actually give (formula (8) against automatic differentiation, term by term); a verbal
+statement ("R = R1", the final region) is ``confirmed`` or ``refuted`` by a certified computation
+(a refutation carries its witness). Audit rows never change a claim.
+
+Which printed numbers exist is data: the scene's ``[paper]`` table (keys below); rows about the
+printed formulas (8) and the definition of m are always produced.
+"""
+from __future__ import annotations
+
+from fractions import Fraction
+
+from flint import arb, fmpq
+
+from .audit import audit_printed
+from .balls import certainly_gt, certainly_nonzero, decimal_bounds
+from .certificate import AuditRow, AuditStatus, Status
+
+__all__ = ["audit", "formula_table", "PAPER_KEYS", "vdot_formula_audit"]
+
+#: [paper] key -> (quantity name, what the paper calls it)
+PAPER_KEYS = {"A0": ("A0", "A0 = A + A1 + A2"), "B0": ("B0", "B0 = A + B1"), "C0": ("C0", "C0 = A + A1 - C1"),
+              "m": ("m", "m (section 3)"), "M": ("M", "M (section 3)"), "p": ("p", "p = max(M, A0 m / cos^2 x2*)"),
+              "k_min": ("k_min", "(18): k > p A0 / H"), "mu_min": ("mu_min", "lower end of the mu range"),
+              "mu_max": ("mu_max", "upper end of the mu range"), "R1": ("R1", "R1 from (13)"),
+              "R2": ("R2", "R2 from (14)")}
+
+MONOMIALS = [("x1^2", 0, 0), ("x1^3", 0, 1), ("x1^2x3", 0, 2), ("x3^2", 1, 0), ("x1x3^2", 1, 1), ("x3^3", 1, 2)]
+TERM_NAMES = {("x1^2", 0): "Psi1 constant term (x1^2)", ("x1^3", 0): "Psi1 x1-term", ("x1^2x3", 0): "Psi1 x3-term",
+              ("x3^2", 1): "Psi2 constant terms (x3^2)", ("x1x3^2", 1): "Psi2 x1-term", ("x3^3", 1): "Psi2 x3-term"}
+
+
+def _fmt(x: arb, d: int = 10) -> str:
+    lo, hi = decimal_bounds(x, d)
+    return lo if lo == hi else f"[{lo}, {hi}]"
+
+
+def vdot_formula_audit(g, xs: arb) -> tuple[list[str], list[str], list[str]]:
+    """Compare the coefficients of grad V . f (automatic differentiation, extracted exactly as a cubic
+    in x1, x3) with (8) as printed and as derived, at x2 = j x2*/4, j = 1..4 (exact-ish balls).
+    Returns (printed terms certified wrong, derived terms certified wrong, notes)."""
+    wrong_printed, wrong_derived, notes = set(), set(), []
+    zero_terms = ("1", "x1", "x3", "x1x3")
+    for j in (1, 2, 3, 4):
+        x2 = xs * j / 4
+        mono = g.vdot_monomials(x2)
+        for key in zero_terms:
+            if certainly_nonzero(mono[key]):
+                wrong_derived.add(f"{key} (nonzero in grad V . f)")
+        derived = g.psi_coefficients(x2)
+        printed = g.psi_printed_coefficients(x2)
+        for key, i, t in MONOMIALS:
+            if certainly_nonzero(mono[key] + printed[i][t]):
+                wrong_printed.add(TERM_NAMES[(key, i)])
+                if j == 4:
+                    notes.append(f"at x2 = x2*: {TERM_NAMES[(key, i)]} printed {_fmt(printed[i][t])}, "
+                                 f"grad V . f gives {_fmt(-mono[key])}")
+            if certainly_nonzero(mono[key] + derived[i][t]):
+                wrong_derived.add(TERM_NAMES[(key, i)])
+    return sorted(wrong_printed), sorted(wrong_derived), notes
+
+
+def formula_table() -> list[dict[str, str]]:
+    """Formulas as printed and as read."""
+    return [
+        {"id": "(8) Psi2 x3-term", "printed": "((A0-C0) H^2 - mu k B0 C0) sin 2x2 / (B0 (A0 - C0 sin^2 x2)^2) x3",
+         "reading": "((A0-C0) H^2 - mu k B0 C0) sin x2 cos x2 / (B0 (A0 - C0 sin^2 x2)^2) x3",
+         "note": "grad V . f from (7) and (2) (automatic differentiation in balls) has half the printed term; the "
+                 "paper's own bound (13) uses the halved coefficient (the 1/2 in front of |x3|)."},
+        {"id": "m", "printed": "m = max_{|x2|<=x2*} |cos x2 f'(x2)| / (A0 C0 sin^2 x2)",
+         "reading": "m = max_{|x2|<=x2*} |cos x2 f'(x2)| / (A0 - C0 sin^2 x2)",
+         "note": "As printed the quotient is unbounded at x2 = 0; the derivation of (13) bounds "
+                 "H cos x2 f'/(B0 D) by H m / B0, which needs the reading, and the example's m = a/A0 = 7.874 is it."},
+        {"id": "(17)", "printed": "|x2| <= x2*, x1^2 + x3^2 < R", "reading": "|x2| <= x2*, x1^2 + x3^2 < R^2",
+         "note": "(17) itself writes R^2 = min(R1^2, R2^2); the example's final statement drops the square."},
+        {"id": "M (sine)", "printed": "M = a C0 sin^2 x2* / ((A0 - C0 sin^2 x2*) ln(A0/(A0 - C0 sin^2 x2*)))",
+         "reading": "as printed (q is increasing on [0, x2*]: the maximum is at x2*)",
+         "note": "Enclosed here by certified branch and bound, not by the monotonicity claim; q -> a at x2 = 0."},
+    ]
+
+
+def _row(id_, printed, reading, value, status, note=""):
+    return AuditRow(id_, printed, reading, value, status, note)
+
+
+def audit(ctx, quantities: dict[str, arb]) -> tuple[list[AuditRow], list[dict[str, str]], list[str]]:
+    """All audit rows of the scene; see the module docstring."""
+    from .lyapunov import _vdot_claim, psi_min_functions  # noqa: F401  (same kind, no cycle at import)
+    g, paper = ctx.g, ctx.m.paper
+    rows: list[AuditRow] = []
+    notes: list[str] = []
+    wrong_p, wrong_d, vnotes = vdot_formula_audit(g, ctx.xs)
+    if wrong_d:
+        notes.append("internal check FAILED: the derived Psi form differs from grad V . f in " + ", ".join(wrong_d))
+    if wrong_p:
+        rows.append(_row("(8)", "Psi1, Psi2 of (8)", "x3-term of Psi2 with sin x2 cos x2 instead of sin 2x2", None,
+                         AuditStatus.MISPRINT if wrong_p == ["Psi2 x3-term"] and not wrong_d else AuditStatus.DISAGREES,
+                         "terms that disagree with grad V . f (certified, automatic differentiation of (7) along (2) "
+                         "at x2 = x2*/4 .. x2*): " + ", ".join(wrong_p) + "; all other terms agree within the "
+                         "enclosures. " + "; ".join(vnotes)))
+    else:
+        rows.append(_row("(8)", "Psi1, Psi2 of (8)", "as printed", None, AuditStatus.AGREES,
+                         "every term agrees with grad V . f within the enclosures at x2 = x2*/4 .. x2*"))
+    # the printed definition of m is unbounded at x2 = 0
+    c = g.c
+    t = arb(fmpq(1, 1000))
+    printed_m = abs(t.cos() * g.df(t)) / (c.A0 * c.C0 * t.sin() ** 2)
+    if "m" in quantities and certainly_gt(printed_m, quantities["m"] * 1000):
+        rows.append(_row("m definition", "|cos x2 f'| / (A0 C0 sin^2 x2)", "|cos x2 f'| / (A0 - C0 sin^2 x2)",
+                         quantities["m"], AuditStatus.MISPRINT,
+                         f"as printed the quotient is {_fmt(printed_m, 6)} at x2 = 0.001 (unbounded as x2 -> 0); "
+                         "the reading gives the value enclosed here"))
+    for key, (qname, what) in PAPER_KEYS.items():
+        if key in paper and qname in quantities:
+            status, note = audit_printed(str(paper[key]), quantities[qname])
+            rows.append(_row(key, str(paper[key]), what, quantities[qname], status, note))
+    if "limit" in paper:
+        # lim f / sqrt(int_0^x f) = sqrt(2 f'(0)) for an odd law with f'(0) = a
+        val = (2 * c.a).sqrt()
+        rows.append(_row("limit", str(paper["limit"]), "lim_{x2->0} f (int_0^x2 f)^(-1/2) = (2 f'(0))^(1/2)",
+                         val, AuditStatus.CONFIRMED, "exact: f = a x2 + O(x2^3) gives (2a)^(1/2)"))
+    if "R" in paper and "R" in quantities:
+        R1, R2 = quantities["R1"], quantities["R2"]
+        printed = str(paper["R"])
+        if certainly_gt(R1, R2):
+            rows.append(_row("R = R1", f"R = R1 = {printed}", "R = min(R1, R2) (17)", quantities["R"],
+                             AuditStatus.REFUTED, f"R2 = {_fmt(R2, 6)} < R1 = {_fmt(R1, 6)}: R = R2, not R1"))
+        else:
+            st, note = audit_printed(printed, quantities["R"])
+            rows.append(_row("R = R1", f"R = R1 = {printed}", "R = min(R1, R2) (17)", quantities["R"], st, note))
+    if "R" in paper:
+        rows += _region_rows(ctx, str(paper["R"]))
+    return rows, formula_table(), notes
+
+
+def _region_rows(ctx, printed_R: str) -> list[AuditRow]:
+    """The final statement 'region |x2| <= x2*, x1^2 + x3^2 < R' with R as printed: as printed (radius
+    sqrt(R)) and as read (radius R): does Vdot <= 0 hold there?"""
+    from .lyapunov import _vdot_claim
+    rows = []
+    Rq = Fraction(printed_R)
+    R_read = arb(fmpq(Rq.numerator, Rq.denominator))
+    for label, radius, reading in (("region as printed", R_read.sqrt(), f"x1^2 + x3^2 < {printed_R} (radius sqrt(R))"),
+                                   ("region read with R^2", R_read, f"x1^2 + x3^2 < {printed_R}^2")):
+        claim, _ = _vdot_claim(ctx, radius, "radius", {})
+        status = {Status.PROVED: AuditStatus.CONFIRMED, Status.REFUTED: AuditStatus.REFUTED}.get(
+            claim.status, AuditStatus.UNDECIDED)
+        note = ("Vdot <= 0 on it certified (" + claim.reason.split(": ", 1)[-1][:160] + "); the paper does not "
+                "show it invariant: see invariant_estimate") if status is AuditStatus.CONFIRMED else claim.reason
+        rows.append(_row(label, f"|x2| <= x2*, x1^2 + x3^2 < R, R = {printed_R}", reading, radius, status, note))
+    return rows

@@ -1,0 +1,130 @@
+"""Moment laws f(x2) on the outer-ring axis of the gimbal gyroscope (Agafonov et al. 2013).
+
+A law is everything the Lyapunov scene needs to know about f: the values f, f' and f(x)/x (the
+last continued analytically through x = 0, so quotients that are 0/0 at the equilibrium are
+enclosed rigorously, never skipped), and G(x) = int_0^x cos(s) f(s) / D(s) ds with
+D(s) = A0 - C0 sin^2 s (so that F = (H/B0) G is the integral in the Lyapunov function (7)).
+
+To add a third law, write a class with these methods and add one line to :data:`MOMENTS`; a scene
+names it with ``moment = "<name>"``. Every law must be odd with x f(x) > 0 for 0 < |x| < pi/2
+(the scene certifies f(x)/x > 0 over its range; a law violating it is refuted, not trusted).
+
+Guarantee: each method returns a ball containing the exact value for every x in the ball argument,
+at the current working precision (set by the caller through :mod:`rigor_gyro.balls`).
+
+Fails when: a ball argument is too wide for the method (e.g. G's quadrature on a wide ball returns a
+wide or non-finite enclosure; callers then subdivide further or report inconclusive).
+"""
+from __future__ import annotations
+
+from flint import acb, arb
+
+__all__ = ["MOMENTS", "MomentLaw", "SineMoment", "LinearMoment", "log1m_ratio", "moment_law"]
+
+
+def log1m_ratio(u: arb, terms: int = 40) -> arb:
+    """L(u) = -log(1 - u) / u = sum_{n>=0} u^n / (n + 1), with L(0) = 1, for u in a ball inside
+    |u| <= 1/2 when the ball may contain 0 (series with the tail bound |u|^N / ((N+1)(1-|u|)));
+    otherwise directly. Rigorous for every u in the ball."""
+    if not u.contains(0):
+        return -(-u).log1p() / u
+    r = abs(u).upper()
+    if not r < arb(1) / 2:
+        return arb("nan")
+    s, p = arb(0), arb(1)
+    for n in range(terms):
+        s += p / (n + 1)
+        p *= u
+    tail = r ** terms / ((terms + 1) * (1 - r))
+    return s + arb(0, tail.upper())
+
+
+class MomentLaw:
+    """Interface (see the module docstring). ``a`` is the law's amplitude parameter as a ball."""
+
+    name = ""
+    formula = ""
+    G_on_balls = False                 # True: G's formula encloses G over wide balls directly
+
+    def f(self, a: arb, x):            # f(x); x may be an arb or a rigor_gyro.gimbal.Dual
+        raise NotImplementedError
+
+    def df(self, a: arb, x):           # f'(x)
+        raise NotImplementedError
+
+    def f_over_x(self, a: arb, x: arb) -> arb:   # f(x)/x, analytic through 0
+        raise NotImplementedError
+
+    def G(self, a: arb, A0: arb, C0: arb, x: arb) -> arb:
+        """int_0^x cos(s) f(s) / (A0 - C0 sin^2 s) ds for a point (or thin ball) x."""
+        raise NotImplementedError
+
+    def q_closed(self, a: arb, A0: arb, C0: arb, x: arb) -> arb | None:
+        """Optional closed form of f^2 / (2 D G) on a ball x (None: use the generic enclosure)."""
+        return None
+
+
+class SineMoment(MomentLaw):
+    """f = a sin x2 (the paper's example). G = a/(2 C0) ln(A0/D) in closed form and
+    q = f^2/(2 D G) = a / ((1 - u) L(u)), u = C0 sin^2 x2 / A0, L from :func:`log1m_ratio`."""
+
+    name = "sine"
+    formula = "f(x2) = a sin x2"
+    G_on_balls = True
+
+    def f(self, a, x):
+        return a * x.sin()
+
+    def df(self, a, x):
+        return a * x.cos()
+
+    def f_over_x(self, a, x):
+        return a * x.sinc()
+
+    def G(self, a, A0, C0, x):
+        u = C0 * x.sin() ** 2 / A0
+        if C0.is_zero():
+            return a * x.sin() ** 2 / (2 * A0)
+        return a / (2 * C0) * (-(-u).log1p())
+
+    def q_closed(self, a, A0, C0, x):
+        u = C0 * x.sin() ** 2 / A0
+        return a / ((1 - u) * log1m_ratio(u))
+
+
+class LinearMoment(MomentLaw):
+    """f = a x2 (the paper's 'linear approximation', taken here as the law of a nonlinear system).
+    G by rigorous quadrature (Arb's acb.integral) at points; no closed form of q."""
+
+    name = "linear"
+    formula = "f(x2) = a x2"
+
+    def f(self, a, x):
+        return a * x
+
+    def df(self, a, x):
+        return a + 0 * x
+
+    def f_over_x(self, a, x):
+        return a + 0 * x
+
+    def G(self, a, A0, C0, x):
+        if x.is_zero():
+            return arb(0)
+        A0c, C0c, ac = acb(A0), acb(C0), acb(a)
+
+        def integrand(t, analytic):
+            return ac * t * t.cos() / (A0c - C0c * t.sin() ** 2)
+        return acb.integral(integrand, 0, acb(x)).real
+
+
+#: moment name (as written in a scene) -> law
+MOMENTS: dict[str, MomentLaw] = {law.name: law for law in (SineMoment(), LinearMoment())}
+
+
+def moment_law(name: str) -> MomentLaw:
+    """The law called ``name``; KeyError lists the known ones."""
+    try:
+        return MOMENTS[name]
+    except KeyError:
+        raise KeyError(f"unknown moment {name!r}; known: {sorted(MOMENTS)}") from None

@@ -1,0 +1,208 @@
+"""The Lyapunov scene (Agafonov et al. 2013): claims, audit, witnesses, bad input, extreme cases.
+
+Reference values are independent mpmath computations (30-50 digits, closed forms / quadrature) made
+outside the library (see tests/reference_values.py for the eigenfrequency counterpart)."""
+from fractions import Fraction
+
+import pytest
+from flint import arb
+
+from rigor_gyro import cli
+from rigor_gyro.balls import certainly_gt, certainly_lt, certainly_positive, working_precision
+from rigor_gyro.certificate import AuditStatus, Status
+from rigor_gyro.gimbal import hypot_ball
+from rigor_gyro.lyapunov import validate
+from rigor_gyro.prover import prove_scene
+from rigor_gyro.scene import load_scene, parse_scene
+
+# independent mpmath references (closed forms for the sine law, quadrature for the linear law)
+REF = {"m": "7.874015748031496062992125984251968503937", "M": "101.41040421840341890",
+       "p": "133.3333333333333333333", "k_min": "0.16933333333333333333", "mu_max": "0.031496062992125984252",
+       "R1": "0.0182811298148637", "R2": "0.0106280050148469", "c_star": "23.4283841958462670",
+       "mu_best": "0.0199527665332817", "R_sup_at_mu_best": "0.0240775499389226"}
+M_LINEAR = "108.73968775143216"
+
+BASE = dict(load_scene("agafonov2013").parameters)
+
+
+def scene(name="t", options=None, **changes):
+    p = dict(BASE, **changes)
+    text = f'name = "{name}"\nkind = "lyapunov"\n[parameters]\n' + "".join(f'{k} = "{v}"\n' for k, v in p.items())
+    if options:
+        text += "[options]\n" + "".join(f'{k} = "{v}"\n' for k, v in options.items())
+    return parse_scene(text, name)
+
+
+@pytest.fixture(scope="module")
+def example():
+    return prove_scene(load_scene("agafonov2013"))
+
+
+def near(ball, ref, rel):
+    r = Fraction(ref)
+    with working_precision(128):
+        return certainly_lt(abs(ball - arb(ref)), arb(str(float(abs(r) * Fraction(rel)))))
+
+
+def test_example_every_claim_proved(example):
+    assert {c.id: c.status for c in example.claims} == {c: Status.PROVED for c in (
+        "constants", "damping_condition", "vdot_nonpositive", "v_positive", "invariant_estimate", "best_mu")}
+    assert example.precision_bits == 64
+
+
+@pytest.mark.parametrize("name", ["m", "M", "p", "k_min", "mu_max", "R1", "R2", "c_star"])
+def test_example_quantities_contain_the_references(example, name):
+    q = example.quantities[name]
+    ref = REF[name]
+    digits = len(ref.replace(".", "").lstrip("0")) - 1
+    with working_precision(256):
+        assert q.overlaps(arb(ref) + arb(0, 10.0 ** -(digits - 1) * abs(float(ref))))
+    assert near(q, ref, "1e-12")
+
+
+def test_example_best_mu_and_R_max(example):
+    q = example.quantities
+    assert near(q["mu_best"], REF["mu_best"], "1e-9")
+    assert near(q["R_sup_at_mu_best"], REF["R_sup_at_mu_best"], "1e-10")
+    # R_max is certified and no larger than the supremum, and beats the paper's R and ours
+    assert certainly_lt(q["R_max"], q["R_sup_at_mu_best"] + arb("1e-15"))
+    assert certainly_gt(q["R_max"], arb("0.018")) and certainly_gt(q["R_max"], q["R"])
+
+
+def test_example_widths(example):
+    for name in ("m", "M", "p", "R1", "R2", "c_star"):
+        x = example.quantities[name]
+        assert certainly_lt(x.rad() / abs(x), arb("1e-14")), name
+
+
+def test_example_audit(example):
+    rows = {r.id: r.status for r in example.paper}
+    assert rows["(8)"] is AuditStatus.MISPRINT
+    assert rows["m definition"] is AuditStatus.MISPRINT
+    for key in ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1"):
+        assert rows[key] is AuditStatus.AGREES, key
+    assert rows["R2"] is AuditStatus.DISAGREES
+    assert rows["R = R1"] is AuditStatus.REFUTED
+    assert rows["region as printed"] is AuditStatus.REFUTED          # x1^2 + x3^2 < 0.018: Vdot > 0 inside
+    assert rows["region read with R^2"] is AuditStatus.CONFIRMED     # radius 0.018: Vdot <= 0 holds
+    assert rows["limit"] is AuditStatus.CONFIRMED
+
+
+def test_automatic_differentiation_agrees_with_the_derived_form_not_the_printed_one():
+    g = validate(load_scene("agafonov2013")).gimbal
+    with working_precision(128):
+        for x1, x2, x3 in (("0.003", "0.3", "-0.004"), ("-0.01", "-0.5", "0.002"), ("0.001", "0.1", "0.01")):
+            a, b, c = arb(x1), arb(x2), arb(x3)
+            ad, form, printed = g.vdot(a, b, c), g.vdot_psi(a, b, c), g.vdot_psi(a, b, c, printed=True)
+            assert ad.overlaps(form)
+            assert not ad.overlaps(printed)
+        # on the x2 axis Vdot vanishes exactly
+        assert g.vdot(arb(0), arb("0.4"), arb(0)).contains(0)
+
+
+def test_planted_radius_far_too_large_is_refuted_with_a_checked_witness():
+    cert = prove_scene(scene(options={"R": "0.5"}))
+    claim = cert.claim("vdot_nonpositive")
+    assert claim.status is Status.REFUTED
+    w = claim.details["witness"]
+    g = validate(scene()).gimbal
+    with working_precision(128):
+        x1, x2, x3 = (arb(Fraction(w[k].strip("[]").split(",")[0]).__str__()) if "/" in w[k] else
+                      arb(w[k].strip("[]").split(",")[0]) for k in ("x1", "x2", "x3"))
+        assert certainly_lt(x1 * x1 + x3 * x3, arb("0.25"))
+        assert certainly_positive(g.vdot(x1, x2, x3))
+    assert cert.claim("invariant_estimate").status is Status.INCONCLUSIVE
+    assert cert.exit_code == 1
+
+
+def test_mu_below_the_range_is_refuted_not_a_crash():
+    cert = prove_scene(scene(mu="0.01"))
+    assert cert.claim("damping_condition").status is Status.REFUTED
+    assert cert.claim("v_positive").status is Status.REFUTED      # mu H < M: V takes values <= 0
+    assert cert.claim("best_mu").status is Status.PROVED          # best_mu does not depend on the scene's mu
+
+
+def test_k_below_k_min_refutes_the_damping_condition():
+    cert = prove_scene(scene(k="0.1"))
+    assert cert.claim("damping_condition").status is Status.REFUTED
+    assert "k > p A0/H" in cert.claim("damping_condition").reason
+
+
+def test_linear_moment_M_is_not_a():
+    cert = prove_scene(scene(moment="linear"))
+    M = cert.quantities["M"]
+    assert near(M, M_LINEAR, "1e-12")
+    assert certainly_gt(M, arb(100))            # the paper's 'M = a in the linear approximation' is not M
+    assert cert.verdict is Status.PROVED
+
+
+@pytest.mark.parametrize("changes", [{"H": "1e6"}, {"a": "1e-6"}, {"x2_star": "1.5"}])
+def test_extreme_cases_are_decided_or_honest(changes):
+    cert = prove_scene(scene(**changes))
+    for c in cert.claims:
+        if c.status is Status.INCONCLUSIVE:
+            assert "try" in c.reason or "rests on" in c.reason, (c.id, c.reason)
+    assert cert.claim("constants").status is Status.PROVED
+    assert cert.claim("v_positive").status is not Status.INCONCLUSIVE
+
+
+def test_removable_singularity_of_q_is_enclosed_at_zero():
+    g = validate(load_scene("agafonov2013")).gimbal
+    lin = validate(scene(moment="linear")).gimbal
+    with working_precision(64):
+        for gg in (g, lin):
+            q0 = gg.q(arb(0))
+            assert q0.is_finite() and q0.contains(100)
+            qb = gg.q(arb("0 +/- 0.001"))
+            assert qb.is_finite() and qb.contains(100) and certainly_lt(qb.rad(), arb("0.01"))
+
+
+def test_hypot_ball_never_takes_sqrt_of_negative():
+    with working_precision(64):
+        h = hypot_ball(arb("0 +/- 1e-3"), arb("0 +/- 1e-3"))
+        assert h.is_finite() and h.contains(0) and h.contains(arb(2).sqrt() * arb("1e-3") * arb("0.999"))
+
+
+def test_twice_the_precision_overlaps():
+    a = prove_scene(load_scene("agafonov2013"), prec=64)
+    b = prove_scene(load_scene("agafonov2013"), prec=128)
+    assert [c.status for c in a.claims] == [c.status for c in b.claims]
+    for name, x in a.quantities.items():
+        if name in b.quantities and name not in ("R_sup_float_estimate",):
+            assert x.overlaps(b.quantities[name]), name
+
+
+BAD = [({"A2": "0", "C1": "0"}, "A0 > C0"), ({"x2_star": "pi/2"}, "x2_star"), ({"x2_star": "2"}, "x2_star"),
+       ({"x2_star": "0"}, "x2_star"), ({"k": "0"}, "'k'"), ({"mu": "-1"}, "'mu'"), ({"moment": "cubic"}, "moment"),
+       ({"H": "abc"}, "H")]
+
+
+@pytest.mark.parametrize("changes,needle", BAD)
+def test_bad_input_is_exit_2_naming_the_parameter(tmp_path, capsys, changes, needle):
+    p = dict(BASE, **changes)
+    f = tmp_path / "bad.toml"
+    f.write_text('name = "bad"\nkind = "lyapunov"\n[parameters]\n' + "".join(f'{k} = "{v}"\n' for k, v in p.items()))
+    assert cli.main(["prove", str(f), "--out", str(tmp_path)]) == 2
+    assert needle in capsys.readouterr().err
+
+
+def test_missing_parameter_and_float_are_exit_2(tmp_path, capsys):
+    p = dict(BASE)
+    del p["mu"]
+    f = tmp_path / "m.toml"
+    f.write_text('name = "m"\nkind = "lyapunov"\n[parameters]\n' + "".join(f'{k} = "{v}"\n' for k, v in p.items()))
+    assert cli.main(["prove", str(f), "--out", str(tmp_path)]) == 2
+    assert "mu" in capsys.readouterr().err
+    g = tmp_path / "f.toml"
+    g.write_text(f.read_text() + "mu = 0.02\n")
+    assert cli.main(["prove", str(g), "--out", str(tmp_path)]) == 2
+    assert "mu" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_k_just_above_k_min_is_decided_or_honest():
+    cert = prove_scene(scene(k="0.16934", mu="0.0133335"))
+    assert cert.claim("damping_condition").status is Status.PROVED
+    assert cert.claim("vdot_nonpositive").status is Status.PROVED
+    c = cert.claim("invariant_estimate")
+    assert c.status is Status.PROVED or "try a smaller R" in c.reason
