@@ -454,8 +454,16 @@ class FloatGimbal(_Model):
         """solve_ivp right-hand side: y of shape (3,) or (3, n) (also (3n,) for n stacked starts)."""
         y = np.asarray(y, dtype=float)
         if y.ndim == 1 and y.size > 3:
-            x1, x2, x3 = y.reshape(-1, 3).T
-            return np.stack(self.rhs3(x1, x2, x3), axis=1).ravel()
+            Y = y.reshape(-1, 3)
+            out = np.empty_like(Y)
+            x1, x2, x3 = Y[:, 0], Y[:, 1], Y[:, 2]
+            s, c = np.sin(x2), np.cos(x2)
+            cs2x1 = self.C0 * 2 * s * c * x1
+            Hcx1 = self.H * c
+            out[:, 0] = (cs2x1 * x3 - Hcx1 * x3 - self.k * x1 - self.f(x2)) / (self.A0 - self.C0 * s * s)
+            out[:, 1] = x3
+            out[:, 2] = (-0.5 * cs2x1 * x1 + Hcx1 * x1) / self.B0
+            return out.ravel()
         d = self.rhs3(y[0], y[1], y[2])
         return np.stack([np.asarray(v, dtype=float) for v in d])
 
