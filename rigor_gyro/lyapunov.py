@@ -605,3 +605,9 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
     stalled = prec >= STALL_PREC and any(c.status is Status.INCONCLUSIVE for c in claims)
     return Attempt(claims, quantities, paper, formulas, notes, widths_met=widths_met, stalled=stalled,
                    extra={"moment": {"name": ctx.g.law.name, "formula": ctx.g.law.formula}})
+
+
+def plots(scene, cert, out_dir) -> list[str]:
+    """Figures for ``--plots`` (see :mod:`rigor_gyro.lyapunov_plots`; matplotlib imported only then)."""
+    from .lyapunov_plots import plots as draw
+    return draw(scene, cert, out_dir)
