@@ -608,6 +608,6 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
 
 
 def plots(scene, cert, out_dir) -> list[str]:
-    """Figures for ``--plots`` (see :mod:`rigor_gyro.lyapunov_plots`; matplotlib imported only then)."""
-    from .lyapunov_plots import plots as draw
+    """Figures for ``--plots`` (see :mod:`rigor_gyro.approx.lyapunov_plots`; matplotlib imported only then)."""
+    from .approx.lyapunov_plots import plots as draw
     return draw(scene, cert, out_dir)

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from flint import arb
 
-from .balls import interval, working_precision
+from ..balls import interval, working_precision
 
 __all__ = ["plots"]
 
@@ -26,8 +26,8 @@ def plots(scene, cert, out_dir) -> list[str]:
     import matplotlib.pyplot as plt
     import numpy as np
 
-    from .approx.lyapunov import FloatGimbal
-    from .lyapunov import psi_min_functions, validate
+    from .lyapunov import FloatGimbal
+    from ..lyapunov import psi_min_functions, validate
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
