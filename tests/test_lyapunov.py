@@ -206,3 +206,10 @@ def test_k_just_above_k_min_is_decided_or_honest():
     assert cert.claim("vdot_nonpositive").status is Status.PROVED
     c = cert.claim("invariant_estimate")
     assert c.status is Status.PROVED or "try a smaller R" in c.reason
+
+
+def test_plots_are_drawn(tmp_path):
+    pytest.importorskip("matplotlib")
+    assert cli.main(["prove", "agafonov2013", "--out", str(tmp_path), "--quiet", "--plots"]) == 0
+    names = sorted(p.name for p in tmp_path.glob("*.png"))
+    assert names == ["agafonov2013_psi.png", "agafonov2013_slices.png", "agafonov2013_trajectories.png"]
