@@ -118,10 +118,14 @@ def audit(ctx, quantities: dict[str, arb]) -> tuple[list[AuditRow], list[dict[st
             status, note = audit_printed(str(paper[key]), quantities[qname])
             rows.append(_row(key, str(paper[key]), what, quantities[qname], status, note))
     if "limit" in paper:
-        # lim f / sqrt(int_0^x f) = sqrt(2 f'(0)) for an odd law with f'(0) = a
-        val = (2 * c.a).sqrt()
-        rows.append(_row("limit", str(paper["limit"]), "lim_{x2->0} f (int_0^x2 f)^(-1/2) = (2 f'(0))^(1/2)",
-                         val, AuditStatus.CONFIRMED, "exact: f = a x2 + O(x2^3) gives (2a)^(1/2)"))
+        # lim f / sqrt(int_0^x f) = sqrt(2 f'(0)) for an odd law; the paper prints (2a)^(1/2)
+        d0 = g.df(arb(0))
+        val = (2 * d0).sqrt()
+        same = d0.rad().is_zero() and (d0 - c.a).is_zero()
+        rows.append(_row("limit", str(paper["limit"]), "lim_{x2->0} f (int_0^x2 f)^(-1/2) = (2 f'(0))^(1/2)", val,
+                         AuditStatus.CONFIRMED if same else AuditStatus.REFUTED if certainly_nonzero(d0 - c.a)
+                         else AuditStatus.UNDECIDED,
+                         f"f'(0) = {_fmt(d0, 8)} for the law {g.law.formula!r}: the limit is (2 f'(0))^(1/2)"))
     if "R" in paper and "R" in quantities:
         R1, R2 = quantities["R1"], quantities["R2"]
         printed = str(paper["R"])
