@@ -35,9 +35,10 @@ __all__ = ["Scene", "KINDS", "load_scene", "builtin_scenes", "kind_module", "par
 #: kind -> module implementing it (imported only when a scene of that kind is proved)
 KINDS = {
     "eigenfrequencies": "rigor_gyro.eigfreq",
+    "periodic_orbit": "rigor_gyro.relay_orbit",
 }
 #: kinds described in the documentation whose modules are not in this version yet
-PLANNED_KINDS = {"periodic_orbit", "lyapunov"}
+PLANNED_KINDS = {"lyapunov"}
 
 
 @dataclass
