@@ -41,7 +41,7 @@ from typing import Any
 
 from flint import acb, acb_mat, arb, arb_series
 
-from .balls import (ball, certainly_gt, certainly_le, certainly_lt, certainly_negative, certainly_positive, decimal_bounds,
+from .balls import (ball, certainly_gt, certainly_le, current_precision, certainly_lt, certainly_negative, certainly_positive, decimal_bounds,
                     interval, possibly_zero)
 from .certificate import Claim, Status
 from .errors import ParameterError
@@ -50,7 +50,7 @@ from .prover import Attempt
 from .relay_flow import (PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, g_coeffs,
                          half_period_jacobian, moment_zero_orders, orbit_expsums, tail_bound,
                          taylor5_leading_coefficient, taylor_enclosure, x0_at)
-from .roots import isolate_roots
+from .roots import Isolation, RootPiece, RootStatus, _merge_shared_roots, newton_root
 from .subdivision import certify_positive
 
 __all__ = ["CLAIMS", "PARAMETERS", "OPTIONS", "RelayModel", "RootVerdict", "Analysis", "validate", "attempt",
@@ -324,6 +324,35 @@ def _g_series_function(sp: Spectrum):
     return f
 
 
+def _isolate(f, lo: arb, hi: arb, *, max_depth: int = 48, max_pieces: int = MAX_PIECES) -> Isolation:
+    """:func:`rigor_gyro.roots.isolate_roots` with a fail-fast rule: when a piece is still undecided at
+    the depth limit or at a width the precision cannot resolve (< 2^(-prec/2) relative), the search
+    stops and the rest of the range is reported undecided (the prover then raises the precision)
+    instead of bisecting every piece of a cancellation-dominated stretch to the depth limit."""
+    done: list[RootPiece] = []
+    stack: list[tuple[arb, arb, int]] = [(lo, hi, 0)]
+    rel = arb(2) ** (-(current_precision() // 2))
+    while stack:
+        a, b, depth = stack.pop()
+        piece = newton_root(f, a, b)
+        if piece.status is RootStatus.UNKNOWN:
+            small = certainly_lt(b - a, b.abs_upper() * rel)
+            if depth < max_depth and not small and len(done) + len(stack) < max_pieces:
+                mid = ((a + b) / 2).mid()
+                stack.append((mid, b, depth + 1))
+                stack.append((a, mid, depth + 1))
+                continue
+            piece.reason += f" (after {depth} bisections; width at the precision limit)" if small else \
+                f" (after {depth} bisections)"
+            done.append(piece)
+            done.extend(RootPiece(a2, b2, RootStatus.UNKNOWN, reason="not examined: the search stopped at an "
+                                  "undecided piece (raise --maxprec)") for a2, b2, _ in stack)
+            break
+        done.append(piece)
+    done.sort(key=lambda p: float(p.lo.mid()))  # float only orders disjoint pieces
+    return Isolation(_merge_shared_roots(f, done, None))
+
+
 def analyse(model: RelayModel) -> Analysis:
     """Isolate and classify every root at the current precision."""
     P = model.params
@@ -355,7 +384,7 @@ def analyse(model: RelayModel) -> Analysis:
     if an.theta_min is None:
         an.problem = "could not certify g^(5) > 0 near theta = 0 (raise precision)"
         return an
-    iso = isolate_roots(_g_series_function(sp), an.theta_min, an.T_search, max_depth=48, max_pieces=MAX_PIECES)
+    iso = _isolate(_g_series_function(sp), an.theta_min, an.T_search)
     an.pieces = len(iso.pieces)
     an.unknown = iso.unknown
     for r in iso.roots:
