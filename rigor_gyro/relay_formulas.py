@@ -292,7 +292,7 @@ def _row(rid: str, printed: str, value: arb | None, reading: str = "certified va
         corr, why = READINGS[rid]
         st2, note2 = audit_printed(corr, value)
         d = agreeing_digits(corr, value)
-        if d >= 3:
+        if d >= min(3, len(corr.lstrip("-0.").replace(".", ""))):
             return AuditRow(rid, printed, f"{corr} ({why})", value, AuditStatus.MISPRINT,
                             f"printed: {note}; reading {corr}: {note2}")
     return AuditRow(rid, printed, reading, value, st, note)
