@@ -264,3 +264,12 @@ def test_cli_proves_builtin_and_writes_json(tmp_path):
     assert cert["verdict"] == "proved" and "theta_star" in cert["quantities"]
     assert {"multiplier_modulus_1", "multiplier_modulus_4", "stability_margin", "beta_dot_0", "I_0", "period",
             "D1", "D5"} <= set(cert["quantities"])
+
+
+def test_proving_the_orbit_imports_neither_numpy_nor_scipy():
+    code = ("import sys; from rigor_gyro.prover import prove_scene; from rigor_gyro.scene import load_scene;"
+            "prove_scene(load_scene('roitenberg1947'));"
+            "print(sorted(m for m in ('numpy', 'scipy', 'mpmath', 'matplotlib') if m in sys.modules))")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() == "[]"
