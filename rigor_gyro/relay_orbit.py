@@ -251,7 +251,12 @@ def _multipliers(sp: Spectrum, v: RootVerdict) -> None:
     v.jacobian_note = (f"det = product of multipliers = {_fmt(det, 10)} contains -exp(-(1/tau+1/sigma) theta*) "
                        f"= {_fmt(liou, 10)} (Liouville check)")
     order = sorted(range(4), key=lambda k: -float(abs(eig[k]).mid()))  # float orders, balls decide
-    v.multipliers = [eig[k] for k in order]
+    mults = [eig[k] for k in order]
+    for k in range(3):  # a conjugate pair (equal moduli): the member with Im > 0 first, deterministically
+        a, b = mults[k], mults[k + 1]
+        if abs(a).overlaps(abs(b)) and certainly_negative(a.imag) and certainly_positive(b.imag):
+            mults[k], mults[k + 1] = b, a
+    v.multipliers = mults
     v.moduli = [abs(z) for z in v.multipliers]
     mx = v.moduli[0]
     for m in v.moduli[1:]:

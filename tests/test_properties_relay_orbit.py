@@ -69,6 +69,8 @@ def near_physical(draw):
 @settings(max_examples=EXAMPLES)
 @given(params=near_physical())
 @example(params=BASE)
+@example(params={"A": "165/2", "B": "373/750", "H": "300", "tau": "0.02", "sigma": "567/16000", "n": "331/2",
+                 "K": "573/40", "p": "10/1", "S": "3/80"})   # conjugate pair once listed in either order
 def test_certified_orbit_against_float_mpmath_and_twice_the_precision(params):
     c = prove_scene(_scene(params), maxprec=1024)
     og = c.claim("orbit_genuine")
