@@ -36,9 +36,10 @@ __all__ = ["Scene", "KINDS", "load_scene", "builtin_scenes", "kind_module", "par
 KINDS = {
     "eigenfrequencies": "rigor_gyro.eigfreq",
     "lyapunov": "rigor_gyro.lyapunov",
+    "periodic_orbit": "rigor_gyro.relay_orbit",
 }
 #: kinds described in the documentation whose modules are not in this version yet
-PLANNED_KINDS = {"periodic_orbit"}
+PLANNED_KINDS: set[str] = set()
 
 
 @dataclass

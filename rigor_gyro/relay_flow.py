@@ -1,0 +1,424 @@
+"""The exact flow of the relay stabiliser (Roitenberg 1947) between switchings, in Arb balls.
+
+Model. State x = (beta, beta', Omega, i, I); between switchings x' = M x + e u with u = +-S and
+
+    M = [[0, 1, 0, 0, 0], [0, 0, -H/B, 0, 0], [0, H/A, 0, K/A, 0],
+         [0, 0, -n/(K tau), -1/tau, p/tau], [0, 0, 0, 0, -1/sigma]],   e = (0, 0, 0, 0, 1/sigma),
+
+i.e. the paper's system (2) with n = K n1. Its characteristic polynomial is z (z + 1/sigma) C(z) with
+the paper's cubic (4) C(z) = z^3 + z^2/tau + (q^2 + n/(tau A)) z + q^2/tau, q^2 = H^2/(A B).
+
+Spectral form. When the five eigenvalues are simple (checked exactly: C squarefree, C(0) != 0,
+C(-1/sigma) != 0), exp(M t) = sum_k e^{lambda_k t} P_k with rank-one projectors P_k = r_k l_k^T /
+(l_k^T r_k) written from explicit right/left eigenvectors. Everything below is a finite sum of
+exponentials in t with ball coefficients, so it can be evaluated on a *time interval* (a ball t) and
+expanded in Taylor series (``acb_series``), which is what interval Newton and the sign condition need.
+The symmetric orbit: with u = +S on (0, theta) and x(theta) = -x(0),
+(I + exp(M theta)) x0 = -w(theta), i.e. x0(theta) = -tanh(M theta / 2) M^{-1} e S, a matrix function
+that is analytic at z = 0 (value theta/2). Its beta component is the half-period function
+
+    g(theta) = beta0(theta) = -S sum_k rho_k tanh(lambda_k theta / 2) / lambda_k   (theta/2 for lambda = 0),
+
+rho_k = e1^T P_k e (residues of beta(z)/u(z) = -kappa / (z C(z) (sigma z + 1)), kappa = H K p/(A B tau)).
+The paper's determinant g(x) of (12) equals beta0(x) times a factor that does not vanish near its root
+(see :mod:`rigor_gyro.relay_formulas`), so both have the same roots there.
+
+Guarantee: every function returns balls (or ball vectors/matrices) containing the exact value for
+every point of the input balls, at the current working precision; the eigenvalue balls come from
+:func:`rigor_gyro.polyroots.isolate_polynomial` (exact squarefreeness, certified isolation).
+
+Precision: the caller's (set with :func:`rigor_gyro.balls.working_precision` / the prover).
+Stiff cases (tau -> 0: an eigenvalue near -1/tau) lose about log2(1/tau^3) bits in the projectors;
+escalation recovers them.
+
+Fails when: an eigenvalue is repeated (measure-zero parameter sets) or the cubic's roots cannot be
+isolated at this precision: :class:`DegenerateSpectrum` with the reason (the kind reports the claims
+inconclusive).
+
+Example:
+    >>> from rigor_gyro.balls import working_precision
+    >>> from flint import fmpq
+    >>> P = RelayParams.from_strings(A="125", B="2/15", H="100", tau="0.01", sigma="0.13125", n="50",
+    ...                              K="7.5", p="40", S="0.15")
+    >>> with working_precision(128):
+    ...     sp = Spectrum(P)
+    ...     c = g_coeffs(sp, arb("0.1382674296573154568759301070"), 2)
+    >>> abs(c[0]) < arb("1e-20"), c[1] > 0      # g vanishes at theta*, increasing
+    (True, True)
+
+Reference: Roitenberg Ya. N. (1947), Avtokolebaniya giroskopicheskikh stabilizatorov, PMM 11 (seed 001).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from math import comb, factorial
+from typing import Callable, Sequence
+
+from flint import acb, acb_mat, acb_series, arb, arb_mat, fmpq, fmpq_mat, fmpq_poly
+
+from .balls import ball, certainly_positive
+from .exact import parse_exact
+from .polyroots import isolate_polynomial
+
+__all__ = ["PARAMETER_NAMES", "RelayParams", "DegenerateSpectrum", "Mode", "Spectrum", "system_matrix",
+           "forcing", "nutation_cubic", "g_coeffs", "x0_at", "ExpSum", "orbit_expsums", "state_at",
+           "phi_at", "vector_field", "half_period_jacobian", "taylor_enclosure", "tail_bound",
+           "taylor5_leading_coefficient", "moment_zero_orders"]
+
+PARAMETER_NAMES = ("A", "B", "H", "tau", "sigma", "n", "K", "p", "S")
+
+
+class DegenerateSpectrum(ArithmeticError):
+    """The closed form needs five simple eigenvalues; this says which condition failed."""
+
+
+@dataclass(frozen=True)
+class RelayParams:
+    """The nine exact rational parameters of system (2)."""
+
+    A: fmpq
+    B: fmpq
+    H: fmpq
+    tau: fmpq
+    sigma: fmpq
+    n: fmpq
+    K: fmpq
+    p: fmpq
+    S: fmpq
+
+    @classmethod
+    def from_strings(cls, **kw: str) -> "RelayParams":
+        return cls(**{k: parse_exact(kw[k], k).fmpq() for k in PARAMETER_NAMES})
+
+    def replace(self, **kw: str) -> "RelayParams":
+        d = {k: getattr(self, k) for k in PARAMETER_NAMES}
+        d.update({k: parse_exact(v, k).fmpq() for k, v in kw.items()})
+        return RelayParams(**d)
+
+    @property
+    def q2(self) -> fmpq:
+        return self.H * self.H / (self.A * self.B)
+
+    @property
+    def kappa(self) -> fmpq:
+        return self.H * self.K * self.p / (self.A * self.B * self.tau)
+
+
+def system_matrix(P: RelayParams) -> fmpq_mat:
+    """M of x' = M x + e u, exactly."""
+    z = fmpq(0)
+    return fmpq_mat([[z, 1, z, z, z],
+                     [z, z, -P.H / P.B, z, z],
+                     [z, P.H / P.A, z, P.K / P.A, z],
+                     [z, z, -P.n / (P.K * P.tau), -1 / P.tau, P.p / P.tau],
+                     [z, z, z, z, -1 / P.sigma]])
+
+
+def forcing(P: RelayParams) -> list[fmpq]:
+    """e of x' = M x + e u (u = S sign beta), exactly."""
+    return [fmpq(0), fmpq(0), fmpq(0), fmpq(0), 1 / P.sigma]
+
+
+def nutation_cubic(P: RelayParams) -> fmpq_poly:
+    """The paper's cubic (4): z^3 + z^2/tau + (q^2 + n/(tau A)) z + q^2/tau (ascending coefficients)."""
+    return fmpq_poly([P.q2 / P.tau, P.q2 + P.n / (P.tau * P.A), 1 / P.tau, 1])
+
+
+def moment_zero_orders(P: RelayParams) -> list[fmpq]:
+    """e1^T M^j e for j = 0..4, exactly. j = 0..3 vanish: g is odd with g = O(theta^5) at 0."""
+    M = system_matrix(P)
+    v = fmpq_mat([[x] for x in forcing(P)])
+    out = []
+    for _ in range(5):
+        out.append(v[0, 0])
+        v = M * v
+    return out
+
+
+@dataclass
+class Mode:
+    """One nonzero eigenvalue (a representative of a conjugate pair has weight 2: take 2 Re)."""
+
+    lam: acb
+    weight: int
+    proj: acb_mat          # P_k (5x5)
+    pe: list[acb]          # P_k e S
+    label: str
+
+
+class Spectrum:
+    """Eigenvalues and spectral projectors of M at the current precision (see module docstring)."""
+
+    def __init__(self, P: RelayParams):
+        self.P = P
+        C = nutation_cubic(P)
+        nu = -1 / P.sigma
+        if C(nu) == 0:
+            raise DegenerateSpectrum("-1/sigma is also a root of the cubic (4): a repeated eigenvalue")
+        roots = isolate_polynomial(C)
+        if not roots.squarefree:
+            raise DegenerateSpectrum(f"the cubic (4) has a repeated root ({roots.reason})")
+        if not roots.verified:
+            raise DegenerateSpectrum(f"roots of the cubic (4) not isolated at this precision: {roots.reason}")
+        self.cubic = C
+        self.cubic_roots = roots
+        S = ball(P.S)
+        modes: list[Mode] = []
+        for lam in roots.real:
+            modes.append(self._cubic_mode(acb(lam), 1, "real root of (4)"))
+        upper = [z for z in roots.nonreal if certainly_positive(z.imag)]
+        if len(upper) * 2 != len(roots.nonreal):
+            raise DegenerateSpectrum("non-real roots of (4) not paired at this precision")
+        for lam in upper:
+            modes.append(self._cubic_mode(lam, 2, "complex pair of (4)"))
+        modes.append(self._sigma_mode(nu))
+        self.modes = modes
+        # lambda = 0: P0 = e1 l0^T, exact
+        l0 = [fmpq(1), P.B * P.n / (P.H * P.H), -P.A / P.H, -P.tau * P.K / P.H, -P.sigma * P.p * P.K / P.H]
+        self.P0 = arb_mat([[ball(x) for x in l0]] + [[arb(0)] * 5 for _ in range(4)])
+        self.p0e = [ball(l0[4] / P.sigma) * S if r == 0 else arb(0) for r in range(5)]
+        self.e = [ball(x) for x in forcing(P)]
+        self.M = arb_mat([[ball(system_matrix(P)[i, j]) for j in range(5)] for i in range(5)])
+
+    def _cubic_mode(self, lam: acb, weight: int, label: str) -> Mode:
+        P = self.P
+        A, B, H, K, p, tau, sigma = (ball(x) for x in (P.A, P.B, P.H, P.K, P.p, P.tau, P.sigma))
+        r = [acb(1), lam, -(B / H) * lam ** 2, (-(A * B / H) * lam ** 3 - H * lam) / K, acb(0)]
+        a = lam + 1 / tau
+        l = [acb(0), (H / A) / lam, acb(1), (K / A) / a, (p / tau) * (K / A) / (a * (lam + 1 / sigma))]
+        return self._mode(lam, weight, r, l, label)
+
+    def _sigma_mode(self, nu: fmpq) -> Mode:
+        P = self.P
+        rho2 = -(P.B / P.H) * nu * nu
+        rho3 = (-(P.A * P.B / P.H) * nu ** 3 - P.H * nu) / P.K
+        den = (P.n / (P.K * P.tau)) * rho2 + (nu + 1 / P.tau) * rho3
+        if den == 0:
+            raise DegenerateSpectrum("the -1/sigma eigenvector is degenerate")
+        r0 = (P.p / P.tau) / den
+        r = [acb(ball(x)) for x in (r0, r0 * nu, r0 * rho2, r0 * rho3, fmpq(1))]
+        l = [acb(0)] * 4 + [acb(1)]
+        return self._mode(acb(ball(nu)), 1, r, l, "-1/sigma (current I)")
+
+    def _mode(self, lam: acb, weight: int, r: list[acb], l: list[acb], label: str) -> Mode:
+        d = sum((l[i] * r[i] for i in range(5)), acb(0))
+        proj = acb_mat([[r[i] * l[j] / d for j in range(5)] for i in range(5)])
+        S = ball(self.P.S)
+        pe = [proj[i, 4] * ball(1 / self.P.sigma) * S for i in range(5)]
+        return Mode(lam, weight, proj, pe, label)
+
+    # ----------------------------------------------------------------- convenient scalars
+    @property
+    def a(self) -> arb:
+        """Slope of the tail g ~ a theta + b: a = K p S / (2 H) > 0."""
+        return -self.p0e[0] / 2
+
+    @property
+    def b(self) -> arb:
+        return sum((m.weight * (m.pe[0] / m.lam).real for m in self.modes), arb(0))
+
+    def eigenvalues(self) -> list[acb]:
+        out = [acb(0)]
+        for m in self.modes:
+            out.append(m.lam)
+            if m.weight == 2:
+                out.append(m.lam.conjugate())
+        return out
+
+
+# --------------------------------------------------------------------------- the half-period function
+
+def _series(center: arb | acb, n: int) -> acb_series:
+    return acb_series([acb(center), 1], prec=n)
+
+
+def _half_tanh_over_lam(lam: acb, s: acb_series) -> acb_series:
+    """tanh(lam s / 2) / lam = (E - 1) / ((E + 1) lam), E = exp(lam s), |E| <= 1 for Re lam < 0."""
+    E = (lam * s).exp()
+    return (E - 1) / ((E + 1) * lam)
+
+
+def g_coeffs(sp: Spectrum, center: arb, n: int) -> list[arb]:
+    """Taylor coefficients g_j(c) = g^{(j)}(c)/j!, j < n, of g at every point c of the ball ``center``."""
+    s = _series(center, n)
+    tot = [arb(0)] * n
+    for m in sp.modes:
+        try:
+            c = (_half_tanh_over_lam(m.lam, s) * m.pe[0]).coeffs()
+        except ValueError:  # E + 1 not separated from 0 on a wide ball: no information
+            return [arb("nan")] * n
+        for j in range(min(n, len(c))):
+            tot[j] -= m.weight * c[j].real
+    # lambda = 0: -p0e[0] * theta / 2
+    tot[0] -= sp.p0e[0] * center / 2
+    if n > 1:
+        tot[1] -= sp.p0e[0] / 2
+    return tot
+
+
+def x0_at(sp: Spectrum, theta: arb) -> list[arb]:
+    """x0(theta) = -tanh(M theta/2) M^{-1} e S: the start of the symmetric solution of half-period theta
+    (beta0 = g(theta)); every point of the ball theta."""
+    s = acb(theta)
+    out = [-sp.p0e[i] * theta / 2 for i in range(5)]
+    for m in sp.modes:
+        E = (m.lam * s).exp()
+        h = (E - 1) / ((E + 1) * m.lam)
+        for i in range(5):
+            out[i] -= m.weight * (h * m.pe[i]).real
+    return out
+
+
+# --------------------------------------------------------------------------- sums of exponentials
+
+@dataclass
+class ExpSum:
+    """f(t) = sum_k w_k Re(alpha_k e^{lambda_k t}) + c0 + c1 t (a component of x(t) on one half-period)."""
+
+    terms: list[tuple[acb, acb, int]]   # (alpha, lambda, weight)
+    c0: arb
+    c1: arb
+
+    def coeffs(self, center: arb, n: int) -> list[arb]:
+        """Taylor coefficients at every point of the ball ``center`` (j < n)."""
+        s = _series(center, n)
+        tot = [arb(0)] * n
+        for alpha, lam, w in self.terms:
+            c = ((lam * s).exp() * alpha).coeffs()
+            for j in range(min(n, len(c))):
+                tot[j] += w * c[j].real
+        tot[0] += self.c0 + self.c1 * center
+        if n > 1:
+            tot[1] += self.c1
+        return tot
+
+    def __call__(self, t: arb) -> arb:
+        return self.coeffs(t, 1)[0]
+
+    def derivative(self) -> "ExpSum":
+        return ExpSum([(a * l, l, w) for a, l, w in self.terms], self.c1, arb(0))
+
+
+def orbit_expsums(sp: Spectrum, x0: Sequence[arb]) -> list[ExpSum]:
+    """The five components of x(t) = exp(M t) x0 + w(t) with u = +S, as :class:`ExpSum` (the paper's
+    form (7): per component, coefficients of e^{lambda_k t}, a constant and a multiple of t)."""
+    out = []
+    for i in range(5):
+        terms = []
+        c0 = sum((sp.P0[i, j] * x0[j] for j in range(5)), arb(0))
+        for m in sp.modes:
+            px = sum((m.proj[i, j] * x0[j] for j in range(5)), acb(0))
+            alpha = px + m.pe[i] / m.lam
+            terms.append((alpha, m.lam, m.weight))
+            c0 -= m.weight * (m.pe[i] / m.lam).real
+        out.append(ExpSum(terms, c0, sp.p0e[i]))
+    return out
+
+
+def state_at(sp: Spectrum, x0: Sequence[arb], t: arb) -> list[arb]:
+    return [f(t) for f in orbit_expsums(sp, x0)]
+
+
+def phi_at(sp: Spectrum, t: arb) -> arb_mat:
+    """exp(M t) = P0 + sum_k e^{lambda_k t} P_k (real 5x5 ball matrix)."""
+    out = arb_mat(sp.P0)
+    for m in sp.modes:
+        E = (m.lam * acb(t)).exp()
+        for i in range(5):
+            for j in range(5):
+                out[i, j] += m.weight * (E * m.proj[i, j]).real
+    return out
+
+
+def vector_field(sp: Spectrum, x: Sequence[arb], u_sign: int = 1) -> list[arb]:
+    """M x + e u with u = u_sign * S."""
+    S = ball(sp.P.S)
+    return [sum((sp.M[i, j] * x[j] for j in range(5)), arb(0)) + sp.e[i] * S * u_sign for i in range(5)]
+
+
+def half_period_jacobian(sp: Spectrum, theta: arb, x0: Sequence[arb]) -> arb_mat:
+    """Jacobian of the half-period point map on the section beta = 0 in (beta', Omega, i, I), composed
+    with the symmetry x -> -x: -[(I - f e1^T / f_1) exp(M theta)] restricted to rows/columns 1..4, with
+    f = M x(theta) + e S the vector field just before the switching (x(theta) = -x0): the first-order
+    correction for the perturbed switching time (saltation). Its eigenvalues are the roots of (25)."""
+    Phi = phi_at(sp, theta)
+    f = vector_field(sp, [-v for v in x0])
+    out = arb_mat(4, 4)
+    for i in range(1, 5):
+        for j in range(1, 5):
+            out[i - 1, j - 1] = -(Phi[i, j] - f[i] * Phi[0, j] / f[0])
+    return out
+
+
+# --------------------------------------------------------------------------- Taylor-model enclosures
+
+CoeffFn = Callable[[arb, int], list[arb]]
+
+
+def _ipow(x: arb, k: int) -> arb:
+    """x**k by multiplication (arb's ** gives NaN for balls containing 0)."""
+    out = arb(1)
+    for _ in range(k):
+        out *= x
+    return out
+
+
+def taylor_enclosure(coeff_fn: CoeffFn, X: arb, order: int = 8, derivs: Sequence[int] = (0,)) -> list[arb]:
+    """Balls containing f^{(k)}(t) for every t in X, for each k in ``derivs``: the Taylor polynomial of
+    f at mid(X) (point coefficients) plus the Lagrange remainder with the order-th coefficient enclosed
+    over X, intersected with the direct enclosure over X. ``coeff_fn(center, n)`` must return balls
+    containing f^{(j)}(c)/j! (j < n) for every point c of the ball ``center``."""
+    kmax = max(derivs)
+    direct = coeff_fn(X, kmax + 1)
+    if X.rad().is_zero():
+        return [direct[k] * factorial(k) for k in derivs]
+    m = arb(X.mid())
+    w = X - m
+    c = coeff_fn(m, order)
+    cN = coeff_fn(X, order + 1)[order]
+    out = []
+    for k in derivs:
+        tot = arb(0)
+        for j in range(k, order):
+            tot += comb(j, k) * c[j] * _ipow(w, j - k)
+        tot += comb(order, k) * cN * _ipow(w, order - k)
+        tot *= factorial(k)
+        d = direct[k] * factorial(k)
+        if not d.is_finite():
+            out.append(tot)
+        elif not tot.is_finite():
+            out.append(d)
+        else:
+            out.append(tot.intersection(d) if tot.overlaps(d) else tot)
+    return out
+
+
+def taylor5_leading_coefficient(sp: Spectrum, X: arb, order: int = 12) -> arb:
+    """A ball containing g^{(5)}(xi)/5! for every xi in X (Taylor model about mid X): with
+    g(0) = ... = g^{(4)}(0) = 0 exactly, g(theta) = theta^5 g^{(5)}(xi)/5! for some xi in (0, theta)."""
+    if X.rad().is_zero():
+        return g_coeffs(sp, X, 6)[5]
+    m = arb(X.mid())
+    w = X - m
+    c = g_coeffs(sp, m, order)
+    cN = g_coeffs(sp, X, order + 1)[order]
+    tot = arb(0)
+    for j in range(5, order):
+        tot += comb(j, 5) * c[j] * _ipow(w, j - 5)
+    tot += comb(order, 5) * cN * _ipow(w, order - 5)
+    direct = g_coeffs(sp, X, 6)[5]
+    if not (direct.is_finite() and tot.is_finite()):
+        return tot if tot.is_finite() else direct
+    return tot.intersection(direct) if tot.overlaps(direct) else tot
+
+
+def tail_bound(sp: Spectrum, T: arb) -> arb:
+    """A ball whose lower end is <= g(theta) for every theta >= T (T > 0):
+    g(theta) = a theta + b - 2 S-weighted sum (rho_k/lambda_k) E_k/(1+E_k), |E_k/(1+E_k)| <=
+    e^{Re lambda_k T}/(1 - e^{Re lambda_k T}), and a > 0, so a T + b - B(T) is a lower bound."""
+    B = arb(0)
+    for m in sp.modes:
+        q = (m.lam.real * T).exp()
+        amp = 2 * m.weight * abs(m.pe[0] / m.lam)
+        B += amp * q / (1 - q)
+    return sp.a * T + sp.b - B

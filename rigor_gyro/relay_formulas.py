@@ -1,0 +1,418 @@
+"""Roitenberg (1947)'s own forms: the a_ij of (7), determinant (12), D1..D5 of (9), the closed-form
+orbit, alpha by (14)-(15), Table 2, the b_ij of (16) (Table 3), h, c, k of Table 4, the quartic (25);
+and the audit of every number the example prints.
+
+The rigorous orbit is computed in :mod:`rigor_gyro.relay_orbit` from the spectral flow; this module
+re-expresses it in the paper's variables, so that each printed number can be compared with a ball.
+
+Correspondence with the paper (the report shows it):
+* (7): each component of x(t) on 0 < t < theta* is sum_k w_k Re(alpha_k e^{lambda_k t}) + c0 + c1 t
+  (:class:`rigor_gyro.relay_flow.ExpSum`); for beta, D1 = -2 Im alpha_pair, D2 = 2 Re alpha_pair,
+  D3 = alpha_{-mu2}, a16 D5 = alpha_{-1/sigma}, D4 = c0, a17 S = c1 = -K p S/H.
+* (12): g_paper(x) = det of the 6x6 matrix of (9) with S as the sixth unknown. It vanishes exactly
+  where beta0(x) does (both say: the symmetric solution of half-period x starts on beta = 0), up to
+  a factor that does not vanish near theta*; its printed values have another scale and the opposite
+  sign (the audit shows the sign pattern).
+* (23)-(25): T x = -K x, so the multipliers are the eigenvalues of -K: the rigorous Jacobian
+  :func:`rigor_gyro.relay_flow.half_period_jacobian` is -K with K = k_ij of Table 4.
+
+Guarantee: every value is a ball containing the exact value for the exact parameters and the exact
+theta* (its ball). The audit uses :func:`rigor_gyro.audit.audit_printed`: ``agrees`` only if every point
+of the ball rounds to the printed number; the note always says how many significant digits agree.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from flint import acb, arb, arb_mat
+
+from .audit import agreeing_digits, audit_printed
+from .balls import ball, certainly_negative, certainly_positive, decimal_bounds
+from .certificate import AuditRow, AuditStatus
+from .relay_flow import (ExpSum, Spectrum, half_period_jacobian, nutation_cubic, orbit_expsums, phi_at,
+                         vector_field)
+
+__all__ = ["formula_table", "paper_coefficients", "orbit_quantities", "determinant_12", "audit"]
+
+
+def _fmt(x: arb, d: int = 10) -> str:
+    lo, hi = decimal_bounds(x, d)
+    return f"[{lo}, {hi}]"
+
+
+# ----------------------------------------------------------------------------- the paper's variables
+
+def _modes(sp: Spectrum):
+    """(pair mode, real cubic mode, sigma mode); needs one complex pair (the paper's case)."""
+    pair = [m for m in sp.modes if m.weight == 2]
+    real = [m for m in sp.modes if m.weight == 1 and m.label.startswith("real")]
+    sig = [m for m in sp.modes if m.label.startswith("-1/sigma")]
+    if len(pair) != 1 or len(real) != 1:
+        return None
+    return pair[0], real[0], sig[0]
+
+
+def paper_coefficients(sp: Spectrum) -> dict[str, Any] | None:
+    """mu1, omega, mu2 and a_ij of (7) (None when the cubic has three real roots: the paper's form
+    (6) assumes a complex pair)."""
+    md = _modes(sp)
+    if md is None:
+        return None
+    pair, real, sig = md
+    P = sp.P
+    A, B, H, K, p = (ball(x) for x in (P.A, P.B, P.H, P.K, P.p))
+
+    def comp(lam):
+        return [acb(1), lam, -(B / H) * lam ** 2, (-(A * B / H) * lam ** 3 - H * lam) / K]
+
+    c1, c3 = comp(pair.lam), comp(real.lam)
+    a: dict[tuple[int, int], arb] = {}
+    for g in range(1, 4):
+        G = g + 1
+        a[(G, 1)] = c1[g].real
+        a[(G, 3)] = c1[g].imag
+        a[(G, 2)] = -c1[g].imag
+        a[(G, 4)] = c1[g].real
+        a[(G, 5)] = c3[g].real
+    r = [sig.proj[i, 4] for i in range(5)]   # the -1/sigma eigenvector with I-component 1 (proj = r e5^T)
+    for g in range(4):
+        a[(g + 1, 6)] = r[g].real
+    a[(1, 7)] = -ball(P.K * P.p / P.H)
+    a[(4, 7)] = p
+    return {"mu1": -pair.lam.real, "omega": pair.lam.imag, "mu2": -real.lam.real, "a": a,
+            "modes": md}
+
+
+def _form7(f: ExpSum, md) -> list[arb]:
+    """[sin, cos, e^{-mu2 t}, e^{-t/sigma}, t, const] coefficients of an ExpSum in the paper's form."""
+    pair, real, sig = md
+    out = {"sin": arb(0), "cos": arb(0), "mu2": arb(0), "sig": arb(0)}
+    for alpha, lam, w in f.terms:
+        if lam is pair.lam:
+            out["sin"] = -2 * alpha.imag
+            out["cos"] = 2 * alpha.real
+        elif lam is real.lam:
+            out["mu2"] = alpha.real
+        else:
+            out["sig"] = alpha.real
+    return [out["sin"], out["cos"], out["mu2"], out["sig"], f.c1, f.c0]
+
+
+def _alpha(f_Omega: ExpSum, md, theta: arb) -> tuple[list[arb], ExpSum]:
+    """alpha = int Omega dt + C with alpha(0) = -alpha(theta*) ((14)-(15)); Omega has no t-term."""
+    terms = [(a / l, l, w) for a, l, w in f_Omega.terms]
+    F = ExpSum(terms, arb(0), f_Omega.c0)
+    C = -(F(arb(0)) + F(theta)) / 2
+    F = ExpSum(terms, C, f_Omega.c0)
+    return _form7(F, md), F
+
+
+def orbit_quantities(model, sp: Spectrum, orbit) -> tuple[dict[str, arb], list[str]]:
+    """D1..D5 and the certified closed form (7) of the scene's orbit (quantities and a note)."""
+    md = _modes(sp)
+    if md is None:
+        return {}, ["the cubic (4) has three real roots: the paper's form (6)-(7) (one complex pair) does not apply"]
+    comps = orbit_expsums(sp, orbit.x0)
+    beta = _form7(comps[0], md)
+    I = _form7(comps[4], md)
+    pc = paper_coefficients(sp)
+    q = {"D1": beta[0], "D2": beta[1], "D3": beta[2], "D4": beta[5], "D5": I[3]}
+    names = ["beta", "beta'", "Omega", "i", "I"]
+    lines = []
+    for nm, f in zip(names, comps):
+        c = _form7(f, md)
+        lines.append(f"{nm} = {_fmt(c[0], 9)} e^(-mu1 t) sin(omega t) + {_fmt(c[1], 9)} e^(-mu1 t) cos(omega t) + "
+                     f"{_fmt(c[2], 9)} e^(-mu2 t) + {_fmt(c[3], 9)} e^(-t/sigma) + {_fmt(c[4], 9)} t + {_fmt(c[5], 9)}")
+    al, _ = _alpha(comps[2], md, orbit.theta)
+    lines.append(f"alpha = {_fmt(al[0], 9)} e^(-mu1 t) sin(omega t) + {_fmt(al[1], 9)} e^(-mu1 t) cos(omega t) + "
+                 f"{_fmt(al[2], 9)} e^(-mu2 t) + {_fmt(al[3], 9)} e^(-t/sigma) + {_fmt(al[5], 9)}")
+    note = (f"Orbit in the paper's closed form (7) on 0 < t < theta* (certified coefficients; mu1 = {_fmt(pc['mu1'], 12)}, "
+            f"omega = {_fmt(pc['omega'], 12)}, mu2 = {_fmt(pc['mu2'], 12)}, 1/sigma exact; on the second half-period "
+            "multiply by -1 and restart t at 0): " + "; ".join(lines))
+    return q, [note]
+
+
+# ----------------------------------------------------------------------------- determinant (12)
+
+def determinant_12(pc: dict[str, Any], sigma: arb, x: arb) -> arb:
+    """The paper's g(x): the 6x6 determinant (12) with the exact a_ij (in balls)."""
+    a, mu1, om, mu2 = pc["a"], pc["mu1"], pc["omega"], pc["mu2"]
+    e1 = (-mu1 * x).exp() * (om * x).sin()
+    e2 = (-mu1 * x).exp() * (om * x).cos()
+    e3 = (-mu2 * x).exp()
+    e4 = (-x / sigma).exp()
+
+    def r(G):
+        return [a[(G, 1)] * e1 + a[(G, 3)] * (e2 + 1), a[(G, 2)] * e1 + a[(G, 4)] * (e2 + 1),
+                a[(G, 5)] * (e3 + 1), a[(G, 6)] * (e4 + 1)]
+
+    R2, R3, R4 = r(2), r(3), r(4)
+    z = arb(0)
+    Mx = arb_mat([[z, 1, 1, 1, a[(1, 6)], z],
+                  [e1, e2, e3, 1, a[(1, 6)] * e4, a[(1, 7)] * x],
+                  [R2[0], R2[1], R2[2], z, R2[3], 2 * a[(1, 7)]],
+                  [R3[0], R3[1], R3[2], z, R3[3], z],
+                  [R4[0], R4[1], R4[2], z, R4[3], 2 * a[(4, 7)]],
+                  [z, z, z, z, e4 + 1, 2]])
+    return Mx.det()
+
+
+# ----------------------------------------------------------------------------- Tables 3 and 4
+
+def _tables(sp: Spectrum, pc: dict[str, Any], orbit) -> dict[str, Any]:
+    """b_ij of (16), h, c, k of Table 4, eps_j (z_j), and the quartic (25), for the orbit."""
+    a = pc["a"]
+    P = sp.P
+    S = ball(P.S)
+    z = arb(0)
+    N = arb_mat([[z, 1, 1, 1, a[(1, 6)]],
+                 [a[(2, 3)], a[(2, 4)], a[(2, 5)], z, a[(2, 6)]],
+                 [a[(3, 3)], a[(3, 4)], a[(3, 5)], z, a[(3, 6)]],
+                 [a[(4, 3)], a[(4, 4)], a[(4, 5)], z, a[(4, 6)]],
+                 [z, z, z, z, 1]])
+    Ni = N.inv()
+    part0 = [z, a[(1, 7)] * S, z, a[(4, 7)] * S, S]
+    cst = [-sum((Ni[r, j] * part0[j] for j in range(5)), arb(0)) for r in range(5)]
+    rowsD = [[Ni[r, j] for j in range(1, 5)] + [cst[r]] for r in range(5)]
+
+    def comb(coefs):
+        return [sum((cf * rowsD[r][j] for r, cf in coefs), arb(0)) for j in range(5)]
+
+    b: dict[tuple[int, int], arb] = {}
+
+    def put(G, blocks):
+        k = 1
+        for blk in blocks:
+            for v in blk:
+                b[(G, k)] = v
+                k += 1
+
+    for G in (1, 2, 3, 4):
+        sinb = comb([(0, a[(G, 1)] if G > 1 else arb(1)), (1, a[(G, 2)] if G > 1 else arb(0))])
+        cosb = comb([(0, a[(G, 3)] if G > 1 else arb(0)), (1, a[(G, 4)] if G > 1 else arb(1))])
+        e3b = comb([(2, a[(G, 5)] if G > 1 else arb(1))])
+        a6 = a[(G, 6)]
+        sgb = [a6, -a6 * S]
+        if G == 1:
+            d4 = comb([(1, arb(-1)), (2, arb(-1)), (4, -a[(1, 6)])])
+            put(1, [sinb, cosb, e3b, sgb, [d4[4], a[(1, 7)] * S], d4[:4]])
+        elif G == 2:
+            put(2, [sinb, cosb, e3b, sgb, [a[(1, 7)] * S]])
+        elif G == 3:
+            put(3, [sinb, cosb, e3b, sgb])
+        else:
+            put(4, [sinb, cosb, e3b, sgb, [a[(4, 7)] * S]])
+    b[(5, 1)] = -S
+    b[(5, 2)] = S
+    xs = orbit.x0[1:]
+    h: dict[tuple[int, int], arb] = {}
+    for G in (1, 2, 3, 4):
+        for m in range(3):
+            h[(G, m + 1)] = sum((b[(G, 5 * m + j + 1)] * xs[j] for j in range(4)), arb(0)) + b[(G, 5 * m + 5)]
+        h[(G, 4)] = b[(G, 16)] * xs[3] + b[(G, 17)]
+    h[(5, 4)] = xs[3] + b[(5, 1)]
+    th = orbit.theta
+    mu1, om, mu2 = pc["mu1"], pc["omega"], pc["mu2"]
+    eps = [(-mu1 * th).exp() * (om * th).sin(), (-mu1 * th).exp() * (om * th).cos(), (-mu2 * th).exp(),
+           (-th / ball(P.sigma)).exp()]
+    Phi = phi_at(sp, th)
+    f = vector_field(sp, [-v for v in orbit.x0])
+    c: dict[tuple[int, int], arb] = {}
+    for r in range(5):
+        for j in range(4):
+            c[(r + 1, j + 1)] = Phi[r, j + 1]
+        c[(r + 1, 5)] = f[r]
+    J = half_period_jacobian(sp, th, orbit.x0)
+    k = -J
+    cp = J.charpoly()             # det(lambda I - J) = lambda^4 + q1 lambda^3 + ...
+    return {"b": b, "h": h, "c": c, "k": k, "eps": eps, "charpoly": cp}
+
+
+# ----------------------------------------------------------------------------- formulas for the report
+
+def formula_table() -> list[dict[str, str]]:
+    return [
+        {"id": "(2)", "printed": "A Omega' - H beta' - K i = 0; tau i' + i + n1 Omega - p I = 0; B beta'' + H Omega = 0; "
+                                 "sigma I' + I = S sign beta",
+         "reading": "x' = M x + e S sign(beta), x = (beta, beta', Omega, i, I), n = K n1",
+         "note": "linear between switchings; the flow is exp(M t) = sum_k e^{lambda_k t} P_k (simple eigenvalues, "
+                 "checked exactly)"},
+        {"id": "(4)", "printed": "[lambda^3 + lambda^2/tau + (q^2 + n/(tau A)) lambda + q^2/tau](lambda + 1/sigma) lambda = 0",
+         "reading": "as printed", "note": "the paper's example prints lambda^3 + 100 lambda^2 + 640 lambda + 60000: "
+                                          "q^2 = 600, i.e. B = 2/15 (or H = 5 sqrt 399), not the printed B = 0.133 "
+                                          "(q^2 = 601.50...); see the audit"},
+        {"id": "(8)-(13)", "printed": "periodicity conditions (8) -> linear system (9) in D1..D5, S; g(x) = det (12) = 0",
+         "reading": "g(theta) = beta0(theta) = e1^T x0(theta), x0 = -tanh(M theta/2) M^{-1} e S",
+         "note": "same roots near theta* (both say the symmetric solution closes on beta = 0); rigor_gyro isolates "
+                 "the roots of beta0, and audits the determinant (12) separately"},
+        {"id": "(7), (14)-(15)", "printed": "beta = D1 e^{-mu1 t} sin wt + D2 e^{-mu1 t} cos wt + D3 e^{-mu2 t} + D4 + "
+                                            "a16 D5 e^{-t/sigma} + a17 S t, ...; alpha = int Omega dt + C, alpha(0) = -alpha(theta*)",
+         "reading": "as printed", "note": "certified coefficients in the notes; the printed i-row has the sign of its "
+                                          "sin coefficient wrong (audit)"},
+        {"id": "(16)", "printed": "... + (b116 I0 + b117) e^{-t/tau} + ...",
+         "reading": "(b116 I0 + b117) e^{-t/sigma}", "note": "OCR/print: the I-mode decays with sigma (b116 = a16)"},
+        {"id": "(21)-(25)", "printed": "T x_i + sum c_ij x_j + c_i5 x5 = 0; k from (24); det(lambda I + K) = 0",
+         "reading": "multipliers = eigenvalues of -K = -[(I - f e1^T/f1) exp(M theta*)]_{1..4,1..4}",
+         "note": "f = vector field just before the switching (saltation: first-order correction of the switching "
+                 "time); product of the multipliers = -exp(-(1/tau + 1/sigma) theta*) (Liouville), checked"},
+        {"id": "(24) indices", "printed": "k_g2 = (c_{g+1,2} c15 - c_{g+1,6} c12)/c15, ... c_{g+1,7}, c_{g+1,8}",
+         "reading": "k_gj = (c_{g+1,j} c15 - c_{g+1,5} c1j)/c15", "note": "the printed second index runs on; every k_gj "
+                                                                          "uses c_{g+1,5}"},
+    ]
+
+
+# ----------------------------------------------------------------------------- the audit
+
+#: printed numbers that disagree with the certified value but agree with an evident correction
+#: (key -> (corrected text, why))
+READINGS = {
+    "D1": ("0.0417756", "the orbit formula below it prints 0.0417756"),
+    "b5,1": ("-0.15", "b51 = -S (I = (I0 - S) e^{-t/sigma} + S)"),
+    "h21": ("0.191795", "h21 is the beta' sin coefficient of the orbit, printed there as 0.191795"),
+    "i sin": ("-0.202595", "sign: the i-row of the closed form has the opposite sign of h41 = -0.202593"),
+    "c15": ("-1.234394", "c15 = f_1(theta*-) = beta'(theta*) = -beta'(0)"),
+    "z4 (eps4)": ("0.348720", "z4 = eps4 = exp(-theta*/sigma), printed as c54 = 0.348720"),
+    "b1,13": ("0.0000430652", "single-digit misprint (2 for 3)"),
+    "b1,18": ("0.0638624", "single-digit misprint (8 for 3)"),
+    "b1,23": ("-0.393749", "single-digit misprint (5 for 3)"),
+    "b3,3": ("0.000135992", "single-digit misprint (2 for 3)"),
+    "b3,7": ("1.003596", "single-digit misprint (5 for 3)"),
+    "b3,12": ("-0.00359612", "single-digit misprint (5 for 3)"),
+    "b4,4": ("-0.583083", "sign"),
+    "b4,7": ("-6.33182", "sign"),
+    "c23": ("0.00016867", "decimal point shifted"),
+}
+
+
+def _row(rid: str, printed: str, value: arb | None, reading: str = "certified value") -> AuditRow:
+    if value is None:
+        return AuditRow(rid, printed, reading, None, AuditStatus.UNDECIDED, "not computable for these parameters")
+    st, note = audit_printed(printed, value)
+    if st is AuditStatus.DISAGREES and rid in READINGS:
+        corr, why = READINGS[rid]
+        st2, note2 = audit_printed(corr, value)
+        d = agreeing_digits(corr, value)
+        if d >= min(3, len(corr.lstrip("-0.").replace(".", ""))):
+            return AuditRow(rid, printed, f"{corr} ({why})", value, AuditStatus.MISPRINT,
+                            f"printed: {note}; reading {corr}: {note2}")
+    return AuditRow(rid, printed, reading, value, st, note)
+
+
+def audit(model, sp: Spectrum, orbit) -> list[AuditRow]:
+    """Every printed number of the example (from the scene's [paper] table) against the certified orbit."""
+    paper = model.paper
+    rows: list[AuditRow] = []
+    P = sp.P
+    C = nutation_cubic(P)
+    if "cubic" in paper:
+        for txt, coef, nm in zip(paper["cubic"], (C[2], C[1], C[0]), ("lambda^2", "lambda", "1")):
+            rows.append(_row(f"cubic (4): coefficient of {nm}", txt, arb(coef),
+                             "exact: 1/tau, q^2 + n/(tau A), q^2/tau"))
+    if "inv_sigma" in paper:
+        rows.append(_row("1/sigma", paper["inv_sigma"], 1 / ball(P.sigma)))
+    pc = paper_coefficients(sp)
+    if pc is None:
+        rows.append(AuditRow("form (6)", "one real root and a complex pair", "", None, AuditStatus.REFUTED,
+                             "the cubic has three real roots for these parameters"))
+        return rows
+    for key in ("mu1", "omega", "mu2"):
+        if key in paper:
+            rows.append(_row(key, paper[key], pc[key]))
+    for key, txt in paper.get("a", {}).items():
+        G, j = int(key[1]), int(key[2])
+        rows.append(_row(f"a{G}{j}", txt, pc["a"][(G, j)], "exact eigenvectors of (4) in the form (7)"))
+    if "theta_star" in paper:
+        rows.append(_row("theta*", paper["theta_star"], orbit.theta, "certified root of g"))
+    # g(x) table: values and sign pattern of the determinant (12)
+    gx, gv = paper.get("g_table_x", []), paper.get("g_table_g", [])
+    if gx:
+        sig = ball(P.sigma)
+        signs_p, signs_o = [], []
+        for x, v in zip(gx, gv):
+            d = determinant_12(pc, sig, ball(x))
+            st, note = audit_printed(v, d)
+            so = "+" if certainly_positive(d) else "-" if certainly_negative(d) else "?"
+            sp_ = "+" if certainly_positive(ball(v)) else "-" if certainly_negative(ball(v)) else "0"
+            signs_p.append(sp_)
+            signs_o.append(so)
+            rows.append(AuditRow(f"g({x}) of (12)", v, "determinant (12), exact a_ij", d, st,
+                                 f"{note}; sign: printed {sp_}, certified {so}"))
+        rows.append(AuditRow("g(x) table: sign pattern", " ".join(signs_p), " ".join(signs_o), None,
+                             AuditStatus.DISAGREES if signs_p != signs_o else AuditStatus.AGREES,
+                             f"certified root theta* = {_fmt(orbit.theta, 12)}: (12) changes sign between the "
+                             "printed x values bracketing it; the printed table is monotonically decreasing with its "
+                             "zero at 0.13826994, the determinant as written increases through theta* (opposite sign, "
+                             "other scale)"))
+    comps = orbit_expsums(sp, orbit.x0)
+    md = pc["modes"]
+    beta7 = _form7(comps[0], md)
+    D = [beta7[0], beta7[1], beta7[2], beta7[5], _form7(comps[4], md)[3]]
+    for j, txt in enumerate(paper.get("D", []), start=1):
+        rows.append(_row(f"D{j}", txt, D[j - 1], "(9) at theta*"))
+    names = {"beta": 0, "beta_dot": 1, "Omega": 2, "i": 3, "I": 4}
+    labels = ["sin", "cos", "e^-mu2t", "e^-t/sigma", "t", "const"]
+    for comp, vals in paper.get("orbit", {}).items():
+        if comp == "alpha":
+            cf, _ = _alpha(comps[2], md, orbit.theta)
+        else:
+            cf = _form7(comps[names[comp]], md)
+        for lab, v, txt in zip(labels, cf, vals):
+            if txt:
+                rows.append(_row(f"{comp} {lab}" if not (comp == "i" and lab == "sin") else "i sin", txt, v,
+                                 "closed form (7), certified"))
+    # Table 2
+    t2 = paper.get("table2", {})
+    if t2:
+        _, alpha_f = _alpha(comps[2], md, orbit.theta)
+        order = [("alpha", alpha_f), ("beta", comps[0]), ("Omega", comps[2]), ("beta'", comps[1]),
+                 ("i", comps[3]), ("I", comps[4])]
+        for t, vals in t2.items():
+            tt = orbit.theta if t == "theta" else ball(t)
+            for (nm, f), txt in zip(order, vals):
+                if txt is None or txt == "":
+                    continue
+                rows.append(_row(f"Table 2 t={t} {nm}", txt, f(tt), "x(t) on the certified orbit"))
+    tabs = _tables(sp, pc, orbit)
+    for key, txt in paper.get("table3", {}).items():
+        G, j = key[1:].split("_")
+        rows.append(_row(f"b{G},{j}", txt, tabs["b"][(int(G), int(j))], "(16) from the certified x0"))
+    t4 = paper.get("table4", {})
+    for j, txt in enumerate(t4.get("x_star", []), start=1):
+        rows.append(_row(["beta'*", "Omega*", "i*", "I*"][j - 1], txt, orbit.x0[j], "certified x0"))
+    for j, txt in enumerate(t4.get("z", []), start=1):
+        rows.append(_row(f"z{j} (eps{j})", txt, tabs["eps"][j - 1], "(10) at theta*"))
+    for key, txt in t4.get("h", {}).items():
+        rows.append(_row(key, txt, tabs["h"][(int(key[1]), int(key[2]))], "Table 1 with certified b, x*"))
+    for key, txt in t4.get("c", {}).items():
+        rows.append(_row(key, txt, tabs["c"][(int(key[1]), int(key[2]))],
+                         "c_rj = d x_r(theta*)/d x_j(0), c_r5 = f_r(theta*-)"))
+    for key, txt in t4.get("k", {}).items():
+        rows.append(_row(key, txt, tabs["k"][int(key[1]) - 1, int(key[2]) - 1], "k = -Jacobian"))
+    cp = tabs["charpoly"]
+    for j, txt in enumerate(paper.get("quartic", []), start=1):
+        rows.append(_row(f"quartic (25): coefficient of lambda^{4 - j}", txt, cp[4 - j], "det(lambda I + K)"))
+    if orbit.multipliers:
+        mult = orbit.multipliers
+        real = [z for z in mult if z.imag.contains(0)]
+        cplx = [z for z in mult if not z.imag.contains(0)]
+        real.sort(key=lambda z: -float(abs(z).mid()))
+        lam = paper.get("lambda", {})
+        if "lambda1" in lam and real:
+            rows.append(_row("lambda1", lam["lambda1"], real[0].real, "largest real multiplier"))
+        if "lambda3" in lam and len(real) > 1:
+            rows.append(_row("lambda3", lam["lambda3"], real[1].real, "smallest real multiplier"))
+        if cplx:
+            zc = cplx[0]
+            if "re_complex" in lam:
+                rows.append(_row("Re lambda2,4", lam["re_complex"], zc.real, "complex pair"))
+            if "im_complex" in lam:
+                rows.append(_row("|Im lambda2,4|", lam["im_complex"], abs(zc.imag), "complex pair"))
+            if "modulus" in lam:
+                rows.append(_row("|lambda2| = |lambda4|", lam["modulus"], abs(zc), "modulus of the complex pair"))
+        if "stable" in paper:
+            rows.append(AuditRow("'all roots of (25) have modulus < 1: the motion is stable'", paper["stable"],
+                                 "max modulus < 1", orbit.moduli[0],
+                                 AuditStatus.CONFIRMED if orbit.stable else
+                                 AuditStatus.REFUTED if orbit.stable is False else AuditStatus.UNDECIDED,
+                                 f"max modulus {_fmt(orbit.moduli[0], 10)}"))
+    return rows

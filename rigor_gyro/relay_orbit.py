@@ -1,0 +1,599 @@
+"""Self-oscillation of a relay gyro-stabiliser (Roitenberg 1947): scene kind ``periodic_orbit``.
+
+Model: system (2) of the paper, linear between switchings of the relay u = S sign(beta); see
+:mod:`rigor_gyro.relay_flow` for the exact flow. A symmetric periodic solution of half-period theta
+starts on the section beta = 0 at x0(theta) = -tanh(M theta/2) M^{-1} e S (the unique solution of
+(I + exp(M theta)) x0 = -w(theta), i.e. x(theta) = -x(0)); it closes when its beta component
+g(theta) = beta0(theta) vanishes: the paper's equation (13) g(x) = 0. A root is a *genuine* orbit of the
+relay system only if beta(t) > 0 on the whole open interval (0, theta) (claim ``orbit_genuine``).
+
+Guarantee: every claim is decided by Arb balls over the exact rational parameters.
+* ``half_period``: (0, theta_min] is root-free because g(0) = ... = g^(4)(0) = 0 exactly (e1^T M^j e = 0,
+  j <= 3, checked in rational arithmetic; g is odd) and g^(5)/5! is certified > 0 on [0, theta_min];
+  [theta_min, T] is covered by pieces each certified root-free or holding exactly one root
+  (interval Newton on Taylor-model enclosures of g and g' over the piece,
+  :func:`rigor_gyro.roots.isolate_roots`); (T, oo) is root-free by the tail bound
+  g(theta) >= a theta + b - B(theta) > 0 (:func:`rigor_gyro.relay_flow.tail_bound`) when T is the
+  certified tail point, otherwise the searched range (0, T_max] is stated. Each root is classified:
+  spurious with a certified witness (beta'(0) <= 0 and a point t with beta(t) < 0, or a point t in
+  (0, theta) with beta(t) <= 0), or genuine (claim 2 proved for it).
+* ``orbit_genuine``: beta > 0 on (0, theta*): beta' > 0 on [0, d1] and beta' < 0 on [theta* - d2, theta*]
+  (enclosures of beta' over these time intervals; beta(0) = beta(theta*) = 0 exactly), beta > 0 on
+  the middle by Taylor-model enclosures over sub-intervals (:func:`rigor_gyro.subdivision.certify_positive`).
+* ``multipliers``: eigenvalues of the 4x4 ball Jacobian of the half-period map (switching-time
+  correction and symmetry included) by ``acb_mat.eig(algorithm="rump")`` (valid for every matrix in
+  the ball); checked against Liouville: their product is -exp(-(1/tau + 1/sigma) theta*).
+* ``stable``: every modulus certainly < 1 for some genuine orbit (named).
+
+Precision: the prover's, escalated until every claim is decided and theta* has width <= option
+``theta_width`` (default 1e-12; Newton usually gives ~2^-prec relative).
+
+Fails when: non-physical parameters (A, B, H, tau, sigma, K, p, S must be > 0, n > 0): ParameterError
+(exit 2). A repeated eigenvalue, or a piece of the range left undecided: claims inconclusive with the
+reason and what to try (``--maxprec``, option ``T_max``).
+
+Reference: Roitenberg Ya. N. (1947), Avtokolebaniya giroskopicheskikh stabilizatorov (seed 001).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from flint import acb, acb_mat, arb, arb_series
+
+from .balls import (ball, certainly_gt, certainly_le, current_precision, certainly_lt, certainly_negative, certainly_positive, decimal_bounds,
+                    interval, possibly_zero)
+from .certificate import Claim, Status
+from .errors import ParameterError
+from .exact import Exact, parse_exact
+from .prover import Attempt
+from .relay_flow import (PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, g_coeffs,
+                         half_period_jacobian, moment_zero_orders, orbit_expsums, tail_bound,
+                         taylor5_leading_coefficient, taylor_enclosure, x0_at)
+from .roots import Isolation, RootPiece, RootStatus, _merge_shared_roots, newton_root
+from .subdivision import certify_positive
+
+__all__ = ["CLAIMS", "PARAMETERS", "OPTIONS", "RelayModel", "RootVerdict", "Analysis", "validate", "attempt",
+           "analyse", "classify_root", "plots"]
+
+PARAMETERS = {
+    "A": "moment of inertia of the outer ring with object, gyro and motor armature (kg m s^2)",
+    "B": "equatorial moment of inertia of the gyroscope (kg m s^2)",
+    "H": "angular momentum of the rotor (kg m s)",
+    "tau": "time constant of the motor armature circuit (s)",
+    "sigma": "time constant of the amplifier circuit (s)",
+    "n": "K n1: back-emf coefficient times torque constant (kg m s)",
+    "K": "motor torque per ampere (kg m / A)",
+    "p": "amplifier gain (dimensionless)",
+    "S": "relay output S sign(beta) (A)",
+}
+OPTIONS = {"T_max": "auto", "theta_width": "1e-12"}
+
+CLAIMS = {
+    "half_period": "Every root of the half-period equation g(theta) = 0 (the paper's (13); g = beta(0) of the "
+                   "symmetric solution) on the searched range is isolated: each piece of the range is certified "
+                   "root-free or to hold exactly one root; each root is classified as a genuine symmetric orbit "
+                   "or as spurious with a certified witness.",
+    "orbit_genuine": "For the orbit of the scene (and every root reported genuine), beta(t) > 0 on the whole "
+                     "open interval (0, theta*): the relay does not switch early; proved for all t, not sampled.",
+    "initial_point": "The point x(0) = (beta', Omega, i, I) where the orbit crosses the section beta = 0 is "
+                     "enclosed (quantities beta_dot_0, Omega_0, i_0, I_0), with the constants D1..D5 of the "
+                     "paper's form (7)/(9).",
+    "multipliers": "The Jacobian of the half-period point map on the section (switching-time correction and "
+                   "symmetry x -> -x included) has the enclosed eigenvalues (roots of the paper's (25)) and "
+                   "moduli, for every genuine orbit.",
+    "stable": "A genuine orbit is stable: every multiplier modulus is certainly < 1 (stability_margin = "
+              "1 - max modulus, enclosed).",
+}
+
+#: Taylor order of the enclosures over pieces (point coefficients + Lagrange remainder)
+TAYLOR_ORDER = 8
+#: the tail point is searched up to this multiple of the slowest time scale 1/min|Re lambda|
+TAIL_CAP_FACTOR = 100
+MAX_PIECES = 200000
+
+
+@dataclass(frozen=True)
+class RelayModel:
+    """Validated exact parameters and options of a periodic-orbit scene."""
+
+    params: RelayParams
+    exact: dict[str, Exact]
+    T_max: Exact | None           # None: auto (the certified tail point)
+    theta_width: Exact
+    paper: dict
+
+
+def validate(scene) -> RelayModel:
+    """Names, presence and domain: A, B, H, tau, sigma, K, p, S > 0 and n > 0 (exact rationals)."""
+    p = scene.parameters
+    unknown = sorted(set(p) - set(PARAMETERS))
+    if unknown:
+        raise ParameterError(f"unknown parameter(s) {unknown} for kind 'periodic_orbit'; expected {list(PARAMETERS)}")
+    missing = [k for k in PARAMETER_NAMES if k not in p]
+    if missing:
+        raise ParameterError(f"missing parameter(s) {missing} for kind 'periodic_orbit'")
+    v = {k: parse_exact(p[k], k) for k in PARAMETER_NAMES}
+    for k, x in v.items():
+        if not x.is_rational:
+            raise ParameterError(f"parameter {k!r}: must be rational (got {x.text!r})")
+    why = {"A": "zero or negative inertia", "B": "zero or negative inertia",
+           "H": "the gyroscope must spin (H > 0)", "tau": "time constants are > 0",
+           "sigma": "time constants are > 0", "K": "motor torque constant must be > 0",
+           "p": "amplifier gain must be > 0",
+           "S": "S = 0 means no relay signal (no forcing, no self-oscillation); S < 0 is the same system "
+                "with beta -> -beta: write |S|",
+           "n": "n = K n1 > 0 (back-emf damping; n = 0 leaves the nutation undamped and g has poles)"}
+    for k in PARAMETER_NAMES:
+        if not v[k].rational > 0:
+            raise ParameterError(f"parameter {k!r} = {p[k]!r}: need {k} > 0 ({why[k]})")
+    opts = dict(OPTIONS, **{k: str(x) for k, x in scene.options.items()})
+    bad = sorted(set(opts) - set(OPTIONS))
+    if bad:
+        raise ParameterError(f"unknown option(s) {bad}; this kind has {list(OPTIONS)}")
+    T_max = None
+    if opts["T_max"] != "auto":
+        T_max = parse_exact(opts["T_max"], "T_max")
+        if not (T_max.is_rational and T_max.rational > 0):
+            raise ParameterError(f"option 'T_max' = {opts['T_max']!r}: need a rational > 0 or \"auto\"")
+    tw = parse_exact(opts["theta_width"], "theta_width")
+    if not (tw.is_rational and tw.rational > 0):
+        raise ParameterError(f"option 'theta_width' = {opts['theta_width']!r}: need > 0")
+    params = RelayParams(**{k: v[k].fmpq() for k in PARAMETER_NAMES})
+    return RelayModel(params, v, T_max, tw, dict(scene.paper))
+
+
+# ------------------------------------------------------------------------------ per-root analysis
+
+def _fmt(x: arb, digits: int = 12) -> str:
+    lo, hi = decimal_bounds(x, digits)
+    return f"[{lo}, {hi}]"
+
+
+def _fmt_c(z: acb, digits: int = 12) -> str:
+    return f"{_fmt(z.real, digits)} + {_fmt(z.imag, digits)} i"
+
+
+@dataclass
+class RootVerdict:
+    """One root theta of g and what was certified about it."""
+
+    theta: arb
+    x0: list[arb]
+    kind: str                      # "genuine" | "spurious" | "undecided"
+    reason: str
+    witness_t: arb | None = None
+    multipliers: list[acb] = field(default_factory=list)   # sorted by decreasing modulus (float order)
+    moduli: list[arb] = field(default_factory=list)
+    stable: bool | None = None     # True certified stable, False certified unstable, None undecided
+    margin: arb | None = None
+    jacobian_note: str = ""
+    multiplier_reason: str = ""
+
+
+def _beta_positive_on(beta, lo: arb, hi: arb):
+    f = lambda X: taylor_enclosure(beta.coeffs, X, TAYLOR_ORDER, (0,))[0]
+    return certify_positive(f, lo, hi, max_pieces=50000)
+
+
+def _dbeta(beta, X: arb) -> arb:
+    return taylor_enclosure(beta.coeffs, X, TAYLOR_ORDER, (1,))[0]
+
+
+def classify_root(sp: Spectrum, theta: arb) -> RootVerdict:
+    """Decide whether the root theta of g is a genuine orbit (beta > 0 on (0, theta)) or spurious."""
+    x0 = x0_at(sp, theta)
+    beta = orbit_expsums(sp, x0)[0]
+    th_lo, th_hi = theta.lower(), theta.upper()
+    bd0 = x0[1]
+    if certainly_negative(bd0):
+        for j in range(1, 80):
+            t = th_lo * arb(2) ** (-j)
+            if certainly_negative(beta(t)):
+                return RootVerdict(theta, x0, "spurious", f"beta'(0) = {_fmt(bd0, 8)} < 0: beta(t) = "
+                                   f"{_fmt(beta(t), 6)} < 0 at t = {_fmt(t, 10)} in (0, theta)", witness_t=t)
+        return RootVerdict(theta, x0, "spurious", f"beta'(0) = {_fmt(bd0, 8)} < 0: beta < 0 just after the "
+                           "switching (the orbit starts into beta < 0)")
+    if not certainly_positive(bd0):
+        return RootVerdict(theta, x0, "undecided", f"sign of beta'(0) = {_fmt(bd0, 8)} undecided (raise precision)")
+    # left end: beta' > 0 on [0, d1]
+    d1 = None
+    for j in range(1, 60):
+        d = th_lo * arb(2) ** (-j)
+        if certainly_positive(_dbeta(beta, interval(arb(0), d))):
+            d1 = d
+            break
+    bdt = -x0[1]   # beta'(theta*) = -beta'(0) by symmetry
+    d2 = None
+    for j in range(1, 60):
+        d = th_lo * arb(2) ** (-j)
+        if certainly_negative(_dbeta(beta, interval(th_lo - d, th_hi))):
+            d2 = d
+            break
+    if d1 is None or d2 is None:
+        return RootVerdict(theta, x0, "undecided", "could not certify the sign of beta' near the switchings "
+                           "(raise precision)")
+    lo, hi = d1, th_lo - d2
+    if certainly_lt(lo, hi):
+        pos = _beta_positive_on(beta, lo, hi)
+        if pos.status is Status.REFUTED:
+            t = pos.witness
+            return RootVerdict(theta, x0, "spurious", f"beta(t) = {_fmt(pos.witness_value, 6)} <= 0 at "
+                               f"t = {_fmt(t, 10)} in (0, theta): the relay switches early", witness_t=t)
+        if pos.status is not Status.PROVED:
+            return RootVerdict(theta, x0, "undecided", f"beta > 0 on the middle not decided: {pos.reason}")
+        middle = f"beta > 0 on [{_fmt(lo, 6)}, {_fmt(hi, 6)}] ({pos.pieces} pieces)"
+    else:
+        middle = "the two end intervals cover (0, theta*)"
+    return RootVerdict(theta, x0, "genuine",
+                       f"beta'(0) = {_fmt(bd0, 10)} > 0; beta' > 0 on [0, {_fmt(d1, 6)}]; beta' < 0 on "
+                       f"[theta* - {_fmt(d2, 6)}, theta*]; {middle}")
+
+
+def _multipliers(sp: Spectrum, v: RootVerdict) -> None:
+    J = half_period_jacobian(sp, v.theta, v.x0)
+    try:
+        eig = acb_mat(J).eig(algorithm="rump")
+    except ValueError as e:
+        v.multiplier_reason = f"eigenvalues of the Jacobian not isolated at this precision ({e})"
+        return
+    if not all(z.is_finite() for z in eig):
+        v.multiplier_reason = "eigenvalue enclosures not finite at this precision"
+        return
+    prod = acb(1)
+    for z in eig:
+        prod *= z
+    P = sp.P
+    liou = -((-(1 / ball(P.tau) + 1 / ball(P.sigma))) * v.theta).exp()
+    det = J.det()
+    if not (prod.real.overlaps(liou) and det.overlaps(liou)):
+        raise AssertionError(f"Liouville check failed: prod {prod}, det {det}, expected {liou}: a bug")
+    v.jacobian_note = (f"det = product of multipliers = {_fmt(det, 10)} contains -exp(-(1/tau+1/sigma) theta*) "
+                       f"= {_fmt(liou, 10)} (Liouville check)")
+    order = sorted(range(4), key=lambda k: -float(abs(eig[k]).mid()))  # float orders, balls decide
+    mults = [eig[k] for k in order]
+    for k in range(3):  # a conjugate pair (equal moduli): the member with Im > 0 first, deterministically
+        a, b = mults[k], mults[k + 1]
+        if abs(a).overlaps(abs(b)) and certainly_negative(a.imag) and certainly_positive(b.imag):
+            mults[k], mults[k + 1] = b, a
+    v.multipliers = mults
+    v.moduli = [abs(z) for z in v.multipliers]
+    mx = v.moduli[0]
+    for m in v.moduli[1:]:
+        mx = mx.max(m)
+    v.margin = 1 - mx
+    if all(certainly_lt(m, 1) for m in v.moduli):
+        v.stable = True
+    elif any(certainly_gt(m, 1) for m in v.moduli):
+        v.stable = False
+
+
+@dataclass
+class Analysis:
+    """Everything one attempt established."""
+
+    sp: Spectrum | None
+    theta_min: arb | None = None
+    T_tail: arb | None = None
+    T_search: arb | None = None
+    covers_all: bool = False
+    pieces: int = 0
+    unknown: list = field(default_factory=list)
+    roots: list[RootVerdict] = field(default_factory=list)
+    problem: str = ""
+
+
+def _slowest_scale(sp: Spectrum) -> arb:
+    rs = [abs(m.lam.real) for m in sp.modes]
+    mn = rs[0]
+    for r in rs[1:]:
+        mn = mn.min(r)
+    return 1 / mn
+
+
+def _theta_min(sp: Spectrum, start: arb) -> arb | None:
+    """Largest start/2^j with g^(5)/5! certified > 0 on [0, start/2^j]."""
+    for j in range(0, 80):
+        t = start * arb(2) ** (-j)
+        if certainly_positive(taylor5_leading_coefficient(sp, interval(arb(0), t))):
+            return t
+    return None
+
+
+def _tail_point(sp: Spectrum) -> arb | None:
+    """A T with g(theta) > 0 certified for every theta >= T (T from a geometric ladder)."""
+    a, b = sp.a, sp.b
+    start = (-b / a).mid() if certainly_negative(b) else arb(0)
+    fastest = max((float(abs(m.lam).mid()) for m in sp.modes))  # float picks a start only
+    start = start.max(arb(1) / arb(int(fastest) + 1))
+    cap = _slowest_scale(sp) * TAIL_CAP_FACTOR
+    T = start
+    for _ in range(400):
+        if certainly_positive(tail_bound(sp, T).lower()):
+            return T
+        T = T * 9 / 8
+        if certainly_gt(T, cap):
+            return None
+    return None
+
+
+def _g_series_function(sp: Spectrum):
+    """g as the series function :func:`rigor_gyro.roots.isolate_roots` expects: given arb_series([X, 1]) it
+    returns [g(X), g'(X)] (Taylor-model enclosures over the ball X; the chain-rule factor is exactly 1)."""
+    def f(s: arb_series) -> arb_series:
+        c = s.coeffs()
+        if len(c) < 2 or not (c[1] - 1).is_zero():
+            raise ValueError("expects the identity series [x, 1]")
+        g, dg = taylor_enclosure(lambda ctr, n: g_coeffs(sp, ctr, n), c[0], TAYLOR_ORDER, (0, 1))
+        return arb_series([g, dg], prec=2)
+    return f
+
+
+def _isolate(f, lo: arb, hi: arb, *, max_depth: int = 48, max_pieces: int = MAX_PIECES) -> Isolation:
+    """:func:`rigor_gyro.roots.isolate_roots` with a fail-fast rule: when a piece is still undecided at
+    the depth limit or at a width the precision cannot resolve (< 2^(-prec/2) relative), the search
+    stops and the rest of the range is reported undecided (the prover then raises the precision)
+    instead of bisecting every piece of a cancellation-dominated stretch to the depth limit."""
+    done: list[RootPiece] = []
+    stack: list[tuple[arb, arb, int]] = [(lo, hi, 0)]
+    rel = arb(2) ** (-(current_precision() // 2))
+    while stack:
+        a, b, depth = stack.pop()
+        piece = newton_root(f, a, b)
+        if piece.status is RootStatus.UNKNOWN:
+            small = certainly_lt(b - a, b.abs_upper() * rel)
+            if depth < max_depth and not small and len(done) + len(stack) < max_pieces:
+                mid = ((a + b) / 2).mid()
+                stack.append((mid, b, depth + 1))
+                stack.append((a, mid, depth + 1))
+                continue
+            piece.reason += f" (after {depth} bisections; width at the precision limit)" if small else \
+                f" (after {depth} bisections)"
+            done.append(piece)
+            done.extend(RootPiece(a2, b2, RootStatus.UNKNOWN, reason="not examined: the search stopped at an "
+                                  "undecided piece (raise --maxprec)") for a2, b2, _ in stack)
+            break
+        done.append(piece)
+    done.sort(key=lambda p: float(p.lo.mid()))  # float only orders disjoint pieces
+    return Isolation(_merge_shared_roots(f, done, None))
+
+
+def analyse(model: RelayModel) -> Analysis:
+    """Isolate and classify every root at the current precision."""
+    P = model.params
+    try:
+        sp = Spectrum(P)
+    except DegenerateSpectrum as e:
+        return Analysis(None, problem=str(e))
+    mom = moment_zero_orders(P)
+    if any(m != 0 for m in mom[:4]) or mom[4] == 0:
+        return Analysis(sp, problem=f"moment identities e1^T M^j e = 0 (j <= 3) fail: {mom}: a bug")
+    an = Analysis(sp)
+    an.T_tail = _tail_point(sp)
+    if model.T_max is not None:
+        Tm = ball(model.T_max.fmpq())
+        if an.T_tail is not None and certainly_lt(an.T_tail, Tm):
+            an.T_search, an.covers_all = an.T_tail, True
+        else:
+            an.T_search, an.covers_all = Tm, False
+    elif an.T_tail is not None:
+        an.T_search, an.covers_all = an.T_tail, True
+    else:
+        an.problem = (f"tail bound a theta + b - B(theta) > 0 not certified up to {TAIL_CAP_FACTOR} x the slowest "
+                      "time scale: set option T_max to search a finite range")
+        return an
+    fastest = max((float(abs(m.lam).mid()) for m in sp.modes))  # float picks a start only
+    start = arb(1) / arb(int(fastest) + 1)
+    start = start.min(an.T_search / 4)
+    an.theta_min = _theta_min(sp, start)
+    if an.theta_min is None:
+        an.problem = "could not certify g^(5) > 0 near theta = 0 (raise precision)"
+        return an
+    iso = _isolate(_g_series_function(sp), an.theta_min, an.T_search)
+    an.pieces = len(iso.pieces)
+    an.unknown = iso.unknown
+    for r in iso.roots:
+        an.roots.append(classify_root(sp, r))
+    for v in an.roots:
+        if v.kind == "genuine":
+            _multipliers(sp, v)
+    return an
+
+
+# ------------------------------------------------------------------------------ claims
+
+def _claim(cid: str, status: Status, reason: str, **details) -> Claim:
+    return Claim(cid, CLAIMS[cid], status, reason, details=details)
+
+
+def _select(genuine: list[RootVerdict]) -> tuple[RootVerdict | None, str]:
+    stable = [v for v in genuine if v.stable is True]
+    if len(stable) == 1:
+        return stable[0], "the stable genuine orbit"
+    if genuine:
+        return genuine[0], ("the shortest genuine orbit (" + ("several are stable" if stable else "none is certified stable") + ")")
+    return None, "no genuine orbit"
+
+
+def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
+    """Evaluate the requested claims at the current precision (set by the prover)."""
+    an = analyse(model)
+    claims: list[Claim] = []
+    quantities: dict[str, arb] = {}
+    notes: list[str] = []
+    extra: dict[str, Any] = {}
+    if an.sp is None or an.problem:
+        why = an.problem or "spectrum unavailable"
+        for cid in wanted:
+            claims.append(_claim(cid, Status.INCONCLUSIVE, why))
+        return Attempt(claims, quantities, notes=notes, widths_met=False)
+    sp = an.sp
+    rng = (f"(0, {_fmt(an.T_search, 8)}]" + (" and beyond it by the tail bound, i.e. all of (0, oo)"
+                                              if an.covers_all else f" (option T_max; roots beyond it not searched)"))
+    genuine = [v for v in an.roots if v.kind == "genuine"]
+    spurious = [v for v in an.roots if v.kind == "spurious"]
+    undecided = [v for v in an.roots if v.kind == "undecided"]
+    complete = not an.unknown and not undecided
+    # ---- half_period
+    if an.unknown:
+        hp = (Status.INCONCLUSIVE, f"{len(an.unknown)} piece(s) of {rng} undecided, first "
+              f"[{_fmt(an.unknown[0].lo, 10)}, {_fmt(an.unknown[0].hi, 10)}]: {an.unknown[0].reason}")
+    elif undecided:
+        hp = (Status.INCONCLUSIVE, f"{len(an.roots)} roots isolated on {rng}; {len(undecided)} not classified: "
+              + "; ".join(f"theta = {_fmt(v.theta, 10)}: {v.reason}" for v in undecided[:3]))
+    else:
+        hp = (Status.PROVED, f"{len(an.roots)} roots of g on {rng}, each simple and alone in its piece "
+              f"({an.pieces} pieces by interval Newton; (0, {_fmt(an.theta_min, 4)}] root-free since g = O(theta^5) "
+              f"with g^(5) > 0 there); {len(genuine)} genuine "
+              f"({', '.join(_fmt(v.theta, 10) for v in genuine)}), {len(spurious)} spurious with certified witnesses")
+    if "half_period" in wanted:
+        claims.append(_claim("half_period", *hp))
+    main, why_main = _select(genuine)
+    # ---- orbit_genuine
+    if main is not None:
+        og = (Status.PROVED, f"{why_main}, theta* = {_fmt(main.theta, 16)}: {main.reason}"
+              + (f"; {len(genuine) - 1} further genuine orbit(s) proved likewise" if len(genuine) > 1 else ""))
+    elif complete:
+        wit = "; ".join(f"theta = {_fmt(v.theta, 10)}: {v.reason}" for v in spurious[:4])
+        og = (Status.REFUTED, f"no root of g on {rng} is a genuine orbit of the relay system "
+              f"({len(spurious)} spurious): {wit}" + (" ..." if len(spurious) > 4 else ""))
+    else:
+        og = (Status.INCONCLUSIVE, "no genuine orbit certified and not every root classified: " + hp[1])
+    if "orbit_genuine" in wanted:
+        claims.append(_claim("orbit_genuine", *og))
+    none_exists = main is None and complete
+    # ---- quantities of the scene's orbit
+    widths_met = True
+    if main is not None:
+        quantities["theta_star"] = main.theta
+        quantities["period"] = 2 * main.theta
+        for name, k in (("beta_dot_0", 1), ("Omega_0", 2), ("i_0", 3), ("I_0", 4)):
+            quantities[name] = main.x0[k]
+        widths_met = certainly_le(2 * main.theta.rad(), ball(model.theta_width.fmpq()))
+    if "initial_point" in wanted:
+        if main is not None:
+            st = (Status.PROVED, f"x(0) of {why_main}: beta' = {_fmt(main.x0[1], 14)}, Omega = {_fmt(main.x0[2], 14)}, "
+                  f"i = {_fmt(main.x0[3], 14)}, I = {_fmt(main.x0[4], 14)} (beta = g(theta*) = 0 exactly)")
+        elif none_exists:
+            st = (Status.REFUTED, "no genuine orbit exists (see orbit_genuine): there is no initial point")
+        else:
+            st = (Status.INCONCLUSIVE, "no genuine orbit certified yet")
+        claims.append(_claim("initial_point", *st))
+    # ---- multipliers, stability
+    for v in genuine:
+        if v.moduli:
+            pass
+    if main is not None and main.moduli:
+        for j, (z, m) in enumerate(zip(main.multipliers, main.moduli), start=1):
+            quantities[f"multiplier_modulus_{j}"] = m
+        for j, z in enumerate(main.multipliers, start=1):
+            quantities[f"multiplier_{j}_re"] = z.real
+            quantities[f"multiplier_{j}_im"] = z.imag
+        quantities["stability_margin"] = main.margin
+    others = [v for v in genuine if v is not main]
+    for k, v in enumerate(others, start=2):
+        quantities[f"theta_star_{k}"] = v.theta
+        if v.margin is not None:
+            quantities[f"stability_margin_{k}"] = v.margin
+    if "multipliers" in wanted:
+        bad = [v for v in genuine if not v.moduli]
+        if genuine and not bad:
+            parts = []
+            for v in genuine:
+                parts.append(f"theta = {_fmt(v.theta, 10)}: " + ", ".join(
+                    f"{_fmt_c(z, 10)} (|.| = {_fmt(m, 10)})" for z, m in zip(v.multipliers, v.moduli)))
+            st = (Status.PROVED, "; ".join(parts) + f"; {main.jacobian_note}")
+        elif none_exists:
+            st = (Status.REFUTED, "no genuine orbit exists (see orbit_genuine)")
+        else:
+            st = (Status.INCONCLUSIVE, "; ".join(v.multiplier_reason for v in bad) or "no genuine orbit certified yet")
+        claims.append(_claim("multipliers", *st))
+    if "stable" in wanted:
+        stable = [v for v in genuine if v.stable is True]
+        if stable:
+            s = stable[0] if main not in stable else main
+            st = (Status.PROVED, f"the orbit theta* = {_fmt(s.theta, 12)} has max modulus {_fmt(s.moduli[0], 10)} < 1; "
+                  f"stability margin {_fmt(s.margin, 10)}" + (f"; {len(stable)} stable genuine orbits" if len(stable) > 1 else "")
+                  + (f"; unstable: {', '.join(_fmt(v.theta, 8) for v in genuine if v.stable is False)}"
+                     if any(v.stable is False for v in genuine) else ""))
+        elif complete and genuine and all(v.stable is False for v in genuine):
+            st = (Status.REFUTED, "every genuine orbit has a multiplier of modulus certainly > 1: "
+                  + "; ".join(f"theta = {_fmt(v.theta, 10)}: max |.| = {_fmt(v.moduli[0], 10)}" for v in genuine))
+        elif none_exists:
+            st = (Status.REFUTED, "no genuine orbit exists (see orbit_genuine), so no stable self-oscillation")
+        else:
+            st = (Status.INCONCLUSIVE, "stability of the genuine orbits not decided at this precision")
+        claims.append(_claim("stable", *st))
+    # ---- notes and extra: every root with its verdict
+    rows = []
+    for k, v in enumerate(an.roots, start=1):
+        line = f"root {k}: theta = {_fmt(v.theta, 14)}: {v.kind}: {v.reason}"
+        if v.moduli:
+            line += "; multipliers " + ", ".join(_fmt_c(z, 8) for z in v.multipliers) + "; moduli " + ", ".join(
+                _fmt(m, 8) for m in v.moduli) + ("; STABLE" if v.stable else "; UNSTABLE" if v.stable is False else "")
+        rows.append({"theta": list(decimal_bounds(v.theta, 20)), "kind": v.kind, "reason": v.reason,
+                     "moduli": [list(decimal_bounds(m, 12)) for m in v.moduli],
+                     "stable": v.stable})
+        notes.append(line)
+    notes.insert(0, f"Searched range {rng}; theta_min = {_fmt(an.theta_min, 6)}; tail point "
+                 f"{_fmt(an.T_tail, 8) if an.T_tail is not None else 'not certified'}; "
+                 f"scene orbit: {why_main}.")
+    extra["roots"] = rows
+    paper, formulas = [], []
+    from . import relay_formulas as fr
+    formulas = fr.formula_table()
+    if main is not None:
+        fq, fnotes = fr.orbit_quantities(model, sp, main)
+        quantities.update(fq)
+        notes.extend(fnotes)
+        if model.paper:
+            paper = fr.audit(model, sp, main)
+    return Attempt(claims, quantities, paper, formulas, notes, widths_met, extra)
+
+
+# ------------------------------------------------------------------------------ figures
+
+def plots(scene, cert, out_dir) -> list:
+    """Draw beta, Omega, i, I over one period of the scene's orbit (floats for drawing only; the curve is
+    evaluated from the certified initial point). Imports matplotlib here only."""
+    from pathlib import Path
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from .balls import working_precision
+    if "theta_star" not in cert.quantities:
+        return []
+    model = validate(scene)
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    with working_precision(max(cert.precision_bits, 64)):
+        sp = Spectrum(model.params)
+        th = cert.quantities["theta_star"]
+        x0 = x0_at(sp, th)
+        comps = orbit_expsums(sp, x0)
+        N = 200
+        ts, ys = [], [[] for _ in range(5)]
+        thf = float(th.mid())
+        for half in (0, 1):
+            for k in range(N + 1):
+                t = th * k / N
+                vals = [c(t) for c in comps]
+                ts.append(half * thf + thf * k / N)
+                for i in range(5):
+                    ys[i].append((-1) ** half * float(vals[i].mid()))
+    names = ["beta (rad)", "beta' (rad/s)", "Omega (rad/s)", "i (A)", "I (A)"]
+    fig, axes = plt.subplots(4, 1, figsize=(7, 9), sharex=True)
+    for ax, i in zip(axes, (0, 2, 3, 4)):
+        ax.plot(ts, ys[i], lw=1.2)
+        ax.axvline(thf, color="grey", lw=0.6, ls="--")
+        ax.axhline(0, color="grey", lw=0.4)
+        ax.set_ylabel(names[i])
+    axes[-1].set_xlabel("t (s)")
+    axes[0].set_title(f"{scene.name}: one period 2 theta*, theta* = {thf:.12g} s")
+    fig.tight_layout()
+    path = out / f"{scene.name}_orbit.png"
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return [path]
