@@ -15,7 +15,13 @@ Architecture, bottom up:
 * :mod:`~rigor_gyro.prover`       validate -> attempt at escalating precision -> Certificate
 * :mod:`~rigor_gyro.report`       Certificate -> Markdown
 * :mod:`~rigor_gyro.cli`          ``rigor-gyro list | prove``
-* scene kinds: :mod:`~rigor_gyro.eigfreq` (+ :mod:`~rigor_gyro.eigfreq_formulas`)
+* :mod:`~rigor_gyro.subdivision`  certified positivity and extrema over intervals (branch and bound)
+* scene kinds (one imported per scene):
+  - ``eigenfrequencies``: :mod:`~rigor_gyro.eigfreq` (+ :mod:`~rigor_gyro.eigfreq_formulas`)
+  - ``lyapunov``: :mod:`~rigor_gyro.lyapunov` on :mod:`~rigor_gyro.gimbal` and :mod:`~rigor_gyro.moments`
+    (+ :mod:`~rigor_gyro.lyapunov_audit`)
+  - ``periodic_orbit``: :mod:`~rigor_gyro.relay_orbit` on :mod:`~rigor_gyro.relay_flow`
+    (+ :mod:`~rigor_gyro.relay_formulas`)
 """
 from .balls import (certainly_ge, certainly_gt, certainly_le, certainly_lt, certainly_negative,
                     certainly_positive, compare, decimal_bounds, escalate, possibly_zero, quantity,
