@@ -40,7 +40,7 @@ from .balls import (ball, certainly_ge, certainly_gt, certainly_le, certainly_lt
                     decimal_bounds, rel_width_at_most)
 from .certificate import AuditRow, AuditStatus, Claim, Status
 from .errors import ParameterError
-from .exact import Exact, parse_exact
+from .exact import Exact, parse_exact, parse_parameters, require_rational
 from .polyroots import isolate_polynomial
 from .prover import Attempt
 
@@ -87,17 +87,8 @@ class RudenkoModel:
 def validate(scene) -> RudenkoModel:
     """Check names and the domain b > 1, a > b, eps > 0, Omega2 > 0 (and hz_scale > 0)."""
     p = scene.parameters
-    unknown = sorted(set(p) - set(PARAMETERS))
-    if unknown:
-        raise ParameterError(f"unknown parameter(s) {unknown} for kind 'eigenfrequencies'; "
-                             f"expected {list(PARAMETERS)}")
-    missing = [k for k in REQUIRED if k not in p]
-    if missing:
-        raise ParameterError(f"missing parameter(s) {missing} for kind 'eigenfrequencies'")
-    v = {k: parse_exact(p[k], k) for k in p}
-    for k, x in v.items():
-        if not x.is_rational:
-            raise ParameterError(f"parameter {k!r}: must be rational (got {x.text!r})")
+    v = parse_parameters(p, "eigenfrequencies", PARAMETERS, REQUIRED)
+    require_rational(v)
     a, b, eps, W = (v[k].rational for k in REQUIRED)
     if not b > 1:
         raise ParameterError(f"parameter 'b' = {p['b']!r}: need b > 1 (b = (A2+A3)/A3)")

@@ -129,3 +129,24 @@ def parse_exact(value: object, name: str | None = None) -> Exact:
 def to_fmpq(value: object, name: str | None = None) -> fmpq:
     """Parse ``value`` with :func:`parse_exact` and return it as an ``fmpq`` (rational only)."""
     return parse_exact(value, name).fmpq()
+
+
+def parse_parameters(given: dict, kind: str, known, required, text_keys=()) -> dict[str, Exact]:
+    """The parameters of a scene of ``kind``: names checked against ``known`` (unknown ones and
+    missing ``required`` ones are a ParameterError listing them), every value but ``text_keys``
+    parsed exactly (use :func:`require_rational` for the ones that must be rational)."""
+    unknown = sorted(set(given) - set(known))
+    if unknown:
+        raise ParameterError(f"unknown parameter(s) {unknown} for kind {kind!r}; expected {list(known)}")
+    missing = [k for k in required if k not in given]
+    if missing:
+        raise ParameterError(f"missing parameter(s) {missing} for kind {kind!r}")
+    return {k: parse_exact(given[k], k) for k in given if k not in text_keys}
+
+
+def require_rational(values: dict[str, Exact], names=None) -> None:
+    """ParameterError naming the first parameter (of ``names``, default all) that involves pi."""
+    for k, x in values.items():
+        if (names is None or k in names) and not x.is_rational:
+            raise ParameterError(f"parameter {k!r}: must be rational (got {x.text!r})")
+

@@ -47,7 +47,7 @@ from .balls import (certainly_gt, certainly_le, certainly_lt, certainly_positive
                     exact_fraction, interval, rel_width_at_most, working_precision)
 from .certificate import Claim, Status
 from .errors import ParameterError
-from .exact import Exact, parse_exact
+from .exact import Exact, parse_exact, parse_parameters, require_rational
 from .gimbal import Gimbal, hypot_ball, mean_value_enclosure
 from .moments import MOMENTS
 from .prover import Attempt
@@ -96,19 +96,11 @@ def _err(name, text, need):
 def gimbal_from_parameters(text: dict[str, str]) -> tuple[Gimbal, dict[str, Exact]]:
     """Parse and check the parameters (exact strings) of the lyapunov kind; ParameterError names the
     parameter to change."""
-    unknown = sorted(set(text) - set(PARAMETERS))
-    if unknown:
-        raise ParameterError(f"unknown parameter(s) {unknown} for kind 'lyapunov'; expected {list(PARAMETERS)}")
-    missing = [k for k in PARAMETERS if k not in text]
-    if missing:
-        raise ParameterError(f"missing parameter(s) {missing} for kind 'lyapunov'")
+    v = parse_parameters(text, "lyapunov", PARAMETERS, PARAMETERS, text_keys=("moment",))
     moment = text["moment"]
     if not isinstance(moment, str) or moment not in MOMENTS:
         raise ParameterError(f"parameter 'moment' = {moment!r}: unknown moment law; known: {sorted(MOMENTS)}")
-    v = {k: parse_exact(text[k], k) for k in PARAMETERS if k != "moment"}
-    for k in RATIONAL:
-        if not v[k].is_rational:
-            raise ParameterError(f"parameter {k!r}: must be rational (got {v[k].text!r})")
+    require_rational(v, RATIONAL)
     q = {k: v[k].rational for k in RATIONAL}
     for k in ("A", "C", "H", "k", "a", "mu"):
         if not q[k] > 0:

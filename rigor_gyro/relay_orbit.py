@@ -45,7 +45,7 @@ from .balls import (ball, certainly_gt, certainly_le, current_precision, certain
                     interval, possibly_zero)
 from .certificate import Claim, Status
 from .errors import ParameterError
-from .exact import Exact, parse_exact
+from .exact import Exact, parse_exact, parse_parameters, require_rational
 from .prover import Attempt
 from .relay_flow import (PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, g_coeffs,
                          half_period_jacobian, moment_zero_orders, orbit_expsums, tail_bound,
@@ -107,16 +107,8 @@ class RelayModel:
 def validate(scene) -> RelayModel:
     """Names, presence and domain: A, B, H, tau, sigma, K, p, S > 0 and n > 0 (exact rationals)."""
     p = scene.parameters
-    unknown = sorted(set(p) - set(PARAMETERS))
-    if unknown:
-        raise ParameterError(f"unknown parameter(s) {unknown} for kind 'periodic_orbit'; expected {list(PARAMETERS)}")
-    missing = [k for k in PARAMETER_NAMES if k not in p]
-    if missing:
-        raise ParameterError(f"missing parameter(s) {missing} for kind 'periodic_orbit'")
-    v = {k: parse_exact(p[k], k) for k in PARAMETER_NAMES}
-    for k, x in v.items():
-        if not x.is_rational:
-            raise ParameterError(f"parameter {k!r}: must be rational (got {x.text!r})")
+    v = parse_parameters(p, "periodic_orbit", PARAMETERS, PARAMETER_NAMES)
+    require_rational(v)
     why = {"A": "zero or negative inertia", "B": "zero or negative inertia",
            "H": "the gyroscope must spin (H > 0)", "tau": "time constants are > 0",
            "sigma": "time constants are > 0", "K": "motor torque constant must be > 0",
