@@ -22,7 +22,9 @@ Guarantee: every claim is decided by Arb balls over the exact rational parameter
   the middle by Taylor-model enclosures over sub-intervals (:func:`rigor_gyro.subdivision.certify_positive`).
 * ``multipliers``: eigenvalues of the 4x4 ball Jacobian of the half-period map (switching-time
   correction and symmetry included) by ``acb_mat.eig(algorithm="rump")`` (valid for every matrix in
-  the ball); checked against Liouville: their product is -exp(-(1/tau + 1/sigma) theta*).
+  the ball; each output ball holds exactly one eigenvalue); checked against Liouville: their product is
+  -exp(-(1/tau + 1/sigma) theta*). A multiplier is reported exactly real when its conjugate ball meets
+  no other eigenvalue's ball (the Jacobian is real, so the spectrum is closed under conjugation).
 * ``stable``: every modulus certainly < 1 for some genuine orbit (named).
 
 Precision: the prover's, escalated until every claim is decided and theta* has width <= option
@@ -242,6 +244,13 @@ def _multipliers(sp: Spectrum, v: RootVerdict) -> None:
         raise AssertionError(f"Liouville check failed: prod {prod}, det {det}, expected {liou}: a bug")
     v.jacobian_note = (f"det = product of multipliers = {_fmt(det, 10)} contains -exp(-(1/tau+1/sigma) theta*) "
                        f"= {_fmt(liou, 10)} (Liouville check)")
+    # J is real, so its spectrum is closed under conjugation: an eigenvalue whose conjugate ball meets
+    # no other eigenvalue's ball is its own conjugate, i.e. exactly real (imaginary part set to 0)
+    eig = list(eig)
+    for k, z in enumerate(eig):
+        zc = z.conjugate()
+        if z.imag.contains(0) and not any(zc.overlaps(w) for j, w in enumerate(eig) if j != k):
+            eig[k] = acb(z.real, 0)
     order = sorted(range(4), key=lambda k: -float(abs(eig[k]).mid()))  # float orders, balls decide
     mults = [eig[k] for k in order]
     for k in range(3):  # a conjugate pair (equal moduli): the member with Im > 0 first, deterministically
