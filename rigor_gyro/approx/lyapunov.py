@@ -54,7 +54,6 @@ import math
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Callable
 
 import mpmath
 import numpy as np
@@ -653,7 +652,8 @@ def _best_mu(g: _Model, fg: FloatGimbal, mu_lo, mu_hi) -> dict:
             (r1, _), (r2, _) = _r_sup_parts(g, fg, mu)
             return r1 - r2
         if lib is MP:
-            mu_b = mpmath.findroot(h, (a, b), solver="illinois", tol=mpmath.mpf(10) ** (-2 * mpmath.mp.dps + 10))
+            mu_b = mpmath.findroot(h, (a, b), solver="illinois", tol=mpmath.mpf(10) ** (-2 * mpmath.mp.dps + 10),
+                                   verify=False)
         else:
             from scipy.optimize import brentq
             mu_b = brentq(h, a, b, xtol=1e-300, rtol=4 * np.finfo(float).eps)
@@ -665,7 +665,7 @@ def _best_mu(g: _Model, fg: FloatGimbal, mu_lo, mu_hi) -> dict:
     return {"mu_best": end, "R_max": rsup(end), "mu_best_kind": "supremum at an end of the open interval"}
 
 
-def _theta_refine(W1, W2, th, lib, W=None):
+def _theta_refine(W1, W2, th, lib):
     """Newton on W'(theta) = 0 from a grid start (falls back to the start when it does not converge)."""
     tol = mpmath.mpf(10) ** (-mpmath.mp.dps + 3) if lib is MP else 1e-15
     t = th
@@ -743,7 +743,9 @@ def _c_star(g: _Model, fg: FloatGimbal, R) -> dict:
         a, b = to_p(x2g[i - 1]), to_p(x2g[i + 1])
         try:
             if lib is MP:
-                x2b = mpmath.findroot(dphi, (a, b), solver="illinois")
+                x2b = mpmath.findroot(dphi, (a, b), solver="illinois", verify=False)
+                if not a <= x2b <= b:
+                    raise ValueError("envelope root left its bracket")
             else:
                 from scipy.optimize import brentq
                 x2b = brentq(dphi, a, b, xtol=1e-15)
@@ -769,7 +771,7 @@ def _extents(g: _Model, cstar, R) -> dict:
     if g.mu * g.F(g.xs) <= cstar:
         x2 = g.xs
     elif lib is MP:
-        x2 = mpmath.findroot(lambda x: g.mu * g.F(x) - cstar, (0 * g.xs, g.xs), solver="anderson")
+        x2 = mpmath.findroot(lambda x: g.mu * g.F(x) / cstar - 1, (0 * g.xs, g.xs), solver="anderson", verify=False)
     else:
         from scipy.optimize import brentq
         x2 = brentq(lambda x: g.mu * float(g.F(x)) - cstar, 0.0, g.xs, xtol=1e-15)
@@ -810,7 +812,8 @@ def float_constants(params: dict, R: float | None = None, with_best_mu: bool = T
     out = _constants(params, NP, R=R, with_best_mu=with_best_mu)
     if out.get("c_star") is not None and out["c_star"] > 0:
         out.update(_extents(FloatGimbal(params), float(out["c_star"]), float(out["R_used"])))
-    return {k: (float(v) if isinstance(v, (np.floating, float)) else v) for k, v in out.items()}
+    return {k: (float(v) if isinstance(v, (np.floating, float, np.ndarray)) and np.size(v) == 1 else v)
+            for k, v in out.items()}
 
 
 # ------------------------------------------------------------------------------------ time scales
@@ -891,18 +894,22 @@ def trajectories(params: dict, starts, t_end: float, rtol: float = DEFAULT_RTOL,
     whether V (7) is non-increasing along the steps (to ``V_MONOTONE_REL_TOL``), the final state, the
     run time and the number of rhs evaluations.
 
-    Method: the linearisation (:func:`time_scales`) has a fast, lightly damped nutation pair (1369 rad/s
-    at the example, decay 0.0107/s) and a slow real mode (decay a/H = 0.01/s): ~2.2e4 nutation periods per
-    slowest time constant. The problem is *not* stiff in the implicit-method sense: the fast mode is an
-    oscillation, not a fast decay, so every method, implicit or not, must resolve it to follow V, and
-    Radau/BDF pay a Newton solve per step for nothing (Radau took 85 s for 5 s of time at rtol 1e-8, 160
-    steps per period) while damping the oscillation numerically, which would fake a decrease of V.
-    Among explicit methods the cost is per step: measured at the example for a 5 s horizon (1090
-    periods), DOP853 rtol 1e-10 took 4.3 s (18 steps/period, 12 rhs calls per step in Python), RK45
-    rtol 1e-8 8.7 s, LSODA rtol 1e-10 1.4 s (Adams, Fortran core, ~2 rhs calls per step). LSODA (it stays
-    in its non-stiff Adams mode here) is the default; DOP853 is the cross-check (``method="DOP853"``).
-    ``joint=True`` integrates all starts as one stacked system (one solver, one step sequence: the cost
-    of one start for all of them; the per-start seconds are then the shared total).
+    Method: the linearisation (:func:`time_scales`) has a fast, lightly damped nutation pair (1369 rad/s =
+    217.9 Hz at the example, decay 0.0107/s) and a slow real mode (decay ~a/H = 0.01/s): ~2.2e4 nutation
+    periods per slowest time constant. The problem is *not* stiff in the implicit-method sense: the fast
+    mode is an oscillation, not a fast decay, so every method, implicit or not, must resolve it to follow
+    V, and Radau/BDF pay a Newton solve per step for nothing while damping the oscillation numerically
+    (which would fake a decrease of V). Measured at the example (benchmarks/lyapunov_crosscheck.py, one
+    start from the edge of {V < c*}, 0.5 s = 109 periods; run time per simulated second):
+    LSODA rtol 1e-9 0.29-0.36 s (~70 steps/period, ~2 rhs calls/step, Adams in a Fortran core; largest
+    step-to-step V increase -1.3e-9 V0, i.e. V strictly decreasing); DOP853 rtol 1e-8 0.39-0.45 s
+    (10 steps/period, 12 calls/step; -2.8e-7 V0); DOP853 rtol 1e-10 0.54-0.61 s; RK45 rtol 1e-8 1.16 s;
+    Radau rtol 1e-8 18 s (164 steps/period). LSODA (it stays in its non-stiff Adams mode here) is the
+    default for one start. ``joint=True`` integrates all starts as one stacked system (one step sequence
+    for all: 10 starts over 100 s = 21792 periods took 121 s with DOP853 rtol 1e-8; LSODA is slower
+    there); the per-start seconds are then the shared total. The horizon that shows convergence is
+    several slowest time constants (100 s: V drops to ~e^-2 of V0); a few seconds (hundreds of periods)
+    already shows whether a start leaves the box and whether V is monotone.
 
     Example:
         >>> out = trajectories(AGAFONOV2013, [(0.0, 0.1, 0.0)], t_end=0.2)
