@@ -107,6 +107,8 @@ def mean_value_enclosure(fn):
         d = fn(Dual(X, arb(1))).d
         m = X.mid()
         mv = fn(m) + d * (X - m)
+        if not mv.is_finite():
+            return direct
         return direct.intersection(mv) if direct.overlaps(mv) else mv
     return g
 
@@ -192,13 +194,16 @@ class Gimbal:
         increasing in |x2| (integrand > 0 on (0, x2*], certified by the v_positive claim), so it is
         enclosed by its values at the smallest and largest |x2|."""
         c = self.c
-        if self.law.G_on_balls or x2.rad() < arb(2) ** (-(current_precision() // 2)):
+        if x2.rad() < arb(2) ** (-(current_precision() // 2)):
             return self.law.G(c.a, c.A0, c.C0, x2)
         lo_abs = arb(0) if x2.contains(0) else abs(x2).lower()
         hi_abs = abs(x2).upper()
-        glo = self.law.G(c.a, c.A0, c.C0, lo_abs)
-        ghi = self.law.G(c.a, c.A0, c.C0, hi_abs)
-        return glo.union(ghi)
+        hull = self.law.G(c.a, c.A0, c.C0, lo_abs).union(self.law.G(c.a, c.A0, c.C0, hi_abs))
+        if self.law.G_on_balls:
+            direct = self.law.G(c.a, c.A0, c.C0, x2)
+            if direct.overlaps(hull):
+                return direct.intersection(hull)
+        return hull
 
     def F(self, x2):
         """F = (H/B0) G; on a Dual its derivative is f3 (the definition of F)."""
@@ -295,6 +300,15 @@ class Gimbal:
         and away from 0 through the monotonicity of G."""
         c = self.c
         closed = self.law.q_closed(c.a, c.A0, c.C0, x2)
+        if x2.lower() > 0 and not x2.rad().is_zero():
+            # away from 0: the mean-value form (G' = cos f / D by definition), so that branch and bound
+            # converges where q is flat (a maximum at an end with q' -> 0)
+            mv = mean_value_enclosure(self._q_away)(x2)
+            if not mv.is_finite():
+                mv = self._q_away(x2)
+            if closed is not None:
+                return closed.intersection(mv) if closed.overlaps(mv) and mv.is_finite() else closed
+            return mv
         if closed is not None:
             return closed
         fx = self.law.f_over_x(c.a, x2)
@@ -304,6 +318,15 @@ class Gimbal:
             g = y.cos() * self.law.f_over_x(c.a, y) / self.D(y)
             return fx ** 2 / (self.D(x2) * g)
         return self.f(x2) ** 2 / (2 * self.D(x2) * self.G(x2))
+
+    def _q_away(self, x2):
+        """f^2 / (2 D G) for x2 > 0 (arb or Dual; dG/dx2 = cos f / D)."""
+        if isinstance(x2, Dual):
+            v = x2.v
+            G = Dual(self.G(v), v.cos() * self.f(v) / self.D(v) * x2.d)
+        else:
+            G = self.G(x2)
+        return self.f(x2) ** 2 / (2 * self.D(x2) * G)
 
     def S(self, x2):
         return self.f2(x2) + self.c.mu * (self.f1(x2) - self.c.mu)
