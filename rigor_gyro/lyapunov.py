@@ -488,7 +488,19 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
         if (b - a) < Fraction(1, 10 ** 14) * b:
             break
     mu_mid = (a + b) / 2
-    mu_text = decimal_bounds(_q(_fmpq(mu_mid)), 12)[0]
+    # fix mu_best as a short exact decimal certainly inside (16) (the optimum may sit at an end)
+    mu_text = None
+    for digits in (12, 16, 20, 30):
+        for cand in decimal_bounds(_q(_fmpq(mu_mid)), digits):
+            if certainly_lt(lo, _q(_fmpq(Fraction(cand)))) and certainly_lt(_q(_fmpq(Fraction(cand))), hi):
+                mu_text = cand
+                break
+        if mu_text is not None:
+            break
+    if mu_text is None:
+        return _claim("best_mu", Status.INCONCLUSIVE,
+                      f"no decimal mu certainly inside (16) near the optimum {float(mu_mid):.15g} (the interval is "
+                      f"({_fmt(lo)}, {_fmt(hi)})): raise --maxprec")
     mu_best = _fmpq(Fraction(mu_text))
     gb = g.with_mu(mu_best)
     R_enc, e = r_sup(gb, xs, rel="1e-12", max_pieces=ctx.m.max_pieces)

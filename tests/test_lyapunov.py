@@ -213,3 +213,8 @@ def test_plots_are_drawn(tmp_path):
     assert cli.main(["prove", "agafonov2013", "--out", str(tmp_path), "--quiet", "--plots"]) == 0
     names = sorted(p.name for p in tmp_path.glob("*.png"))
     assert names == ["agafonov2013_psi.png", "agafonov2013_slices.png", "agafonov2013_trajectories.png"]
+
+
+def test_mu_best_is_certainly_inside_the_interval(example):
+    q = example.quantities
+    assert certainly_lt(q["mu_min"], q["mu_best"]) and certainly_lt(q["mu_best"], q["mu_max"])
