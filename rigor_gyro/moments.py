@@ -19,24 +19,33 @@ from __future__ import annotations
 
 from flint import acb, arb
 
+from .balls import current_precision
+
 __all__ = ["MOMENTS", "MomentLaw", "SineMoment", "LinearMoment", "log1m_ratio", "moment_law"]
 
 
-def log1m_ratio(u: arb, terms: int = 40) -> arb:
-    """L(u) = -log(1 - u) / u = sum_{n>=0} u^n / (n + 1), with L(0) = 1, for u in a ball inside
-    |u| <= 1/2 when the ball may contain 0 (series with the tail bound |u|^N / ((N+1)(1-|u|)));
-    otherwise directly. Rigorous for every u in the ball."""
-    if not u.contains(0):
-        return -(-u).log1p() / u
+def log1m_ratio(u: arb) -> arb:
+    """L(u) = -log(1 - u) / u = sum_{n>=0} u^n / (n + 1), with L(0) = 1, for every u in the ball.
+
+    For |u| <= 1/2 by the series (no 0/0, and no dependency blow-up on balls where u changes by a
+    large factor), summed until the tail bound |u|^N / ((N+1)(1-|u|)) is below 2^-(prec+8);
+    otherwise directly as -log1p(-u)/u (u then excludes 0)."""
     r = abs(u).upper()
-    if not r < arb(1) / 2:
-        return arb("nan")
-    s, p = arb(0), arb(1)
-    for n in range(terms):
+    if not r <= arb(1) / 2:
+        if u.contains(0):
+            return arb("nan")
+        return -(-u).log1p() / u
+    eps = arb(2) ** (-(current_precision() + 8))
+    s, p, n = arb(0), arb(1), 0
+    rn = arb(1)                      # r^n
+    while True:
         s += p / (n + 1)
         p *= u
-    tail = r ** terms / ((terms + 1) * (1 - r))
-    return s + arb(0, tail.upper())
+        rn *= r
+        n += 1
+        tail = rn / ((n + 1) * (1 - r))
+        if tail < eps or n > 8 * current_precision():
+            return s + arb(0, tail.upper())
 
 
 class MomentLaw:

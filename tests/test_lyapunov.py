@@ -218,3 +218,12 @@ def test_plots_are_drawn(tmp_path):
 def test_mu_best_is_certainly_inside_the_interval(example):
     q = example.quantities
     assert certainly_lt(q["mu_min"], q["mu_best"]) and certainly_lt(q["mu_best"], q["mu_max"])
+
+
+def test_negative_C0_puts_M_at_the_removable_singularity():
+    """C1 > A + A1 makes C0 < 0: q decreases, so M = q(0) = f'(0) = a, attained at the 0/0 point."""
+    cert = prove_scene(scene(C1="5"))
+    assert cert.claim("constants").status is Status.PROVED
+    with working_precision(128):
+        assert cert.quantities["M"].contains(100)
+        assert certainly_lt(cert.quantities["M"].rad(), arb("1e-12"))
