@@ -99,7 +99,9 @@ def mean_value_enclosure(fn):
     """Wrap ``fn`` (written with +, -, *, /, sin, cos, so it accepts both ``arb`` and :class:`Dual`)
     into the mean-value enclosure fn(m) + fn'(X) (X - m), fn' enclosed over X by forward-mode
     differentiation, intersected with the direct enclosure. Near an interior or end-point maximum the
-    overestimation is quadratic in the piece width instead of linear, so branch and bound converges."""
+    overestimation is quadratic in the piece width instead of linear, so branch and bound converges.
+    (Not :func:`rigor_gyro.subdivision.mean_value_form`, which needs arb_series: q contains G, whose
+    derivative is known only through its definition dG/dx2 = cos f / D, which a Dual carries.)"""
     def g(X: arb) -> arb:
         direct = fn(X)
         if X.rad().is_zero():

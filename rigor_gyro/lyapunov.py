@@ -44,7 +44,7 @@ from fractions import Fraction
 from flint import arb, fmpq
 
 from .balls import (certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds,
-                    exact_fraction, interval, rel_width_at_most, working_precision)
+                    exact_fraction, rel_width_at_most, working_precision)
 from .certificate import Claim, Status
 from .errors import ParameterError
 from .exact import Exact, parse_exact, parse_parameters, require_rational
@@ -209,7 +209,7 @@ class _Ctx:
 
     def constants(self) -> dict[str, arb]:
         def run():
-            g, c = self.g, self.g.c
+            c = self.g.c
             cs2 = self.xs.cos() ** 2
             m, M = self.m_max().ball, self.M_max().ball
             pA = c.A0 * m / cs2
@@ -274,7 +274,7 @@ def vdot_witness(g: Gimbal, R: arb, x2_points: list[arb]) -> tuple[arb, arb, arb
     return None
 
 
-def _vdot_claim(ctx: _Ctx, R: arb, how: str, extra: dict) -> tuple[Claim, dict]:
+def _vdot_claim(ctx: _Ctx, R: arb, how: str) -> tuple[Claim, dict]:
     g = ctx.g
     psi1, psi2 = psi_min_functions(g, R)
     results, pieces = {}, 0
@@ -518,7 +518,7 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     for shrink in ("1", "0.999999", "0.999"):
         R_text = decimal_bounds(R_enc.lower() * arb(shrink), 10)[0]
         R_max = _fmpq(Fraction(R_text))
-        claim, info = _vdot_claim(sub, _q(R_max), "at mu = mu_best, R = R_max", {})
+        claim, info = _vdot_claim(sub, _q(R_max), "at mu = mu_best, R = R_max")
         if claim.status is Status.PROVED:
             break
     if claim.status is not Status.PROVED:
@@ -587,7 +587,7 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
         quantities["R_used"] = R
     vclaim = None
     if "vdot_nonpositive" in wanted or "invariant_estimate" in wanted:
-        vclaim, _ = _vdot_claim(ctx, R, how, {})
+        vclaim, _ = _vdot_claim(ctx, R, how)
         if "vdot_nonpositive" in wanted:
             claims.append(vclaim)
     pclaim = None

@@ -88,7 +88,6 @@ def _row(id_, printed, reading, value, status, note=""):
 
 def audit(ctx, quantities: dict[str, arb]) -> tuple[list[AuditRow], list[dict[str, str]], list[str]]:
     """All audit rows of the scene; see the module docstring."""
-    from .lyapunov import _vdot_claim, psi_min_functions  # noqa: F401  (same kind, no cycle at import)
     g, paper = ctx.g, ctx.m.paper
     rows: list[AuditRow] = []
     notes: list[str] = []
@@ -149,7 +148,7 @@ def _region_rows(ctx, printed_R: str) -> list[AuditRow]:
     R_read = arb(fmpq(Rq.numerator, Rq.denominator))
     for label, radius, reading in (("region as printed", R_read.sqrt(), f"x1^2 + x3^2 < {printed_R} (radius sqrt(R))"),
                                    ("region read with R^2", R_read, f"x1^2 + x3^2 < {printed_R}^2")):
-        claim, _ = _vdot_claim(ctx, radius, "radius", {})
+        claim, _ = _vdot_claim(ctx, radius, "radius")
         status = {Status.PROVED: AuditStatus.CONFIRMED, Status.REFUTED: AuditStatus.REFUTED}.get(
             claim.status, AuditStatus.UNDECIDED)
         note = ("Vdot <= 0 on it certified (" + claim.reason.split(": ", 1)[-1][:160] + "); the paper does not "

@@ -43,8 +43,8 @@ from typing import Any
 
 from flint import acb, acb_mat, arb, arb_series
 
-from .balls import (ball, certainly_gt, certainly_le, current_precision, certainly_lt, certainly_negative, certainly_positive, decimal_bounds,
-                    interval, possibly_zero)
+from .balls import (ball, certainly_gt, certainly_le, certainly_lt, certainly_negative, certainly_positive,
+                    current_precision, decimal_bounds, interval)
 from .certificate import Claim, Status
 from .errors import ParameterError
 from .exact import Exact, parse_exact, parse_parameters, require_rational
@@ -197,7 +197,6 @@ def classify_root(sp: Spectrum, theta: arb) -> RootVerdict:
         if certainly_positive(_dbeta(beta, interval(arb(0), d))):
             d1 = d
             break
-    bdt = -x0[1]   # beta'(theta*) = -beta'(0) by symmetry
     d2 = None
     for j in range(1, 60):
         d = th_lo * arb(2) ** (-j)
@@ -430,7 +429,7 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
         return Attempt(claims, quantities, notes=notes, widths_met=False)
     sp = an.sp
     rng = (f"(0, {_fmt(an.T_search, 8)}]" + (" and beyond it by the tail bound, i.e. all of (0, oo)"
-                                              if an.covers_all else f" (option T_max; roots beyond it not searched)"))
+                                              if an.covers_all else " (option T_max; roots beyond it not searched)"))
     genuine = [v for v in an.roots if v.kind == "genuine"]
     spurious = [v for v in an.roots if v.kind == "spurious"]
     undecided = [v for v in an.roots if v.kind == "undecided"]

@@ -20,6 +20,14 @@ from ..balls import interval, working_precision
 __all__ = ["plots"]
 
 
+def _save(fig, out: Path, name: str, paths: list[str]) -> None:
+    import matplotlib.pyplot as plt
+    p = out / name
+    fig.savefig(p, dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    paths.append(str(p))
+
+
 def plots(scene, cert, out_dir) -> list[str]:
     import matplotlib
     matplotlib.use("Agg")
@@ -56,10 +64,7 @@ def plots(scene, cert, out_dir) -> list[str]:
         ax.set_ylabel("x3 = beta-dot")
         ax.set_aspect("equal")
     fig.suptitle(f"{scene.name}: region (17) and the invariant set V < c_set (green)")
-    p = out / f"{scene.name}_slices.png"
-    fig.savefig(p, dpi=110, bbox_inches="tight")
-    plt.close(fig)
-    paths.append(str(p))
+    _save(fig, out, f"{scene.name}_slices.png", paths)
 
     with working_precision(64):
         psi1, psi2 = psi_min_functions(g, arb(str(R)))
@@ -75,10 +80,7 @@ def plots(scene, cert, out_dir) -> list[str]:
     ax.set_yscale("symlog")
     ax.legend()
     ax.set_title(f"{scene.name}: Psi lower bounds on x2 pieces (R = {R:.6g})")
-    p = out / f"{scene.name}_psi.png"
-    fig.savefig(p, dpi=110, bbox_inches="tight")
-    plt.close(fig)
-    paths.append(str(p))
+    _save(fig, out, f"{scene.name}_psi.png", paths)
 
     if c_set is not None:
         starts = []
@@ -105,8 +107,5 @@ def plots(scene, cert, out_dir) -> list[str]:
             for a in (a1, a2):
                 a.set_xlabel("t [s]")
             fig.suptitle(f"{scene.name}: float trajectories from the edge of the certified set (never a verdict)")
-            p = out / f"{scene.name}_trajectories.png"
-            fig.savefig(p, dpi=110, bbox_inches="tight")
-            plt.close(fig)
-            paths.append(str(p))
+            _save(fig, out, f"{scene.name}_trajectories.png", paths)
     return paths
