@@ -21,7 +21,7 @@ import time
 import mpmath
 import numpy as np
 
-from rigor_gyro.approx.lyapunov import (AGAFONOV2013, FloatGimbal, edge_points, float_constants, mp_constants,
+from rigor_gyro.kinds.lyapunov.approx import (AGAFONOV2013, FloatGimbal, edge_points, float_constants, mp_constants,
                                         time_scales, trajectories)
 
 KEYS = ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R", "R_sup", "c_star",
@@ -64,7 +64,7 @@ def contains(ball, value) -> str:
     if ball is None or value is None:
         return "-"
     from flint import arb
-    from rigor_gyro.balls import working_precision
+    from rigor_gyro.core.balls import working_precision
     with working_precision(256), mpmath.workdps(70):
         x = arb(mpmath.nstr(value, 60))
         return "yes" if (ball + arb(0, arb("1e-40") * abs(x))).contains(x) else "NO"
@@ -75,7 +75,7 @@ def below(ball, value) -> str:
     if ball is None or value is None:
         return "-"
     from flint import arb
-    from rigor_gyro.balls import certainly_le, working_precision
+    from rigor_gyro.core.balls import certainly_le, working_precision
     with working_precision(256), mpmath.workdps(70):
         x = arb(mpmath.nstr(value, 60))
         return "lower bound ok" if certainly_le(ball, x + arb(0, arb("1e-40") * abs(x))) else "NO"

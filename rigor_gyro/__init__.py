@@ -1,40 +1,38 @@
 """rigor_gyro: verified numerics for gyroscopic instruments.
 
 Every number it calls proved comes from Arb ball arithmetic (python-flint) over the exact decimal
-parameters the user wrote. Floats (numpy, scipy, in :mod:`rigor_gyro.approx`) only cross-check.
+parameters the user wrote. Floats (numpy, scipy, in each kind's ``approx`` module) only cross-check.
 
-Architecture, bottom up:
+Architecture, bottom up (imports point down; tests/test_rules.py checks it):
 
-* :mod:`~rigor_gyro.exact`        exact parameters: decimal strings -> rationals (times pi)
-* :mod:`~rigor_gyro.balls`        precision, certified predicates, escalation, outward decimals
-* :mod:`~rigor_gyro.roots`        interval Newton: existence and uniqueness of real roots
-* :mod:`~rigor_gyro.polyroots`    roots of rational polynomials, reality and simplicity proved
-* :mod:`~rigor_gyro.audit`        printed numbers against certified balls
-* :mod:`~rigor_gyro.certificate`  Status, Claim, AuditRow, Certificate (JSON)
-* :mod:`~rigor_gyro.scene`        TOML scene files, built-in scenes, kind registry
-* :mod:`~rigor_gyro.prover`       validate -> attempt at escalating precision -> Certificate
-* :mod:`~rigor_gyro.report`       Certificate -> Markdown
-* :mod:`~rigor_gyro.cli`          ``rigor-gyro list | prove``
-* :mod:`~rigor_gyro.subdivision`  certified positivity and extrema over intervals (branch and bound)
-* scene kinds (one imported per scene):
-  - ``eigenfrequencies``: :mod:`~rigor_gyro.eigfreq` (+ :mod:`~rigor_gyro.eigfreq_formulas`)
-  - ``lyapunov``: :mod:`~rigor_gyro.lyapunov` on :mod:`~rigor_gyro.gimbal` and :mod:`~rigor_gyro.moments`
-    (+ :mod:`~rigor_gyro.lyapunov_audit`)
-  - ``periodic_orbit``: :mod:`~rigor_gyro.relay_orbit` on :mod:`~rigor_gyro.relay_flow`
-    (+ :mod:`~rigor_gyro.relay_formulas`)
+* :mod:`rigor_gyro.core`: rigorous primitives that know nothing of gyroscopes:
+  :mod:`~rigor_gyro.core.exact` (exact parameters), :mod:`~rigor_gyro.core.balls` (precision,
+  certified predicates, escalation, outward decimals), :mod:`~rigor_gyro.core.roots` (interval Newton),
+  :mod:`~rigor_gyro.core.polyroots` (rational polynomials), :mod:`~rigor_gyro.core.subdivision`
+  (positivity and extrema by branch and bound), :mod:`~rigor_gyro.core.outcome` (Status, Claim,
+  AuditRow), :mod:`~rigor_gyro.core.audit` (printed numbers against balls), :mod:`~rigor_gyro.core.errors`.
+* :mod:`rigor_gyro.kinds`: the kind interface and registry; one package per scene kind, only the
+  scene's own imported when it is proved:
+  - ``eigenfrequencies`` (Rudenko 1976): model, claims, paper, approx;
+  - ``lyapunov`` (Agafonov et al. 2013): moments, model, claims, paper, approx, plots;
+  - ``periodic_orbit`` (Roitenberg 1947): flow, claims, paper, approx, plots.
+* the application: :mod:`~rigor_gyro.scene` (TOML scene files, built-in scenes),
+  :mod:`~rigor_gyro.prover` (validate -> attempt at escalating precision -> certificate),
+  :mod:`~rigor_gyro.certificate` (Certificate, JSON), :mod:`~rigor_gyro.report` (Markdown),
+  :mod:`~rigor_gyro.cli` (``rigor-gyro list | prove``).
 """
-from .balls import (certainly_ge, certainly_gt, certainly_le, certainly_lt, certainly_negative,
-                    certainly_positive, compare, decimal_bounds, escalate, possibly_zero, quantity,
-                    working_precision)
-from .certificate import AuditRow, AuditStatus, Certificate, Claim, Status
-from .errors import CertificationFailed, ParameterError, RigorGyroError, SceneError
-from .exact import Exact, parse_exact
-from .polyroots import PolynomialRoots, isolate_polynomial
+from .certificate import Certificate
+from .core.balls import (certainly_ge, certainly_gt, certainly_le, certainly_lt, certainly_negative,
+                         certainly_positive, compare, decimal_bounds, escalate, possibly_zero, quantity,
+                         working_precision)
+from .core.errors import CertificationFailed, ParameterError, RigorGyroError, SceneError
+from .core.exact import Exact, parse_exact
+from .core.outcome import AuditRow, AuditStatus, Claim, Status
+from .core.polyroots import PolynomialRoots, isolate_polynomial
+from .core.roots import Isolation, RootPiece, RootStatus, isolate_roots, newton_root
 from .prover import prove_scene
-from .roots import Isolation, RootPiece, RootStatus, isolate_roots, newton_root
 from .scene import Scene, builtin_scenes, load_scene, parse_scene
-
-__version__ = "0.1.0"
+from .version import __version__
 
 __all__ = [
     "Exact", "parse_exact",

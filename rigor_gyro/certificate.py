@@ -7,89 +7,31 @@ never changes the verdict or the exit status.
 
 Guarantee: ``verdict`` is ``proved`` only if every claim is ``proved``; ``refuted`` if some claim is
 refuted (a certified counterexample); otherwise ``inconclusive``. Every quantity's ``lo``/``hi``
-certainly contain the exact value (see :func:`rigor_gyro.balls.quantity`).
+certainly contain the exact value (see :func:`rigor_gyro.core.balls.quantity`).
+
+The outcome records (:class:`Status`, :class:`Claim`, :class:`AuditStatus`, :class:`AuditRow`) are
+defined in :mod:`rigor_gyro.core.outcome` and re-exported here, where a certificate's reader looks.
 """
 from __future__ import annotations
 
 import json
 import platform
 from dataclasses import dataclass, field
-from enum import Enum
 from typing import Any
 
 from flint import arb
 
-from .balls import quantity
-from .errors import CertificationFailed
+from .core.balls import quantity
+from .core.errors import CertificationFailed
+from .core.outcome import AuditRow, AuditStatus, Claim, Status
+from .version import __version__
 
 __all__ = ["SCHEMA", "Status", "AuditStatus", "Claim", "AuditRow", "Certificate", "EXIT_CODES"]
 
 SCHEMA = "rigor-gyro/certificate/1"
 
 
-class Status(Enum):
-    """The outcome of a claim. REFUTED only for a claim that is certainly false."""
-
-    PROVED = "proved"
-    REFUTED = "refuted"
-    INCONCLUSIVE = "inconclusive"
-
-    @classmethod
-    def of(cls, holds: bool, fails: bool) -> "Status":
-        """PROVED if ``holds`` was certified, REFUTED if ``fails`` was, else INCONCLUSIVE."""
-        if holds and fails:
-            raise AssertionError("a claim cannot be both proved and refuted: a bug in the caller")
-        return cls.PROVED if holds else cls.REFUTED if fails else cls.INCONCLUSIVE
-
-
-class AuditStatus(Enum):
-    """The outcome of an audit row about the paper."""
-
-    AGREES = "agrees"            # printed number is a correct rounding of the certified value
-    DISAGREES = "disagrees"      # it is certainly not
-    MISPRINT = "misprint"        # the printed formula disagrees, another reading reproduces it
-    CONFIRMED = "confirmed"      # a verbal assertion certified true
-    REFUTED = "refuted"          # a verbal assertion certified false
-    UNDECIDED = "undecided"      # the balls did not separate (raise the precision)
-
-
 EXIT_CODES = {Status.PROVED: 0, Status.REFUTED: 1, Status.INCONCLUSIVE: 3}
-
-
-@dataclass
-class Claim:
-    """One claim about the system. ``reason`` says why it holds, or what failed and what to try."""
-
-    id: str
-    statement: str
-    status: Status
-    reason: str
-    precision_bits: int = 0
-    details: dict[str, Any] = field(default_factory=dict)
-
-    def to_json(self) -> dict[str, Any]:
-        d = {"id": self.id, "statement": self.statement, "status": self.status.value,
-             "reason": self.reason, "precision_bits": self.precision_bits}
-        if self.details:
-            d["details"] = self.details
-        return d
-
-
-@dataclass
-class AuditRow:
-    """One printed number (or formula, or assertion) of the paper against the certified value."""
-
-    id: str
-    printed: str
-    reading: str
-    value: arb | None
-    status: AuditStatus
-    note: str = ""
-
-    def to_json(self) -> dict[str, Any]:
-        q = quantity(self.value) if self.value is not None else {"lo": "", "hi": ""}
-        return {"id": self.id, "printed": self.printed, "reading": self.reading, "lo": q["lo"],
-                "hi": q["hi"], "status": self.status.value, "note": self.note}
 
 
 @dataclass
@@ -137,7 +79,6 @@ class Certificate:
     def to_json(self) -> dict[str, Any]:
         import flint
 
-        from . import __version__
         return {
             "schema": SCHEMA,
             "scene": self.scene,

@@ -8,8 +8,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from .balls import DEFAULT_MAXPREC, DEFAULT_PREC
-from .errors import RigorGyroError
+from .core.balls import DEFAULT_MAXPREC, DEFAULT_PREC
+from .core.errors import RigorGyroError
 
 __all__ = ["main"]
 
@@ -49,7 +49,8 @@ def _cmd_list() -> int:
 
 
 def _cmd_prove(args) -> int:
-    from .certificate import EXIT_CODES, Status
+    from .certificate import EXIT_CODES
+    from .core.outcome import Status
     from .prover import prove_scene
     from .report import write_outputs
     from .scene import builtin_scenes, load_scene
@@ -94,9 +95,9 @@ def _cmd_prove(args) -> int:
 
 def _plots(scene, cert, out: str) -> int:
     """Draw the figures of a proved scene (float drawings of certified objects; never a verdict)."""
-    from .scene import kind_module
-    module = kind_module(scene.kind)
-    if not hasattr(module, "plots"):
+    from .kinds import plots_hook
+    draw = plots_hook(scene.kind)
+    if draw is None:
         print(f"rigor-gyro: {scene.name}: kind {scene.kind!r} has no figures; --plots ignored", file=sys.stderr)
         return 0
     try:
@@ -104,7 +105,7 @@ def _plots(scene, cert, out: str) -> int:
     except ImportError:
         print("rigor-gyro: error: --plots needs matplotlib: pip install 'rigor_gyro[plots]'", file=sys.stderr)
         return EXIT_BAD_INPUT
-    for path in module.plots(scene, cert, out):
+    for path in draw(scene, cert, out):
         print(f"{scene.name}: figure -> {path}")
     return 0
 

@@ -1,11 +1,7 @@
 """Prove a scene: validate it, run its kind at escalating precision, assemble the certificate.
 
-Every kind module provides
-
-* ``CLAIMS``: ``{claim_id: statement}`` in report order;
-* ``validate(scene) -> model``: raises :class:`ParameterError` naming the parameter (exit 2);
-* ``attempt(model, claims, prec) -> Attempt``: one evaluation at ``prec`` bits of the requested
-  claims (it must compute only what they need).
+Every kind provides the interface of :mod:`rigor_gyro.kinds` (``CLAIMS``, ``validate``, ``attempt``
+returning a :class:`rigor_gyro.kinds.Attempt`).
 
 Guarantee: :func:`prove_scene` returns the first attempt in which every requested claim is decided
 (proved or refuted), every requested width is met and every audit row is decided, trying
@@ -16,38 +12,15 @@ which it already had its final status.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
-from typing import Any
 
-from flint import arb
+from .certificate import Certificate
+from .core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, escalate
+from .core.errors import SceneError
+from .core.outcome import Status
+from .kinds import Attempt, kind_module
+from .scene import Scene
 
-from .balls import DEFAULT_MAXPREC, DEFAULT_PREC, escalate
-from .certificate import AuditRow, AuditStatus, Certificate, Claim, Status
-from .errors import SceneError
-from .scene import Scene, kind_module
-
-__all__ = ["Attempt", "prove_scene", "requested_claims"]
-
-
-@dataclass
-class Attempt:
-    """What one evaluation at one precision established."""
-
-    claims: list[Claim]
-    quantities: dict[str, arb]
-    paper: list[AuditRow] = field(default_factory=list)
-    formulas: list[dict[str, str]] = field(default_factory=list)
-    notes: list[str] = field(default_factory=list)
-    widths_met: bool = True
-    extra: dict[str, Any] = field(default_factory=dict)
-    #: set by a kind when more precision cannot help the undecided claims (e.g. subdivision budgets
-    #: exhausted on wide pieces): escalation stops there and the claims say what to change instead
-    stalled: bool = False
-
-    @property
-    def settled(self) -> bool:
-        return (self.widths_met and all(c.status is not Status.INCONCLUSIVE for c in self.claims)
-                and all(r.status is not AuditStatus.UNDECIDED for r in self.paper))
+__all__ = ["prove_scene", "requested_claims"]
 
 
 def requested_claims(scene: Scene, available: dict[str, str]) -> list[str]:

@@ -21,25 +21,16 @@ unknown: :class:`SceneError` / :class:`ParameterError` naming what to change (CL
 """
 from __future__ import annotations
 
-import importlib
 import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from .errors import ParameterError, SceneError
+from .core.errors import ParameterError, SceneError
+from .kinds import KINDS, PLANNED_KINDS
 
-__all__ = ["Scene", "KINDS", "load_scene", "builtin_scenes", "kind_module", "parse_scene"]
-
-#: kind -> module implementing it (imported only when a scene of that kind is proved)
-KINDS = {
-    "eigenfrequencies": "rigor_gyro.eigfreq",
-    "lyapunov": "rigor_gyro.lyapunov",
-    "periodic_orbit": "rigor_gyro.relay_orbit",
-}
-#: kinds described in the documentation whose modules are not in this version yet
-PLANNED_KINDS: set[str] = set()
+__all__ = ["Scene", "load_scene", "builtin_scenes", "parse_scene"]
 
 
 @dataclass
@@ -120,10 +111,3 @@ def parse_scene(text: str, where: str = "<string>") -> Scene:
                  parameters=params, claims_only=only, options=dict(data.get("options", {})),
                  paper=dict(data.get("paper", {})), path=where)
 
-
-def kind_module(kind: str):
-    """Import and return the module implementing ``kind`` (and nothing else)."""
-    try:
-        return importlib.import_module(KINDS[kind])
-    except KeyError:
-        raise SceneError(f"unknown kind {kind!r}; known kinds: {', '.join(KINDS)}") from None

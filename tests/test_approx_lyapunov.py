@@ -1,4 +1,4 @@
-"""Tests of the float/mpmath cross-check module rigor_gyro.approx.lyapunov (Agafonov et al. 2013).
+"""Tests of the float/mpmath cross-check module rigor_gyro.kinds.lyapunov.approx (Agafonov et al. 2013).
 
 These test the approximate side on its own (no balls): the float grad V . f against the audited Psi
 form, the mpmath constants against reference values computed by independent scripts, the time scales,
@@ -9,9 +9,9 @@ import mpmath
 import numpy as np
 import pytest
 
-from rigor_gyro.approx.lyapunov import (AGAFONOV2013, FloatGimbal, MpGimbal, V_MONOTONE_REL_TOL, edge_points,
+from rigor_gyro.kinds.lyapunov.approx import (AGAFONOV2013, FloatGimbal, MpGimbal, V_MONOTONE_REL_TOL, edge_points,
                                         float_constants, mp_constants, time_scales, trajectories)
-from rigor_gyro.errors import ParameterError
+from rigor_gyro.core.errors import ParameterError
 
 #: float grad V . f sums products of size ~H^3 |x1 x3| / (B0^2 D) that cancel down to Vdot ~ Psi |x|^2
 #: (a factor ~1e5 at the example); its rounding error is a few ulps of the *sum of the absolute values of

@@ -6,7 +6,7 @@ from flint import arb, ctx, fmpq
 from hypothesis import given
 from hypothesis import strategies as st
 
-from rigor_gyro.balls import (certainly_ge, certainly_gt, certainly_le, certainly_lt, compare,
+from rigor_gyro.core.balls import (certainly_ge, certainly_gt, certainly_le, certainly_lt, compare,
                               decimal_bounds, escalate, possibly_zero, quantity, working_precision)
 
 

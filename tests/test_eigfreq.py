@@ -2,10 +2,10 @@
 import pytest
 from flint import arb, fmpq
 
-from rigor_gyro.balls import certainly_lt, certainly_positive, working_precision
+from rigor_gyro.core.balls import certainly_lt, certainly_positive, working_precision
 from rigor_gyro.certificate import AuditStatus, Status
-from rigor_gyro.eigfreq import characteristic_quartic
-from rigor_gyro.errors import ParameterError
+from rigor_gyro.kinds.eigenfrequencies.claims import characteristic_quartic
+from rigor_gyro.core.errors import ParameterError
 from rigor_gyro.prover import prove_scene
 from rigor_gyro.scene import load_scene, parse_scene
 

@@ -4,9 +4,9 @@ from fractions import Fraction
 import pytest
 from flint import arb, fmpq
 
-from rigor_gyro.balls import working_precision
-from rigor_gyro.errors import ParameterError
-from rigor_gyro.exact import parse_exact
+from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.errors import ParameterError
+from rigor_gyro.core.exact import parse_exact
 
 
 @pytest.mark.parametrize("text, rational, pi", [

@@ -8,10 +8,10 @@ import pytest
 from flint import arb
 
 from rigor_gyro import cli
-from rigor_gyro.balls import certainly_gt, certainly_lt, certainly_positive, working_precision
+from rigor_gyro.core.balls import certainly_gt, certainly_lt, certainly_positive, working_precision
 from rigor_gyro.certificate import AuditStatus, Status
-from rigor_gyro.gimbal import hypot_ball
-from rigor_gyro.lyapunov import validate
+from rigor_gyro.kinds.lyapunov.model import hypot_ball
+from rigor_gyro.kinds.lyapunov.claims import validate
 from rigor_gyro.prover import prove_scene
 from rigor_gyro.scene import load_scene, parse_scene
 

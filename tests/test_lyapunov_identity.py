@@ -1,5 +1,5 @@
 """Exact symbolic proof that Vdot = grad V . f of (7) along (2) equals -Psi1 x1^2 - Psi2 x3^2 with the
-coefficients of rigor_gyro.gimbal.Gimbal.psi_coefficients (the form every Lyapunov claim rests on),
+coefficients of rigor_gyro.kinds.lyapunov.model.Gimbal.psi_coefficients (the form every Lyapunov claim rests on),
 and that the printed (8) does not: sympy, with sin x2 = s, cos x2 = c reduced modulo s^2 + c^2 - 1,
 f, f' and F kept as independent symbols (F' = f3 by definition). The formulas below are checked
 against the library's ball evaluation at sample points, so the symbolic identity is about the code."""
@@ -9,10 +9,10 @@ from flint import arb, fmpq
 sympy = pytest.importorskip("sympy")
 from sympy import Rational, symbols  # noqa: E402
 
-from rigor_gyro.balls import working_precision  # noqa: E402
-from rigor_gyro.exact import parse_exact  # noqa: E402
-from rigor_gyro.gimbal import Gimbal  # noqa: E402
-from rigor_gyro.moments import MOMENTS  # noqa: E402
+from rigor_gyro.core.balls import working_precision  # noqa: E402
+from rigor_gyro.core.exact import parse_exact  # noqa: E402
+from rigor_gyro.kinds.lyapunov.model import Gimbal  # noqa: E402
+from rigor_gyro.kinds.lyapunov.moments import MOMENTS  # noqa: E402
 
 A0, B0, C0, H, k, mu = symbols("A0 B0 C0 H k mu", positive=True)
 x1, x3, s, c, f, fp, F = symbols("x1 x3 s c f fp F")

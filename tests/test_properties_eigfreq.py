@@ -30,11 +30,11 @@ from flint import arb, fmpq, fmpq_poly
 from hypothesis import assume, event, example, given, target
 from hypothesis import strategies as st
 
-from rigor_gyro.approx.eigfreq import approx_roots_mpmath, approx_roots_numpy, quartic_coefficients
-from rigor_gyro.balls import (DEFAULT_MAXPREC, certainly_gt, certainly_le, certainly_lt, certainly_positive,
+from rigor_gyro.kinds.eigenfrequencies.approx import approx_roots_mpmath, approx_roots_numpy, quartic_coefficients
+from rigor_gyro.core.balls import (DEFAULT_MAXPREC, certainly_gt, certainly_le, certainly_lt, certainly_positive,
                               working_precision)
 from rigor_gyro.certificate import Status
-from rigor_gyro.eigfreq import nu_quadratics
+from rigor_gyro.kinds.eigenfrequencies.claims import nu_quadratics
 from rigor_gyro.prover import prove_scene
 from rigor_gyro.scene import parse_scene
 

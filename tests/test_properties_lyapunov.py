@@ -6,12 +6,12 @@ x2* from pi/24 to 23 pi/48 (cos x2* -> 0) or a decimal in (0.05, 1.55), both mom
 placed relative to the float k_min and mu interval (k from half to 20 times k_min; mu from below to
 above (16)), then rounded to 4 significant digits (exact decimals). Oracles, from fair to weak:
 
-* mpmath at 50 digits (:func:`rigor_gyro.approx.lyapunov.mp_constants`: closed forms, quadrature,
+* mpmath at 50 digits (:func:`rigor_gyro.kinds.lyapunov.approx.mp_constants`: closed forms, quadrature,
   grid + golden-section searches; no guarantee): the certified balls, widened by ``MPMATH_REL_TOL``,
   must contain A0 ... R, c_star and R_sup at the certified mu_best; R_max must not exceed the mpmath
   supremum;
 * float64 grad V . f (analytic gradient of (7) dotted with (2)) at random points of the region: it must
-  lie in the ball of Vdot (automatic differentiation in balls, :meth:`rigor_gyro.gimbal.Gimbal.vdot`)
+  lie in the ball of Vdot (automatic differentiation in balls, :meth:`rigor_gyro.kinds.lyapunov.model.Gimbal.vdot`)
   widened by ``FLOAT_VDOT_TOL`` times its cancellation scale; a miss is a finding about floats,
   counted in ``FLOAT_FAILURES`` and reported by the last test, never a failure;
 * the audited form (8) (float -Psi1 x1^2 - Psi2 x3^2) agrees with the ball Vdot to ``FLOAT_PSI_TOL``
@@ -35,10 +35,10 @@ from flint import arb
 from hypothesis import assume, event, example, given, settings
 from hypothesis import strategies as st
 
-from rigor_gyro.approx.lyapunov import AGAFONOV2013, FloatGimbal, float_constants, mp_constants
-from rigor_gyro.balls import certainly_le, certainly_lt, certainly_nonzero, working_precision
+from rigor_gyro.kinds.lyapunov.approx import AGAFONOV2013, FloatGimbal, float_constants, mp_constants
+from rigor_gyro.core.balls import certainly_le, certainly_lt, certainly_nonzero, working_precision
 from rigor_gyro.certificate import Status
-from rigor_gyro.lyapunov import gimbal_from_parameters
+from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters
 from rigor_gyro.prover import prove_scene
 from rigor_gyro.scene import parse_scene
 

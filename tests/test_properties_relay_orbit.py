@@ -21,7 +21,7 @@ from flint import arb
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
-from rigor_gyro.approx.relay_orbit import approx_g, approx_multipliers, approx_orbit_mpmath
+from rigor_gyro.kinds.periodic_orbit.approx import approx_g, approx_multipliers, approx_orbit_mpmath
 from rigor_gyro.certificate import Status
 from rigor_gyro.prover import prove_scene
 from rigor_gyro.scene import parse_scene

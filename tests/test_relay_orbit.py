@@ -13,13 +13,13 @@ import numpy as np
 import pytest
 from flint import acb_mat, arb, arb_mat
 
-from rigor_gyro.approx.relay_orbit import (approx_multipliers, approx_orbit_mpmath, approx_relay_simulation,
+from rigor_gyro.kinds.periodic_orbit.approx import (approx_multipliers, approx_orbit_mpmath, approx_relay_simulation,
                                            approx_x0)
-from rigor_gyro.balls import certainly_le, certainly_lt, working_precision
+from rigor_gyro.core.balls import certainly_le, certainly_lt, working_precision
 from rigor_gyro.certificate import AuditStatus, Status
-from rigor_gyro.errors import ParameterError
+from rigor_gyro.core.errors import ParameterError
 from rigor_gyro.prover import prove_scene
-from rigor_gyro.relay_flow import (RelayParams, Spectrum, g_coeffs, half_period_jacobian, phi_at,
+from rigor_gyro.kinds.periodic_orbit.flow import (RelayParams, Spectrum, g_coeffs, half_period_jacobian, phi_at,
                                    taylor_enclosure, x0_at)
 from rigor_gyro.scene import load_scene, parse_scene
 
@@ -30,7 +30,7 @@ PAPER = dict(A="125", B="0.133", H="100", tau="0.01", sigma="0.13125", n="50", K
 B215 = dict(PAPER, B="2/15")
 
 #: mpmath reference values (40 digits, independent code path: mpmath.expm of the augmented matrix +
-#: findroot; see rigor_gyro/approx/relay_orbit.py and /tmp analysis): trusted to 1e-25 absolute
+#: findroot; see rigor_gyro/kinds/periodic_orbit/approx.py): trusted to 1e-25 absolute
 REF = {
     "roitenberg1947_b2over15": {"theta_star": "0.138267429657315456875930107052",
                                 "beta_dot_0": "1.23463963048819", "Omega_0": "1.39620523449802e-4",

@@ -2,9 +2,9 @@
 import pytest
 from flint import arb, fmpq, fmpq_poly
 
-from rigor_gyro.balls import working_precision
-from rigor_gyro.polyroots import isolate_polynomial
-from rigor_gyro.roots import RootStatus, isolate_roots, newton_root
+from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.polyroots import isolate_polynomial
+from rigor_gyro.core.roots import RootStatus, isolate_roots, newton_root
 
 
 def test_simple_root_proved_and_enclosed():

@@ -1,27 +1,129 @@
-"""Architecture rules, checked on the source text: precision is set only in balls.py; floats
-(numpy/scipy) live only in rigor_gyro/approx; rigorous modules never import them."""
+"""Architecture rules, checked on the source text and its import graph (tests/import_graph.py):
+
+* precision is set only in core/balls.py;
+* core/ imports nothing from kinds/ or the application layer;
+* no import cycles anywhere in the package, and no module imports another module's private name;
+* a kind's rigorous modules (model, flow, moments, claims, paper) never import its approx or plots
+  modules, nor numpy, scipy, mpmath or matplotlib; a kind never imports another kind; no kind imports
+  the application layer;
+* proving a built-in scene imports only its own kind package, and no float library.
+"""
 import re
+import subprocess
+import sys
 from pathlib import Path
 
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import import_graph  # noqa: E402
+
 PKG = Path(__file__).resolve().parent.parent / "rigor_gyro"
-RIGOROUS = [p for p in PKG.glob("*.py")]
+GRAPH = import_graph.graph()
+APPLICATION = {"rigor_gyro", "rigor_gyro.__main__", "rigor_gyro.cli", "rigor_gyro.scene", "rigor_gyro.prover",
+               "rigor_gyro.certificate", "rigor_gyro.report"}
+FLOAT_SIDE = ("approx", "plots")
+FLOAT_LIBRARIES = ("numpy", "scipy", "mpmath", "matplotlib")
+
+
+def _kind_of(module: str) -> str | None:
+    parts = module.split(".")
+    return parts[2] if len(parts) >= 3 and parts[1] == "kinds" else None
+
+
+def _is_float_side(module: str) -> bool:
+    return module.rsplit(".", 1)[-1] in FLOAT_SIDE
+
+
+RIGOROUS = [m for m in GRAPH if not _is_float_side(m)]
+
+
+def _imports_text(module: str) -> str:
+    path = import_graph.package_modules()[module]
+    return path.read_text(encoding="utf-8")
+
+
+def test_the_tree_has_the_documented_shape():
+    kinds = {p.name for p in (PKG / "kinds").iterdir() if p.is_dir() and not p.name.startswith("__")}
+    assert kinds == {"eigenfrequencies", "lyapunov", "periodic_orbit"}
+    for k in kinds:
+        names = {p.stem for p in (PKG / "kinds" / k).glob("*.py")}
+        assert {"__init__", "claims", "paper", "approx"} <= names, (k, names)
+    assert not list(PKG.glob("approx")), "float code lives in each kind's approx.py"
+    flat = {p.stem for p in PKG.glob("*.py")}
+    assert flat <= {"__init__", "__main__", "cli", "scene", "certificate", "prover", "report", "version"}, flat
 
 
 def test_only_balls_sets_precision():
     for path in PKG.rglob("*.py"):
         text = path.read_text()
-        if path.name != "balls.py":
-            assert not re.search(r"ctx\.prec\s*=|ctx\.dps\s*=|workprec\(", text), path
+        if path.relative_to(PKG).as_posix() != "core/balls.py":
+            assert not re.search(r"ctx\.prec\s*=|ctx\.dps\s*=|ctx\.cap\s*=|workprec\(", text), path
 
 
-def test_rigorous_modules_import_no_float_libraries():
-    for path in RIGOROUS:
-        text = path.read_text()
-        assert not re.search(r"^\s*(import|from)\s+(numpy|scipy|mpmath)\b", text, re.M), path
+def test_core_imports_no_kind_and_no_application_module():
+    for module, edges in GRAPH.items():
+        if module.startswith("rigor_gyro.core"):
+            bad = [e.target for e in edges if not e.target.startswith("rigor_gyro.core")]
+            assert not bad, f"{module} imports {bad}"
+
+
+def test_no_import_cycles():
+    assert import_graph.cycles(GRAPH) == []
+
+
+def test_no_module_imports_a_private_name_of_another():
+    assert import_graph.private_imports(GRAPH) == []
+
+
+def test_the_graph_sees_the_imports_it_must_see():
+    """The rules above are only as good as the graph: a known lazy import and a known edge are in it."""
+    cli = {e.target for e in GRAPH["rigor_gyro.cli"] if e.lazy}
+    assert "rigor_gyro.prover" in cli
+    assert "rigor_gyro.core.outcome" in {e.target for e in GRAPH["rigor_gyro.core.subdivision"]}
+    fake = {"a": [import_graph.ImportEdge("a", "b")], "b": [import_graph.ImportEdge("b", "a")]}
+    assert import_graph.cycles(fake) == [["a", "b"]]
+
+
+def test_kinds_import_neither_other_kinds_nor_the_application():
+    for module, edges in GRAPH.items():
+        kind = _kind_of(module)
+        if module.startswith("rigor_gyro.kinds"):
+            up = [e.target for e in edges if e.target in APPLICATION]
+            assert not up, f"{module} imports the application layer: {up}"
+        if kind is None:
+            continue
+        others = [e.target for e in edges if _kind_of(e.target) not in (None, kind)]
+        assert not others, f"{module} imports another kind: {others}"
+
+
+def test_rigorous_modules_import_no_float_module():
+    for module in RIGOROUS:
+        bad = [e.target for e in GRAPH[module] if _is_float_side(e.target)]
+        assert not bad, f"{module} imports float-side module(s) {bad}"
+        text = _imports_text(module)
+        libs = "|".join(FLOAT_LIBRARIES)
+        if module == "rigor_gyro.cli":   # --plots checks that the optional extra is installed
+            text = re.sub(r"^\s*import matplotlib  # noqa: F401.*$", "", text, flags=re.M)
+        assert not re.search(rf"^\s*(import|from)\s+({libs})\b", text, re.M), module
 
 
 def test_no_float_literals_fed_to_balls_in_rigorous_modules():
     """arb(0.1)-style construction from a float literal would round silently."""
-    for path in RIGOROUS:
-        text = path.read_text()
-        assert not re.search(r"arb\(\s*-?\d+\.\d*", text), path
+    for module in RIGOROUS:
+        assert not re.search(r"arb\(\s*-?\d+\.\d*", _imports_text(module)), module
+
+
+@pytest.mark.parametrize("scene", ["rudenko1976", "agafonov2013", "roitenberg1947"])
+def test_proving_a_scene_imports_only_its_own_kind(scene):
+    code = ("import sys; from rigor_gyro import load_scene, prove_scene;"
+            f"s = load_scene({scene!r}); c = prove_scene(s); print(s.kind);"
+            "print(sorted({m.split('.')[2] for m in sys.modules if m.startswith('rigor_gyro.kinds.')}));"
+            f"print(sorted(m for m in {FLOAT_LIBRARIES!r} if m in sys.modules));"
+            "print(sorted(m for m in sys.modules if m.endswith(('.approx', '.plots')) and 'rigor_gyro' in m))")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    kind, kinds, floats, float_side = r.stdout.strip().splitlines()
+    assert kinds == str([kind])
+    assert floats == "[]"
+    assert float_side == "[]"

@@ -1,9 +1,9 @@
 """Subdivision: positivity proofs with witnesses, and certified extrema."""
 from flint import arb
 
-from rigor_gyro.balls import working_precision
+from rigor_gyro.core.balls import working_precision
 from rigor_gyro.certificate import Status
-from rigor_gyro.subdivision import certify_positive, enclose_max, enclose_min, mean_value_form
+from rigor_gyro.core.subdivision import certify_positive, enclose_max, enclose_min, mean_value_form
 
 
 def test_positivity_proved_refuted_and_inconclusive():

@@ -1,9 +1,9 @@
 """Float (numpy/scipy) and mpmath cross-checks for the Lyapunov scene (Agafonov et al. 2013). No guarantees.
 
-Nothing here decides a verdict: these are the ``approx`` side of :mod:`rigor_gyro.lyapunov`. They take
+Nothing here decides a verdict: these are the ``approx`` side of :mod:`rigor_gyro.kinds.lyapunov.claims`. They take
 the scene's parameters as exact strings (keys ``A, C, A1, B1, C1, A2, H, k, a, x2_star, mu, moment``),
-parse them with :func:`rigor_gyro.exact.parse_exact` and build every formula again here, independently of
-the ball code (:mod:`rigor_gyro.gimbal`, :mod:`rigor_gyro.moments`).
+parse them with :func:`rigor_gyro.core.exact.parse_exact` and build every formula again here, independently of
+the ball code (:mod:`rigor_gyro.kinds.lyapunov.model`, :mod:`rigor_gyro.kinds.lyapunov.moments`).
 
 Model (x1 = alpha-dot, x2 = beta, x3 = beta-dot; A0 = A + A1 + A2, B0 = A + B1, C0 = A + A1 - C1,
 D = A0 - C0 sin^2 x2): system (2)
@@ -40,7 +40,7 @@ Fails when: a parameter is missing or malformed (ParameterError naming it); an m
 narrower than the float grid (it is then missed, silently: cross-check with the certificate).
 
 Example:
-    >>> from rigor_gyro.approx.lyapunov import mp_constants, AGAFONOV2013
+    >>> from rigor_gyro.kinds.lyapunov.approx import mp_constants, AGAFONOV2013
     >>> c = mp_constants(AGAFONOV2013, dps=30)
     >>> print(mpmath.nstr(c["M"], 15), mpmath.nstr(c["R1"], 12))
     101.410404218403 0.0182811298149
@@ -58,8 +58,8 @@ from fractions import Fraction
 import mpmath
 import numpy as np
 
-from ..errors import ParameterError
-from ..exact import parse_exact
+from ...core.errors import ParameterError
+from ...core.exact import parse_exact
 
 __all__ = ["AGAFONOV2013", "PARAMETER_NAMES", "FLOAT_MOMENTS", "FloatGimbal", "MpGimbal", "mp_constants",
            "float_constants", "time_scales", "trajectories", "TrajectoryOutcome", "edge_points", "EdgePoints",
@@ -153,7 +153,7 @@ NP, MP, MATH = _NumpyLib(), _MpLib(), _MathLib()
 
 class _Law:
     """A moment law f(x2) for the float/mpmath side. ``lib`` is NP or MP. To add a law: a class here and
-    a line in FLOAT_MOMENTS (and its ball twin in rigor_gyro/moments.py)."""
+    a line in FLOAT_MOMENTS (and its ball twin in rigor_gyro/kinds/lyapunov/moments.py)."""
     name = ""
     odd = True                                   # f(-x) = -f(x): V, Psi are then symmetric in x2
 

@@ -22,7 +22,7 @@ Example:
     >>> parse_exact(0.1, name="eps")
     Traceback (most recent call last):
     ...
-    rigor_gyro.errors.ParameterError: parameter 'eps': got the float 0.1, which is already rounded to binary; write it as a string, e.g. "0.1"
+    rigor_gyro.core.errors.ParameterError: parameter 'eps': got the float 0.1, which is already rounded to binary; write it as a string, e.g. "0.1"
 """
 from __future__ import annotations
 

@@ -21,13 +21,13 @@ that is analytic at z = 0 (value theta/2). Its beta component is the half-period
 
 rho_k = e1^T P_k e (residues of beta(z)/u(z) = -kappa / (z C(z) (sigma z + 1)), kappa = H K p/(A B tau)).
 The paper's determinant g(x) of (12) equals beta0(x) times a factor that does not vanish near its root
-(see :mod:`rigor_gyro.relay_formulas`), so both have the same roots there.
+(see :mod:`rigor_gyro.kinds.periodic_orbit.paper`), so both have the same roots there.
 
 Guarantee: every function returns balls (or ball vectors/matrices) containing the exact value for
 every point of the input balls, at the current working precision; the eigenvalue balls come from
-:func:`rigor_gyro.polyroots.isolate_polynomial` (exact squarefreeness, certified isolation).
+:func:`rigor_gyro.core.polyroots.isolate_polynomial` (exact squarefreeness, certified isolation).
 
-Precision: the caller's (set with :func:`rigor_gyro.balls.working_precision` / the prover).
+Precision: the caller's (set with :func:`rigor_gyro.core.balls.working_precision` / the prover).
 Stiff cases (tau -> 0: an eigenvalue near -1/tau) lose about log2(1/tau^3) bits in the projectors;
 escalation recovers them.
 
@@ -36,7 +36,7 @@ isolated at this precision: :class:`DegenerateSpectrum` with the reason (the kin
 inconclusive).
 
 Example:
-    >>> from rigor_gyro.balls import working_precision
+    >>> from rigor_gyro.core.balls import working_precision
     >>> from flint import fmpq
     >>> P = RelayParams.from_strings(A="125", B="2/15", H="100", tau="0.01", sigma="0.13125", n="50",
     ...                              K="7.5", p="40", S="0.15")
@@ -56,9 +56,9 @@ from typing import Callable, Sequence
 
 from flint import acb, acb_mat, acb_series, arb, arb_mat, fmpq, fmpq_mat, fmpq_poly
 
-from .balls import ball, certainly_positive
-from .exact import parse_exact
-from .polyroots import isolate_polynomial
+from ...core.balls import ball, certainly_positive
+from ...core.exact import parse_exact
+from ...core.polyroots import isolate_polynomial
 
 __all__ = ["PARAMETER_NAMES", "RelayParams", "DegenerateSpectrum", "Mode", "Spectrum", "system_matrix",
            "forcing", "nutation_cubic", "g_coeffs", "x0_at", "ExpSum", "orbit_expsums", "state_at",

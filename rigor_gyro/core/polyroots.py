@@ -8,10 +8,10 @@ its ball (an independent existence proof; a point ball, i.e. a rational root, mu
 exactly zero); a root is non-real only when its imaginary part excludes
 zero. Multiplicity is decided exactly (squarefree factorisation), never from floating point.
 
-Requires: coefficients as ``fmpq`` (parse parameters with :mod:`rigor_gyro.exact`).
+Requires: coefficients as ``fmpq`` (parse parameters with :mod:`rigor_gyro.core.exact`).
 
 Precision: balls at the current working precision; ``rel_tol`` reports whether each real root met
-the requested relative width (use :func:`rigor_gyro.balls.escalate` to raise the precision until so).
+the requested relative width (use :func:`rigor_gyro.core.balls.escalate` to raise the precision until so).
 
 Fails when: p is not squarefree (``squarefree`` False, roots reported with multiplicity and
 ``real``/``nonreal`` left empty), or the sign check does not separate at this precision
@@ -19,7 +19,7 @@ Fails when: p is not squarefree (``squarefree`` False, roots reported with multi
 
 Example:
     >>> from flint import fmpq_poly, arb
-    >>> from rigor_gyro.balls import working_precision
+    >>> from rigor_gyro.core.balls import working_precision
     >>> with working_precision(128):
     ...     r = isolate_polynomial(fmpq_poly([-2, 0, 1]), rel_tol="1e-30")
     ...     ok = (r.real[1] ** 2 - 2).contains(0) and r.real[1].overlaps(arb(2).sqrt())

@@ -1,8 +1,8 @@
 """Attraction estimate of a gimbal gyroscope with viscous friction (Agafonov et al. 2013): scene kind
 ``lyapunov``.
 
-Model: system (2) and Lyapunov function (7) of :mod:`rigor_gyro.gimbal`, moment law from
-:mod:`rigor_gyro.moments` (the scene names it). Claims, each decided in Arb ball arithmetic over the
+Model: system (2) and Lyapunov function (7) of :mod:`rigor_gyro.kinds.lyapunov.model`, moment law from
+:mod:`rigor_gyro.kinds.lyapunov.moments` (the scene names it). Claims, each decided in Arb ball arithmetic over the
 exact parameters:
 
 * ``constants``: A0, B0, C0 exactly; m, M certified maxima over |x2| <= x2* (branch and bound; the
@@ -15,7 +15,7 @@ exact parameters:
   Refuted only with a certified point of the region where grad V . f > 0 (evaluated by automatic
   differentiation, not through the Psi form).
 * ``v_positive``: V > 0 off the origin for |x2| <= x2*, through the exact decomposition
-  V = phi(x2) + 1/2 S (x3 + f3/S)^2 + 1/2 (mu x3 + h x1)^2 (see :mod:`rigor_gyro.gimbal`): certified
+  V = phi(x2) + 1/2 S (x3 + f3/S)^2 + 1/2 (mu x3 + h x1)^2 (see :mod:`rigor_gyro.kinds.lyapunov.model`): certified
   f1 > mu (so S > 0), f(x)/x > 0 (so F > 0 off 0) and psi > 0 (so phi > 0 off 0; psi is finite at
   x2 = 0, the removable singularity of phi/F). This is necessary and sufficient, sharper than (9).
 * ``invariant_estimate``: c* = min of V over the boundary of region (17) (faces |x2| = x2* in closed form,
@@ -43,15 +43,16 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from .balls import (certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds,
-                    exact_fraction, rel_width_at_most, working_precision)
-from .certificate import Claim, Status
-from .errors import ParameterError
-from .exact import Exact, parse_exact, parse_parameters, require_rational
-from .gimbal import Gimbal, hypot_ball, mean_value_enclosure
+from ...core.balls import (certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds,
+                           exact_fraction, rel_width_at_most, working_precision)
+from ...core.errors import ParameterError
+from ...core.exact import Exact, parse_exact, parse_parameters, require_rational
+from ...core.outcome import Claim, Status
+from ...core.subdivision import certify_positive, enclose_max
+from .. import Attempt
+from .model import Gimbal, certify_vdot_nonpositive, hypot_ball, mean_value_enclosure
 from .moments import MOMENTS
-from .prover import Attempt
-from .subdivision import certify_positive, enclose_max
+from .paper import audit as audit_paper
 
 __all__ = ["CLAIMS", "PARAMETERS", "LyapunovModel", "validate", "attempt", "gimbal_from_parameters"]
 
@@ -242,67 +243,12 @@ class _Ctx:
 
 # ------------------------------------------------------------------------------------ Vdot
 
-def psi_min_functions(g: Gimbal, R: arb):
-    """x2 piece -> enclosure of min over the disc of radius R of Psi1 (resp. Psi2)."""
-    def psi1(x2):
-        (c10, c11, c13), _ = g.psi_coefficients(x2)
-        return c10 - R * hypot_ball(c11, c13)
-
-    def psi2(x2):
-        _, (c20, c21, c23) = g.psi_coefficients(x2)
-        return c20 - R * hypot_ball(c21, c23)
-    return psi1, psi2
-
-
-def vdot_witness(g: Gimbal, R: arb, x2_points: list[arb]) -> tuple[arb, arb, arb, arb] | None:
-    """A point of region (17) (x1^2 + x3^2 < R^2 exactly, |x2| <= x2*) where grad V . f > 0 certainly,
-    searched on circles of radius R (1 - 2^-20), R/2, R/4 at 48 directions; None if none found."""
-    Rq = exact_fraction(R.lower())
-    for x2 in x2_points:
-        for frac in (Fraction(1) - Fraction(1, 2 ** 20), Fraction(1, 2), Fraction(1, 4)):
-            r = Rq * frac
-            for j in range(48):
-                th = 2 * math.pi * j / 48
-                x1 = Fraction(math.cos(th)).limit_denominator(10 ** 6) * r
-                x3 = Fraction(math.sin(th)).limit_denominator(10 ** 6) * r
-                if not x1 * x1 + x3 * x3 < Rq * Rq:
-                    continue
-                b1, b3 = _q(_fmpq(x1)), _q(_fmpq(x3))
-                v = g.vdot(b1, x2, b3)
-                if certainly_positive(v):
-                    return b1, x2, b3, v
-    return None
-
-
 def _vdot_claim(ctx: _Ctx, R: arb, how: str) -> tuple[Claim, dict]:
-    g = ctx.g
-    psi1, psi2 = psi_min_functions(g, R)
-    results, pieces = {}, 0
-    for name, fn in (("Psi1", psi1), ("Psi2", psi2)):
-        r = certify_positive(fn, -ctx.xs, ctx.xs, max_pieces=ctx.m.max_pieces)
-        results[name] = r
-        pieces += r.pieces
-    info = {"pieces": pieces, "R": R}
-    if all(r.status is Status.PROVED for r in results.values()):
-        return _claim("vdot_nonpositive", Status.PROVED,
-                      f"{how} = {_fmt(R)}: min over the disc of Psi1 and of Psi2 certified > 0 on "
-                      f"{results['Psi1'].pieces} + {results['Psi2'].pieces} x2 pieces of [-x2*, x2*]; "
-                      "Vdot = 0 exactly on x1 = x3 = 0 by the factored form (checked against automatic "
-                      "differentiation of (7) along (2))", pieces=pieces), info
-    points = [r.witness for r in results.values() if r.witness is not None]
-    points += [ctx.xs * arb(j) / 8 for j in range(-8, 9)]
-    w = vdot_witness(g, R, points)
-    if w is not None:
-        x1, x2, x3, v = w
-        info["witness"] = w
-        return _claim("vdot_nonpositive", Status.REFUTED,
-                      f"{how} = {_fmt(R)}: grad V . f = {_fmt(v, 6)} > 0 at the point x1 = {_fmt(x1)}, "
-                      f"x2 = {_fmt(x2)}, x3 = {_fmt(x3)} of the region (certified)",
-                      witness={"x1": _fmt(x1, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3, 20), "vdot": _fmt(v, 8)}), info
-    bad = [f"{k}: {r.reason}" for k, r in results.items() if r.status is not Status.PROVED]
-    return _claim("vdot_nonpositive", Status.INCONCLUSIVE,
-                  f"{how} = {_fmt(R)}: " + "; ".join(bad) + "; no point with certified Vdot > 0 found "
-                  "(try a smaller R, higher --maxprec or a larger max_pieces option)"), info
+    v = certify_vdot_nonpositive(ctx.g, ctx.xs, R, how, ctx.m.max_pieces)
+    info = {"pieces": v.pieces, "R": R}
+    if v.witness is not None:
+        info["witness"] = v.witness
+    return _claim("vdot_nonpositive", v.status, v.reason, **v.details), info
 
 
 # ------------------------------------------------------------------------------------ V > 0
@@ -538,7 +484,6 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
 
 def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
     """Evaluate the requested claims at the current precision (set by the prover)."""
-    from . import lyapunov_audit  # the paper's numbers and formula (8): only this kind needs them
     ctx = _Ctx(model, prec)
     claims: list[Claim] = []
     quantities: dict[str, arb] = {}
@@ -603,15 +548,10 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
                                  "rests on vdot_nonpositive and v_positive, which are not both proved"))
     if "best_mu" in wanted:
         claims.append(_best_mu(ctx, quantities))
-    paper, formulas, audit_notes = lyapunov_audit.audit(ctx, quantities)
+    paper, formulas, audit_notes = audit_paper(ctx, quantities)
     notes += audit_notes
     # subdivision budgets do not grow with precision: past 256 bits an undecided claim stays undecided
     stalled = prec >= STALL_PREC and any(c.status is Status.INCONCLUSIVE for c in claims)
     return Attempt(claims, quantities, paper, formulas, notes, widths_met=widths_met, stalled=stalled,
                    extra={"moment": {"name": ctx.g.law.name, "formula": ctx.g.law.formula}})
 
-
-def plots(scene, cert, out_dir) -> list[str]:
-    """Figures for ``--plots`` (see :mod:`rigor_gyro.approx.lyapunov_plots`; matplotlib imported only then)."""
-    from .approx.lyapunov_plots import plots as draw
-    return draw(scene, cert, out_dir)

@@ -18,7 +18,7 @@ Fails when: ``max_pieces`` is exhausted: positivity is INCONCLUSIVE; an extremum
 
 Example:
     >>> from flint import arb
-    >>> from rigor_gyro.balls import working_precision
+    >>> from rigor_gyro.core.balls import working_precision
     >>> with working_precision(64):
     ...     r = certify_positive(lambda x: x * x - x + 1, "-2", "2")
     ...     m = enclose_max(lambda x: x.sin(), "0", "3", abs_tol="1e-8")
@@ -34,7 +34,7 @@ from typing import Callable
 from flint import arb
 
 from .balls import ball, certainly_le, certainly_lt, certainly_positive, exact_fraction, interval
-from .certificate import Status
+from .outcome import Status
 from .roots import enclose_f_df
 
 __all__ = ["Positivity", "Extremum", "mean_value_form", "certify_positive", "enclose_max", "enclose_min"]

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from flint import arb
 
-from ..balls import interval, working_precision
+from ...core.balls import interval, working_precision
 
 __all__ = ["plots"]
 
@@ -34,8 +34,9 @@ def plots(scene, cert, out_dir) -> list[str]:
     import matplotlib.pyplot as plt
     import numpy as np
 
-    from .lyapunov import FloatGimbal
-    from ..lyapunov import psi_min_functions, validate
+    from .approx import FloatGimbal
+    from .claims import validate
+    from .model import psi_min_functions
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -12,7 +12,7 @@ too little precision; depth limit).
 Requires: ``f`` maps an ``arb_series`` to an ``arb_series`` and is real analytic on the bracket;
 it must be written with ball operations only (no floats).
 
-Precision: the current working precision (use :func:`rigor_gyro.balls.escalate` around the call).
+Precision: the current working precision (use :func:`rigor_gyro.core.balls.escalate` around the call).
 
 Fails when: a root is multiple (f' vanishes there): reported UNKNOWN, never as one root; a root
 sits exactly on a bisection point: the two unique enclosures overlap and both are downgraded to
@@ -20,7 +20,7 @@ UNKNOWN.
 
 Example:
     >>> from flint import ctx
-    >>> from rigor_gyro.balls import working_precision, contains
+    >>> from rigor_gyro.core.balls import working_precision, contains
     >>> with working_precision(128):
     ...     r = newton_root(lambda x: x * x - 2, "1", "2")
     ...     ok = contains(r.enclosure, arb(2).sqrt())
@@ -41,7 +41,8 @@ from flint import arb, arb_series
 from .balls import (ball, current_precision, certainly_gt, certainly_lt, certainly_nonzero, interval, possibly_zero,
                     rel_width_at_most)
 
-__all__ = ["RootStatus", "RootPiece", "Isolation", "enclose_f_df", "newton_root", "isolate_roots"]
+__all__ = ["RootStatus", "RootPiece", "Isolation", "enclose_f_df", "newton_root", "isolate_roots",
+           "merge_shared_roots"]
 
 SeriesFunction = Callable[[arb_series], arb_series]
 
@@ -169,10 +170,10 @@ def isolate_roots(f: SeriesFunction, lo: object, hi: object, *, rel_tol: object 
             piece.reason += f" (after {depth} bisections)"
         done.append(piece)
     done.sort(key=lambda p: float(p.lo.mid()))  # float only orders pieces, decides nothing
-    return Isolation(_merge_shared_roots(f, done, rel_tol))
+    return Isolation(merge_shared_roots(f, done, rel_tol))
 
 
-def _merge_shared_roots(f: SeriesFunction, pieces: list[RootPiece], rel_tol: object | None) -> list[RootPiece]:
+def merge_shared_roots(f: SeriesFunction, pieces: list[RootPiece], rel_tol: object | None) -> list[RootPiece]:
     """A root on a shared endpoint is found by both neighbours. Their enclosures then overlap; if
     Newton proves a unique root on the hull of the two enclosures, both found the same root and the
     two pieces merge into one holding exactly one root. Otherwise both become UNKNOWN."""

@@ -15,9 +15,10 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from .audit import audit_printed
-from .balls import certainly_gt, certainly_nonzero, decimal_bounds
-from .certificate import AuditRow, AuditStatus, Status
+from ...core.audit import audit_printed
+from ...core.balls import certainly_gt, certainly_nonzero, decimal_bounds
+from ...core.outcome import AuditRow, AuditStatus, Status
+from .model import certify_vdot_nonpositive
 
 __all__ = ["audit", "formula_table", "PAPER_KEYS", "vdot_formula_audit"]
 
@@ -142,16 +143,15 @@ def audit(ctx, quantities: dict[str, arb]) -> tuple[list[AuditRow], list[dict[st
 def _region_rows(ctx, printed_R: str) -> list[AuditRow]:
     """The final statement 'region |x2| <= x2*, x1^2 + x3^2 < R' with R as printed: as printed (radius
     sqrt(R)) and as read (radius R): does Vdot <= 0 hold there?"""
-    from .lyapunov import _vdot_claim
     rows = []
     Rq = Fraction(printed_R)
     R_read = arb(fmpq(Rq.numerator, Rq.denominator))
     for label, radius, reading in (("region as printed", R_read.sqrt(), f"x1^2 + x3^2 < {printed_R} (radius sqrt(R))"),
                                    ("region read with R^2", R_read, f"x1^2 + x3^2 < {printed_R}^2")):
-        claim, _ = _vdot_claim(ctx, radius, "radius")
+        verdict = certify_vdot_nonpositive(ctx.g, ctx.xs, radius, "radius", ctx.m.max_pieces)
         status = {Status.PROVED: AuditStatus.CONFIRMED, Status.REFUTED: AuditStatus.REFUTED}.get(
-            claim.status, AuditStatus.UNDECIDED)
-        note = ("Vdot <= 0 on it certified (" + claim.reason.split(": ", 1)[-1][:160] + "); the paper does not "
-                "show it invariant: see invariant_estimate") if status is AuditStatus.CONFIRMED else claim.reason
+            verdict.status, AuditStatus.UNDECIDED)
+        note = ("Vdot <= 0 on it certified (" + verdict.reason.split(": ", 1)[-1][:160] + "); the paper does not "
+                "show it invariant: see invariant_estimate") if status is AuditStatus.CONFIRMED else verdict.reason
         rows.append(_row(label, f"|x2| <= x2*, x1^2 + x3^2 < R, R = {printed_R}", reading, radius, status, note))
     return rows

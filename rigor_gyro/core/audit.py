@@ -23,7 +23,7 @@ from fractions import Fraction
 from flint import arb, fmpq
 
 from .balls import certainly_gt, certainly_le
-from .certificate import AuditStatus
+from .outcome import AuditStatus
 
 __all__ = ["audit_printed", "agreeing_digits", "half_unit"]
 

@@ -2,22 +2,22 @@
 orbit, alpha by (14)-(15), Table 2, the b_ij of (16) (Table 3), h, c, k of Table 4, the quartic (25);
 and the audit of every number the example prints.
 
-The rigorous orbit is computed in :mod:`rigor_gyro.relay_orbit` from the spectral flow; this module
+The rigorous orbit is computed in :mod:`rigor_gyro.kinds.periodic_orbit.claims` from the spectral flow; this module
 re-expresses it in the paper's variables, so that each printed number can be compared with a ball.
 
 Correspondence with the paper (the report shows it):
 * (7): each component of x(t) on 0 < t < theta* is sum_k w_k Re(alpha_k e^{lambda_k t}) + c0 + c1 t
-  (:class:`rigor_gyro.relay_flow.ExpSum`); for beta, D1 = -2 Im alpha_pair, D2 = 2 Re alpha_pair,
+  (:class:`rigor_gyro.kinds.periodic_orbit.flow.ExpSum`); for beta, D1 = -2 Im alpha_pair, D2 = 2 Re alpha_pair,
   D3 = alpha_{-mu2}, a16 D5 = alpha_{-1/sigma}, D4 = c0, a17 S = c1 = -K p S/H.
 * (12): g_paper(x) = det of the 6x6 matrix of (9) with S as the sixth unknown. It vanishes exactly
   where beta0(x) does (both say: the symmetric solution of half-period x starts on beta = 0), up to
   a factor that does not vanish near theta*; its printed values have another scale and the opposite
   sign (the audit shows the sign pattern).
 * (23)-(25): T x = -K x, so the multipliers are the eigenvalues of -K: the rigorous Jacobian
-  :func:`rigor_gyro.relay_flow.half_period_jacobian` is -K with K = k_ij of Table 4.
+  :func:`rigor_gyro.kinds.periodic_orbit.flow.half_period_jacobian` is -K with K = k_ij of Table 4.
 
 Guarantee: every value is a ball containing the exact value for the exact parameters and the exact
-theta* (its ball). The audit uses :func:`rigor_gyro.audit.audit_printed`: ``agrees`` only if every point
+theta* (its ball). The audit uses :func:`rigor_gyro.core.audit.audit_printed`: ``agrees`` only if every point
 of the ball rounds to the printed number; the note always says how many significant digits agree.
 """
 from __future__ import annotations
@@ -26,11 +26,11 @@ from typing import Any
 
 from flint import acb, arb, arb_mat
 
-from .audit import agreeing_digits, audit_printed
-from .balls import ball, certainly_negative, certainly_positive, decimal_bounds
-from .certificate import AuditRow, AuditStatus
-from .relay_flow import (ExpSum, Spectrum, half_period_jacobian, nutation_cubic, orbit_expsums, phi_at,
-                         vector_field)
+from ...core.audit import agreeing_digits, audit_printed
+from ...core.balls import ball, certainly_negative, certainly_positive, decimal_bounds
+from ...core.outcome import AuditRow, AuditStatus
+from .flow import (ExpSum, Spectrum, half_period_jacobian, nutation_cubic, orbit_expsums, phi_at,
+                   vector_field)
 
 __all__ = ["formula_table", "paper_coefficients", "orbit_quantities", "determinant_12", "audit"]
 

@@ -10,7 +10,7 @@ names it with ``moment = "<name>"``. Every law must be odd with x f(x) > 0 for 0
 (the scene certifies f(x)/x > 0 over its range; a law violating it is refuted, not trusted).
 
 Guarantee: each method returns a ball containing the exact value for every x in the ball argument,
-at the current working precision (set by the caller through :mod:`rigor_gyro.balls`).
+at the current working precision (set by the caller through :mod:`rigor_gyro.core.balls`).
 
 Fails when: a ball argument is too wide for the method (e.g. G's quadrature on a wide ball returns a
 wide or non-finite enclosure; callers then subdivide further or report inconclusive).
@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from flint import acb, arb
 
-from .balls import current_precision
+from ...core.balls import current_precision
 
 __all__ = ["MOMENTS", "MomentLaw", "SineMoment", "LinearMoment", "log1m_ratio", "moment_law"]
 
@@ -55,7 +55,7 @@ class MomentLaw:
     formula = ""
     G_on_balls = False                 # True: G's formula encloses G over wide balls directly
 
-    def f(self, a: arb, x):            # f(x); x may be an arb or a rigor_gyro.gimbal.Dual
+    def f(self, a: arb, x):            # f(x); x may be an arb or a rigor_gyro.kinds.lyapunov.model.Dual
         raise NotImplementedError
 
     def df(self, a: arb, x):           # f'(x)

@@ -26,21 +26,29 @@ The decomposition used for positivity: with h = H cos x2 / B0 and S = f2 + mu (f
 with q = f^2/(2 D G), the quotient whose maximum is the paper's M (0/0 at x2 = 0: enclosed through
 the moment law's f(x)/x, see :meth:`Gimbal.q`).
 
+The certified statement shared by the claim ``vdot_nonpositive`` and the audit of the paper's final
+region is here too: :func:`certify_vdot_nonpositive` (Vdot <= 0 on region (17) of a given radius).
+
 Guarantee: every method returns a ball containing the exact value for every argument in the ball
 arguments, at the current working precision; parameters are exact rationals (x2* may be a rational
 multiple of pi).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
 
 from flint import arb, fmpq
 
-from .balls import current_precision
-from .exact import Exact
+from ...core.balls import certainly_positive, current_precision, decimal_bounds, exact_fraction
+from ...core.exact import Exact
+from ...core.outcome import Status
+from ...core.subdivision import certify_positive
 from .moments import MomentLaw
 
-__all__ = ["Dual", "Gimbal", "mean_value_enclosure", "hypot_ball"]
+__all__ = ["Dual", "Gimbal", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
+           "VdotVerdict", "certify_vdot_nonpositive"]
 
 
 class Dual:
@@ -100,7 +108,7 @@ def mean_value_enclosure(fn):
     into the mean-value enclosure fn(m) + fn'(X) (X - m), fn' enclosed over X by forward-mode
     differentiation, intersected with the direct enclosure. Near an interior or end-point maximum the
     overestimation is quadratic in the piece width instead of linear, so branch and bound converges.
-    (Not :func:`rigor_gyro.subdivision.mean_value_form`, which needs arb_series: q contains G, whose
+    (Not :func:`rigor_gyro.core.subdivision.mean_value_form`, which needs arb_series: q contains G, whose
     derivative is known only through its definition dG/dx2 = cos f / D, which a Dual carries.)"""
     def g(X: arb) -> arb:
         direct = fn(X)
@@ -356,3 +364,90 @@ class Gimbal:
     def m_signed(self, x2):
         """cos x2 f'(x2) / (A0 - C0 sin^2 x2) (accepts a Dual: for mean-value enclosures)."""
         return x2.cos() * self.df(x2) / self.D(x2)
+
+
+# ------------------------------------------------------------------------------------ Vdot <= 0 on (17)
+# Shared by the claim ``vdot_nonpositive`` and the audit of the paper's final region.
+
+def _fmt(x: arb, digits: int = 12) -> str:
+    lo, hi = decimal_bounds(x, digits)
+    return lo if lo == hi else f"[{lo}, {hi}]"
+
+
+def psi_min_functions(g: Gimbal, R: arb):
+    """x2 piece -> enclosure of min over the disc of radius R of Psi1 (resp. Psi2)."""
+    def psi1(x2):
+        (c10, c11, c13), _ = g.psi_coefficients(x2)
+        return c10 - R * hypot_ball(c11, c13)
+
+    def psi2(x2):
+        _, (c20, c21, c23) = g.psi_coefficients(x2)
+        return c20 - R * hypot_ball(c21, c23)
+    return psi1, psi2
+
+
+def vdot_witness(g: Gimbal, R: arb, x2_points: list[arb]) -> tuple[arb, arb, arb, arb] | None:
+    """A point of region (17) (x1^2 + x3^2 < R^2 exactly, |x2| <= x2*) where grad V . f > 0 certainly,
+    searched on circles of radius R (1 - 2^-20), R/2, R/4 at 48 directions; None if none found."""
+    Rq = exact_fraction(R.lower())
+    for x2 in x2_points:
+        for frac in (Fraction(1) - Fraction(1, 2 ** 20), Fraction(1, 2), Fraction(1, 4)):
+            r = Rq * frac
+            for j in range(48):
+                th = 2 * math.pi * j / 48
+                x1 = Fraction(math.cos(th)).limit_denominator(10 ** 6) * r
+                x3 = Fraction(math.sin(th)).limit_denominator(10 ** 6) * r
+                if not x1 * x1 + x3 * x3 < Rq * Rq:
+                    continue
+                b1, b3 = arb(fmpq(x1.numerator, x1.denominator)), arb(fmpq(x3.numerator, x3.denominator))
+                v = g.vdot(b1, x2, b3)
+                if certainly_positive(v):
+                    return b1, x2, b3, v
+    return None
+
+
+@dataclass
+class VdotVerdict:
+    """The outcome of :func:`certify_vdot_nonpositive`: status, the reason as the report prints it, the
+    pieces used, the claim's details, and (when refuted) the certified point (x1, x2, x3, Vdot)."""
+
+    status: Status
+    reason: str
+    pieces: int
+    details: dict = field(default_factory=dict)
+    witness: tuple[arb, arb, arb, arb] | None = None
+
+
+def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: int) -> VdotVerdict:
+    """Decide Vdot = -Psi1 x1^2 - Psi2 x3^2 <= 0 on |x2| <= x2*, x1^2 + x3^2 <= R^2.
+
+    Guarantee: PROVED when min over the disc of Psi1 and of Psi2 is certified > 0 on x2 pieces covering
+    [-x2*, x2*]; REFUTED only with a certified point of the region where grad V . f > 0 (automatic
+    differentiation, not the Psi form); otherwise INCONCLUSIVE with the undecided piece.
+    ``how`` names the radius in the reason (e.g. "R = min(R1, R2) from (13), (14)")."""
+    psi1, psi2 = psi_min_functions(g, R)
+    results, pieces = {}, 0
+    for name, fn in (("Psi1", psi1), ("Psi2", psi2)):
+        r = certify_positive(fn, -xs, xs, max_pieces=max_pieces)
+        results[name] = r
+        pieces += r.pieces
+    if all(r.status is Status.PROVED for r in results.values()):
+        return VdotVerdict(Status.PROVED,
+                           f"{how} = {_fmt(R)}: min over the disc of Psi1 and of Psi2 certified > 0 on "
+                           f"{results['Psi1'].pieces} + {results['Psi2'].pieces} x2 pieces of [-x2*, x2*]; "
+                           "Vdot = 0 exactly on x1 = x3 = 0 by the factored form (checked against automatic "
+                           "differentiation of (7) along (2))", pieces, {"pieces": pieces})
+    points = [r.witness for r in results.values() if r.witness is not None]
+    points += [xs * arb(j) / 8 for j in range(-8, 9)]
+    w = vdot_witness(g, R, points)
+    if w is not None:
+        x1, x2, x3, v = w
+        return VdotVerdict(Status.REFUTED,
+                           f"{how} = {_fmt(R)}: grad V . f = {_fmt(v, 6)} > 0 at the point x1 = {_fmt(x1)}, "
+                           f"x2 = {_fmt(x2)}, x3 = {_fmt(x3)} of the region (certified)", pieces,
+                           {"witness": {"x1": _fmt(x1, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3, 20),
+                                        "vdot": _fmt(v, 8)}}, w)
+    bad = [f"{k}: {r.reason}" for k, r in results.items() if r.status is not Status.PROVED]
+    return VdotVerdict(Status.INCONCLUSIVE,
+                       f"{how} = {_fmt(R)}: " + "; ".join(bad) + "; no point with certified Vdot > 0 found "
+                       "(try a smaller R, higher --maxprec or a larger max_pieces option)", pieces)

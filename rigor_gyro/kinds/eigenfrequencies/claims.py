@@ -13,7 +13,7 @@ i.e. the paper's form (2) Omega^2 = F(omega) = omega (omega-nu2)(omega-nu5)(omeg
 roots of the two quadratic factors (the paper's (4)).
 
 Guarantee: every claim is decided by Arb balls over the exact rationals a, b, eps, Omega2 (and the
-exact ``hz_scale`` if given). The roots omega_j are isolated by :mod:`rigor_gyro.polyroots` (exact
+exact ``hz_scale`` if given). The roots omega_j are isolated by :mod:`rigor_gyro.core.polyroots` (exact
 squarefreeness, exact sign changes), so "four real, positive, simple roots" is a theorem. Brackets
 and approximations are evaluated in ball arithmetic; a bracket is proved when lo <= omega_j <= hi is
 certain and refuted when a certified strict violation exists.
@@ -30,19 +30,19 @@ kardanovym podvesom, Izv. AN SSSR MTT, 1976 (seed 002 in shared/seeds).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
 
-from flint import arb, fmpq, fmpq_poly
+from flint import arb, fmpq
 
-from . import eigfreq_formulas as fr
-from .audit import audit_printed
-from .balls import (ball, certainly_ge, certainly_gt, certainly_le, certainly_lt, certainly_positive,
-                    decimal_bounds, rel_width_at_most)
-from .certificate import AuditRow, AuditStatus, Claim, Status
-from .errors import ParameterError
-from .exact import Exact, parse_exact, parse_parameters, require_rational
-from .polyroots import isolate_polynomial
-from .prover import Attempt
+from ...core.balls import (ball, certainly_ge, certainly_gt, certainly_le, certainly_lt,
+                              certainly_positive, decimal_bounds, rel_width_at_most)
+from ...core.errors import ParameterError
+from ...core.exact import Exact, parse_exact, parse_parameters, require_rational
+from ...core.outcome import Claim, Status
+from ...core.polyroots import isolate_polynomial
+from .. import Attempt
+from .paper import audit as audit_paper, formula_table
+from .model import (BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic, nu_bounds,
+                    nu_quadratics)
 
 __all__ = ["CLAIMS", "PARAMETERS", "RudenkoModel", "validate", "attempt", "characteristic_quartic",
            "nu_quadratics"]
@@ -109,26 +109,6 @@ def validate(scene) -> RudenkoModel:
     if not rel.rational > 0:
         raise ParameterError(f"option 'rel_width' = {opts['rel_width']!r}: need > 0")
     return RudenkoModel(v["a"], v["b"], v["eps"], v["Omega2"], hz, rel, dict(scene.paper))
-
-
-# ------------------------------------------------------------------------------- exact polynomials
-
-def characteristic_quartic(a: fmpq, b: fmpq, eps: fmpq, W: fmpq, factor: str = "Omega2") -> fmpq_poly:
-    """Q(omega) = -omega P1(-omega) + c P2(-omega), exactly, with c = Omega2 (the reading used) or
-    c = -omega (factor='lambda2', the equation as printed: lambda^2 in front of the second product)."""
-    l = fmpq_poly([0, -1])  # lambda^2 = -omega
-    p1 = (l * (b - 1) + b) * (l * l * ((a - b) * (b - 1)) + l * (eps * (a - 1) + b * (a - b)) + eps * a)
-    p2 = (l * (b - 1) + 1) * (l * l * ((a - b) * (b - 1)) + l * (eps * (a - 1) + a - b) + eps)
-    c = fmpq_poly([W]) if factor == "Omega2" else l
-    return l * p1 + c * p2
-
-
-def nu_quadratics(a: fmpq, b: fmpq, eps: fmpq) -> tuple[fmpq_poly, fmpq_poly]:
-    """The paper's (4): roots nu1 < nu4 of the first, nu2 < nu6 of the second (in omega)."""
-    c2 = (a - b) * (b - 1)
-    q14 = fmpq_poly([eps, -(eps * (a - 1) + a - b), c2])
-    q26 = fmpq_poly([eps * a, -(eps * (a - 1) + b * (a - b)), c2])
-    return q14, q26
 
 
 # ------------------------------------------------------------------------------- one attempt
@@ -214,7 +194,7 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
         claims.append(_branch_claim(omegas, nus, ordered))
     if "nu_bounds" in wanted:
         claims.append(_nu_bounds_claim(model, nus, quantities))
-    balls = fr.Params(ball(model.a.fmpq()), ball(model.b.fmpq()), ball(model.eps.fmpq()), ball(model.Omega2.fmpq()))
+    balls = Params(ball(model.a.fmpq()), ball(model.b.fmpq()), ball(model.eps.fmpq()), ball(model.Omega2.fmpq()))
     for j in range(1, 5):
         cid = f"bracket_{j}"
         if cid in wanted:
@@ -226,9 +206,9 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
         for j, w in enumerate(omegas, start=1):
             quantities[f"freq_hz_{j}"] = f = s * w.sqrt()
             widths_met = widths_met and rel_width_at_most(f, model.rel_width.fmpq())
-    paper, formulas = [], fr.formula_table()
+    paper, formulas = [], formula_table()
     if model.paper:
-        paper = fr.audit(model, balls, omegas, nus, Q)
+        paper = audit_paper(model, balls, omegas, nus, Q)
     return Attempt(claims, quantities, paper, formulas, notes, widths_met)
 
 
@@ -273,8 +253,8 @@ def _check_bounds(items: list[tuple[str, arb, arb, arb]]) -> tuple[Status, str]:
 def _nu_bounds_claim(model: RudenkoModel, nus: dict[int, arb], quantities: dict[str, arb]) -> Claim:
     if len(nus) != 6:
         return _claim("nu_bounds", Status.INCONCLUSIVE, "nus not enclosed")
-    p = fr.Params(*(ball(model.q(k)) for k in REQUIRED))
-    bounds = fr.nu_bounds(p)
+    p = Params(*(ball(model.q(k)) for k in REQUIRED))
+    bounds = nu_bounds(p)
     items = []
     for k in (1, 2, 4, 6):
         lo, hi = bounds[k]
@@ -284,29 +264,29 @@ def _nu_bounds_claim(model: RudenkoModel, nus: dict[int, arb], quantities: dict[
     return _claim("nu_bounds", st, why)
 
 
-def _bracket_claim(j: int, p: "fr.Params", omegas: list[arb], quantities: dict[str, arb]) -> Claim:
+def _bracket_claim(j: int, p: Params, omegas: list[arb], quantities: dict[str, arb]) -> Claim:
     cid = f"bracket_{j}"
     if len(omegas) != 4:
         return _claim(cid, Status.INCONCLUSIVE, "needs the certified roots")
     try:
-        lo, hi = fr.bracket(j, p, reading="intended")
-    except fr.NotReal as e:
+        lo, hi = bracket(j, p, reading="intended")
+    except NotReal as e:
         return _claim(cid, Status.REFUTED, f"the bracket has no real value for these parameters: {e}")
     quantities[f"bracket_{j}_lo"], quantities[f"bracket_{j}_hi"] = lo, hi
     st, why = _check_bounds([(f"omega_{j}", lo, omegas[j - 1], hi)])
     if st is Status.PROVED:
-        why = f"{_fmt(lo)} <= omega_{j} <= {_fmt(hi)} certified (reading: {fr.BRACKETS[j].reading_note})"
+        why = f"{_fmt(lo)} <= omega_{j} <= {_fmt(hi)} certified (reading: {BRACKETS[j].reading_note})"
     return _claim(cid, st, why)
 
 
-def _approx_claim(p: "fr.Params", omegas: list[arb], quantities: dict[str, arb]) -> Claim:
+def _approx_claim(p: Params, omegas: list[arb], quantities: dict[str, arb]) -> Claim:
     if len(omegas) != 4:
         return _claim("approximations", Status.INCONCLUSIVE, "needs the certified roots")
     parts = []
     for j in range(1, 5):
         try:
-            approx = fr.approximation(j, p)
-        except fr.NotReal as e:
+            approx = approximation(j, p)
+        except NotReal as e:
             parts.append(f"omega_{j}: approximation not real ({e})")
             continue
         err = (approx - omegas[j - 1]) / omegas[j - 1]

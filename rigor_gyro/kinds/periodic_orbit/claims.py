@@ -1,7 +1,7 @@
 """Self-oscillation of a relay gyro-stabiliser (Roitenberg 1947): scene kind ``periodic_orbit``.
 
 Model: system (2) of the paper, linear between switchings of the relay u = S sign(beta); see
-:mod:`rigor_gyro.relay_flow` for the exact flow. A symmetric periodic solution of half-period theta
+:mod:`rigor_gyro.kinds.periodic_orbit.flow` for the exact flow. A symmetric periodic solution of half-period theta
 starts on the section beta = 0 at x0(theta) = -tanh(M theta/2) M^{-1} e S (the unique solution of
 (I + exp(M theta)) x0 = -w(theta), i.e. x(theta) = -x(0)); it closes when its beta component
 g(theta) = beta0(theta) vanishes: the paper's equation (13) g(x) = 0. A root is a *genuine* orbit of the
@@ -12,14 +12,14 @@ Guarantee: every claim is decided by Arb balls over the exact rational parameter
   j <= 3, checked in rational arithmetic; g is odd) and g^(5)/5! is certified > 0 on [0, theta_min];
   [theta_min, T] is covered by pieces each certified root-free or holding exactly one root
   (interval Newton on Taylor-model enclosures of g and g' over the piece,
-  :func:`rigor_gyro.roots.isolate_roots`); (T, oo) is root-free by the tail bound
-  g(theta) >= a theta + b - B(theta) > 0 (:func:`rigor_gyro.relay_flow.tail_bound`) when T is the
+  :func:`rigor_gyro.core.roots.isolate_roots`); (T, oo) is root-free by the tail bound
+  g(theta) >= a theta + b - B(theta) > 0 (:func:`rigor_gyro.kinds.periodic_orbit.flow.tail_bound`) when T is the
   certified tail point, otherwise the searched range (0, T_max] is stated. Each root is classified:
   spurious with a certified witness (beta'(0) <= 0 and a point t with beta(t) < 0, or a point t in
   (0, theta) with beta(t) <= 0), or genuine (claim 2 proved for it).
 * ``orbit_genuine``: beta > 0 on (0, theta*): beta' > 0 on [0, d1] and beta' < 0 on [theta* - d2, theta*]
   (enclosures of beta' over these time intervals; beta(0) = beta(theta*) = 0 exactly), beta > 0 on
-  the middle by Taylor-model enclosures over sub-intervals (:func:`rigor_gyro.subdivision.certify_positive`).
+  the middle by Taylor-model enclosures over sub-intervals (:func:`rigor_gyro.core.subdivision.certify_positive`).
 * ``multipliers``: eigenvalues of the 4x4 ball Jacobian of the half-period map (switching-time
   correction and symmetry included) by ``acb_mat.eig(algorithm="rump")`` (valid for every matrix in
   the ball; each output ball holds exactly one eigenvalue); checked against Liouville: their product is
@@ -43,20 +43,21 @@ from typing import Any
 
 from flint import acb, acb_mat, arb, arb_series
 
-from .balls import (ball, certainly_gt, certainly_le, certainly_lt, certainly_negative, certainly_positive,
-                    current_precision, decimal_bounds, interval)
-from .certificate import Claim, Status
-from .errors import ParameterError
-from .exact import Exact, parse_exact, parse_parameters, require_rational
-from .prover import Attempt
-from .relay_flow import (PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, g_coeffs,
-                         half_period_jacobian, moment_zero_orders, orbit_expsums, tail_bound,
-                         taylor5_leading_coefficient, taylor_enclosure, x0_at)
-from .roots import Isolation, RootPiece, RootStatus, _merge_shared_roots, newton_root
-from .subdivision import certify_positive
+from ...core.balls import (ball, certainly_gt, certainly_le, certainly_lt, certainly_negative,
+                           certainly_positive, current_precision, decimal_bounds, interval)
+from ...core.errors import ParameterError
+from ...core.exact import Exact, parse_exact, parse_parameters, require_rational
+from ...core.outcome import Claim, Status
+from ...core.roots import Isolation, RootPiece, RootStatus, merge_shared_roots, newton_root
+from ...core.subdivision import certify_positive
+from .. import Attempt
+from .paper import audit as audit_paper, formula_table, orbit_quantities
+from .flow import (PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, g_coeffs, half_period_jacobian,
+                   moment_zero_orders, orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure,
+                   x0_at)
 
 __all__ = ["CLAIMS", "PARAMETERS", "OPTIONS", "RelayModel", "RootVerdict", "Analysis", "validate", "attempt",
-           "analyse", "classify_root", "plots"]
+           "analyse", "classify_root"]
 
 PARAMETERS = {
     "A": "moment of inertia of the outer ring with object, gyro and motor armature (kg m s^2)",
@@ -318,7 +319,7 @@ def _tail_point(sp: Spectrum) -> arb | None:
 
 
 def _g_series_function(sp: Spectrum):
-    """g as the series function :func:`rigor_gyro.roots.isolate_roots` expects: given arb_series([X, 1]) it
+    """g as the series function :func:`rigor_gyro.core.roots.isolate_roots` expects: given arb_series([X, 1]) it
     returns [g(X), g'(X)] (Taylor-model enclosures over the ball X; the chain-rule factor is exactly 1)."""
     def f(s: arb_series) -> arb_series:
         c = s.coeffs()
@@ -330,7 +331,7 @@ def _g_series_function(sp: Spectrum):
 
 
 def _isolate(f, lo: arb, hi: arb, *, max_depth: int = 48, max_pieces: int = MAX_PIECES) -> Isolation:
-    """:func:`rigor_gyro.roots.isolate_roots` with a fail-fast rule: when a piece is still undecided at
+    """:func:`rigor_gyro.core.roots.isolate_roots` with a fail-fast rule: when a piece is still undecided at
     the depth limit or at a width the precision cannot resolve (< 2^(-prec/2) relative), the search
     stops and the rest of the range is reported undecided (the prover then raises the precision)
     instead of bisecting every piece of a cancellation-dominated stretch to the depth limit."""
@@ -355,7 +356,7 @@ def _isolate(f, lo: arb, hi: arb, *, max_depth: int = 48, max_pieces: int = MAX_
             break
         done.append(piece)
     done.sort(key=lambda p: float(p.lo.mid()))  # float only orders disjoint pieces
-    return Isolation(_merge_shared_roots(f, done, None))
+    return Isolation(merge_shared_roots(f, done, None))
 
 
 def analyse(model: RelayModel) -> Analysis:
@@ -539,61 +540,12 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
                  f"{_fmt(an.T_tail, 8) if an.T_tail is not None else 'not certified'}; "
                  f"scene orbit: {why_main}.")
     extra["roots"] = rows
-    paper, formulas = [], []
-    from . import relay_formulas as fr
-    formulas = fr.formula_table()
+    paper: list = []
+    formulas = formula_table()
     if main is not None:
-        fq, fnotes = fr.orbit_quantities(model, sp, main)
+        fq, fnotes = orbit_quantities(model, sp, main)
         quantities.update(fq)
         notes.extend(fnotes)
         if model.paper:
-            paper = fr.audit(model, sp, main)
+            paper = audit_paper(model, sp, main)
     return Attempt(claims, quantities, paper, formulas, notes, widths_met, extra)
-
-
-# ------------------------------------------------------------------------------ figures
-
-def plots(scene, cert, out_dir) -> list:
-    """Draw beta, Omega, i, I over one period of the scene's orbit (floats for drawing only; the curve is
-    evaluated from the certified initial point). Imports matplotlib here only."""
-    from pathlib import Path
-
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from .balls import working_precision
-    if "theta_star" not in cert.quantities:
-        return []
-    model = validate(scene)
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    with working_precision(max(cert.precision_bits, 64)):
-        sp = Spectrum(model.params)
-        th = cert.quantities["theta_star"]
-        x0 = x0_at(sp, th)
-        comps = orbit_expsums(sp, x0)
-        N = 200
-        ts, ys = [], [[] for _ in range(5)]
-        thf = float(th.mid())
-        for half in (0, 1):
-            for k in range(N + 1):
-                t = th * k / N
-                vals = [c(t) for c in comps]
-                ts.append(half * thf + thf * k / N)
-                for i in range(5):
-                    ys[i].append((-1) ** half * float(vals[i].mid()))
-    names = ["beta (rad)", "beta' (rad/s)", "Omega (rad/s)", "i (A)", "I (A)"]
-    fig, axes = plt.subplots(4, 1, figsize=(7, 9), sharex=True)
-    for ax, i in zip(axes, (0, 2, 3, 4)):
-        ax.plot(ts, ys[i], lw=1.2)
-        ax.axvline(thf, color="grey", lw=0.6, ls="--")
-        ax.axhline(0, color="grey", lw=0.4)
-        ax.set_ylabel(names[i])
-    axes[-1].set_xlabel("t (s)")
-    axes[0].set_title(f"{scene.name}: one period 2 theta*, theta* = {thf:.12g} s")
-    fig.tight_layout()
-    path = out / f"{scene.name}_orbit.png"
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return [path]

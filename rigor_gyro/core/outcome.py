@@ -1,0 +1,84 @@
+"""Outcomes: the three-valued :class:`Status` of a claim, the :class:`Claim` record, and the
+:class:`AuditStatus` / :class:`AuditRow` of a printed number checked against a certified ball.
+
+These records know nothing of gyroscopes: subdivision returns a Status, every scene kind returns
+Claims and AuditRows, and :mod:`rigor_gyro.certificate` collects them into a certificate. They live in
+the core (not beside the certificate) so that the rigorous primitives and the kinds can return them
+without importing the application layer.
+
+Guarantee: ``Status.REFUTED`` is only ever set for a claim that is certainly false (a certified
+counterexample); ``Status.of`` refuses a claim that is both proved and refuted.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+from typing import Any
+
+from flint import arb
+
+from .balls import quantity
+
+__all__ = ["Status", "AuditStatus", "Claim", "AuditRow"]
+
+
+class Status(Enum):
+    """The outcome of a claim. REFUTED only for a claim that is certainly false."""
+
+    PROVED = "proved"
+    REFUTED = "refuted"
+    INCONCLUSIVE = "inconclusive"
+
+    @classmethod
+    def of(cls, holds: bool, fails: bool) -> "Status":
+        """PROVED if ``holds`` was certified, REFUTED if ``fails`` was, else INCONCLUSIVE."""
+        if holds and fails:
+            raise AssertionError("a claim cannot be both proved and refuted: a bug in the caller")
+        return cls.PROVED if holds else cls.REFUTED if fails else cls.INCONCLUSIVE
+
+
+class AuditStatus(Enum):
+    """The outcome of an audit row about the paper."""
+
+    AGREES = "agrees"            # printed number is a correct rounding of the certified value
+    DISAGREES = "disagrees"      # it is certainly not
+    MISPRINT = "misprint"        # the printed formula disagrees, another reading reproduces it
+    CONFIRMED = "confirmed"      # a verbal assertion certified true
+    REFUTED = "refuted"          # a verbal assertion certified false
+    UNDECIDED = "undecided"      # the balls did not separate (raise the precision)
+
+
+@dataclass
+class Claim:
+    """One claim about the system. ``reason`` says why it holds, or what failed and what to try."""
+
+    id: str
+    statement: str
+    status: Status
+    reason: str
+    precision_bits: int = 0
+    details: dict[str, Any] = field(default_factory=dict)
+
+    def to_json(self) -> dict[str, Any]:
+        d = {"id": self.id, "statement": self.statement, "status": self.status.value,
+             "reason": self.reason, "precision_bits": self.precision_bits}
+        if self.details:
+            d["details"] = self.details
+        return d
+
+
+@dataclass
+class AuditRow:
+    """One printed number (or formula, or assertion) of the paper against the certified value."""
+
+    id: str
+    printed: str
+    reading: str
+    value: arb | None
+    status: AuditStatus
+    note: str = ""
+
+    def to_json(self) -> dict[str, Any]:
+        q = quantity(self.value) if self.value is not None else {"lo": "", "hi": ""}
+        return {"id": self.id, "printed": self.printed, "reading": self.reading, "lo": q["lo"],
+                "hi": q["hi"], "status": self.status.value, "note": self.note}

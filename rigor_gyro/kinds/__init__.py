@@ -1,0 +1,84 @@
+"""Scene kinds: the interface every kind implements, and the registry of kinds.
+
+A kind is a package ``rigor_gyro.kinds.<kind>`` whose ``__init__`` exports
+
+* ``CLAIMS``: ``{claim_id: statement}`` in report order;
+* ``validate(scene) -> model``: checks the scene's parameters and options, raising
+  :class:`~rigor_gyro.core.errors.ParameterError` naming the parameter (CLI exit 2);
+* ``attempt(model, claims, prec) -> Attempt``: one evaluation at ``prec`` bits of the requested claims
+  (it computes only what they need);
+
+and may have a ``plots`` module with ``plots(scene, cert, out_dir) -> [paths]`` (the figures; float
+drawing code, imported by the driver only when ``--plots`` is given). Inside a kind, ``model``
+(or ``flow``) holds the mathematics shared by the claims and the paper audit, ``claims`` the claims,
+``paper`` the printed formulas and the audit, ``approx`` the float/mpmath cross-checks (never a
+verdict), ``plots`` the figures. The rigorous modules (model, claims, paper) never import approx or
+plots, nor numpy, scipy or matplotlib (tests/test_rules.py).
+
+Only the package of the scene's kind is imported when a scene is proved (:func:`kind_module`).
+"""
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass, field
+from types import ModuleType
+from typing import Any, Callable
+
+from flint import arb
+
+from ..core.errors import SceneError
+from ..core.outcome import AuditRow, AuditStatus, Claim, Status
+
+__all__ = ["KINDS", "PLANNED_KINDS", "Attempt", "kind_module", "plots_hook"]
+
+#: kind -> package implementing it (imported only when a scene of that kind is proved)
+KINDS = {
+    "eigenfrequencies": "rigor_gyro.kinds.eigenfrequencies",
+    "lyapunov": "rigor_gyro.kinds.lyapunov",
+    "periodic_orbit": "rigor_gyro.kinds.periodic_orbit",
+}
+#: kinds described in the documentation whose modules are not in this version yet
+PLANNED_KINDS: set[str] = set()
+
+
+@dataclass
+class Attempt:
+    """What one evaluation of a kind's claims at one precision established."""
+
+    claims: list[Claim]
+    quantities: dict[str, arb]
+    paper: list[AuditRow] = field(default_factory=list)
+    formulas: list[dict[str, str]] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    widths_met: bool = True
+    extra: dict[str, Any] = field(default_factory=dict)
+    #: set by a kind when more precision cannot help the undecided claims (e.g. subdivision budgets
+    #: exhausted on wide pieces): escalation stops there and the claims say what to change instead
+    stalled: bool = False
+
+    @property
+    def settled(self) -> bool:
+        return (self.widths_met and all(c.status is not Status.INCONCLUSIVE for c in self.claims)
+                and all(r.status is not AuditStatus.UNDECIDED for r in self.paper))
+
+
+def kind_module(kind: str) -> ModuleType:
+    """Import and return the package implementing ``kind`` (and nothing else)."""
+    try:
+        return importlib.import_module(KINDS[kind])
+    except KeyError:
+        raise SceneError(f"unknown kind {kind!r}; known kinds: {', '.join(KINDS)}") from None
+
+
+def plots_hook(kind: str) -> Callable[..., list] | None:
+    """The kind's ``plots(scene, cert, out_dir)`` function, or None when the kind draws no figures.
+    Imports the kind's float drawing module: call it only when figures were asked for."""
+    if kind not in KINDS:
+        raise SceneError(f"unknown kind {kind!r}; known kinds: {', '.join(KINDS)}")
+    try:
+        module = importlib.import_module(KINDS[kind] + ".plots")
+    except ModuleNotFoundError as e:
+        if e.name == KINDS[kind] + ".plots":
+            return None
+        raise
+    return module.plots

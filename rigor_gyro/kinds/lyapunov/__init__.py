@@ -1,0 +1,13 @@
+"""Scene kind ``lyapunov``: the attraction estimate of a gimbal gyroscope with viscous friction
+(Agafonov et al. 2013, seed 000).
+
+* :mod:`.moments`: the moment laws f(x2) ("sine", "linear"; a new law is one class and one line);
+* :mod:`.model`: system (2) and V (7) in balls, Vdot by automatic differentiation and by the Psi form,
+  and the Vdot <= 0 decision shared by the claims and the audit;
+* :mod:`.claims`: the claims (constants, damping, Vdot <= 0, V > 0, invariant set, best mu);
+* :mod:`.paper`: the formulas as printed and the audit of the example's numbers;
+* :mod:`.approx`: float/mpmath cross-checks (never a verdict); :mod:`.plots`: the figures.
+"""
+from .claims import CLAIMS, PARAMETERS, attempt, validate
+
+__all__ = ["CLAIMS", "PARAMETERS", "validate", "attempt"]

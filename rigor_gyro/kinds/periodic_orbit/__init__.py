@@ -1,0 +1,12 @@
+"""Scene kind ``periodic_orbit``: the self-oscillation of a relay gyro-stabiliser (Roitenberg 1947,
+seed 001).
+
+* :mod:`.flow`: the exact flow between switchings (spectral form in balls), the half-period function
+  g, Taylor-model enclosures, the tail bound;
+* :mod:`.claims`: the claims (half-period roots, genuineness, initial point, multipliers, stability);
+* :mod:`.paper`: the paper's own forms (a_ij, determinant (12), Tables 2-4, (25)) and the audit;
+* :mod:`.approx`: numpy/scipy/mpmath cross-checks (never a verdict); :mod:`.plots`: the figure.
+"""
+from .claims import CLAIMS, OPTIONS, PARAMETERS, attempt, validate
+
+__all__ = ["CLAIMS", "PARAMETERS", "OPTIONS", "validate", "attempt"]
