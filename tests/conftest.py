@@ -22,10 +22,10 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 @pytest.fixture(autouse=True)
 def _precision_is_restored():
-    """Every test must leave flint's global precision as it found it."""
-    before = ctx.prec
+    """Every test must leave flint's global precision and series cap as it found them."""
+    before = ctx.prec, ctx.cap
     yield
-    assert ctx.prec == before, f"a test leaked ctx.prec = {ctx.prec} (was {before})"
+    assert (ctx.prec, ctx.cap) == before, f"a test leaked ctx.prec, ctx.cap = {ctx.prec}, {ctx.cap} (was {before})"
 
 
 def pytest_addoption(parser):

@@ -1,7 +1,8 @@
 """Arb balls: working precision, certified predicates, escalation, outward-rounded decimals.
 
-This is the only module that sets ``flint.ctx.prec`` and the only one that compares balls with bare
-operators (a test greps for it). Everything else asks through the named predicates below.
+This is the only module that sets ``flint.ctx.prec`` and ``flint.ctx.cap`` and the only one that
+compares balls with bare operators (a test greps for it). Everything else asks through the named
+predicates below, and builds Taylor series through :func:`series_length` / :func:`series_coefficients`.
 
 Guarantee: a predicate ``certainly_P(...)`` returns True only when P holds for every point of the
 balls involved; False means "not proved" (P may still hold). Balls that are NaN or infinite never
@@ -9,7 +10,14 @@ decide anything. :func:`decimal_bounds` returns decimal strings ``lo <= x <= hi`
 the ball (outward rounding, exact rational arithmetic; python-flint's ``str()`` is not used).
 
 Precision: :func:`working_precision` and :func:`escalate` restore ``ctx.prec`` on every exit,
-exceptions included.
+exceptions included; :func:`series_length` likewise restores ``ctx.cap``.
+
+Series trap: python-flint silently cuts every ``arb_series`` / ``acb_series`` result to ``ctx.cap``
+terms (default 10) whatever ``prec=`` the input had; a Taylor coefficient read past the cap is then
+missing, and filling it with 0 makes an enclosure that is not rigorous. :func:`series_length` raises
+the cap for the block, and :func:`series_coefficients` returns exactly n coefficients only when the
+series' own ``prec`` covers them (trailing coefficients within ``prec`` that python-flint strips are
+exact zeros); otherwise it raises :class:`SeriesTruncated`.
 
 Fails when: never raises on wide balls; it reports "undecided" (None / False) instead.
 
@@ -31,7 +39,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Callable, Generic, Iterator, TypeVar
 
-from flint import arb, ctx, fmpq
+from flint import acb, acb_series, arb, arb_series, ctx, fmpq
 
 from .exact import Exact, parse_exact
 
@@ -40,7 +48,7 @@ __all__ = [
     "certainly_lt", "certainly_le", "certainly_gt", "certainly_ge", "certainly_positive",
     "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
     "overlaps", "certainly_within", "interval", "exact_fraction", "decimal_bounds", "quantity",
-    "rel_width_at_most", "Escalation", "escalate",
+    "rel_width_at_most", "Escalation", "escalate", "series_length", "series_coefficients", "SeriesTruncated",
 ]
 
 DEFAULT_PREC = 64
@@ -60,6 +68,42 @@ def working_precision(prec: int) -> Iterator[int]:
         yield prec
     finally:
         ctx.prec = saved
+
+
+class SeriesTruncated(ArithmeticError):
+    """A series came back shorter than the coefficients asked of it (``ctx.cap`` too small): a bug in
+    the caller, never a result (see the series trap in the module docstring)."""
+
+
+@contextlib.contextmanager
+def series_length(n: int) -> Iterator[int]:
+    """Inside the block, series operations keep at least ``n`` terms (``ctx.cap >= n``); restored
+    afterwards, exceptions included."""
+    if not isinstance(n, int) or n < 1:
+        raise ValueError(f"series length must be a positive integer, got {n!r}")
+    saved = ctx.cap
+    try:
+        ctx.cap = max(saved, n)
+        yield n
+    finally:
+        ctx.cap = saved
+
+
+def series_coefficients(s, n: int) -> list:
+    """Exactly the first ``n`` Taylor coefficients of the series ``s`` (an ``arb_series`` or
+    ``acb_series``), or of a constant (ball) ``s`` (then the others are exactly 0).
+
+    Guarantee: every returned coefficient is the series' coefficient; coefficients python-flint left
+    out below ``s.prec`` are exact zeros. Fails when: ``s.prec < n`` (the series was cut short, e.g.
+    by ``ctx.cap``): :class:`SeriesTruncated`."""
+    if not isinstance(s, (arb_series, acb_series)):
+        return [s] + [type(s)(0)] * (n - 1)
+    if s.prec < n:
+        raise SeriesTruncated(f"series of precision {s.prec} asked for {n} coefficients "
+                              f"(ctx.cap = {ctx.cap}): wrap the computation in series_length({n})")
+    c = list(s.coeffs())[:n]
+    zero = arb(0) if isinstance(s, arb_series) else acb(0)
+    return c + [zero] * (n - len(c))
 
 
 def current_precision() -> int:

@@ -38,8 +38,8 @@ from typing import Callable
 
 from flint import arb, arb_series
 
-from .balls import (ball, current_precision, certainly_gt, certainly_lt, certainly_nonzero, interval, possibly_zero,
-                    rel_width_at_most)
+from .balls import (ball, certainly_gt, certainly_lt, certainly_nonzero, current_precision, interval,
+                    possibly_zero, rel_width_at_most, series_coefficients, series_length)
 
 __all__ = ["RootStatus", "RootPiece", "Isolation", "enclose_f_df", "newton_root", "isolate_roots",
            "merge_shared_roots"]
@@ -67,10 +67,11 @@ class RootPiece:
 
 def enclose_f_df(f: SeriesFunction, x: arb) -> tuple[arb, arb]:
     """Balls containing f(t) and f'(t) for every t in the ball x (Taylor mode, order 1)."""
-    s = f(arb_series([x, 1], prec=2))
-    c = s.coeffs() if isinstance(s, arb_series) else [ball(s)]
-    fx = c[0] if len(c) > 0 else arb(0)
-    dfx = c[1] if len(c) > 1 else arb(0)
+    # python-flint cuts series to ctx.cap terms silently: keep (at least) the two needed, and read
+    # them through series_coefficients, which refuses a series cut shorter than that
+    with series_length(2):
+        s = f(arb_series([x, 1], prec=2))
+        fx, dfx = series_coefficients(s if isinstance(s, arb_series) else ball(s), 2)
     return fx, dfx
 
 

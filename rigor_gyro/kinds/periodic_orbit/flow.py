@@ -56,7 +56,7 @@ from typing import Callable, Sequence
 
 from flint import acb, acb_mat, acb_series, arb, arb_mat, fmpq, fmpq_mat, fmpq_poly
 
-from ...core.balls import ball, certainly_positive
+from ...core.balls import ball, certainly_positive, series_coefficients, series_length
 from ...core.exact import parse_exact
 from ...core.polyroots import isolate_polynomial
 
@@ -229,6 +229,8 @@ class Spectrum:
 # --------------------------------------------------------------------------- the half-period function
 
 def _series(center: arb | acb, n: int) -> acb_series:
+    """The identity series t = center + (t - center), of precision n; build it, and everything
+    computed from it, inside ``series_length(n)`` (python-flint caps series at ``ctx.cap`` terms)."""
     return acb_series([acb(center), 1], prec=n)
 
 
@@ -239,16 +241,21 @@ def _half_tanh_over_lam(lam: acb, s: acb_series) -> acb_series:
 
 
 def g_coeffs(sp: Spectrum, center: arb, n: int) -> list[arb]:
-    """Taylor coefficients g_j(c) = g^{(j)}(c)/j!, j < n, of g at every point c of the ball ``center``."""
-    s = _series(center, n)
+    """Taylor coefficients g_j(c) = g^{(j)}(c)/j!, j < n, of g at every point c of the ball ``center``.
+
+    Series trap: python-flint cuts series to ``ctx.cap`` terms without warning; the series is built
+    inside :func:`~rigor_gyro.core.balls.series_length` (n) and read with ``series_coefficients``,
+    which raises rather than pad a cut series with zeros."""
     tot = [arb(0)] * n
-    for m in sp.modes:
-        try:
-            c = (_half_tanh_over_lam(m.lam, s) * m.pe[0]).coeffs()
-        except ValueError:  # E + 1 not separated from 0 on a wide ball: no information
-            return [arb("nan")] * n
-        for j in range(min(n, len(c))):
-            tot[j] -= m.weight * c[j].real
+    with series_length(n):
+        s = _series(center, n)
+        for m in sp.modes:
+            try:
+                c = series_coefficients(_half_tanh_over_lam(m.lam, s) * m.pe[0], n)
+            except ValueError:  # E + 1 not separated from 0 on a wide ball: no information
+                return [arb("nan")] * n
+            for j in range(n):
+                tot[j] -= m.weight * c[j].real
     # lambda = 0: -p0e[0] * theta / 2
     tot[0] -= sp.p0e[0] * center / 2
     if n > 1:
@@ -280,13 +287,15 @@ class ExpSum:
     c1: arb
 
     def coeffs(self, center: arb, n: int) -> list[arb]:
-        """Taylor coefficients at every point of the ball ``center`` (j < n)."""
-        s = _series(center, n)
+        """Taylor coefficients at every point of the ball ``center`` (j < n); the series is kept to n
+        terms (``series_length``: python-flint would cut it to ``ctx.cap`` silently)."""
         tot = [arb(0)] * n
-        for alpha, lam, w in self.terms:
-            c = ((lam * s).exp() * alpha).coeffs()
-            for j in range(min(n, len(c))):
-                tot[j] += w * c[j].real
+        with series_length(n):
+            s = _series(center, n)
+            for alpha, lam, w in self.terms:
+                c = series_coefficients((lam * s).exp() * alpha, n)
+                for j in range(n):
+                    tot[j] += w * c[j].real
         tot[0] += self.c0 + self.c1 * center
         if n > 1:
             tot[1] += self.c1
