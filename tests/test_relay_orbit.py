@@ -214,13 +214,16 @@ def test_relay_amplitude_scales_the_orbit_not_its_period():
     assert (c2.quantities["beta_dot_0"] / c1.quantities["beta_dot_0"]).overlaps(arb("1e12", "1e-3"))
 
 
-def test_planted_no_orbit_is_refuted_with_a_witness():
-    """Searching only (0, 0.12]: the single root there (0.10566) starts into beta < 0: certified witness."""
+def test_restricted_search_with_no_orbit_is_inconclusive_not_refuted():
+    """Searching only (0, 0.12]: the single root there (0.10566) starts into beta < 0 (certified witness),
+    but the genuine orbit theta* = 0.13827 lies beyond T_max: a restricted search never refutes."""
     c = prove_scene(_scene(options='[options]\nT_max = "0.12"', **B215))
     og = c.claim("orbit_genuine")
-    assert og.status is Status.REFUTED and "beta(t) = [-" in og.reason and "< 0 at t" in og.reason
+    assert og.status is Status.INCONCLUSIVE and "beta(t) = [-" in og.reason and "< 0 at t" in og.reason
+    assert "not a refutation" in og.reason
     assert "roots beyond it not searched" in c.claim("half_period").reason
-    assert c.claim("stable").status is Status.REFUTED and c.exit_code == 1
+    assert c.claim("half_period").status is Status.PROVED
+    assert c.claim("stable").status is Status.INCONCLUSIVE and c.exit_code == 3
 
 
 # ----------------------------------------------------------------------------- bad input

@@ -52,3 +52,56 @@ def test_1_relay_roots_do_not_depend_on_the_taylor_order(monkeypatch, order, H, 
     cert = prove_scene(_relay(f"order{order}", H=H))
     assert cert.verdict is Status.PROVED
     assert len(cert.extra["roots"]) == roots
+
+
+# ------------------------------------------------------------------ 2. a restricted search never refutes
+
+B215 = load_scene("roitenberg1947_b2over15")
+
+
+def _b215(name: str, options: dict | None = None, **params):
+    return dataclasses.replace(B215, name=name, parameters=dict(B215.parameters, **params),
+                               options=dict(options or {}))
+
+
+def test_2_t_max_below_the_orbit_is_inconclusive_not_refuted():
+    cert = prove_scene(_b215("tmax013", {"T_max": "0.13"}))
+    statuses = {c.id: c.status for c in cert.claims}
+    assert Status.REFUTED not in statuses.values(), statuses
+    assert cert.exit_code == 3
+    assert statuses["half_period"] is Status.PROVED          # (0, 0.13] is fully searched
+    assert "not a refutation" in cert.claim("orbit_genuine").reason
+
+
+def test_2_stable_orbit_beyond_t_max_leaves_stable_inconclusive():
+    """H = 1e3: three unstable genuine orbits below 0.13, the stable one at 0.14127 beyond it."""
+    cert = prove_scene(_b215("tmax013h", {"T_max": "0.13"}, H="1000"))
+    assert cert.claim("orbit_genuine").status is Status.PROVED
+    assert cert.claim("stable").status is Status.INCONCLUSIVE
+    assert "not searched" in cert.claim("stable").reason
+    full = prove_scene(_b215("h1000", H="1000"))
+    assert full.claim("stable").status is Status.PROVED
+
+
+def test_2_an_exhaustive_search_without_a_genuine_orbit_refutes_with_its_counterexample(monkeypatch):
+    """The same analysis (one spurious root, no genuine one) refutes only once the range is all of (0, oo)."""
+    restricted = _b215("tmax012", {"T_max": "0.12"})
+    model = relay_claims.validate(restricted)
+    with working_precision(64):
+        an = relay_claims.analyse(model)
+        assert not an.covers_all and [v.kind for v in an.roots] == ["spurious"]
+        inconclusive = relay_claims.attempt(model, list(relay_claims.CLAIMS), 64)
+        an.covers_all, an.T_tail = True, an.T_search        # as if the tail bound had covered the rest
+        monkeypatch.setattr(relay_claims, "analyse", lambda m: an)
+        refuted = relay_claims.attempt(model, list(relay_claims.CLAIMS), 64)
+    assert all(c.status is not Status.REFUTED for c in inconclusive.claims)
+    og = next(c for c in refuted.claims if c.id == "orbit_genuine")
+    assert og.status is Status.REFUTED
+    assert og.counterexample["searched"] == "(0, oo)" and len(og.counterexample["roots"]) == 1
+
+
+def test_2_a_refutation_without_a_counterexample_is_a_bug_not_a_verdict():
+    from rigor_gyro.core.outcome import Claim
+    with pytest.raises(AssertionError):
+        Claim("x", "statement", Status.REFUTED, "a search limit was hit")
+    Claim("x", "statement", Status.REFUTED, "certified", counterexample={"point": "1"})

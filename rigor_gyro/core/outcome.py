@@ -50,7 +50,14 @@ class AuditStatus(Enum):
 
 @dataclass
 class Claim:
-    """One claim about the system. ``reason`` says why it holds, or what failed and what to try."""
+    """One claim about the system. ``reason`` says why it holds, or what failed and what to try.
+
+    A REFUTED claim must carry its ``counterexample``: the certified data that make the statement
+    false as written (a point and the certified value there, a violated inequality with both balls,
+    an exhaustive list of roots each with its witness). A search that stopped at a limit (a range,
+    a budget, a grid) has no counterexample, so it cannot refute: constructing a REFUTED claim
+    without one raises :class:`AssertionError` (a bug in the kind, exit 4), never a verdict.
+    """
 
     id: str
     statement: str
@@ -58,12 +65,20 @@ class Claim:
     reason: str
     precision_bits: int = 0
     details: dict[str, Any] = field(default_factory=dict)
+    counterexample: dict[str, Any] | None = None
+
+    def __post_init__(self) -> None:
+        if self.status is Status.REFUTED and not self.counterexample:
+            raise AssertionError(f"claim {self.id!r} refuted without a certified counterexample "
+                                 f"({self.reason}): a bug in the kind")
 
     def to_json(self) -> dict[str, Any]:
         d = {"id": self.id, "statement": self.statement, "status": self.status.value,
              "reason": self.reason, "precision_bits": self.precision_bits}
         if self.details:
             d["details"] = self.details
+        if self.counterexample:
+            d["counterexample"] = self.counterexample
         return d
 
 

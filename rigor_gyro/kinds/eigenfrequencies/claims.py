@@ -113,13 +113,18 @@ def validate(scene) -> RudenkoModel:
 
 # ------------------------------------------------------------------------------- one attempt
 
-def _claim(cid: str, status: Status, reason: str, **details) -> Claim:
-    return Claim(cid, CLAIMS[cid], status, reason, details=details)
+def _claim(cid: str, status: Status, reason: str, counterexample: dict | None = None, **details) -> Claim:
+    return Claim(cid, CLAIMS[cid], status, reason, details=details, counterexample=counterexample)
 
 
 def _fmt(x: arb) -> str:
     lo, hi = decimal_bounds(x, 12)
     return f"[{lo}, {hi}]"
+
+
+def _bounds(x: arb) -> list[str]:
+    """[lo, hi] as outward-rounded decimals (the form a counterexample is stored in)."""
+    return list(decimal_bounds(x, 30))
 
 
 def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
@@ -132,16 +137,20 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
     pr = isolate_polynomial(Q, rel_tol=model.rel_width.fmpq())
     # --- roots
     omegas: list[arb] = []
+    ce = None
     if not pr.squarefree:
         st, why = Status.REFUTED, f"the quartic has a multiple root ({pr.reason}), exactly"
+        ce = {"quartic": [str(c) for c in Q.coeffs()], "gcd_with_derivative": str(Q.gcd(Q.derivative()))}
     elif not pr.verified:
         st, why = Status.INCONCLUSIVE, pr.reason
     else:
         nonpos = [x for x in pr.real if not certainly_positive(x)]
         if pr.nonreal:
             st, why = Status.REFUTED, f"{len(pr.nonreal)} roots are certainly non-real: {[str(z) for z in pr.nonreal]}"
+            ce = {"nonreal_roots": [{"re": _bounds(z.real), "im": _bounds(z.imag)} for z in pr.nonreal]}
         elif any(certainly_le(x, 0) for x in nonpos):
             st, why = Status.REFUTED, f"a root is certainly <= 0: {[_fmt(x) for x in nonpos]}"
+            ce = {"nonpositive_roots": [_bounds(x) for x in nonpos if certainly_le(x, 0)]}
         elif nonpos:
             st, why = Status.INCONCLUSIVE, f"sign of root(s) {[_fmt(x) for x in nonpos]} undecided"
         else:
@@ -153,7 +162,7 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
                 st, why = Status.INCONCLUSIVE, (f"roots isolated but not yet to relative width {model.rel_width} "
                                                 "(raise --maxprec or relax option rel_width)")
     if "roots" in wanted:
-        claims.append(_claim("roots", st, why))
+        claims.append(_claim("roots", st, why, ce))
     for j, w in enumerate(pr.real if pr.verified and not pr.nonreal else [], start=1):
         quantities[f"omega_{j}"] = w
     widths_met = pr.width_met
@@ -171,7 +180,7 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
     ordered = None
     if {"nu_ordering", "branches"} & set(wanted) or any(w.startswith("bracket") for w in wanted):
         if not have_nus:
-            ordered = None
+            ordered, oce = None, None
             ost, owhy = Status.INCONCLUSIVE, f"nu quadratics not isolated: {r14.reason}; {r26.reason}"
         else:
             chain = [arb(0)] + [nus[k] for k in range(1, 7)]
@@ -179,17 +188,20 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
             bad = [(names[i], names[i + 1]) for i in range(6) if certainly_ge(chain[i], chain[i + 1])]
             und = [(names[i], names[i + 1]) for i in range(6)
                    if not certainly_lt(chain[i], chain[i + 1]) and not certainly_ge(chain[i], chain[i + 1])]
+            oce = None
             if bad:
                 ordered = False
                 ost, owhy = Status.REFUTED, "certified violation(s): " + "; ".join(
                     f"{x} = {_fmt(chain[names.index(x)])} >= {y} = {_fmt(chain[names.index(y)])}" for x, y in bad)
+                oce = {"violations": [{"left": x, "left_value": _bounds(chain[names.index(x)]), "right": y,
+                                       "right_value": _bounds(chain[names.index(y)])} for x, y in bad]}
             elif und:
                 ost, owhy = Status.INCONCLUSIVE, f"order of {und} undecided at this precision"
             else:
                 ordered = True
                 ost, owhy = Status.PROVED, "all six strict inequalities certified"
         if "nu_ordering" in wanted:
-            claims.append(_claim("nu_ordering", ost, owhy))
+            claims.append(_claim("nu_ordering", ost, owhy, oce))
     if "branches" in wanted:
         claims.append(_branch_claim(omegas, nus, ordered))
     if "nu_bounds" in wanted:
@@ -217,37 +229,41 @@ def _branch_claim(omegas: list[arb], nus: dict[int, arb], ordered: bool | None) 
         return _claim("branches", Status.INCONCLUSIVE, "needs the four roots and six nus enclosed")
     intervals = [(arb(0), nus[1], "(0, nu1)"), (nus[2], nus[3], "(nu2, nu3)"),
                  (nus[4], nus[5], "(nu4, nu5)"), (nus[6], None, "(nu6, oo)")]
-    fails, undecided = [], []
+    fails, undecided, ce = [], [], []
     for j, (w, (lo, hi, label)) in enumerate(zip(omegas, intervals), start=1):
         inside = certainly_lt(lo, w) and (hi is None or certainly_lt(w, hi))
         outside = certainly_ge(lo, w) or (hi is not None and certainly_ge(w, hi))
         if outside:
             fails.append(f"omega_{j} = {_fmt(w)} not in {label}")
+            ce.append({"root": f"omega_{j}", "value": _bounds(w), "branch": label, "branch_lo": _bounds(lo),
+                       "branch_hi": _bounds(hi) if hi is not None else "oo"})
         elif not inside:
             undecided.append(f"omega_{j} vs {label}")
     if fails:
         why = "; ".join(fails) + ("" if ordered else " (the nu ordering the paper assumes fails)")
-        return _claim("branches", Status.REFUTED, why)
+        return _claim("branches", Status.REFUTED, why, {"outside": ce})
     if undecided:
         return _claim("branches", Status.INCONCLUSIVE, "undecided: " + "; ".join(undecided))
     return _claim("branches", Status.PROVED, "each omega_j certainly strictly inside its branch interval")
 
 
-def _check_bounds(items: list[tuple[str, arb, arb, arb]]) -> tuple[Status, str]:
-    """items: (label, lo, x, hi); proved when lo <= x <= hi certainly for all."""
-    fails, und = [], []
+def _check_bounds(items: list[tuple[str, arb, arb, arb]]) -> tuple[Status, str, dict | None]:
+    """items: (label, lo, x, hi); proved when lo <= x <= hi certainly for all; refuted (with the
+    violations as counterexample) when some x is certainly outside its [lo, hi]."""
+    fails, und, ce = [], [], []
     for label, lo, x, hi in items:
         if certainly_le(lo, x) and certainly_le(x, hi):
             continue
         if certainly_gt(lo, x) or certainly_gt(x, hi):
             fails.append(f"{label}: {_fmt(x)} not in [{_fmt(lo)}, {_fmt(hi)}]")
+            ce.append({"quantity": label, "value": _bounds(x), "lower_bound": _bounds(lo), "upper_bound": _bounds(hi)})
         else:
             und.append(label)
     if fails:
-        return Status.REFUTED, "certified violation(s): " + "; ".join(fails)
+        return Status.REFUTED, "certified violation(s): " + "; ".join(fails), {"violations": ce}
     if und:
-        return Status.INCONCLUSIVE, "undecided at this precision: " + ", ".join(und)
-    return Status.PROVED, "all inequalities certified"
+        return Status.INCONCLUSIVE, "undecided at this precision: " + ", ".join(und), None
+    return Status.PROVED, "all inequalities certified", None
 
 
 def _nu_bounds_claim(model: RudenkoModel, nus: dict[int, arb], quantities: dict[str, arb]) -> Claim:
@@ -260,8 +276,8 @@ def _nu_bounds_claim(model: RudenkoModel, nus: dict[int, arb], quantities: dict[
         lo, hi = bounds[k]
         quantities[f"nu_{k}_lower_bound"], quantities[f"nu_{k}_upper_bound"] = lo, hi
         items.append((f"nu{k}", lo, nus[k], hi))
-    st, why = _check_bounds(items)
-    return _claim("nu_bounds", st, why)
+    st, why, ce = _check_bounds(items)
+    return _claim("nu_bounds", st, why, ce)
 
 
 def _bracket_claim(j: int, p: Params, omegas: list[arb], quantities: dict[str, arb]) -> Claim:
@@ -271,12 +287,13 @@ def _bracket_claim(j: int, p: Params, omegas: list[arb], quantities: dict[str, a
     try:
         lo, hi = bracket(j, p, reading="intended")
     except NotReal as e:
-        return _claim(cid, Status.REFUTED, f"the bracket has no real value for these parameters: {e}")
+        return _claim(cid, Status.REFUTED, f"the bracket has no real value for these parameters: {e}",
+                      {"not_real": str(e), "radicand": _bounds(e.radicand)})
     quantities[f"bracket_{j}_lo"], quantities[f"bracket_{j}_hi"] = lo, hi
-    st, why = _check_bounds([(f"omega_{j}", lo, omegas[j - 1], hi)])
+    st, why, ce = _check_bounds([(f"omega_{j}", lo, omegas[j - 1], hi)])
     if st is Status.PROVED:
         why = f"{_fmt(lo)} <= omega_{j} <= {_fmt(hi)} certified (reading: {BRACKETS[j].reading_note})"
-    return _claim(cid, st, why)
+    return _claim(cid, st, why, ce)
 
 
 def _approx_claim(p: Params, omegas: list[arb], quantities: dict[str, arb]) -> Claim:

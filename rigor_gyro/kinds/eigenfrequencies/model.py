@@ -57,14 +57,19 @@ def nu_quadratics(a: fmpq, b: fmpq, eps: fmpq) -> tuple[fmpq_poly, fmpq_poly]:
 # ----------------------------------------------------------------------------- the paper's estimates
 
 class NotReal(ArithmeticError):
-    """A formula takes the square root of a certainly negative number: it has no real value."""
+    """A formula takes the square root of a certainly negative number: it has no real value.
+    ``radicand`` is the certified (negative) ball."""
+
+    def __init__(self, message: str, radicand: arb):
+        super().__init__(message)
+        self.radicand = radicand
 
 
 def _sqrt(x: arb, where: str) -> arb:
     """sqrt of a ball; raises NotReal when x < 0 certainly (a NaN ball would only say 'undecided')."""
     if certainly_lt(x, 0):
         lo, hi = decimal_bounds(x, 8)
-        raise NotReal(f"{where}: radicand in [{lo}, {hi}] is negative")
+        raise NotReal(f"{where}: radicand in [{lo}, {hi}] is negative", x)
     return x.sqrt()
 
 

@@ -153,8 +153,8 @@ def validate(scene) -> LyapunovModel:
 
 # ------------------------------------------------------------------------------------ helpers
 
-def _claim(cid: str, status: Status, reason: str, **details) -> Claim:
-    return Claim(cid, CLAIMS[cid], status, reason, details=details)
+def _claim(cid: str, status: Status, reason: str, counterexample: dict | None = None, **details) -> Claim:
+    return Claim(cid, CLAIMS[cid], status, reason, details=details, counterexample=counterexample)
 
 
 def _fmt(x: arb, digits: int = 12) -> str:
@@ -248,7 +248,7 @@ def _vdot_claim(ctx: _Ctx, R: arb, how: str) -> tuple[Claim, dict]:
     info = {"pieces": v.pieces, "R": R}
     if v.witness is not None:
         info["witness"] = v.witness
-    return _claim("vdot_nonpositive", v.status, v.reason, **v.details), info
+    return _claim("vdot_nonpositive", v.status, v.reason, v.counterexample, **v.details), info
 
 
 # ------------------------------------------------------------------------------------ V > 0
@@ -274,6 +274,8 @@ def _v_positive_claim(ctx: _Ctx) -> Claim:
                 return _claim("v_positive", Status.REFUTED,
                               f"V = {_fmt(v, 6)} <= 0 at x1 = {_fmt(x1q)}, x2 = {_fmt(x2)}, x3 = {_fmt(x3q)} "
                               f"(certified; psi <= 0 there, i.e. mu H - q + ... fails)",
+                              {"point": {"x1": _fmt(x1q, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3q, 20)},
+                               "V": _fmt(v, 20)},
                               witness={"x1": _fmt(x1q, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3q, 20)})
         return _claim("v_positive", Status.INCONCLUSIVE,
                       f"could not certify {text} on [0, x2*]: {r.reason}; try --maxprec or max_pieces")
@@ -410,8 +412,11 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     k = ctx.constants()
     lo, hi = k["mu_min"], k["mu_max"]
     if not certainly_lt(lo, hi):
-        return _claim("best_mu", Status.REFUTED if certainly_le(hi, lo) else Status.INCONCLUSIVE,
-                      f"the mu interval (16) ({_fmt(lo)}, {_fmt(hi)}) is empty: no admissible mu")
+        empty = certainly_le(hi, lo)
+        return _claim("best_mu", Status.REFUTED if empty else Status.INCONCLUSIVE,
+                      f"the mu interval (16) ({_fmt(lo)}, {_fmt(hi)}) is " + ("empty: no admissible mu" if empty else
+                                                                              "not certainly non-empty"),
+                      {"mu_min": _fmt(lo, 20), "mu_max": _fmt(hi, 20)} if empty else None)
 
     def est(mu: Fraction) -> float:
         r, _ = r_sup(g.with_mu(_fmpq(mu)), xs, rel="1e-8", max_pieces=600)
@@ -516,16 +521,19 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
         holds = [certainly_gt(x, y) for _, x, y in parts]
         fails = [certainly_le(x, y) for _, x, y in parts]
         desc = "; ".join(f"{t}: {_fmt(x)} vs {_fmt(y)}" for t, x, y in parts)
+        ce = None
         if all(holds):
             st, why = Status.PROVED, "certified: " + desc
         elif any(fails):
             bad = [t for (t, _, _), f in zip(parts, fails) if f]
             st, why = Status.REFUTED, f"fails ({', '.join(bad)}): " + desc
+            ce = {"violated": [{"inequality": t, "left": _fmt(x, 20), "right": _fmt(y, 20)}
+                               for (t, x, y), f in zip(parts, fails) if f]}
         else:
             st, why = Status.INCONCLUSIVE, "not separated at this precision: " + desc
         margin = c.k / k["k_min"] - 1
         quantities["damping_margin"] = margin
-        claims.append(_claim("damping_condition", st, why + f"; design margin k/k_min - 1 = {_fmt(margin, 6)}"))
+        claims.append(_claim("damping_condition", st, why + f"; design margin k/k_min - 1 = {_fmt(margin, 6)}", ce))
     R, how = (None, "")
     if any(c in wanted for c in ("vdot_nonpositive", "invariant_estimate")):
         R, how = ctx.R_used()

@@ -416,6 +416,7 @@ class VdotVerdict:
     pieces: int
     details: dict = field(default_factory=dict)
     witness: tuple[arb, arb, arb, arb] | None = None
+    counterexample: dict | None = None
 
 
 def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: int) -> VdotVerdict:
@@ -442,11 +443,11 @@ def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: i
     w = vdot_witness(g, R, points)
     if w is not None:
         x1, x2, x3, v = w
+        point = {"x1": _fmt(x1, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3, 20), "vdot": _fmt(v, 8)}
         return VdotVerdict(Status.REFUTED,
                            f"{how} = {_fmt(R)}: grad V . f = {_fmt(v, 6)} > 0 at the point x1 = {_fmt(x1)}, "
                            f"x2 = {_fmt(x2)}, x3 = {_fmt(x3)} of the region (certified)", pieces,
-                           {"witness": {"x1": _fmt(x1, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3, 20),
-                                        "vdot": _fmt(v, 8)}}, w)
+                           {"witness": point}, w, {"point": point, "radius": _fmt(R, 20)})
     bad = [f"{k}: {r.reason}" for k, r in results.items() if r.status is not Status.PROVED]
     return VdotVerdict(Status.INCONCLUSIVE,
                        f"{how} = {_fmt(R)}: " + "; ".join(bad) + "; no point with certified Vdot > 0 found "

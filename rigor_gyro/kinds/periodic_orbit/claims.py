@@ -145,6 +145,11 @@ def _fmt(x: arb, digits: int = 12) -> str:
     return f"[{lo}, {hi}]"
 
 
+def _bounds(x: arb) -> list[str]:
+    """[lo, hi] as outward-rounded decimals (the form a counterexample is stored in)."""
+    return list(decimal_bounds(x, 30))
+
+
 def _fmt_c(z: acb, digits: int = 12) -> str:
     return f"{_fmt(z.real, digits)} + {_fmt(z.imag, digits)} i"
 
@@ -403,8 +408,8 @@ def analyse(model: RelayModel) -> Analysis:
 
 # ------------------------------------------------------------------------------ claims
 
-def _claim(cid: str, status: Status, reason: str, **details) -> Claim:
-    return Claim(cid, CLAIMS[cid], status, reason, details=details)
+def _claim(cid: str, status: Status, reason: str, counterexample: dict | None = None, **details) -> Claim:
+    return Claim(cid, CLAIMS[cid], status, reason, details=details, counterexample=counterexample)
 
 
 def _select(genuine: list[RootVerdict]) -> tuple[RootVerdict | None, str]:
@@ -434,7 +439,18 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
     genuine = [v for v in an.roots if v.kind == "genuine"]
     spurious = [v for v in an.roots if v.kind == "spurious"]
     undecided = [v for v in an.roots if v.kind == "undecided"]
-    complete = not an.unknown and not undecided
+    complete = not an.unknown and not undecided      # every root in the searched range classified
+    # A search restricted by option T_max never refutes: an orbit may lie beyond it. Non-existence is
+    # certified only when the range is all of (0, oo) (tail bound) and every root in it is classified.
+    exhaustive = complete and an.covers_all
+    beyond = (f"; roots beyond T_max = {_fmt(an.T_search, 8)} were not searched, so this is not a refutation "
+              "(set option T_max = \"auto\" to search all of (0, oo))") if not an.covers_all else ""
+    no_orbit = None
+    if exhaustive and not genuine:
+        no_orbit = {"searched": "(0, oo)", "tail_point": _bounds(an.T_tail), "theta_min": _bounds(an.theta_min),
+                    "roots": [{"theta": _bounds(v.theta), "spurious_because": v.reason,
+                               "witness_t": _bounds(v.witness_t) if v.witness_t is not None else None}
+                              for v in spurious]}
     # ---- half_period
     if an.unknown:
         hp = (Status.INCONCLUSIVE, f"{len(an.unknown)} piece(s) of {rng} undecided, first "
@@ -456,13 +472,14 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
               + (f"; {len(genuine) - 1} further genuine orbit(s) proved likewise" if len(genuine) > 1 else ""))
     elif complete:
         wit = "; ".join(f"theta = {_fmt(v.theta, 10)}: {v.reason}" for v in spurious[:4])
-        og = (Status.REFUTED, f"no root of g on {rng} is a genuine orbit of the relay system "
-              f"({len(spurious)} spurious): {wit}" + (" ..." if len(spurious) > 4 else ""))
+        text = (f"no root of g on {rng} is a genuine orbit of the relay system "
+                f"({len(spurious)} spurious): {wit}" + (" ..." if len(spurious) > 4 else ""))
+        og = (Status.REFUTED, text, no_orbit) if exhaustive else (Status.INCONCLUSIVE, text + beyond)
     else:
         og = (Status.INCONCLUSIVE, "no genuine orbit certified and not every root classified: " + hp[1])
     if "orbit_genuine" in wanted:
         claims.append(_claim("orbit_genuine", *og))
-    none_exists = main is None and complete
+    none_exists = main is None and exhaustive
     # ---- quantities of the scene's orbit
     widths_met = True
     if main is not None:
@@ -476,14 +493,11 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
             st = (Status.PROVED, f"x(0) of {why_main}: beta' = {_fmt(main.x0[1], 14)}, Omega = {_fmt(main.x0[2], 14)}, "
                   f"i = {_fmt(main.x0[3], 14)}, I = {_fmt(main.x0[4], 14)} (beta = g(theta*) = 0 exactly)")
         elif none_exists:
-            st = (Status.REFUTED, "no genuine orbit exists (see orbit_genuine): there is no initial point")
+            st = (Status.REFUTED, "no genuine orbit exists (see orbit_genuine): there is no initial point", no_orbit)
         else:
-            st = (Status.INCONCLUSIVE, "no genuine orbit certified yet")
+            st = (Status.INCONCLUSIVE, "no genuine orbit certified yet" + beyond)
         claims.append(_claim("initial_point", *st))
     # ---- multipliers, stability
-    for v in genuine:
-        if v.moduli:
-            pass
     if main is not None and main.moduli:
         for j, (z, m) in enumerate(zip(main.multipliers, main.moduli), start=1):
             quantities[f"multiplier_modulus_{j}"] = m
@@ -505,9 +519,10 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
                     f"{_fmt_c(z, 10)} (|.| = {_fmt(m, 10)})" for z, m in zip(v.multipliers, v.moduli)))
             st = (Status.PROVED, "; ".join(parts) + f"; {main.jacobian_note}")
         elif none_exists:
-            st = (Status.REFUTED, "no genuine orbit exists (see orbit_genuine)")
+            st = (Status.REFUTED, "no genuine orbit exists (see orbit_genuine)", no_orbit)
         else:
-            st = (Status.INCONCLUSIVE, "; ".join(v.multiplier_reason for v in bad) or "no genuine orbit certified yet")
+            st = (Status.INCONCLUSIVE, "; ".join(v.multiplier_reason for v in bad) or
+                  "no genuine orbit certified yet" + beyond)
         claims.append(_claim("multipliers", *st))
     if "stable" in wanted:
         stable = [v for v in genuine if v.stable is True]
@@ -518,12 +533,19 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
                   + (f"; unstable: {', '.join(_fmt(v.theta, 8) for v in genuine if v.stable is False)}"
                      if any(v.stable is False for v in genuine) else ""))
         elif complete and genuine and all(v.stable is False for v in genuine):
-            st = (Status.REFUTED, "every genuine orbit has a multiplier of modulus certainly > 1: "
-                  + "; ".join(f"theta = {_fmt(v.theta, 10)}: max |.| = {_fmt(v.moduli[0], 10)}" for v in genuine))
+            text = ("every genuine orbit has a multiplier of modulus certainly > 1: "
+                    + "; ".join(f"theta = {_fmt(v.theta, 10)}: max |.| = {_fmt(v.moduli[0], 10)}" for v in genuine))
+            unstable = {"searched": "(0, oo)", "tail_point": _bounds(an.T_tail) if an.T_tail is not None else None,
+                        "orbits": [{"theta": _bounds(v.theta),
+                                    "modulus_above_1": _bounds(next(m for m in v.moduli if certainly_gt(m, 1)))}
+                                   for v in genuine]}
+            st = (Status.REFUTED, text, unstable) if exhaustive else (Status.INCONCLUSIVE, text + beyond)
         elif none_exists:
-            st = (Status.REFUTED, "no genuine orbit exists (see orbit_genuine), so no stable self-oscillation")
+            st = (Status.REFUTED, "no genuine orbit exists (see orbit_genuine), so no stable self-oscillation",
+                  no_orbit)
         else:
-            st = (Status.INCONCLUSIVE, "stability of the genuine orbits not decided at this precision")
+            st = (Status.INCONCLUSIVE, "stability of the genuine orbits not decided at this precision"
+                  if genuine else "no genuine orbit certified yet" + beyond)
         claims.append(_claim("stable", *st))
     # ---- notes and extra: every root with its verdict
     rows = []
