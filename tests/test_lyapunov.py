@@ -168,7 +168,9 @@ def test_twice_the_precision_overlaps():
     b = prove_scene(load_scene("agafonov2013"), prec=128)
     assert [c.status for c in a.claims] == [c.status for c in b.claims]
     for name, x in a.quantities.items():
-        if name in b.quantities and name not in ("R_sup_float_estimate",):
+        # a float estimate and certified bounds (numbers computed by a search, valid at either precision)
+        # are not enclosures of one exact value
+        if name in b.quantities and name not in ("R_sup_float_estimate", "R_sup_upper_bound", "R_max_relative_gap"):
             assert x.overlaps(b.quantities[name]), name
 
 

@@ -105,3 +105,23 @@ def test_2_a_refutation_without_a_counterexample_is_a_bug_not_a_verdict():
     with pytest.raises(AssertionError):
         Claim("x", "statement", Status.REFUTED, "a search limit was hit")
     Claim("x", "statement", Status.REFUTED, "certified", counterexample={"point": "1"})
+
+
+# ------------------------------------------------------------------ 3. best_mu says what it proves
+
+def test_3_best_mu_states_a_search_result_and_certifies_how_good_it_is():
+    from rigor_gyro.kinds.lyapunov import claims as lyap
+    cert = prove_scene(load_scene("agafonov2013"))
+    claim = cert.claim("best_mu")
+    assert claim.status is Status.PROVED
+    assert "not proved optimal" in claim.statement and "maximises" not in claim.statement
+    q = cert.quantities
+    U, R_max = q["R_sup_upper_bound"], q["R_max"]
+    assert (U - R_max).lower() >= 0 and q["R_max_relative_gap"].upper() < 1e-5
+    # the bound holds at other admissible mu, computed independently of the branch and bound
+    model = lyap.validate(load_scene("agafonov2013"))
+    with working_precision(64):
+        xs = model.gimbal.x2_star.ball()
+        for mu in ("0.014", "0.018", "0.02", "0.022", "0.03"):
+            R, _ = lyap.r_sup(model.gimbal.with_mu(lyap.parse_exact(mu).fmpq()), xs)
+            assert R.lower() <= U.upper(), mu

@@ -21,9 +21,10 @@ exact parameters:
 * ``invariant_estimate``: c* = min of V over the boundary of region (17) (faces |x2| = x2* in closed form,
   the cylinder x1^2 + x3^2 = R^2 by 2-D branch and bound), so {x in (17): V < c*} is positively
   invariant and (LaSalle, x2 f(x2) > 0) inside the domain of attraction; its certified extents.
-* ``best_mu``: the mu of (16) maximising the radius R_sup(mu) = min over x2 of min_i ci0 / |(ci1, ci3)|
-  for which ``vdot_nonpositive`` holds; R_max certified at mu_best, with the float estimate of the
-  supremum and the gap.
+* ``best_mu``: R_sup(mu) = min over x2 of min_i ci0 / |(ci1, ci3)| is the supremum of the radii for
+  which the Psi test of ``vdot_nonpositive`` holds. A search picks mu_best in (16) (not proved
+  optimal); R_max is certified at mu_best, and a branch and bound over mu certifies an upper bound of
+  sup over (16) of R_sup, so the relative gap says how close R_max is to the best this test can do.
 
 Precision: the caller's, escalated by :mod:`rigor_gyro.prover` until every claim is decided and the
 maxima m, M have relative width <= ``rel_width`` (option, default 1e-15).
@@ -37,6 +38,7 @@ motion of a gyroscope in gimbals, 2013 (seed 000 in shared/seeds).
 """
 from __future__ import annotations
 
+import heapq
 import math
 from dataclasses import dataclass
 from fractions import Fraction
@@ -44,7 +46,7 @@ from fractions import Fraction
 from flint import arb, fmpq
 
 from ...core.balls import (certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds,
-                           exact_fraction, rel_width_at_most, working_precision)
+                           exact_fraction, interval, rel_width_at_most, working_precision)
 from ...core.errors import ParameterError
 from ...core.exact import Exact, parse_exact, parse_parameters, require_rational
 from ...core.outcome import Claim, Status
@@ -62,7 +64,9 @@ PARAMETERS = {"A": "equatorial moment of inertia of the rotor", "C": "polar mome
               "a": "amplitude of the moment f", "x2_star": "half-width of the x2 range, in (0, pi/2)",
               "mu": "parameter of V (7)", "moment": "moment law: " + ", ".join(sorted(MOMENTS))}
 RATIONAL = ("A", "C", "A1", "B1", "C1", "A2", "H", "k", "a", "mu")
-STALL_PREC = 256    # escalation beyond this only repeats the same subdivision (see attempt)
+STALL_PREC = 256
+#: best_mu: branch and bound over mu stops once its upper bound is within this relative gap of R_max
+BEST_MU_GAP = "1e-6"    # escalation beyond this only repeats the same subdivision (see attempt)
 OPTIONS = {"rel_width": "1e-15", "R": "", "max_pieces": "20000"}
 
 CLAIMS = {
@@ -74,8 +78,10 @@ CLAIMS = {
     "v_positive": "V > 0 for |x2| <= x2*, (x1, x2, x3) != 0.",
     "invariant_estimate": "c* = min of V over the boundary of region (17) is enclosed and positive: "
                           "{x in (17): V(x) < c*} is positively invariant and lies in the domain of attraction.",
-    "best_mu": "mu_best in (16) maximises the radius for which vdot_nonpositive holds; R_max (a certified "
-               "radius at mu_best) is reported with the float estimate of the supremum.",
+    "best_mu": "At mu = mu_best (a decimal in (16) chosen by a search, not proved optimal), Psi1 > 0 and Psi2 > 0 "
+               "on the disc of radius R_max, so vdot_nonpositive holds there; and R_sup(mu) <= R_sup_upper_bound for "
+               "every mu in (16), where R_sup(mu) is the supremum of the radii for which Psi1, Psi2 > 0 on the disc: "
+               "R_max is within R_max_relative_gap of the largest radius this test certifies at any admissible mu.",
 }
 
 
@@ -407,6 +413,71 @@ def r_sup(g: Gimbal, xs: arb, rel: str = "1e-10", max_pieces: int = 4000):
     return 1 / e.ball, e
 
 
+def rho_lower(g: Gimbal, x2: arb, mu: arb) -> arb:
+    """A lower bound of rho(x2, m) = max_i |(ci1, ci3)| / ci0 valid for every m in the ball ``mu``
+    (+inf when some ci0 <= 0 certainly: then no disc of positive radius keeps Psi_i > 0).
+    Where ci0 may be <= 0 the bound |(ci1, ci3)|.lower / ci0.upper still holds (rho is +inf there)."""
+    (c10, c11, c13), (c20, c21, c23) = g.psi_coefficients(x2, mu)
+    best = arb(0)
+    for c0, h in ((c10, hypot_ball(c11, c13)), (c20, hypot_ball(c21, c23))):
+        up = c0.upper()
+        if certainly_le(up, 0):
+            return arb("inf")
+        best = best.max((h.lower() / up).lower())
+    return best
+
+
+def _argmax_x2(g: Gimbal, xs: arb, mu: fmpq) -> arb:
+    """A point x2 near the maximiser of rho at mu (a search: any point gives a valid bound)."""
+    rho = rho_function(g.with_mu(mu))
+    return enclose_max(rho, 0, xs, abs_tol=abs(rho(xs)) * arb("1e-6"), max_pieces=200).argpoint
+
+
+def r_sup_upper_bound(g: Gimbal, xs: arb, mu_lo: arb, mu_hi: arb, target: arb, max_pieces: int = 2000):
+    """A certified upper bound U of sup over mu in [mu_lo, mu_hi] of R_sup(mu), by branch and bound
+    over mu: on a piece Mu, max over x2 of rho(x2, m) >= max over a point set P of rho_lower(x, Mu) for
+    every m in Mu, so R_sup <= 1 / that on Mu. The piece with the largest bound is first given its own
+    maximiser (added to P), then bisected, until the largest bound is <= ``target`` or ``max_pieces``.
+
+    Guarantee: U (returned as an exact ball, its upper end) is >= R_sup(mu) for every mu in the
+    interval, whatever the stopping reason; the pieces count says how much work it took."""
+    points = [xs * j / 16 for j in range(17)]
+    heap: list = []
+    count = 0
+
+    def push(a: arb, b: arb, own: bool) -> None:
+        nonlocal count
+        M = interval(a, b)
+        L = arb(0)
+        for x in points:
+            L = L.max(rho_lower(g, x, M))
+        u = (1 / L).upper() if certainly_positive(L) else arb("inf")
+        count += 1
+        key = -exact_fraction(u) if u.is_finite() else float("-inf")
+        heapq.heappush(heap, (key, count, a, b, u, own))
+
+    push(mu_lo, mu_hi, False)
+    while count < max_pieces:
+        _, _, a, b, u, own = heap[0]
+        if certainly_le(u, target):
+            break
+        heapq.heappop(heap)
+        mid = ((a + b) / 2).mid()
+        if not own:
+            points.append(_argmax_x2(g, xs, _fmpq(exact_fraction(mid))))
+            push(a, b, True)
+            continue
+        if not (certainly_lt(a, mid) and certainly_lt(mid, b)):
+            push(a, b, True)
+            break
+        push(a, mid, False)
+        push(mid, b, False)
+    upper = heap[0][4]
+    for item in heap:               # the heap's pieces cover [mu_lo, mu_hi]
+        upper = upper.max(item[4])
+    return upper, count
+
+
 def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     g, xs = ctx.g, ctx.xs
     k = ctx.constants()
@@ -475,14 +546,24 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     if claim.status is not Status.PROVED:
         return _claim("best_mu", Status.INCONCLUSIVE, f"R_max could not be re-certified: {claim.reason}")
     quantities["R_max"] = _q(R_max)
-    gap = estimate - float(R_max.p) / float(R_max.q)
+    # how good is R_max: a certified upper bound of sup over (16) of R_sup (branch and bound over mu,
+    # on the hull of (16), which contains it)
+    U, u_pieces = r_sup_upper_bound(g, xs, lo.lower(), hi.upper(), _q(R_max) * (1 + arb(BEST_MU_GAP)),
+                                    max_pieces=ctx.m.max_pieces)
+    if not (U.is_finite() and certainly_le(_q(R_max), U)):
+        return _claim("best_mu", Status.INCONCLUSIVE, f"no finite upper bound of sup R_sup over (16): {U}")
+    quantities["R_sup_upper_bound"] = U
+    gap = (U - _q(R_max)) / _q(R_max)
+    quantities["R_max_relative_gap"] = gap
     return _claim("best_mu", Status.PROVED,
-                  f"mu_best = {mu_text} (golden-section search over (16) on ball midpoints, then fixed as an exact "
-                  f"decimal); at mu_best, R_sup = {_fmt(R_enc, 14)} (certified maximum over x2, {e.pieces} pieces); "
-                  f"R_max = {R_text} certified: Psi1, Psi2 > 0 on the disc of radius R_max "
-                  f"({info['pieces']} pieces). Float estimate of sup over mu of R_sup: {estimate:.12g} "
-                  f"(gap to R_max {gap:.3g})",
-                  mu_best=mu_text, R_max=R_text, float_estimate=f"{estimate:.15g}", gap=f"{gap:.3g}")
+                  f"mu_best = {mu_text} (chosen by a golden-section search over (16) on ball midpoints, then fixed "
+                  f"as an exact decimal: a search result, not proved optimal); at mu_best, R_sup = {_fmt(R_enc, 14)} "
+                  f"(certified maximum over x2, {e.pieces} pieces); R_max = {R_text} certified: Psi1, Psi2 > 0 on the "
+                  f"disc of radius R_max ({info['pieces']} pieces). Certified: R_sup(mu) <= {decimal_bounds(U, 12)[1]} "
+                  f"for every mu in (16) (branch and bound over mu, {u_pieces} pieces), so R_max is within a relative "
+                  f"{decimal_bounds(gap, 3)[1]} of the largest radius this Psi test can certify",
+                  mu_best=mu_text, R_max=R_text, R_sup_upper_bound=decimal_bounds(U, 15)[1],
+                  relative_gap=decimal_bounds(gap, 3)[1], float_estimate=f"{estimate:.15g}")
 
 
 # ------------------------------------------------------------------------------------ attempt

@@ -244,11 +244,13 @@ class Gimbal:
         return self.V(Dual(x1, d1), Dual(x2, d2), Dual(x3, d3)).d
 
     # --------------------------------------------------------------------- the Psi form
-    def psi_coefficients(self, x2: arb) -> tuple[tuple[arb, arb, arb], tuple[arb, arb, arb]]:
+    def psi_coefficients(self, x2: arb, mu: arb | None = None) -> tuple[tuple[arb, arb, arb], tuple[arb, arb, arb]]:
         """((c10, c11, c13), (c20, c21, c23)) of Vdot = -Psi1 x1^2 - Psi2 x3^2, Psi_i = ci0 + ci1 x1 + ci3 x3,
-        as Vdot actually is (derived from (7) and (2))."""
+        as Vdot actually is (derived from (7) and (2)); for every mu in the ball ``mu`` when given (the
+        scene's mu otherwise)."""
         c = self.c
-        H, B0, C0, A0, k, mu = c.H, c.B0, c.C0, c.A0, c.k, c.mu
+        H, B0, C0, A0, k = c.H, c.B0, c.C0, c.A0, c.k
+        mu = c.mu if mu is None else mu
         s, cs = x2.sin(), x2.cos()
         D = self.D(x2)
         f, fp = self.f(x2), self.df(x2)
