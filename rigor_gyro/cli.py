@@ -1,19 +1,30 @@
 """Command line: ``rigor-gyro list`` and ``rigor-gyro prove SCENE... | --all``.
 
-Exit status: 0 every claim proved; 1 some claim refuted; 3 some claim inconclusive (none refuted);
-2 bad input or usage (the message names the parameter or option to change).
+Exit status: 0 every claim proved; 1 some claim refuted (a certified counterexample); 3 some claim
+inconclusive (none refuted); 2 bad input or usage (one line naming the parameter, key or option and
+what is allowed; nothing is proved or written); 4 an internal error (a bug: one line, the traceback
+with ``--debug``). A crash is never 1. When several scenes are proved, the worst status wins, in the
+order 4, 2, 1, 3, 0.
 """
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+import tempfile
+import traceback
+from pathlib import Path
 
-from .core.balls import DEFAULT_MAXPREC, DEFAULT_PREC
+from .core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, MAX_PREC, MIN_PREC
 from .core.errors import RigorGyroError
+from .version import __version__
 
-__all__ = ["main"]
+__all__ = ["main", "EXIT_BAD_INPUT", "EXIT_INTERNAL"]
 
 EXIT_BAD_INPUT = 2
+EXIT_INTERNAL = 4
+#: the worst exit status wins when several scenes are proved
+_PRECEDENCE = (EXIT_INTERNAL, EXIT_BAD_INPUT, 1, 3, 0)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -25,72 +36,123 @@ class _Parser(argparse.ArgumentParser):
 def _parser() -> argparse.ArgumentParser:
     p = _Parser(prog="rigor-gyro", description="Verified numerics for gyroscopic instruments: "
                 "prove the claims of a scene with Arb ball arithmetic and write certificates.")
-    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    p.add_argument("--version", action="version", version=f"rigor-gyro {__version__}")
+    p.add_argument("--debug", action="store_true", help="print the traceback of an internal error")
+    sub = p.add_subparsers(dest="command", parser_class=_Parser)
     sub.add_parser("list", help="list the built-in scenes")
     pr = sub.add_parser("prove", help="prove scenes; write <name>.json and <name>.md")
     pr.add_argument("scenes", nargs="*", metavar="SCENE", help="built-in scene name or path to a TOML file")
     pr.add_argument("--all", action="store_true", help="prove every built-in scene")
-    pr.add_argument("--prec", type=int, default=DEFAULT_PREC, help=f"starting precision in bits (default {DEFAULT_PREC})")
+    pr.add_argument("--prec", type=int, default=DEFAULT_PREC,
+                    help=f"starting precision in bits, {MIN_PREC}..{MAX_PREC} (default {DEFAULT_PREC})")
     pr.add_argument("--maxprec", type=int, default=DEFAULT_MAXPREC,
-                    help=f"highest precision to escalate to (default {DEFAULT_MAXPREC})")
+                    help=f"highest precision to escalate to, --prec..{MAX_PREC} (default {DEFAULT_MAXPREC})")
     pr.add_argument("--out", default="proofs", help="output folder (default: ./proofs)")
     pr.add_argument("--quiet", action="store_true", help="print only the verdict line of each scene")
     pr.add_argument("--plots", action="store_true",
                     help="also draw the scene's figures into --out (needs the 'plots' extra: matplotlib)")
+    pr.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     return p
+
+
+def _say(text: str, err: bool = False) -> None:
+    """Print a line; a closed pipe (``rigor-gyro list | head``) silences the rest, never crashes."""
+    stream = sys.stderr if err else sys.stdout
+    try:
+        print(text, file=stream, flush=True)
+    except BrokenPipeError:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, stream.fileno())
+
+
+def _bad(message: str) -> int:
+    _say(f"rigor-gyro: error: {message}", err=True)
+    return EXIT_BAD_INPUT
 
 
 def _cmd_list() -> int:
     from .scene import builtin_scenes, load_scene
     for name in builtin_scenes():
         s = load_scene(name)
-        print(f"{name:24s} {s.kind:18s} {s.source.splitlines()[0][:90] if s.source else ''}")
+        _say(f"{name:24s} {s.kind:18s} {s.source.splitlines()[0][:90] if s.source else ''}")
     return 0
+
+
+def _check_out(out: str) -> str | None:
+    """None if ``out`` is (or can be made) a writable folder; otherwise what is wrong with it."""
+    path = Path(out)
+    if path.exists() and not path.is_dir():
+        return f"--out {out!r} is a file, not a folder"
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=path):
+            pass
+    except OSError as e:
+        return f"--out {out!r} is not a writable folder ({e.strerror or e})"
+    return None
 
 
 def _cmd_prove(args) -> int:
     from .certificate import EXIT_CODES
-    from .core.outcome import Status
+    from .kinds import kind_module
     from .prover import prove_scene
     from .report import write_outputs
     from .scene import builtin_scenes, load_scene
 
     if args.all and args.scenes:
-        print("rigor-gyro: error: give scene names or --all, not both", file=sys.stderr)
-        return EXIT_BAD_INPUT
+        return _bad("give scene names or --all, not both")
     refs = list(builtin_scenes()) if args.all else args.scenes
     if not refs:
-        print("rigor-gyro: error: name at least one scene (see `rigor-gyro list`) or use --all", file=sys.stderr)
-        return EXIT_BAD_INPUT
-    if args.prec < 16 or args.maxprec < args.prec:
-        print(f"rigor-gyro: error: need 16 <= --prec <= --maxprec (got {args.prec}, {args.maxprec})", file=sys.stderr)
-        return EXIT_BAD_INPUT
-    codes = []
+        return _bad("name at least one scene (see `rigor-gyro list`) or use --all")
+    if not (MIN_PREC <= args.prec <= args.maxprec <= MAX_PREC):
+        return _bad(f"need {MIN_PREC} <= --prec <= --maxprec <= {MAX_PREC} (got {args.prec}, {args.maxprec})")
+    problem = _check_out(args.out)
+    if problem:
+        return _bad(problem)
+    # every scene is loaded and checked before anything is proved or written
+    scenes, codes = [], []
     for ref in refs:
         try:
             scene = load_scene(ref)
-            cert = prove_scene(scene, prec=args.prec, maxprec=args.maxprec)
+            kind_module(scene.kind).validate(scene)
         except RigorGyroError as e:
-            print(f"rigor-gyro: {ref}: bad input: {e}", file=sys.stderr)
+            _say(f"rigor-gyro: {ref}: bad input: {e}", err=True)
             codes.append(EXIT_BAD_INPUT)
             continue
-        jpath, mpath = write_outputs(cert, args.out)
+        scenes.append((ref, scene))
+    names = [s.name for _, s in scenes]
+    dupes = sorted({n for n in names if names.count(n) > 1})
+    if dupes:
+        return _bad(f"two scenes named {dupes[0]!r} in one call would write the same files: rename one")
+    if codes:
+        return EXIT_BAD_INPUT
+    for ref, scene in scenes:
+        try:
+            cert = prove_scene(scene, prec=args.prec, maxprec=args.maxprec)
+            jpath, mpath = write_outputs(cert, args.out)
+        except RigorGyroError as e:
+            _say(f"rigor-gyro: {ref}: bad input: {e}", err=True)
+            codes.append(EXIT_BAD_INPUT)
+            continue
+        except OSError as e:
+            _say(f"rigor-gyro: {ref}: cannot write to --out {args.out!r}: {e.strerror or e}", err=True)
+            codes.append(EXIT_BAD_INPUT)
+            continue
+        except Exception as e:  # a bug: say so in one line, never exit 1 (refuted)
+            _internal(e, args, where=ref)
+            codes.append(EXIT_INTERNAL)
+            continue
         if args.plots:
             code = _plots(scene, cert, args.out)
             if code:
                 codes.append(code)
         if not args.quiet:
             for c in cert.claims:
-                print(f"{scene.name}: {c.id}: {c.status.value} ({c.precision_bits} bits) - {c.reason}")
-        print(f"{scene.name}: verdict {cert.verdict.value} in {cert.timings['total_s']:.2f} s "
-              f"at {cert.precision_bits} bits -> {jpath}, {mpath}")
+                _say(f"{scene.name}: {c.id}: {c.status.value} ({c.precision_bits} bits) - {c.reason}")
+        _say(f"{scene.name}: verdict {cert.verdict.value} in {cert.timings['total_s']:.2f} s "
+             f"at {cert.precision_bits} bits -> {jpath}, {mpath}")
         codes.append(EXIT_CODES[cert.verdict])
-    if EXIT_BAD_INPUT in codes:
-        return EXIT_BAD_INPUT
-    for status in (Status.REFUTED, Status.INCONCLUSIVE):
-        if EXIT_CODES[status] in codes:
-            return EXIT_CODES[status]
-    return 0
+    return next(c for c in _PRECEDENCE if c in codes or c == 0)
 
 
 def _plots(scene, cert, out: str) -> int:
@@ -98,23 +160,43 @@ def _plots(scene, cert, out: str) -> int:
     from .kinds import plots_hook
     draw = plots_hook(scene.kind)
     if draw is None:
-        print(f"rigor-gyro: {scene.name}: kind {scene.kind!r} has no figures; --plots ignored", file=sys.stderr)
+        _say(f"rigor-gyro: {scene.name}: kind {scene.kind!r} has no figures; --plots ignored", err=True)
         return 0
     try:
         import matplotlib  # noqa: F401  (optional extra, imported only here)
     except ImportError:
-        print("rigor-gyro: error: --plots needs matplotlib: pip install 'rigor_gyro[plots]'", file=sys.stderr)
-        return EXIT_BAD_INPUT
+        return _bad("--plots needs matplotlib: pip install 'rigor_gyro[plots]'")
     for path in draw(scene, cert, out):
-        print(f"{scene.name}: figure -> {path}")
+        _say(f"{scene.name}: figure -> {path}")
     return 0
 
 
+def _internal(e: BaseException, args, where: str = "") -> None:
+    place = f"{where}: " if where else ""
+    _say(f"rigor-gyro: {place}internal error: {type(e).__name__}: {str(e).splitlines()[0] if str(e) else ''} "
+         "(a bug in rigor_gyro; rerun with --debug for the traceback)", err=True)
+    if getattr(args, "debug", False):
+        _say("".join(traceback.format_exception(e)), err=True)
+
+
 def main(argv: list[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
-    if args.command == "list":
-        return _cmd_list()
-    return _cmd_prove(args)
+    parser = _parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return EXIT_BAD_INPUT
+    try:
+        if args.command == "list":
+            return _cmd_list()
+        return _cmd_prove(args)
+    except RigorGyroError as e:
+        return _bad(str(e))
+    except KeyboardInterrupt:
+        _say("rigor-gyro: interrupted", err=True)
+        return 130
+    except Exception as e:  # a bug: never exit 1 (refuted)
+        _internal(e, args)
+        return EXIT_INTERNAL
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -14,8 +14,8 @@ from __future__ import annotations
 import time
 
 from .certificate import Certificate
-from .core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, escalate
-from .core.errors import SceneError
+from .core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, check_precision, escalate
+from .core.errors import ParameterError, SceneError
 from .core.outcome import Status
 from .kinds import Attempt, kind_module
 from .scene import Scene
@@ -34,7 +34,15 @@ def requested_claims(scene: Scene, available: dict[str, str]) -> list[str]:
 
 
 def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAULT_MAXPREC) -> Certificate:
-    """Prove ``scene``; see the module docstring. Bad input raises before any computation."""
+    """Prove ``scene``; see the module docstring. Bad input raises before any computation:
+    :class:`SceneError` (not a Scene, unknown kind or claim) or :class:`ParameterError` (parameters,
+    options, precisions out of range)."""
+    if not isinstance(scene, Scene):
+        raise SceneError(f"prove_scene needs a Scene (from load_scene or parse_scene), got {type(scene).__name__}")
+    check_precision(prec, "prec")
+    check_precision(maxprec, "maxprec")
+    if maxprec < prec:
+        raise ParameterError(f"maxprec ({maxprec}) must be >= prec ({prec})")
     module = kind_module(scene.kind)
     model = module.validate(scene)
     wanted = requested_claims(scene, module.CLAIMS)

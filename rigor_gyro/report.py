@@ -6,12 +6,16 @@ stored certificate (``render_markdown(json.load(f))``) and says nothing the cert
 from __future__ import annotations
 
 import json
+import os
+import tempfile
 from pathlib import Path
 from typing import Any
 
 from .certificate import Certificate
+from .core.errors import SceneError
+from .scene import check_name
 
-__all__ = ["render_markdown", "write_outputs"]
+__all__ = ["render_markdown", "write_outputs", "output_paths"]
 
 _MARK = {"proved": "PROVED", "refuted": "REFUTED", "inconclusive": "INCONCLUSIVE"}
 
@@ -26,7 +30,7 @@ def render_markdown(cert: dict[str, Any]) -> str:
     out: list[str] = []
     out.append(f"# {scene['name']}: {_MARK[cert['verdict']]}")
     out.append("")
-    out.append(f"*Kind* `{scene['kind']}`. *Source*: {scene.get('source', '')}")
+    out.append(f"*Kind* `{scene['kind']}`. *Source*: {_esc(scene.get('source', ''))}")
     out.append("")
     out.append("Every statement below is a theorem about the exact parameters listed (decimal strings "
                "read as exact rationals), decided by Arb ball arithmetic (python-flint "
@@ -39,8 +43,14 @@ def render_markdown(cert: dict[str, Any]) -> str:
     out.append("| name | value |")
     out.append("|---|---|")
     for k, v in scene["parameters"].items():
-        out.append(f"| `{k}` | `{v}` |")
+        out.append(f"| `{_esc(k)}` | `{_esc(v)}` |")
     out.append("")
+    if scene.get("options"):
+        out.append("Options: " + ", ".join(f"`{_esc(k)} = {_esc(v)}`" for k, v in scene["options"].items()) + ".")
+        out.append("")
+    if scene.get("claims_only"):
+        out.append("Claims asked for: " + ", ".join(f"`{_esc(c)}`" for c in scene["claims_only"]) + " (not all of the kind's).")
+        out.append("")
     out.append("## Claims")
     out.append("")
     out.append("| claim | status | statement | reason | bits |")
@@ -99,13 +109,52 @@ def render_markdown(cert: dict[str, Any]) -> str:
     return "\n".join(out)
 
 
+def _write_temp(folder: Path, final: str, text: str) -> Path:
+    """Write ``text`` to a hidden temporary file next to ``final`` (same folder, so a rename is atomic)."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{final}.", suffix=".tmp", dir=folder)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as f:
+            f.write(text)
+            f.flush()
+            os.fsync(f.fileno())
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return Path(tmp)
+
+
+def output_paths(name: str, out_dir: str | Path) -> tuple[Path, Path]:
+    """``<out>/<name>.json`` and ``<out>/<name>.md``; SceneError if the name would leave the folder."""
+    out = Path(out_dir)
+    check_name(name)
+    jpath, mpath = out / f"{name}.json", out / f"{name}.md"
+    if jpath.resolve().parent != out.resolve():
+        raise SceneError(f"scene name {name!r} would write outside the output folder {str(out)!r}")
+    return jpath, mpath
+
+
 def write_outputs(cert: Certificate, out_dir: str | Path) -> tuple[Path, Path]:
-    """Write ``<name>.json`` and ``<name>.md`` into ``out_dir`` (created if needed)."""
+    """Write ``<name>.json`` and ``<name>.md`` into ``out_dir`` (created if needed).
+
+    Guarantee: each file is written whole to a temporary name in the same folder and renamed into
+    place; both are complete before either is replaced, and the old report is removed before the new
+    certificate appears, so a reader never sees a truncated file nor a certificate beside the report
+    of another run (an interruption between the renames leaves the new certificate without a report).
+    Fails when: the folder cannot be created or written (OSError), the name is unsafe (SceneError)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     data = cert.to_json()
-    name = data["scene"]["name"]
-    jpath, mpath = out / f"{name}.json", out / f"{name}.md"
-    jpath.write_text(json.dumps(data, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
-    mpath.write_text(render_markdown(data), encoding="utf-8")
+    jpath, mpath = output_paths(data["scene"]["name"], out)
+    jtext = json.dumps(data, indent=2, ensure_ascii=False) + "\n"
+    mtext = render_markdown(data)
+    temps: list[Path] = []
+    try:
+        temps.append(_write_temp(out, jpath.name, jtext))
+        temps.append(_write_temp(out, mpath.name, mtext))
+        mpath.unlink(missing_ok=True)
+        os.replace(temps[0], jpath)
+        os.replace(temps[1], mpath)
+    finally:
+        for tmp in temps:
+            tmp.unlink(missing_ok=True)
     return jpath, mpath

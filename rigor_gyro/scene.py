@@ -16,11 +16,16 @@ File format::
     [options]           # optional, kind-specific
     [paper]             # optional: numbers printed in the source, for the audit table
 
-Fails when: the file is missing or not TOML, a key is missing, a parameter is a float, the kind is
-unknown: :class:`SceneError` / :class:`ParameterError` naming what to change (CLI exit status 2).
+Fails when: the file is missing, unreadable, not UTF-8 or not TOML; a key is missing or unknown (with a
+did-you-mean); the name is not a safe file stem; a section is not a table; a number is a TOML float (in
+any section); the kind is unknown; ``[claims] only`` is empty: :class:`SceneError` /
+:class:`ParameterError` naming what to change (CLI exit status 2).
 """
 from __future__ import annotations
 
+import difflib
+import os
+import re
 import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
@@ -46,10 +51,28 @@ class Scene:
     paper: dict[str, Any] = field(default_factory=dict)
     path: str | None = None
 
+    def __post_init__(self) -> None:
+        """The shape every scene has, however it was made (file or API): SceneError otherwise."""
+        check_name(self.name, self.path or "scene")
+        for label, value, kind in (("parameters", self.parameters, dict), ("options", self.options, dict),
+                                   ("paper", self.paper, dict), ("source", self.source, str),
+                                   ("kind", self.kind, str)):
+            if not isinstance(value, kind):
+                raise SceneError(f"scene {self.name!r}: {label} must be a {kind.__name__}, got {type(value).__name__}")
+        if not all(isinstance(k, str) for k in self.parameters):
+            raise SceneError(f"scene {self.name!r}: parameter names must be strings")
+        if self.claims_only is not None and (not isinstance(self.claims_only, list) or not self.claims_only
+                                             or not all(isinstance(c, str) for c in self.claims_only)):
+            raise SceneError(f"scene {self.name!r}: claims_only must be None or a non-empty list of claim names")
+
     def header(self) -> dict[str, Any]:
-        """The ``scene`` block of a certificate."""
+        """The ``scene`` block of a certificate: everything the result depends on (parameters exactly as
+        written, the options and the claims asked for), so two certificates of different settings differ."""
         return {"name": self.name, "kind": self.kind, "source": self.source,
-                "parameters": dict(self.parameters), "file": self.path}
+                "parameters": dict(self.parameters),
+                "options": {k: (v if isinstance(v, (str, int)) else str(v)) for k, v in self.options.items()},
+                "claims_only": list(self.claims_only) if self.claims_only is not None else None,
+                "file": self.path}
 
 
 def _builtin_dir():
@@ -65,8 +88,33 @@ def builtin_scenes() -> dict[str, Any]:
     return out
 
 
+#: the top-level keys and tables a scene file may have
+TOP_LEVEL = ("name", "kind", "source", "parameters", "claims", "options", "paper")
+#: a scene name is also the stem of its output files: a safe character set and a length limit
+NAME_PATTERN = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,99}$", re.ASCII)
+MAX_SCENE_BYTES = 1_000_000
+
+
+def _did_you_mean(word: str, choices) -> str:
+    close = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def check_name(name: object, where: str = "scene") -> str:
+    """The scene name, checked: letters, digits, '_', '.', '-', starting with a letter or digit, at most
+    100 characters (it names the output files, which must stay inside the output folder)."""
+    if not isinstance(name, str) or not NAME_PATTERN.match(name) or ".." in name:
+        shown = name if not isinstance(name, str) or len(name) < 60 else name[:60] + "..."
+        raise SceneError(f"{where}: name = {shown!r} is not allowed: use 1-100 characters from A-Z a-z 0-9 _ . -, "
+                         "starting with a letter or digit, without '..' (the name is the output file's stem)")
+    return name
+
+
 def load_scene(ref: str) -> Scene:
     """Load a scene by built-in name or by path to a TOML file."""
+    if not isinstance(ref, (str, os.PathLike)):
+        raise SceneError(f"a scene is a built-in name or a path, got {type(ref).__name__}")
+    ref = os.fspath(ref)
     builtins = builtin_scenes()
     if ref in builtins:
         text, where = builtins[ref].read_text(encoding="utf-8"), f"builtin:{ref}"
@@ -74,27 +122,61 @@ def load_scene(ref: str) -> Scene:
         path = Path(ref)
         if not path.is_file():
             raise SceneError(f"no scene {ref!r}: not a built-in scene (see `rigor-gyro list`: "
-                             f"{', '.join(builtins)}) and not a file")
-        text, where = path.read_text(encoding="utf-8"), str(path)
+                             f"{', '.join(builtins)}{_did_you_mean(ref, builtins)}) and not a file")
+        try:
+            if path.stat().st_size > MAX_SCENE_BYTES:
+                raise SceneError(f"{ref}: larger than {MAX_SCENE_BYTES} bytes: not a scene file")
+            text, where = path.read_bytes().decode("utf-8"), str(path)
+        except UnicodeDecodeError as e:
+            raise SceneError(f"{ref}: not UTF-8 text ({e.reason} at byte {e.start}): save the scene as UTF-8") from None
+        except OSError as e:
+            raise SceneError(f"{ref}: cannot be read ({e.strerror or e})") from None
     return parse_scene(text, where)
+
+
+def _table(data: dict, key: str, where: str) -> dict:
+    value = data.get(key, {})
+    if not isinstance(value, dict):
+        raise SceneError(f"{where}: [{key}] must be a table (a [{key}] section), got {type(value).__name__}")
+    return value
+
+
+def _no_floats(table: dict, section: str, where: str) -> None:
+    """TOML floats are rounded to binary before we see them: rejected in every table, as in [parameters]."""
+    for k, v in table.items():
+        items = v if isinstance(v, list) else [v]
+        for x in items:
+            if isinstance(x, float):
+                raise ParameterError(f"{where}: [{section}] {k}: written as the TOML float {x!r}, which is rounded "
+                                     f"to binary; quote it: {k} = \"{x!r}\"")
 
 
 def parse_scene(text: str, where: str = "<string>") -> Scene:
     """Parse the TOML text of a scene; see the module docstring for the format."""
+    if not isinstance(text, str):
+        raise SceneError(f"{where}: scene text must be a string, got {type(text).__name__}")
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise SceneError(f"{where}: not valid TOML: {e}") from None
+    unknown = [k for k in data if k not in TOP_LEVEL]
+    if unknown:
+        raise SceneError(f"{where}: unknown top-level key or table {unknown[0]!r}{_did_you_mean(unknown[0], TOP_LEVEL)}; "
+                         f"a scene has {', '.join(TOP_LEVEL)} (kind-specific settings go in [options])")
     for key in ("name", "kind", "parameters"):
         if key not in data:
             raise SceneError(f"{where}: missing top-level key {key!r}")
+    name = check_name(data["name"], where)
     kind = data["kind"]
-    if kind not in KINDS:
-        hint = " (planned, not in this version)" if kind in PLANNED_KINDS else ""
-        raise SceneError(f"{where}: unknown kind {kind!r}{hint}; known kinds: {', '.join(KINDS)}")
-    params_raw = data["parameters"]
-    if not isinstance(params_raw, dict):
-        raise SceneError(f"{where}: [parameters] must be a table")
+    if not isinstance(kind, str) or kind not in KINDS:
+        hint = " (planned, not in this version)" if isinstance(kind, str) and kind in PLANNED_KINDS else ""
+        shown = kind if isinstance(kind, str) else f"{kind!r} ({type(kind).__name__})"
+        raise SceneError(f"{where}: unknown kind {shown!r}{hint}"
+                         f"{_did_you_mean(kind, KINDS) if isinstance(kind, str) else ''}; known kinds: {', '.join(KINDS)}")
+    source = data.get("source", "")
+    if not isinstance(source, str):
+        raise SceneError(f"{where}: source must be a string")
+    params_raw = _table(data, "parameters", where)
     params: dict[str, str] = {}
     for k, v in params_raw.items():
         if isinstance(v, bool) or not isinstance(v, (str, int)):
@@ -103,11 +185,21 @@ def parse_scene(text: str, where: str = "<string>") -> Scene:
                                      f"rounded to binary; quote it: {k} = \"{v!r}\"")
             raise ParameterError(f"parameter {k!r}: expected a quoted exact number, got {v!r}")
         params[k] = str(v)
-    claims = data.get("claims", {})
-    only = claims.get("only") if isinstance(claims, dict) else None
+    claims = _table(data, "claims", where)
+    bad_claim_keys = [k for k in claims if k != "only"]
+    if bad_claim_keys:
+        raise SceneError(f"{where}: [claims] has only the key 'only' (a list of claim names), got "
+                         f"{bad_claim_keys[0]!r}{_did_you_mean(bad_claim_keys[0], ['only'])}")
+    only = claims.get("only")
     if only is not None and (not isinstance(only, list) or not all(isinstance(c, str) for c in only)):
         raise SceneError(f"{where}: [claims] only must be a list of claim names")
-    return Scene(name=str(data["name"]), kind=kind, source=str(data.get("source", "")),
-                 parameters=params, claims_only=only, options=dict(data.get("options", {})),
-                 paper=dict(data.get("paper", {})), path=where)
-
+    if only is not None and not only:
+        raise SceneError(f"{where}: [claims] only = [] asks for no claim: name at least one, or drop the key")
+    if only is not None and len(set(only)) != len(only):
+        raise SceneError(f"{where}: [claims] only names a claim twice")
+    options = _table(data, "options", where)
+    paper = _table(data, "paper", where)
+    _no_floats(options, "options", where)
+    _no_floats(paper, "paper", where)
+    return Scene(name=name, kind=kind, source=source, parameters=params, claims_only=only,
+                 options=dict(options), paper=dict(paper), path=where)

@@ -110,6 +110,7 @@ def test_2_a_refutation_without_a_counterexample_is_a_bug_not_a_verdict():
 # ------------------------------------------------------------------ 3. best_mu says what it proves
 
 def test_3_best_mu_states_a_search_result_and_certifies_how_good_it_is():
+    from rigor_gyro.core.exact import parse_exact
     from rigor_gyro.kinds.lyapunov import claims as lyap
     cert = prove_scene(load_scene("agafonov2013"))
     claim = cert.claim("best_mu")
@@ -123,5 +124,185 @@ def test_3_best_mu_states_a_search_result_and_certifies_how_good_it_is():
     with working_precision(64):
         xs = model.gimbal.x2_star.ball()
         for mu in ("0.014", "0.018", "0.02", "0.022", "0.03"):
-            R, _ = lyap.r_sup(model.gimbal.with_mu(lyap.parse_exact(mu).fmpq()), xs)
+            R, _ = lyap.r_sup(model.gimbal.with_mu(parse_exact(mu).fmpq()), xs)
             assert R.lower() <= U.upper(), mu
+
+
+# ------------------------------------------------------------------ 4-7. bad input: exit 2, one line, in time
+
+import os  # noqa: E402
+import subprocess  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+
+from rigor_gyro import cli  # noqa: E402
+from rigor_gyro.core.errors import ParameterError, SceneError  # noqa: E402
+from rigor_gyro.scene import parse_scene  # noqa: E402
+
+GOOD = '''name = "t"
+kind = "eigenfrequencies"
+[parameters]
+a = "15.08"
+b = "6.154"
+eps = "0.1076"
+Omega2 = "0.629"
+'''
+
+
+def _cli(capsys, *argv):
+    t0 = time.perf_counter()
+    code = cli.main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err, time.perf_counter() - t0
+
+
+def _scene_file(tmp_path, text, name="scene.toml"):
+    p = tmp_path / name
+    p.write_text(text, encoding="utf-8")
+    return str(p)
+
+
+BAD_SCENES = {
+    "kind as a list": GOOD.replace('kind = "eigenfrequencies"', 'kind = ["eigenfrequencies"]'),
+    "options not a table": GOOD + 'options = "x"\n',
+    "paper not a table": GOOD + 'paper = 3\n',
+    "malformed paper value": GOOD + '[paper]\nhz_exact = "41.4"\n',
+    "paper list too long": GOOD + '[paper]\nhz_exact = ["1", "2", "3", "4", "5"]\n',
+    "unknown paper key": GOOD + '[paper]\nhz_exct = ["41.4"]\n',
+    "4301-digit number": GOOD.replace('a = "15.08"', 'a = "' + "1" * 4301 + '"'),
+    "huge exponent": GOOD.replace('Omega2 = "0.629"', 'Omega2 = "1e99999"'),
+    "hanging exponent": GOOD.replace('Omega2 = "0.629"', 'Omega2 = "1e999999999"'),
+    "[option] typo": GOOD + '[option]\nrel_width = "1e-10"\n',
+    "[claim] typo": GOOD + '[claim]\nonly = ["roots"]\n',
+    "top-level rel_width": GOOD.replace('kind = "eigenfrequencies"\n', 'kind = "eigenfrequencies"\nrel_width = "1e-10"\n'),
+    "space inside a number": GOOD.replace('a = "15.08"', 'a = "15 08"'),
+    "double sign": GOOD.replace('b = "6.154"', 'b = "--6.154"'),
+    "non-ASCII digits": GOOD.replace('b = "6.154"', 'b = "\u0666.154"'),
+    "TOML float in options": GOOD + '[options]\nrel_width = 1e-10\n',
+    "TOML float in paper": GOOD + '[paper]\nerror_bound = 0.05\n',
+    "empty claims": GOOD + '[claims]\nonly = []\n',
+    "name with a path": GOOD.replace('name = "t"', 'name = "../README"'),
+    "absolute name": GOOD.replace('name = "t"', 'name = "/tmp/x"'),
+    "name with a slash": GOOD.replace('name = "t"', 'name = "a/b"'),
+    "name with a newline": GOOD.replace('name = "t"', 'name = "t\\n# PROVED"'),
+    "300-character name": GOOD.replace('name = "t"', 'name = "' + "n" * 300 + '"'),
+    "max_pieces zero": GOOD.replace("eigenfrequencies", "lyapunov"),   # replaced below
+}
+LYAP = load_scene("agafonov2013")
+
+
+def _lyap_text(options: str) -> str:
+    params = "\n".join(f'{k} = "{v}"' for k, v in LYAP.parameters.items())
+    return f'name = "l"\nkind = "lyapunov"\n[parameters]\n{params}\n[options]\n{options}\n'
+
+
+BAD_SCENES["max_pieces zero"] = _lyap_text('max_pieces = "0"')
+BAD_SCENES["max_pieces negative"] = _lyap_text('max_pieces = "-5"')
+BAD_SCENES["[option] R typo"] = _lyap_text('Rr = "0.05"')
+
+
+@pytest.mark.parametrize("case", sorted(BAD_SCENES))
+def test_4_to_7_bad_scene_is_exit_2_in_a_second_with_one_line_and_nothing_written(tmp_path, capsys, case):
+    path = _scene_file(tmp_path, BAD_SCENES[case])
+    out = tmp_path / "out"
+    code, stdout, err, secs = _cli(capsys, "prove", path, "--out", str(out))
+    assert code == 2, (case, stdout, err)
+    assert secs < 2, secs
+    assert "Traceback" not in err and len(err.strip().splitlines()) == 1, err
+    assert not list(out.glob("*")), "nothing written"
+    assert not (tmp_path.parent / "README.json").exists()
+
+
+def test_4_typo_messages_suggest_the_right_key(tmp_path, capsys):
+    _, _, err, _ = _cli(capsys, "prove", _scene_file(tmp_path, BAD_SCENES["[option] typo"]), "--out", str(tmp_path))
+    assert "did you mean 'options'" in err
+    _, _, err, _ = _cli(capsys, "prove", _scene_file(tmp_path, BAD_SCENES["[option] R typo"]), "--out", str(tmp_path))
+    assert "did you mean 'R'" in err
+
+
+def test_4_unreadable_and_non_utf8_files_are_bad_input(tmp_path, capsys):
+    p = tmp_path / "latin1.toml"
+    p.write_bytes(GOOD.replace('"t"', '"t\xe9"').encode("latin-1"))
+    assert _cli(capsys, "prove", str(p), "--out", str(tmp_path))[0] == 2
+    d = tmp_path / "dir.toml"
+    d.mkdir()
+    assert _cli(capsys, "prove", str(d), "--out", str(tmp_path))[0] == 2
+
+
+@pytest.mark.parametrize("argv", [["--prec", "1000000000"], ["--maxprec", "100000000"], ["--prec", "8"],
+                                  ["--prec", "128", "--maxprec", "64"]])
+def test_5_precisions_out_of_range_are_exit_2_at_once(capsys, argv, tmp_path):
+    code, _, err, secs = _cli(capsys, "prove", "rudenko1976", "--out", str(tmp_path), *argv)
+    assert code == 2 and secs < 1 and "--prec" in err
+
+
+def test_4_bad_out_is_checked_before_proving(tmp_path, capsys):
+    f = tmp_path / "file"
+    f.write_text("x")
+    code, stdout, err, _ = _cli(capsys, "prove", "rudenko1976", "--out", str(f))
+    assert code == 2 and "is a file" in err and "verdict" not in stdout
+    if os.geteuid() != 0:             # root writes anywhere
+        ro = tmp_path / "ro"
+        ro.mkdir(mode=0o500)
+        assert _cli(capsys, "prove", "rudenko1976", "--out", str(ro))[0] == 2
+
+
+def test_7_two_scenes_with_one_name_in_one_call_are_refused(tmp_path, capsys):
+    a = _scene_file(tmp_path, GOOD, "a.toml")
+    b = _scene_file(tmp_path, GOOD.replace('"0.629"', '"0.7"'), "b.toml")
+    code, stdout, err, _ = _cli(capsys, "prove", a, b, "--out", str(tmp_path / "o"))
+    assert code == 2 and "'t'" in err and not (tmp_path / "o" / "t.json").exists()
+
+
+def test_4_an_internal_error_is_exit_4_with_one_line_and_the_traceback_only_with_debug(monkeypatch, capsys, tmp_path):
+    from rigor_gyro.kinds.eigenfrequencies import claims as eig
+
+    def boom(*a, **k):
+        raise ZeroDivisionError("planted bug")
+    monkeypatch.setattr(eig, "isolate_polynomial", boom)
+    code, _, err, _ = _cli(capsys, "prove", "rudenko1976", "--out", str(tmp_path))
+    assert code == 4 and "internal error" in err and "Traceback" not in err
+    code, _, err, _ = _cli(capsys, "--debug", "prove", "rudenko1976", "--out", str(tmp_path))
+    assert code == 4 and "Traceback" in err
+
+
+def test_4_list_into_a_closed_pipe_is_not_a_crash():
+    r = subprocess.run(f"{sys.executable} -m rigor_gyro list | head -c 1 >/dev/null; exit ${{PIPESTATUS[0]}}",
+                       shell=True, executable="/bin/bash", capture_output=True, text=True)
+    assert r.returncode == 0 and "Traceback" not in r.stderr
+
+
+@pytest.mark.parametrize("call", [
+    lambda: load_scene(123), lambda: parse_scene(b"name = 1"), lambda: prove_scene("rudenko1976"),
+    lambda: prove_scene(load_scene("rudenko1976"), prec=8), lambda: prove_scene(load_scene("rudenko1976"), maxprec=10**9),
+    lambda: parse_scene(GOOD.replace('name = "t"', 'name = 5')),
+    lambda: dataclasses.replace(load_scene("rudenko1976"), name="../x"),
+    lambda: prove_scene(dataclasses.replace(load_scene("rudenko1976"), options={"rel_width": [1]})),
+])
+def test_4_the_api_raises_only_documented_errors(call):
+    with pytest.raises((ParameterError, SceneError)):
+        call()
+
+
+def test_8_certificate_records_options_and_claims_asked_for():
+    text = GOOD + '[claims]\nonly = ["roots"]\n[options]\nrel_width = "1e-20"\n'
+    cert = prove_scene(parse_scene(text))
+    scene = cert.to_json()["scene"]
+    assert scene["options"] == {"rel_width": "1e-20"} and scene["claims_only"] == ["roots"]
+    default = prove_scene(parse_scene(GOOD)).to_json()["scene"]
+    assert default["options"] == {} and default["claims_only"] is None
+
+
+def test_8_outputs_are_written_whole_or_not_at_all(tmp_path, monkeypatch):
+    from rigor_gyro import report
+    cert = prove_scene(parse_scene(GOOD))
+    report.write_outputs(cert, tmp_path)
+    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+
+    def failing(data):
+        raise OSError("disk full")
+    monkeypatch.setattr(report, "render_markdown", failing)
+    with pytest.raises(OSError):
+        report.write_outputs(cert, tmp_path)
+    after = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    assert after == before          # the old pair intact, no temporary file left behind

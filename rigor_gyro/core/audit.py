@@ -17,15 +17,85 @@ Example:
 """
 from __future__ import annotations
 
+import difflib
+import re
 from decimal import ROUND_HALF_EVEN, Decimal
 from fractions import Fraction
 
 from flint import arb, fmpq
 
 from .balls import certainly_gt, certainly_le
+from .errors import SceneError
 from .outcome import AuditStatus
 
-__all__ = ["audit_printed", "agreeing_digits", "half_unit"]
+__all__ = ["audit_printed", "agreeing_digits", "half_unit", "check_printed", "NUMBER", "TEXT", "numbers", "keys"]
+
+#: a number as a paper prints it: optional sign, ASCII digits, a point, an exponent; at most 60 characters
+_PRINTED = re.compile(r"^[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]{1,3})?$", re.ASCII)
+NUMBER = "number"
+TEXT = "text"
+
+
+def numbers(n: int, blank_ok: bool = False) -> tuple:
+    """Schema: a list of at most n printed numbers ("" allowed where the paper prints none, if blank_ok)."""
+    return ("list", n, blank_ok)
+
+
+def keys(allowed, spec) -> tuple:
+    """Schema: a table whose keys come from ``allowed`` (a set, or a regex string), each value of ``spec``."""
+    return ("keys", allowed, spec)
+
+
+def check_printed(table: object, schema: dict, where: str = "[paper]") -> None:
+    """Check the scene's ``[paper]`` table against a kind's schema before anything is computed.
+
+    Fails when: a key is unknown (with a did-you-mean), a printed number is not a decimal string
+    (TOML floats included), a list is too long or a table has the wrong shape: :class:`SceneError`
+    naming the key and what is allowed (CLI exit 2)."""
+    _check(table, schema, where)
+
+
+def _check(value: object, spec, where: str) -> None:
+    if isinstance(spec, dict):
+        if not isinstance(value, dict):
+            raise SceneError(f"{where} must be a table with keys from {sorted(spec)}, got {type(value).__name__}")
+        for k, v in value.items():
+            if k not in spec:
+                close = difflib.get_close_matches(k, list(spec), n=1, cutoff=0.6)
+                hint = f" (did you mean {close[0]!r}?)" if close else ""
+                raise SceneError(f"{where}: unknown key {k!r}{hint}; allowed: {', '.join(sorted(spec))}")
+            _check(v, spec[k], f"{where} {k}")
+        return
+    if spec == NUMBER:
+        if not (isinstance(value, str) and len(value) <= 60 and _PRINTED.match(value.strip())):
+            raise SceneError(f"{where} = {value!r}: a printed number is a quoted decimal such as \"0.0124\" "
+                             "(at most 60 characters)")
+        return
+    if spec == TEXT:
+        if not (isinstance(value, str) and len(value) <= 1000):
+            raise SceneError(f"{where} = {value!r}: expected a quoted text of at most 1000 characters")
+        return
+    tag = spec[0]
+    if tag == "list":
+        _, n, blank_ok = spec
+        if not isinstance(value, list) or len(value) > n:
+            raise SceneError(f"{where}: expected a list of at most {n} quoted printed numbers, got {value!r}"[:300])
+        for i, x in enumerate(value):
+            if not (blank_ok and x == ""):
+                _check(x, NUMBER, f"{where}[{i}]")
+        return
+    if tag == "keys":
+        _, allowed, sub = spec
+        if not isinstance(value, dict):
+            raise SceneError(f"{where} must be a table, got {type(value).__name__}")
+        for k, v in value.items():
+            ok = re.fullmatch(allowed, k) if isinstance(allowed, str) else k in allowed
+            if not ok:
+                shown = allowed if isinstance(allowed, str) else ", ".join(sorted(allowed))
+                raise SceneError(f"{where}: key {k!r} is not one the paper has; allowed: {shown}"[:400])
+            _check(v, sub, f"{where} {k}")
+        return
+    raise AssertionError(f"bad schema {spec!r}")
 
 
 def half_unit(printed: str) -> Fraction:

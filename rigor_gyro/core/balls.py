@@ -41,18 +41,22 @@ from typing import Callable, Generic, Iterator, TypeVar
 
 from flint import acb, acb_series, arb, arb_series, ctx, fmpq
 
-from .exact import Exact, parse_exact
+from .errors import ParameterError
+from .exact import parse_exact
 
 __all__ = [
     "DEFAULT_PREC", "DEFAULT_MAXPREC", "working_precision", "current_precision", "ball", "is_finite",
     "certainly_lt", "certainly_le", "certainly_gt", "certainly_ge", "certainly_positive",
     "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
     "overlaps", "certainly_within", "interval", "exact_fraction", "decimal_bounds", "quantity",
-    "rel_width_at_most", "Escalation", "escalate", "series_length", "series_coefficients", "SeriesTruncated",
+    "rel_width_at_most", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
 ]
 
 DEFAULT_PREC = 64
 DEFAULT_MAXPREC = 4096
+#: the working precision is an integer number of bits in [MIN_PREC, MAX_PREC] (checked before any work)
+MIN_PREC = 16
+MAX_PREC = 32768
 
 T = TypeVar("T")
 
@@ -60,8 +64,7 @@ T = TypeVar("T")
 @contextlib.contextmanager
 def working_precision(prec: int) -> Iterator[int]:
     """Set the working precision to ``prec`` bits inside the block; always restored afterwards."""
-    if not isinstance(prec, int) or prec < 16:
-        raise ValueError(f"precision must be an integer number of bits >= 16, got {prec!r}")
+    check_precision(prec, "precision")
     saved = ctx.prec
     try:
         ctx.prec = prec
@@ -80,7 +83,7 @@ def series_length(n: int) -> Iterator[int]:
     """Inside the block, series operations keep at least ``n`` terms (``ctx.cap >= n``); restored
     afterwards, exceptions included."""
     if not isinstance(n, int) or n < 1:
-        raise ValueError(f"series length must be a positive integer, got {n!r}")
+        raise ParameterError(f"series length must be a positive integer, got {n!r}")
     saved = ctx.cap
     try:
         ctx.cap = max(saved, n)
@@ -104,6 +107,13 @@ def series_coefficients(s, n: int) -> list:
     c = list(s.coeffs())[:n]
     zero = arb(0) if isinstance(s, arb_series) else acb(0)
     return c + [zero] * (n - len(c))
+
+
+def check_precision(prec: object, name: str = "prec") -> int:
+    """``prec`` if it is an integer number of bits in [MIN_PREC, MAX_PREC]; ParameterError otherwise."""
+    if isinstance(prec, bool) or not isinstance(prec, int) or not MIN_PREC <= prec <= MAX_PREC:
+        raise ParameterError(f"{name} must be an integer number of bits from {MIN_PREC} to {MAX_PREC}, got {prec!r}")
+    return prec
 
 
 def current_precision() -> int:
@@ -323,8 +333,10 @@ def escalate(attempt: Callable[[int], T], done: Callable[[T], bool], *, prec: in
     highest precision tried with ``done=False`` (the caller reports inconclusive and suggests a
     higher ``maxprec``). ``ctx.prec`` is restored on every exit.
     """
+    check_precision(prec, "prec")
+    check_precision(maxprec, "maxprec")
     if maxprec < prec:
-        raise ValueError(f"maxprec ({maxprec}) must be >= prec ({prec})")
+        raise ParameterError(f"maxprec ({maxprec}) must be >= prec ({prec})")
     p, tried = prec, []
     while True:
         with working_precision(p):

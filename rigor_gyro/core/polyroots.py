@@ -37,6 +37,7 @@ from dataclasses import dataclass, field
 from flint import acb, arb, fmpq, fmpq_poly
 
 from .balls import certainly_nonzero, exact_fraction, rel_width_at_most
+from .errors import ParameterError
 
 __all__ = ["PolynomialRoots", "isolate_polynomial"]
 
@@ -62,7 +63,7 @@ def _fmpq(q) -> fmpq:
 def isolate_polynomial(p: fmpq_poly, rel_tol: object | None = None) -> PolynomialRoots:
     """Isolate every root of ``p`` at the current precision; see the module docstring."""
     if p.degree() < 1:
-        raise ValueError(f"polynomial {p} has no roots to isolate (degree {p.degree()})")
+        raise ParameterError(f"polynomial {p} has no roots to isolate (degree {p.degree()})")
     g = p.gcd(p.derivative())
     squarefree = g.degree() == 0
     found = p.complex_roots()

@@ -40,6 +40,7 @@ from flint import arb, arb_series
 
 from .balls import (ball, certainly_gt, certainly_lt, certainly_nonzero, current_precision, interval,
                     possibly_zero, rel_width_at_most, series_coefficients, series_length)
+from .errors import ParameterError
 
 __all__ = ["RootStatus", "RootPiece", "Isolation", "enclose_f_df", "newton_root", "isolate_roots",
            "merge_shared_roots"]
@@ -156,7 +157,7 @@ def isolate_roots(f: SeriesFunction, lo: object, hi: object, *, rel_tol: object 
     """
     lo_b, hi_b = ball(lo), ball(hi)
     if not certainly_lt(lo_b, hi_b):
-        raise ValueError(f"bracket [{lo}, {hi}] is empty or not ordered")
+        raise ParameterError(f"bracket [{lo}, {hi}] is empty or not ordered")
     done: list[RootPiece] = []
     stack: list[tuple[arb, arb, int]] = [(lo_b, hi_b, 0)]
     while stack:

@@ -36,11 +36,12 @@ from flint import arb, fmpq
 from ...core.balls import (ball, certainly_ge, certainly_gt, certainly_le, certainly_lt,
                               certainly_positive, decimal_bounds, rel_width_at_most)
 from ...core.errors import ParameterError
-from ...core.exact import Exact, parse_exact, parse_parameters, require_rational
+from ...core.audit import check_printed
+from ...core.exact import Exact, option_number, parse_options, parse_parameters, require_rational
 from ...core.outcome import Claim, Status
 from ...core.polyroots import isolate_polynomial
 from .. import Attempt
-from .paper import audit as audit_paper, formula_table
+from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table
 from .model import (BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic, nu_bounds,
                     nu_quadratics)
 
@@ -101,13 +102,9 @@ def validate(scene) -> RudenkoModel:
     hz = v.get("hz_scale")
     if hz is not None and not hz.rational > 0:
         raise ParameterError(f"parameter 'hz_scale' = {p['hz_scale']!r}: need hz_scale > 0")
-    opts = dict(OPTIONS, **{k: str(x) for k, x in scene.options.items()})
-    unknown_opts = sorted(set(opts) - set(OPTIONS))
-    if unknown_opts:
-        raise ParameterError(f"unknown option(s) {unknown_opts}; this kind has {list(OPTIONS)}")
-    rel = parse_exact(opts["rel_width"], "rel_width")
-    if not rel.rational > 0:
-        raise ParameterError(f"option 'rel_width' = {opts['rel_width']!r}: need > 0")
+    opts = parse_options(scene.options, OPTIONS, "eigenfrequencies")
+    rel = option_number(opts["rel_width"], "rel_width", above="0", at_most="1")
+    check_printed(scene.paper, PAPER_SCHEMA)
     return RudenkoModel(v["a"], v["b"], v["eps"], v["Omega2"], hz, rel, dict(scene.paper))
 
 

@@ -13,13 +13,17 @@ from typing import Callable
 
 from flint import arb, fmpq
 
-from ...core.audit import audit_printed, half_unit
+from ...core.audit import NUMBER, audit_printed, half_unit, numbers
 from ...core.balls import ball, certainly_gt, certainly_le, certainly_positive, decimal_bounds
 from ...core.outcome import AuditRow, AuditStatus
 from ...core.polyroots import isolate_polynomial
 from .model import APPROX_TEXT, BRACKETS, NotReal, Params, approximation, characteristic_quartic
 
-__all__ = ["formula_table", "audit", "dimensional_14"]
+__all__ = ["PAPER_SCHEMA", "formula_table", "audit", "dimensional_14"]
+
+#: what a scene's [paper] table may hold (checked at load: core.audit.check_printed)
+PAPER_SCHEMA = {"hz_lower": numbers(4), "hz_approx": numbers(4), "hz_upper": numbers(4), "hz_exact": numbers(4),
+                "error_bound": NUMBER}
 
 
 def dimensional_14(j: int, A1: fmpq, A2: fmpq, A3: fmpq, K2: fmpq, K3: fmpq, H2: fmpq,

@@ -48,13 +48,15 @@ from flint import arb, fmpq
 from ...core.balls import (certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds,
                            exact_fraction, interval, rel_width_at_most, working_precision)
 from ...core.errors import ParameterError
-from ...core.exact import Exact, parse_exact, parse_parameters, require_rational
+from ...core.audit import check_printed
+from ...core.exact import (Exact, option_count, option_number, parse_options, parse_parameters,
+                           require_rational)
 from ...core.outcome import Claim, Status
 from ...core.subdivision import certify_positive, enclose_max
 from .. import Attempt
 from .model import Gimbal, certify_vdot_nonpositive, hypot_ball, mean_value_enclosure
 from .moments import MOMENTS
-from .paper import audit as audit_paper
+from .paper import PAPER_SCHEMA, audit as audit_paper
 
 __all__ = ["CLAIMS", "PARAMETERS", "LyapunovModel", "validate", "attempt", "gimbal_from_parameters"]
 
@@ -68,6 +70,7 @@ STALL_PREC = 256
 #: best_mu: branch and bound over mu stops once its upper bound is within this relative gap of R_max
 BEST_MU_GAP = "1e-6"    # escalation beyond this only repeats the same subdivision (see attempt)
 OPTIONS = {"rel_width": "1e-15", "R": "", "max_pieces": "20000"}
+MAX_PIECES_LIMIT = 1_000_000
 
 CLAIMS = {
     "constants": "Enclosures of A0, B0, C0, m, M, p, k_min = p A0/H, the mu interval (p/H, k/A0), R1, R2 and "
@@ -138,22 +141,11 @@ def gimbal_from_parameters(text: dict[str, str]) -> tuple[Gimbal, dict[str, Exac
 
 def validate(scene) -> LyapunovModel:
     g, v = gimbal_from_parameters(dict(scene.parameters))
-    opts = dict(OPTIONS, **{k: str(x) for k, x in scene.options.items()})
-    unknown = sorted(set(opts) - set(OPTIONS))
-    if unknown:
-        raise ParameterError(f"unknown option(s) {unknown}; this kind has {list(OPTIONS)}")
-    rel = parse_exact(opts["rel_width"], "rel_width").fmpq()
-    if not rel > 0:
-        raise ParameterError(f"option 'rel_width' = {opts['rel_width']!r}: need > 0")
-    R = None
-    if opts["R"]:
-        R = parse_exact(opts["R"], "R").fmpq()
-        if not R > 0:
-            raise ParameterError(f"option 'R' = {opts['R']!r}: need R > 0")
-    try:
-        pieces = int(opts["max_pieces"])
-    except ValueError:
-        raise ParameterError(f"option 'max_pieces' = {opts['max_pieces']!r}: need an integer") from None
+    opts = parse_options(scene.options, OPTIONS, "lyapunov")
+    rel = option_number(opts["rel_width"], "rel_width", above="0", at_most="1").fmpq()
+    R = option_number(opts["R"], "R", above="0", at_most="1e6").fmpq() if opts["R"] else None
+    pieces = option_count(opts["max_pieces"], "max_pieces", 1, MAX_PIECES_LIMIT)
+    check_printed(scene.paper, PAPER_SCHEMA)
     return LyapunovModel(g, v, dict(scene.parameters), rel, R, pieces, dict(scene.paper))
 
 

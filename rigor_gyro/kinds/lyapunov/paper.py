@@ -15,12 +15,12 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from ...core.audit import audit_printed
+from ...core.audit import NUMBER, TEXT, audit_printed
 from ...core.balls import certainly_gt, certainly_nonzero, decimal_bounds
 from ...core.outcome import AuditRow, AuditStatus, Status
 from .model import certify_vdot_nonpositive
 
-__all__ = ["audit", "formula_table", "PAPER_KEYS", "vdot_formula_audit"]
+__all__ = ["audit", "formula_table", "PAPER_KEYS", "PAPER_SCHEMA", "vdot_formula_audit"]
 
 #: [paper] key -> (quantity name, what the paper calls it)
 PAPER_KEYS = {"A0": ("A0", "A0 = A + A1 + A2"), "B0": ("B0", "B0 = A + B1"), "C0": ("C0", "C0 = A + A1 - C1"),
@@ -28,6 +28,9 @@ PAPER_KEYS = {"A0": ("A0", "A0 = A + A1 + A2"), "B0": ("B0", "B0 = A + B1"), "C0
               "k_min": ("k_min", "(18): k > p A0 / H"), "mu_min": ("mu_min", "lower end of the mu range"),
               "mu_max": ("mu_max", "upper end of the mu range"), "R1": ("R1", "R1 from (13)"),
               "R2": ("R2", "R2 from (14)")}
+
+#: what a scene's [paper] table may hold (checked at load: core.audit.check_printed)
+PAPER_SCHEMA = {**{k: NUMBER for k in PAPER_KEYS}, "limit": TEXT, "R": NUMBER}
 
 MONOMIALS = [("x1^2", 0, 0), ("x1^3", 0, 1), ("x1^2x3", 0, 2), ("x3^2", 1, 0), ("x1x3^2", 1, 1), ("x3^3", 1, 2)]
 TERM_NAMES = {("x1^2", 0): "Psi1 constant term (x1^2)", ("x1^3", 0): "Psi1 x1-term", ("x1^2x3", 0): "Psi1 x3-term",

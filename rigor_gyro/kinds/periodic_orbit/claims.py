@@ -46,12 +46,13 @@ from flint import acb, acb_mat, arb, arb_series
 from ...core.balls import (ball, certainly_gt, certainly_le, certainly_lt, certainly_negative,
                            certainly_positive, current_precision, decimal_bounds, interval)
 from ...core.errors import ParameterError
-from ...core.exact import Exact, parse_exact, parse_parameters, require_rational
+from ...core.audit import check_printed
+from ...core.exact import Exact, option_number, parse_options, parse_parameters, require_rational
 from ...core.outcome import Claim, Status
 from ...core.roots import Isolation, RootPiece, RootStatus, merge_shared_roots, newton_root
 from ...core.subdivision import certify_positive
 from .. import Attempt
-from .paper import audit as audit_paper, formula_table, orbit_quantities
+from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table, orbit_quantities
 from .flow import (PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, g_coeffs, half_period_jacobian,
                    moment_zero_orders, orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure,
                    x0_at)
@@ -122,18 +123,12 @@ def validate(scene) -> RelayModel:
     for k in PARAMETER_NAMES:
         if not v[k].rational > 0:
             raise ParameterError(f"parameter {k!r} = {p[k]!r}: need {k} > 0 ({why[k]})")
-    opts = dict(OPTIONS, **{k: str(x) for k, x in scene.options.items()})
-    bad = sorted(set(opts) - set(OPTIONS))
-    if bad:
-        raise ParameterError(f"unknown option(s) {bad}; this kind has {list(OPTIONS)}")
+    opts = parse_options(scene.options, OPTIONS, "periodic_orbit")
     T_max = None
     if opts["T_max"] != "auto":
-        T_max = parse_exact(opts["T_max"], "T_max")
-        if not (T_max.is_rational and T_max.rational > 0):
-            raise ParameterError(f"option 'T_max' = {opts['T_max']!r}: need a rational > 0 or \"auto\"")
-    tw = parse_exact(opts["theta_width"], "theta_width")
-    if not (tw.is_rational and tw.rational > 0):
-        raise ParameterError(f"option 'theta_width' = {opts['theta_width']!r}: need > 0")
+        T_max = option_number(opts["T_max"], "T_max (or \"auto\")", above="0", at_most="1e6")
+    tw = option_number(opts["theta_width"], "theta_width", above="0", at_most="1")
+    check_printed(scene.paper, PAPER_SCHEMA)
     params = RelayParams(**{k: v[k].fmpq() for k in PARAMETER_NAMES})
     return RelayModel(params, v, T_max, tw, dict(scene.paper))
 

@@ -26,13 +26,32 @@ from typing import Any
 
 from flint import acb, arb, arb_mat
 
-from ...core.audit import agreeing_digits, audit_printed
+from ...core.audit import NUMBER, TEXT, agreeing_digits, audit_printed, keys, numbers
 from ...core.balls import ball, certainly_negative, certainly_positive, decimal_bounds
 from ...core.outcome import AuditRow, AuditStatus
 from .flow import (ExpSum, Spectrum, half_period_jacobian, nutation_cubic, orbit_expsums, phi_at,
                    vector_field)
 
-__all__ = ["formula_table", "paper_coefficients", "orbit_quantities", "determinant_12", "audit"]
+__all__ = ["PAPER_SCHEMA", "formula_table", "paper_coefficients", "orbit_quantities", "determinant_12", "audit"]
+
+_A_KEYS = {f"a{G}{j}" for G in (2, 3, 4) for j in range(1, 7)} | {f"a{G}6" for G in (1, 2, 3, 4)} | {"a17", "a47"}
+_B_KEYS = {f"b{G}_{j}" for G, n in ((1, 23), (2, 18), (3, 17), (4, 18)) for j in range(1, n + 1)} | {"b5_1", "b5_2"}
+_H_KEYS = {f"h{r}{c}" for r in range(1, 5) for c in range(1, 5)} | {"h54"}
+_C_KEYS = {f"c{r}{c}" for r in range(1, 6) for c in range(1, 6)}
+_K_KEYS = {f"k{r}{c}" for r in range(1, 5) for c in range(1, 5)}
+#: what a scene's [paper] table may hold (checked at load: core.audit.check_printed); the coefficient
+#: names are those of the paper's forms (7), (16) and Tables 1-4 (tests check them against the code)
+PAPER_SCHEMA = {
+    "cubic": numbers(3), "inv_sigma": NUMBER, "mu1": NUMBER, "omega": NUMBER, "mu2": NUMBER, "theta_star": NUMBER,
+    "g_table_x": numbers(100), "g_table_g": numbers(100), "D": numbers(5), "stable": TEXT, "quartic": numbers(4),
+    "a": keys(_A_KEYS, NUMBER),
+    "orbit": {c: numbers(6, blank_ok=True) for c in ("beta", "beta_dot", "Omega", "i", "I", "alpha")},
+    "table2": keys(r"theta|[0-9]{1,3}(\.[0-9]{1,6})?", numbers(6, blank_ok=True)),
+    "table3": keys(_B_KEYS, NUMBER),
+    "table4": {"x_star": numbers(4), "z": numbers(4), "h": keys(_H_KEYS, NUMBER), "c": keys(_C_KEYS, NUMBER),
+               "k": keys(_K_KEYS, NUMBER)},
+    "lambda": {k: NUMBER for k in ("lambda1", "lambda3", "re_complex", "im_complex", "modulus")},
+}
 
 
 def _fmt(x: arb, d: int = 10) -> str:
