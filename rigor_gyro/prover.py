@@ -13,10 +13,12 @@ from __future__ import annotations
 
 import time
 
+from flint import arb
+
 from .certificate import Certificate
 from .core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, check_precision, escalate
 from .core.errors import ParameterError, SceneError
-from .core.outcome import Status
+from .core.outcome import AuditStatus, Status
 from .kinds import Attempt, kind_module
 from .scene import Scene
 
@@ -31,6 +33,65 @@ def requested_claims(scene: Scene, available: dict[str, str]) -> list[str]:
     if unknown:
         raise SceneError(f"scene {scene.name!r}: unknown claim(s) {unknown}; this kind has {list(available)}")
     return [c for c in available if c in scene.claims_only]
+
+
+#: the "appears exactly 0" rule applies only from this precision on (a margin below ~2^-(p/2) relative)
+ZERO_RULE_PREC = 256
+
+
+def _stuck(before: arb | None, after: arb | None, prec: int) -> str | None:
+    """Why doubling the precision did not help the undecided ball (``before`` at prec/2, ``after`` at
+    prec), or None when it still may: the ball did not shrink by half, or it shrank around 0 by the
+    precision gained (the deciding quantity looks exactly 0, an equality case)."""
+    if before is None or after is None or not (before.is_finite() and after.is_finite()):
+        return None
+    r0, r1 = before.rad(), after.rad()
+    if not (2 * r1 < r0) and not (r0.is_zero() and not r1.is_zero()):
+        return ("doubling the precision did not shrink the deciding enclosure (its width is set by a "
+                "subdivision tolerance or an exact degeneracy, not by the precision)")
+    if prec >= ZERO_RULE_PREC and after.contains(0) and r1 * arb(2) ** (prec // 4) < r0:
+        return (f"the deciding quantity shrinks around 0 as the precision grows (|value| < "
+                f"{after.abs_upper().str(3, radius=False)} at {prec} bits): it looks exactly 0, an equality "
+                "the strict statement cannot pass; if it is not exactly 0, raise --prec")
+    return None
+
+
+def no_progress(prev: tuple[int, Attempt], now: tuple[int, Attempt]) -> dict[str, str] | None:
+    """If nothing undecided at ``now`` can be helped by more precision, {item: why} (items: claim ids,
+    ``widths``, ``row:<id>``); None as soon as one undecided item may still progress.
+
+    The kinds say what decides an inconclusive claim (``Claim.decides``); a claim without it, a
+    width requirement without ``width_quantities`` or an audit row without a value may always progress."""
+    (p0, a0), (p1, a1) = prev, now
+    why: dict[str, str] = {}
+    before = {c.id: c for c in a0.claims}
+    for c in a1.claims:
+        if c.status is not Status.INCONCLUSIVE:
+            continue
+        b = before.get(c.id)
+        reason = _stuck(b.decides if b is not None and b.status is Status.INCONCLUSIVE else None, c.decides, p1)
+        if reason is None:
+            return None
+        why[c.id] = reason
+    if not a1.widths_met:
+        if not a1.width_quantities:
+            return None
+        shrinking = [n for n in a1.width_quantities
+                     if n in a0.quantities and n in a1.quantities
+                     and _stuck(a0.quantities[n], a1.quantities[n], p1) is None]
+        if shrinking:
+            return None
+        why["widths"] = (f"the widths of {', '.join(a1.width_quantities)} did not shrink from {p0} to {p1} bits "
+                         "(set by a subdivision tolerance: relax option rel_width)")
+    rows0 = {r.id: r for r in a0.paper}
+    for r in a1.paper:
+        if r.status is AuditStatus.UNDECIDED:
+            r0 = rows0.get(r.id)
+            reason = _stuck(r0.value if r0 is not None else None, r.value, p1)
+            if reason is None:
+                return None
+            why[f"row:{r.id}"] = reason
+    return why if why else None
 
 
 def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAULT_MAXPREC) -> Certificate:
@@ -54,7 +115,20 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
         history.append((p, a))
         return a
 
-    esc = escalate(run, lambda a: a.settled or a.stalled, prec=prec, maxprec=maxprec)
+    hopeless: dict[str, str] = {}
+
+    def done(a: Attempt) -> bool:
+        if a.settled or a.stalled:
+            return True
+        if len(history) < 2:
+            return False
+        why = no_progress(history[-2], history[-1])
+        if why is not None:
+            hopeless.update(why)
+            return True
+        return False
+
+    esc = escalate(run, done, prec=prec, maxprec=maxprec)
     elapsed = time.perf_counter() - t0
     final = esc.result
     for claim in final.claims:
@@ -65,12 +139,22 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
                 claim.precision_bits = p
                 break
         if claim.status is Status.INCONCLUSIVE:
-            hint = ("more precision does not help here (see the reason)" if final.stalled and not final.settled
-                    else f"try --maxprec {2 * maxprec}")
+            if claim.id in hopeless:
+                hint = f"more precision cannot help: {hopeless[claim.id]}"
+            elif final.stalled and not final.settled:
+                hint = "more precision does not help here (see the reason)"
+            else:
+                hint = f"try --maxprec {2 * maxprec}"
             claim.reason += f" [undecided at every precision tried: {esc.tried} bits; {hint}]"
     notes = list(final.notes)
-    if not esc.done and final.widths_met is False:
-        notes.append(f"requested enclosure widths not met by {esc.prec} bits: try --maxprec {2 * maxprec}")
+    if not final.widths_met:
+        if "widths" in hopeless:
+            notes.append(f"requested enclosure widths not met: {hopeless['widths']}")
+        elif not esc.done:
+            notes.append(f"requested enclosure widths not met by {esc.prec} bits: try --maxprec {2 * maxprec}")
+    for row in final.paper:
+        if row.status is AuditStatus.UNDECIDED and f"row:{row.id}" in hopeless:
+            row.note += f" [undecided: {hopeless[f'row:{row.id}']}]"
     return Certificate(scene=scene.header(), precision_bits=esc.prec, claims=final.claims,
                        quantities=final.quantities, paper=final.paper,
                        timings={"total_s": round(elapsed, 4)}, precisions_tried=esc.tried,

@@ -306,3 +306,76 @@ def test_8_outputs_are_written_whole_or_not_at_all(tmp_path, monkeypatch):
         report.write_outputs(cert, tmp_path)
     after = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
     assert after == before          # the old pair intact, no temporary file left behind
+
+
+# ------------------------------------------------------------------ 9. escalation that cannot help
+
+from fractions import Fraction  # noqa: E402
+
+from rigor_gyro.core.outcome import Claim  # noqa: E402
+from rigor_gyro.kinds import Attempt  # noqa: E402
+from rigor_gyro.prover import no_progress  # noqa: E402
+
+RUDENKO = load_scene("rudenko1976")
+_A, _B = Fraction("15.08"), Fraction("6.154")
+
+
+def _rudenko(name, **params):
+    return dataclasses.replace(RUDENKO, name=name, parameters=dict(RUDENKO.parameters, **params), paper={})
+
+
+def test_9_nu2_equal_to_nu3_is_decided_exactly_without_escalating():
+    eps = (_A - _B) * (_B - 1) / (_A * _B - 2 * _A + 1)       # q26(1/(b-1)) = 0: nu2 = nu3 exactly
+    t0 = time.perf_counter()
+    cert = prove_scene(_rudenko("nu23", eps=str(eps)))
+    assert time.perf_counter() - t0 < 2 and max(cert.precisions_tried) <= 128
+    order = cert.claim("nu_ordering")
+    assert order.status is Status.REFUTED and "exactly" in order.reason
+    assert any("exactly_equal" in v for v in order.counterexample["violations"])
+    assert cert.claim("branches").status is Status.REFUTED
+
+
+def test_9_the_exact_pole_of_r2_makes_brackets_9_and_10_undefined_at_once():
+    eps = _B * _B * (_A - _B) / (_A * (_B - 1))                # b/(b-1) = eps a/(b(a-b))
+    cert = prove_scene(_rudenko("pole", eps=str(eps)))
+    assert max(cert.precisions_tried) <= 128
+    for j in (3, 4):
+        c = cert.claim(f"bracket_{j}")
+        assert c.status is Status.REFUTED and "undefined" in c.counterexample
+
+
+def test_9_a_width_set_by_a_subdivision_tolerance_is_not_escalated():
+    cert = prove_scene(dataclasses.replace(LYAP, name="mu", parameters=dict(LYAP.parameters, mu="0.01333333334")))
+    assert cert.precisions_tried == [64, 128]
+    assert any("did not shrink" in n for n in cert.notes)
+
+
+def _attempt(claim_decides, prec_pairs=None):
+    return Attempt([Claim("c", "s", Status.INCONCLUSIVE, "r", decides=claim_decides)], {})
+
+
+@pytest.mark.parametrize("before, after, prec, stuck", [
+    ("0.5 +/- 1e-10", "0.5 +/- 0.6e-10", 128, True),       # no shrink: a tolerance, not the precision
+    ("0 +/- 1e-19", "0 +/- 1e-38", 128, False),            # shrinking; too early to call it zero
+    ("0 +/- 1e-38", "0 +/- 1e-77", 256, True),             # shrinking around 0 at 256 bits: an equality
+    ("1e-40 +/- 1e-38", "1e-40 +/- 1e-77", 256, False),    # shrinking, no longer contains 0
+    ("nan", "nan", 256, False),                            # no information: may still progress
+])
+def test_9_no_progress_rule(before, after, prec, stuck):
+    from flint import arb
+    prev = (prec // 2, _attempt(arb(before)))
+    now = (prec, _attempt(arb(after)))
+    assert (no_progress(prev, now) is not None) is stuck
+
+
+def test_9_a_claim_without_a_deciding_ball_may_always_progress():
+    assert no_progress((64, _attempt(None)), (128, _attempt(None))) is None
+
+
+# ------------------------------------------------------------------ 10. a tiny positive c* is certified
+
+def test_10_invariant_estimate_with_a_tiny_positive_c_star_is_proved():
+    cert = prove_scene(dataclasses.replace(LYAP, name="mu", parameters=dict(LYAP.parameters, mu="0.01333333334")))
+    assert cert.claim("invariant_estimate").status is Status.PROVED
+    c = cert.quantities["c_star"]
+    assert c.lower() > 0 and c.upper() < 1e-15

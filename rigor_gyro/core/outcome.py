@@ -66,6 +66,9 @@ class Claim:
     precision_bits: int = 0
     details: dict[str, Any] = field(default_factory=dict)
     counterexample: dict[str, Any] | None = None
+    #: for an INCONCLUSIVE claim, the ball whose certain sign would decide it (a margin, a difference);
+    #: the prover compares it across precisions to tell whether doubling the precision still helps
+    decides: arb | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.status is Status.REFUTED and not self.counterexample:

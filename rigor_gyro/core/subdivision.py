@@ -111,10 +111,12 @@ class Extremum:
 
 
 def enclose_max(f: IntervalFunction, lo: object, hi: object, *, abs_tol: object = "1e-12",
-                max_pieces: int = 20000) -> Extremum:
-    """Enclose max of f over [lo, hi] to width about ``abs_tol`` (branch and bound)."""
+                rel_tol: object = 0, max_pieces: int = 20000) -> Extremum:
+    """Enclose max of f over [lo, hi] to width about ``abs_tol + rel_tol * |max|`` (branch and bound).
+    A relative tolerance is what certifies the sign of a small extremum: with only an absolute one
+    fixed from the size of f elsewhere, a maximum of 1e-9 would be "converged" at width 1e-6."""
     a0, b0 = ball(lo), ball(hi)
-    tol = ball(abs_tol)
+    atol, rtol = ball(abs_tol), ball(rel_tol)
     best_pt = ((a0 + b0) / 2).mid()
     best = f(best_pt).lower()          # max >= best (f at a point, its lower bound)
     for p in (a0, b0):
@@ -135,7 +137,7 @@ def enclose_max(f: IntervalFunction, lo: object, hi: object, *, abs_tol: object 
     converged = False
     while heap:
         _, _, a, b, up = heap[0]
-        if certainly_le(up - best, tol):
+        if certainly_le(up - best, atol + rtol * abs(best)):
             converged = True
             break
         if count >= max_pieces:
@@ -157,7 +159,7 @@ def enclose_max(f: IntervalFunction, lo: object, hi: object, *, abs_tol: object 
 
 
 def enclose_min(f: IntervalFunction, lo: object, hi: object, *, abs_tol: object = "1e-12",
-                max_pieces: int = 20000) -> Extremum:
+                rel_tol: object = 0, max_pieces: int = 20000) -> Extremum:
     """Enclose min of f over [lo, hi] (as -max(-f))."""
-    m = enclose_max(lambda x: -f(x), lo, hi, abs_tol=abs_tol, max_pieces=max_pieces)
+    m = enclose_max(lambda x: -f(x), lo, hi, abs_tol=abs_tol, rel_tol=rel_tol, max_pieces=max_pieces)
     return Extremum(-m.ball, m.argpoint, m.pieces, m.converged)

@@ -52,6 +52,8 @@ class Attempt:
     notes: list[str] = field(default_factory=list)
     widths_met: bool = True
     extra: dict[str, Any] = field(default_factory=dict)
+    #: the quantities whose requested widths are not met yet (the prover watches them shrink)
+    width_quantities: tuple[str, ...] = ()
     #: set by a kind when more precision cannot help the undecided claims (e.g. subdivision budgets
     #: exhausted on wide pieces): escalation stops there and the claims say what to change instead
     stalled: bool = False

@@ -43,7 +43,7 @@ from ...core.polyroots import isolate_polynomial
 from .. import Attempt
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table
 from .model import (BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic, nu_bounds,
-                    nu_quadratics)
+                    nu_identities, nu_quadratics, nus_exactly_equal, r2_denominator)
 
 __all__ = ["CLAIMS", "PARAMETERS", "RudenkoModel", "validate", "attempt", "characteristic_quartic",
            "nu_quadratics"]
@@ -174,7 +174,7 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
     for k in sorted(nus):
         quantities[f"nu_{k}"] = nus[k]
     have_nus = len(nus) == 6
-    ordered = None
+    ordered, equal, odec = None, set(), None
     if {"nu_ordering", "branches"} & set(wanted) or any(w.startswith("bracket") for w in wanted):
         if not have_nus:
             ordered, oce = None, None
@@ -185,29 +185,41 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
             bad = [(names[i], names[i + 1]) for i in range(6) if certainly_ge(chain[i], chain[i + 1])]
             und = [(names[i], names[i + 1]) for i in range(6)
                    if not certainly_lt(chain[i], chain[i + 1]) and not certainly_ge(chain[i], chain[i + 1])]
+            # overlapping balls of two nus may be the same number: decided exactly (rationals, gcds)
+            ident = nu_identities(a, b, eps)
+            equal = {(x, y) for x, y in und if x != "0" and nus_exactly_equal(ident[int(x[2])], ident[int(y[2])])}
+            und = [pair for pair in und if pair not in equal]
+            bad += sorted(equal)
             oce = None
             if bad:
                 ordered = False
                 ost, owhy = Status.REFUTED, "certified violation(s): " + "; ".join(
-                    f"{x} = {_fmt(chain[names.index(x)])} >= {y} = {_fmt(chain[names.index(y)])}" for x, y in bad)
+                    f"{x} = {_fmt(chain[names.index(x)])} " + ("= (exactly) " if (x, y) in equal else ">= ")
+                    + f"{y} = {_fmt(chain[names.index(y)])}" for x, y in bad)
                 oce = {"violations": [{"left": x, "left_value": _bounds(chain[names.index(x)]), "right": y,
-                                       "right_value": _bounds(chain[names.index(y)])} for x, y in bad]}
+                                       "right_value": _bounds(chain[names.index(y)]),
+                                       **({"exactly_equal": "decided in rational arithmetic (root of the exact "
+                                           "quadratic (4) / common root of both)"} if (x, y) in equal else {})}
+                                      for x, y in bad]}
             elif und:
                 ost, owhy = Status.INCONCLUSIVE, f"order of {und} undecided at this precision"
+                x, y = und[0]
+                odec = chain[names.index(y)] - chain[names.index(x)]
             else:
                 ordered = True
                 ost, owhy = Status.PROVED, "all six strict inequalities certified"
         if "nu_ordering" in wanted:
             claims.append(_claim("nu_ordering", ost, owhy, oce))
+            claims[-1].decides = odec
     if "branches" in wanted:
-        claims.append(_branch_claim(omegas, nus, ordered))
+        claims.append(_branch_claim(omegas, nus, ordered, equal))
     if "nu_bounds" in wanted:
         claims.append(_nu_bounds_claim(model, nus, quantities))
     balls = Params(ball(model.a.fmpq()), ball(model.b.fmpq()), ball(model.eps.fmpq()), ball(model.Omega2.fmpq()))
     for j in range(1, 5):
         cid = f"bracket_{j}"
         if cid in wanted:
-            claims.append(_bracket_claim(j, balls, omegas, quantities))
+            claims.append(_bracket_claim(j, balls, omegas, quantities, model))
     if "approximations" in wanted:
         claims.append(_approx_claim(balls, omegas, quantities))
     if model.hz_scale is not None and omegas:
@@ -218,18 +230,24 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
     paper, formulas = [], formula_table()
     if model.paper:
         paper = audit_paper(model, balls, omegas, nus, Q)
-    return Attempt(claims, quantities, paper, formulas, notes, widths_met)
+    return Attempt(claims, quantities, paper, formulas, notes, widths_met,
+                   width_quantities=tuple(k for k in quantities if k.startswith(("omega_", "freq_hz_"))
+                                          and not rel_width_at_most(quantities[k], model.rel_width.fmpq())))
 
 
-def _branch_claim(omegas: list[arb], nus: dict[int, arb], ordered: bool | None) -> Claim:
+def _branch_claim(omegas: list[arb], nus: dict[int, arb], ordered: bool | None, equal: set = frozenset()) -> Claim:
     if len(omegas) != 4 or len(nus) != 6:
         return _claim("branches", Status.INCONCLUSIVE, "needs the four roots and six nus enclosed")
     intervals = [(arb(0), nus[1], "(0, nu1)"), (nus[2], nus[3], "(nu2, nu3)"),
                  (nus[4], nus[5], "(nu4, nu5)"), (nus[6], None, "(nu6, oo)")]
     fails, undecided, ce = [], [], []
+    empty = {2: ("nu2", "nu3") in equal, 3: ("nu4", "nu5") in equal}    # an open interval (x, x) is empty
+    decides = None
     for j, (w, (lo, hi, label)) in enumerate(zip(omegas, intervals), start=1):
         inside = certainly_lt(lo, w) and (hi is None or certainly_lt(w, hi))
-        outside = certainly_ge(lo, w) or (hi is not None and certainly_ge(w, hi))
+        outside = certainly_ge(lo, w) or (hi is not None and certainly_ge(w, hi)) or empty.get(j, False)
+        if not inside and not outside and decides is None:
+            decides = (w - lo) if not certainly_lt(lo, w) else (hi - w)
         if outside:
             fails.append(f"omega_{j} = {_fmt(w)} not in {label}")
             ce.append({"root": f"omega_{j}", "value": _bounds(w), "branch": label, "branch_lo": _bounds(lo),
@@ -240,14 +258,17 @@ def _branch_claim(omegas: list[arb], nus: dict[int, arb], ordered: bool | None) 
         why = "; ".join(fails) + ("" if ordered else " (the nu ordering the paper assumes fails)")
         return _claim("branches", Status.REFUTED, why, {"outside": ce})
     if undecided:
-        return _claim("branches", Status.INCONCLUSIVE, "undecided: " + "; ".join(undecided))
+        c = _claim("branches", Status.INCONCLUSIVE, "undecided: " + "; ".join(undecided))
+        c.decides = decides
+        return c
     return _claim("branches", Status.PROVED, "each omega_j certainly strictly inside its branch interval")
 
 
-def _check_bounds(items: list[tuple[str, arb, arb, arb]]) -> tuple[Status, str, dict | None]:
+def _check_bounds(items: list[tuple[str, arb, arb, arb]]) -> tuple[Status, str, dict | None, arb | None]:
     """items: (label, lo, x, hi); proved when lo <= x <= hi certainly for all; refuted (with the
-    violations as counterexample) when some x is certainly outside its [lo, hi]."""
-    fails, und, ce = [], [], []
+    violations as counterexample) when some x is certainly outside its [lo, hi]; otherwise
+    inconclusive, with the first undecided margin (x - lo or hi - x) as what decides it."""
+    fails, und, ce, decides = [], [], [], None
     for label, lo, x, hi in items:
         if certainly_le(lo, x) and certainly_le(x, hi):
             continue
@@ -256,11 +277,13 @@ def _check_bounds(items: list[tuple[str, arb, arb, arb]]) -> tuple[Status, str, 
             ce.append({"quantity": label, "value": _bounds(x), "lower_bound": _bounds(lo), "upper_bound": _bounds(hi)})
         else:
             und.append(label)
+            if decides is None:
+                decides = (x - lo) if not certainly_le(lo, x) else (hi - x)
     if fails:
-        return Status.REFUTED, "certified violation(s): " + "; ".join(fails), {"violations": ce}
+        return Status.REFUTED, "certified violation(s): " + "; ".join(fails), {"violations": ce}, None
     if und:
-        return Status.INCONCLUSIVE, "undecided at this precision: " + ", ".join(und), None
-    return Status.PROVED, "all inequalities certified", None
+        return Status.INCONCLUSIVE, "undecided at this precision: " + ", ".join(und), None, decides
+    return Status.PROVED, "all inequalities certified", None, None
 
 
 def _nu_bounds_claim(model: RudenkoModel, nus: dict[int, arb], quantities: dict[str, arb]) -> Claim:
@@ -273,24 +296,32 @@ def _nu_bounds_claim(model: RudenkoModel, nus: dict[int, arb], quantities: dict[
         lo, hi = bounds[k]
         quantities[f"nu_{k}_lower_bound"], quantities[f"nu_{k}_upper_bound"] = lo, hi
         items.append((f"nu{k}", lo, nus[k], hi))
-    st, why, ce = _check_bounds(items)
-    return _claim("nu_bounds", st, why, ce)
+    st, why, ce, decides = _check_bounds(items)
+    c = _claim("nu_bounds", st, why, ce)
+    c.decides = decides
+    return c
 
 
-def _bracket_claim(j: int, p: Params, omegas: list[arb], quantities: dict[str, arb]) -> Claim:
+def _bracket_claim(j: int, p: Params, omegas: list[arb], quantities: dict[str, arb], model: RudenkoModel) -> Claim:
     cid = f"bracket_{j}"
     if len(omegas) != 4:
         return _claim(cid, Status.INCONCLUSIVE, "needs the certified roots")
+    if j in (3, 4) and r2_denominator(*(model.q(k) for k in ("a", "b", "eps"))) == 0:
+        return _claim(cid, Status.REFUTED, f"bracket {BRACKETS[j].eq} is undefined for these parameters: the "
+                      "denominator b/(b-1) - eps a/(b(a-b)) of R2 is exactly 0, so the bracket gives no bound",
+                      {"undefined": "R2 denominator b/(b-1) - eps a/(b(a-b)) = 0 (exact rational arithmetic)"})
     try:
         lo, hi = bracket(j, p, reading="intended")
     except NotReal as e:
         return _claim(cid, Status.REFUTED, f"the bracket has no real value for these parameters: {e}",
                       {"not_real": str(e), "radicand": _bounds(e.radicand)})
     quantities[f"bracket_{j}_lo"], quantities[f"bracket_{j}_hi"] = lo, hi
-    st, why, ce = _check_bounds([(f"omega_{j}", lo, omegas[j - 1], hi)])
+    st, why, ce, decides = _check_bounds([(f"omega_{j}", lo, omegas[j - 1], hi)])
     if st is Status.PROVED:
         why = f"{_fmt(lo)} <= omega_{j} <= {_fmt(hi)} certified (reading: {BRACKETS[j].reading_note})"
-    return _claim(cid, st, why, ce)
+    c = _claim(cid, st, why, ce)
+    c.decides = decides
+    return c
 
 
 def _approx_claim(p: Params, omegas: list[arb], quantities: dict[str, arb]) -> Claim:

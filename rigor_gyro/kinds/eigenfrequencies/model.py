@@ -30,7 +30,7 @@ from flint import arb, fmpq, fmpq_poly
 
 from ...core.balls import certainly_lt, decimal_bounds
 
-__all__ = ["characteristic_quartic", "nu_quadratics", "NotReal", "Params", "nu_bounds", "Bracket", "BRACKETS",
+__all__ = ["characteristic_quartic", "nu_quadratics", "nu_identities", "nus_exactly_equal", "r2_denominator", "NotReal", "Params", "nu_bounds", "Bracket", "BRACKETS",
            "bracket", "approximation", "APPROX_TEXT"]
 
 
@@ -52,6 +52,50 @@ def nu_quadratics(a: fmpq, b: fmpq, eps: fmpq) -> tuple[fmpq_poly, fmpq_poly]:
     q14 = fmpq_poly([eps, -(eps * (a - 1) + a - b), c2])
     q26 = fmpq_poly([eps * a, -(eps * (a - 1) + b * (a - b)), c2])
     return q14, q26
+
+
+def nu_identities(a: fmpq, b: fmpq, eps: fmpq) -> dict[int, tuple]:
+    """Exact descriptions of nu1 .. nu6: ("rational", r) for nu3 = 1/(b-1) and nu5 = b/(b-1),
+    ("root", q, i) for the i-th smallest root (i = 0, 1) of the quadratic q of (4)."""
+    q14, q26 = nu_quadratics(a, b, eps)
+    return {1: ("root", q14, 0), 2: ("root", q26, 0), 3: ("rational", 1 / (b - 1)), 4: ("root", q14, 1),
+            5: ("rational", b / (b - 1)), 6: ("root", q26, 1)}
+
+
+def _root_index(q: fmpq_poly, r: fmpq) -> int | None:
+    """0 or 1 if the rational r is the smaller or larger root of the quadratic q (with two distinct real
+    roots), None if it is no root: exact (r is the smaller iff 2r < the sum of the roots, -q1/q2)."""
+    if q(r) != 0:
+        return None
+    total = -q[1] / q[2]
+    return 0 if 2 * r < total else 1
+
+
+def nus_exactly_equal(u: tuple, v: tuple) -> bool:
+    """Whether two nus given by :func:`nu_identities` are the same real number, decided exactly
+    (rational arithmetic and polynomial gcds; no balls). Assumes each quadratic has two distinct real
+    roots (the caller has isolated them)."""
+    if u[0] == "rational" and v[0] == "rational":
+        return u[1] == v[1]
+    if u[0] == "rational" or v[0] == "rational":
+        (_, r), (_, q, i) = (u, v) if u[0] == "rational" else (v, u)
+        return _root_index(q, r) == i
+    (_, q, i), (_, p, j) = u, v
+    if q == p:
+        return i == j
+    g = q.gcd(p)
+    if g.degree() == 2:                 # the same quadratic up to a factor: the same roots, in order
+        return i == j
+    if g.degree() == 1:
+        r = -g[0] / g[1]
+        return _root_index(q, r) == i and _root_index(p, r) == j
+    return False
+
+
+def r2_denominator(a: fmpq, b: fmpq, eps: fmpq) -> fmpq:
+    """The denominator b/(b-1) - eps a/(b(a-b)) of R2 in (9), (10), exactly: where it is 0 the brackets
+    (9) and (10) are undefined (the paper's nu5 - nu2^+ vanishes)."""
+    return b / (b - 1) - eps * a / (b * (a - b))
 
 
 # ----------------------------------------------------------------------------- the paper's estimates

@@ -246,7 +246,9 @@ def _vdot_claim(ctx: _Ctx, R: arb, how: str) -> tuple[Claim, dict]:
     info = {"pieces": v.pieces, "R": R}
     if v.witness is not None:
         info["witness"] = v.witness
-    return _claim("vdot_nonpositive", v.status, v.reason, v.counterexample, **v.details), info
+    claim = _claim("vdot_nonpositive", v.status, v.reason, v.counterexample, **v.details)
+    claim.decides = v.decides
+    return claim, info
 
 
 # ------------------------------------------------------------------------------------ V > 0
@@ -311,8 +313,10 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
     m1, m3 = g.phi_minimiser(xs)
     inside = certainly_lt(m1 ** 2 + m3 ** 2, R ** 2)
     # V(-x) = V(x), so the cylinder over [0, x2*] with every theta covers |x2| <= x2*
-    cyl = enclose_max(lambda x: -cylinder_lower_bound(g, R)(x), 0, xs,
-                      abs_tol=abs(face) * arb("1e-6") + R * R * arb("1e-6"), max_pieces=ctx.m.max_pieces)
+    # the tolerance is relative to the minimum being certified (a tiny positive c* must come out positive),
+    # with an absolute floor at the precision's resolution of V's scale
+    cyl = enclose_max(lambda x: -cylinder_lower_bound(g, R)(x), 0, xs, rel_tol=arb("1e-6"),
+                      abs_tol=(abs(face) + R * R) * arb(2) ** (-ctx.prec // 2), max_pieces=ctx.m.max_pieces)
     cyl_lb = (-cyl.ball).lower()
     # an upper bound of the boundary minimum: V at boundary points
     samples = [g.V(R * arb(math.cos(2 * math.pi * j / 32)), x2, R * arb(math.sin(2 * math.pi * j / 32)))
@@ -634,5 +638,7 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
     # subdivision budgets do not grow with precision: past 256 bits an undecided claim stays undecided
     stalled = prec >= STALL_PREC and any(c.status is Status.INCONCLUSIVE for c in claims)
     return Attempt(claims, quantities, paper, formulas, notes, widths_met=widths_met, stalled=stalled,
+                   width_quantities=tuple(n for n in ("m", "M", "p", "R1", "R2")
+                                          if n in quantities and not rel_width_at_most(quantities[n], model.rel_width)),
                    extra={"moment": {"name": ctx.g.law.name, "formula": ctx.g.law.formula}})
 

@@ -419,6 +419,7 @@ class VdotVerdict:
     details: dict = field(default_factory=dict)
     witness: tuple[arb, arb, arb, arb] | None = None
     counterexample: dict | None = None
+    decides: arb | None = None
 
 
 def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: int) -> VdotVerdict:
@@ -428,6 +429,9 @@ def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: i
     [-x2*, x2*]; REFUTED only with a certified point of the region where grad V . f > 0 (automatic
     differentiation, not the Psi form); otherwise INCONCLUSIVE with the undecided piece.
     ``how`` names the radius in the reason (e.g. "R = min(R1, R2) from (13), (14)")."""
+    if not (R.is_finite() and certainly_positive(R)):
+        return VdotVerdict(Status.INCONCLUSIVE, f"{how} = {_fmt(R)} is not certainly a positive radius (e.g. R2 of "
+                           "(14) vanishes where mu H cos^2 x2* = A0 m): set option R", 0, decides=R)
     psi1, psi2 = psi_min_functions(g, R)
     results, pieces = {}, 0
     for name, fn in (("Psi1", psi1), ("Psi2", psi2)):

@@ -565,4 +565,4 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
         notes.extend(fnotes)
         if model.paper:
             paper = audit_paper(model, sp, main)
-    return Attempt(claims, quantities, paper, formulas, notes, widths_met, extra)
+    return Attempt(claims, quantities, paper, formulas, notes, widths_met, extra, width_quantities=("theta_star",))
