@@ -1,6 +1,7 @@
 """Test configuration: hypothesis profiles and a guard that every test leaves the precision as found.
 
-Profiles (select with ``--hypothesis-profile=NAME``; CI uses ``ci``, the default):
+Profiles (select with ``--hypothesis-profile=NAME`` or ``HYPOTHESIS_PROFILE=NAME``: the same thing in
+every test file, which read example counts from the loaded profile; CI uses ``ci``, the default):
 
 * ``ci``: derandomized, no deadline, bounded examples: the default test run stays short and
   reproducible on 2 cores.
@@ -41,3 +42,14 @@ def pytest_collection_modifyitems(config, items):
     for item in items:
         if "slow" in item.keywords:
             item.add_marker(skip)
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    """List the float findings the property tests collected (a float result outside its tolerance of
+    the certified ball is a finding about floats, never a test failure: floats never decide)."""
+    import sys
+    for name, module in sorted(sys.modules.items()):
+        findings = getattr(module, "FLOAT_FAILURES", None) if name.startswith(("tests.", "test_")) else None
+        if findings:
+            terminalreporter.write_line(f"{name}: {len(findings)} float finding(s), first: "
+                                        f"{next(iter(findings.values()))}"[:300])

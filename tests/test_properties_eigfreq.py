@@ -7,7 +7,7 @@ b > 1, a > b, eps > 0, Omega2 > 0, with its edges: b - 1 and a - b down to 1e-6,
 * mpmath ``polyroots`` at 50 digits (no guarantee, but ~1e-50 relative when it converges): the
   certified balls, widened by ``MPMATH_REL_TOL``, must contain it;
 * numpy's companion-matrix roots (float): must lie in the ball widened by ``FLOAT_REL_TOL``; when they
-  do not, that is a finding about floats (counted in ``FLOAT_FAILURES`` and reported by the last test
+  do not, that is a finding about floats (counted in ``FLOAT_FAILURES`` and listed in the test run's summary (tests/conftest.py)
   of the module), never a failure of the test;
 * the library itself at twice the precision: a proved or refuted claim is never contradicted, and the
   balls of every quantity overlap.
@@ -19,7 +19,6 @@ summary test prints the float failures found. Every shrunk failure becomes an ``
 import decimal
 import functools
 import math
-import warnings
 from decimal import Decimal
 from fractions import Fraction
 
@@ -234,7 +233,6 @@ def test_twice_the_precision_never_contradicts(params):
     first = prove(params, claims)
     p = first.precision_bits
     second = prove(params, claims, prec=2 * p)
-    assert second.precision_bits >= 2 * p
     for c1 in first.claims:
         s2 = status(second, c1.id)
         assert {c1.status, s2} != {Status.PROVED, Status.REFUTED}, (c1.id, c1.reason, second.claim(c1.id).reason)
@@ -347,16 +345,3 @@ def test_rational_root_cases_do_have_rational_roots(params):
 def test_rational_roots_are_isolated(params):
     """A rational root (an exact point ball) is verified like any other: every decidable claim decided."""
     assert_decided(prove(params, tuple(ALL_BUT_SLOW)))
-
-
-def test_zz_float_failure_summary():
-    """Report (never fail on) the float failures collected above; run with -s to see the list."""
-    lines = [f"{k[:4]} omega_{k[4]}: {v}" for k, v in sorted(FLOAT_FAILURES.items())]
-    print(f"\nfloat failures: {len(FLOAT_FAILURES)} root(s) in {len({k[:4] for k in FLOAT_FAILURES})} "
-          f"parameter set(s) outside FLOAT_REL_TOL = {FLOAT_REL_TOL}; numpy non-real/non-positive "
-          f"(skipped): {len(FLOAT_SKIPS)}")
-    for line in lines:
-        print("  ", line)
-    if FLOAT_FAILURES:
-        warnings.warn(f"{len(FLOAT_FAILURES)} numpy root(s) outside FLOAT_REL_TOL = {FLOAT_REL_TOL} "
-                      f"of the certified balls (first: {lines[0]})", stacklevel=1)

@@ -11,12 +11,9 @@ balls must overlap the first ones.
 The ``ci`` profile runs a handful of examples (each proof takes ~0.1-1 s); ``HYPOTHESIS_PROFILE=long``
 runs a campaign.
 """
-import os
 from decimal import Decimal
 
 import mpmath
-import numpy as np
-import pytest
 from flint import arb
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
@@ -26,8 +23,8 @@ from rigor_gyro.certificate import Status
 from rigor_gyro.prover import prove_scene
 from rigor_gyro.scene import parse_scene
 
-LONG = os.environ.get("HYPOTHESIS_PROFILE") == "long"
-EXAMPLES = 300 if LONG else 6
+#: examples per property, from the loaded hypothesis profile (--hypothesis-profile or HYPOTHESIS_PROFILE)
+EXAMPLES = max(3, settings.default.max_examples // 7)
 
 #: mpmath findroot at 40 (+10 guard) digits: good to ~1e-35 absolute on theta ~ 0.1-1
 MPMATH_TOL = "1e-30"
@@ -103,11 +100,3 @@ def test_certified_orbit_against_float_mpmath_and_twice_the_precision(params):
     for k, v in c.quantities.items():
         if k in c2.quantities:
             assert v.overlaps(c2.quantities[k]), (params, k)
-
-
-def test_zz_float_failure_summary():
-    """Report (never fail on) float disagreements found by the property test."""
-    if FLOAT_FAILURES:
-        print(f"\n{len(FLOAT_FAILURES)} float failure(s):")
-        for k, v in list(FLOAT_FAILURES.items())[:20]:
-            print("  ", v)

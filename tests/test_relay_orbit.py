@@ -1,17 +1,15 @@
 """The periodic-orbit scene (Roitenberg 1947): both built-in readings, the audit, cross-checks, the stiff
 and extreme cases, a planted no-orbit case, bad input.
 
-Slow campaigns (H = 1e4 in both readings, ~5-10 s each) run only with RIGOR_GYRO_SLOW=1 or
-HYPOTHESIS_PROFILE=long.
+Slow campaigns (H = 1e4 in both readings, ~5-10 s each) run only with --runslow.
 """
 import json
-import os
 import subprocess
 import sys
 
 import numpy as np
 import pytest
-from flint import acb_mat, arb, arb_mat
+from flint import arb, arb_mat
 
 from rigor_gyro.kinds.periodic_orbit.approx import (approx_multipliers, approx_orbit_mpmath, approx_relay_simulation,
                                            approx_x0)
@@ -23,8 +21,7 @@ from rigor_gyro.kinds.periodic_orbit.flow import (RelayParams, Spectrum, g_coeff
                                    taylor_enclosure, x0_at)
 from rigor_gyro.scene import load_scene, parse_scene
 
-SLOW = pytest.mark.skipif(not (os.environ.get("RIGOR_GYRO_SLOW") or os.environ.get("HYPOTHESIS_PROFILE") == "long"),
-                          reason="slow campaign: set RIGOR_GYRO_SLOW=1")
+SLOW = pytest.mark.slow          # runs with --runslow (or RIGOR_GYRO_SLOW=1), like every slow test
 
 PAPER = dict(A="125", B="0.133", H="100", tau="0.01", sigma="0.13125", n="50", K="7.5", p="40", S="0.15")
 B215 = dict(PAPER, B="2/15")

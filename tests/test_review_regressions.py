@@ -379,3 +379,22 @@ def test_10_invariant_estimate_with_a_tiny_positive_c_star_is_proved():
     assert cert.claim("invariant_estimate").status is Status.PROVED
     c = cert.quantities["c_star"]
     assert c.lower() > 0 and c.upper() < 1e-15
+
+
+# ------------------------------------------------------------------ 11. the smallest multiplier of a stiff case
+
+@pytest.mark.parametrize("tau", ["1e-3", "1e-4"])
+def test_11_every_multiplier_modulus_is_positive_with_a_relative_width(tau):
+    from flint import arb
+    cert = prove_scene(_relay(f"tau{tau}", tau=tau))
+    assert cert.verdict is Status.PROVED and cert.precisions_tried == [64]
+    moduli = [cert.quantities[f"multiplier_modulus_{j}"] for j in range(1, 5)]
+    for m in moduli:
+        assert m.lower() > 0 and 2 * m.rad() <= arb("1e-10") * m.lower()
+    # Liouville: the product of the moduli is exp(-(1/tau + 1/sigma) theta*)
+    P = RelayParams.from_strings(**dict(RELAY.parameters, tau=tau))
+    with working_precision(64):
+        theta = cert.quantities["theta_star"]
+        liou = (-(1 / ball(P.tau) + 1 / ball(P.sigma)) * theta).exp()
+        prod = moduli[0] * moduli[1] * moduli[2] * moduli[3]
+    assert prod.overlaps(liou)

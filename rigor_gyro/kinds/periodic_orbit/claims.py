@@ -244,9 +244,25 @@ def _multipliers(sp: Spectrum, v: RootVerdict) -> None:
         raise AssertionError(f"Liouville check failed: prod {prod}, det {det}, expected {liou}: a bug")
     v.jacobian_note = (f"det = product of multipliers = {_fmt(det, 10)} contains -exp(-(1/tau+1/sigma) theta*) "
                        f"= {_fmt(liou, 10)} (Liouville check)")
+    # The smallest multiplier of a stiff case (1e-56 and far below) comes back from eig as a ball around
+    # 0. The product of the four is exactly the Liouville value, so the smallest is that divided by the
+    # other three: an enclosure with a positive modulus and a relative width like the others'.
+    eig = list(eig)
+    k = min(range(4), key=lambda i: float(abs(eig[i]).upper()))      # float picks; balls enclose
+    rest = acb(1)
+    for i in range(4):
+        if i != k:
+            rest *= eig[i]
+    if rest.is_finite() and certainly_positive(abs(rest)):
+        z = acb(liou) / rest
+        if z.is_finite() and eig[k].is_finite() and not z.overlaps(eig[k]):
+            raise AssertionError(f"Liouville quotient {z} misses the eigenvalue ball {eig[k]}: a bug")
+        if z.is_finite() and (not eig[k].is_finite() or not certainly_positive(abs(eig[k]))
+                              or certainly_lt(z.rad(), eig[k].rad())):
+            eig[k] = z
+            v.jacobian_note += "; the smallest multiplier is enclosed as that product divided by the other three"
     # J is real, so its spectrum is closed under conjugation: an eigenvalue whose conjugate ball meets
     # no other eigenvalue's ball is its own conjugate, i.e. exactly real (imaginary part set to 0)
-    eig = list(eig)
     for k, z in enumerate(eig):
         zc = z.conjugate()
         if z.imag.contains(0) and not any(zc.overlaps(w) for j, w in enumerate(eig) if j != k):
