@@ -1,16 +1,8 @@
 """Eigenfrequencies of an astatic gyroscope with an elastic gimbal (Rudenko 1976): scene kind
 ``eigenfrequencies``.
 
-Model. With lambda = i sqrt(omega) the characteristic equation (1), read as
-
-    lambda^2 P1(lambda^2) + Omega^2 P2(lambda^2) = 0,
-    P1(l) = [l (b-1) + b] [l^2 (a-b)(b-1) + l (eps (a-1) + b (a-b)) + eps a],
-    P2(l) = [l (b-1) + 1] [l^2 (a-b)(b-1) + l (eps (a-1) + a - b) + eps],
-
-is the quartic Q(omega) = -omega P1(-omega) + Omega^2 P2(-omega) = 0 with exact rational coefficients,
-i.e. the paper's form (2) Omega^2 = F(omega) = omega (omega-nu2)(omega-nu5)(omega-nu6) /
-((omega-nu1)(omega-nu3)(omega-nu4)), with nu3 = 1/(b-1), nu5 = b/(b-1), nu1 < nu4 and nu2 < nu6 the
-roots of the two quadratic factors (the paper's (4)).
+The claims. Model: the characteristic quartic Q(omega) of (1)-(2) and the nu quadratics (4), in
+:mod:`.model`.
 
 Guarantee: every claim is decided by Arb balls over the exact rationals a, b, eps, Omega2 (and the
 exact ``hz_scale`` if given). The roots omega_j are isolated by :mod:`rigor_gyro.core.polyroots` (exact
