@@ -93,8 +93,12 @@ class Certificate:
             "formulas": self.formulas,
             "notes": self.notes,
             **({"extra": self.extra} if self.extra else {}),
-            "timings": self.timings,
         }
+
+    def timings_json(self) -> dict[str, Any]:
+        """The run-dependent part, kept out of the certificate so that the same scene at the same
+        settings gives byte-identical certificate and report files (written as <name>.timings.json)."""
+        return {"scene": self.scene.get("name"), "precisions_tried": self.precisions_tried, **self.timings}
 
     def dumps(self) -> str:
         return json.dumps(self.to_json(), indent=2, ensure_ascii=False) + "\n"

@@ -35,8 +35,7 @@ def render_markdown(cert: dict[str, Any]) -> str:
     out.append("Every statement below is a theorem about the exact parameters listed (decimal strings "
                "read as exact rationals), decided by Arb ball arithmetic (python-flint "
                f"{cert['software']['python_flint']}, rigor_gyro {cert['software']['rigor_gyro']}). "
-               f"Working precision: {cert['precision_bits']} bits (tried {cert.get('precisions_tried', [])}). "
-               f"Time: {cert['timings'].get('total_s', 0):.3f} s.")
+               f"Working precision: {cert['precision_bits']} bits (tried {cert.get('precisions_tried', [])}).")
     out.append("")
     out.append("## Parameters (exact)")
     out.append("")
@@ -123,6 +122,10 @@ def _write_temp(folder: Path, final: str, text: str) -> Path:
     return Path(tmp)
 
 
+def _timings_path(jpath: Path) -> Path:
+    return jpath.with_name(jpath.name[: -len(".json")] + ".timings.json")
+
+
 def output_paths(name: str, out_dir: str | Path) -> tuple[Path, Path]:
     """``<out>/<name>.json`` and ``<out>/<name>.md``; SceneError if the name would leave the folder."""
     out = Path(out_dir)
@@ -134,7 +137,8 @@ def output_paths(name: str, out_dir: str | Path) -> tuple[Path, Path]:
 
 
 def write_outputs(cert: Certificate, out_dir: str | Path) -> tuple[Path, Path]:
-    """Write ``<name>.json`` and ``<name>.md`` into ``out_dir`` (created if needed).
+    """Write ``<name>.json`` and ``<name>.md`` into ``out_dir`` (created if needed), and the run's wall
+    times to ``<name>.timings.json`` (git-ignored: the pair itself is byte-identical across runs).
 
     Guarantee: each file is written whole to a temporary name in the same folder and renamed into
     place; both are complete before either is replaced, and the old report is removed before the new
@@ -154,6 +158,9 @@ def write_outputs(cert: Certificate, out_dir: str | Path) -> tuple[Path, Path]:
         mpath.unlink(missing_ok=True)
         os.replace(temps[0], jpath)
         os.replace(temps[1], mpath)
+        # run-dependent data (wall time) beside the pair, never inside it: the pair is reproducible
+        temps.append(_write_temp(out, _timings_path(jpath).name, json.dumps(cert.timings_json(), indent=2) + "\n"))
+        os.replace(temps[2], _timings_path(jpath))
     finally:
         for tmp in temps:
             tmp.unlink(missing_ok=True)

@@ -35,7 +35,8 @@ def test_prove_builtin_writes_certificate_and_report(tmp_path):
     assert "rudenko1976: roots: proved" in r.stdout
     cert = json.loads((tmp_path / "rudenko1976.json").read_text())
     assert cert["schema"] == "rigor-gyro/certificate/1" and cert["verdict"] == "proved"
-    assert set(cert) >= {"scene", "software", "precision_bits", "verdict", "claims", "quantities", "paper", "timings"}
+    assert set(cert) >= {"scene", "software", "precision_bits", "verdict", "claims", "quantities", "paper"}
+    assert "timings" not in cert
     assert cert["scene"]["parameters"]["a"] == "15.08"
     assert {"id", "statement", "status", "reason", "precision_bits"} <= set(cert["claims"][0])
     assert {"lo", "hi", "mid", "rad"} == set(cert["quantities"]["omega_1"])
@@ -94,3 +95,12 @@ def test_proving_imports_neither_numpy_nor_scipy():
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip() == "[]"
+
+
+def test_the_same_scene_gives_byte_identical_outputs(tmp_path):
+    """Run-dependent data (timings) live in <name>.timings.json; certificate and report are reproducible."""
+    for d in ("a", "b"):
+        assert run("prove", "rudenko1976", "agafonov2013", "--quiet", "--out", str(tmp_path / d)).returncode == 0
+    for name in ("rudenko1976.json", "rudenko1976.md", "agafonov2013.json", "agafonov2013.md"):
+        assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes(), name
+    assert json.loads((tmp_path / "a" / "rudenko1976.timings.json").read_text())["total_s"] > 0
