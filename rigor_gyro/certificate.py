@@ -14,6 +14,7 @@ defined in :mod:`rigor_gyro.core.outcome` and re-exported here, where a certific
 """
 from __future__ import annotations
 
+import hashlib
 import json
 import platform
 from dataclasses import dataclass, field
@@ -26,9 +27,16 @@ from .core.errors import CertificationFailed
 from .core.outcome import AuditRow, AuditStatus, Claim, Status
 from .version import __version__
 
-__all__ = ["SCHEMA", "Status", "AuditStatus", "Claim", "AuditRow", "Certificate", "EXIT_CODES"]
+__all__ = ["SCHEMA", "Status", "AuditStatus", "Claim", "AuditRow", "Certificate", "EXIT_CODES", "digest"]
 
-SCHEMA = "rigor-gyro/certificate/1"
+SCHEMA = "rigor-gyro/certificate/2"
+
+
+def digest(data: dict[str, Any]) -> str:
+    """sha256 of the canonical JSON (sorted keys, no spaces) of a certificate without ``integrity``."""
+    body = {k: v for k, v in data.items() if k != "integrity"}
+    text = json.dumps(body, sort_keys=True, separators=(",", ":"), ensure_ascii=False)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
 EXIT_CODES = {Status.PROVED: 0, Status.REFUTED: 1, Status.INCONCLUSIVE: 3}
@@ -79,7 +87,7 @@ class Certificate:
     def to_json(self) -> dict[str, Any]:
         import flint
 
-        return {
+        data = {
             "schema": SCHEMA,
             "scene": self.scene,
             "software": {"rigor_gyro": __version__, "python_flint": flint.__version__,
@@ -94,6 +102,8 @@ class Certificate:
             "notes": self.notes,
             **({"extra": self.extra} if self.extra else {}),
         }
+        data["integrity"] = {"sha256": digest(data)}
+        return data
 
     def timings_json(self) -> dict[str, Any]:
         """The run-dependent part, kept out of the certificate so that the same scene at the same

@@ -52,6 +52,11 @@ def _parser() -> argparse.ArgumentParser:
     pr.add_argument("--plots", action="store_true",
                     help="also draw the scene's figures into --out (needs the 'plots' extra: matplotlib)")
     pr.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
+    ck = sub.add_parser("check", help="re-verify certificates from their own data (exit 0 all confirm, "
+                        "1 one does not, 2 unreadable)")
+    ck.add_argument("certs", nargs="+", metavar="CERT.json", help="certificate files written by 'prove'")
+    ck.add_argument("--quiet", action="store_true", help="print only one line per certificate")
+    ck.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     return p
 
 
@@ -155,6 +160,27 @@ def _cmd_prove(args) -> int:
     return next(c for c in _PRECEDENCE if c in codes or c == 0)
 
 
+def _cmd_check(args) -> int:
+    """Exit 0 when every certificate confirms, 1 naming the first check that does not, 2 unreadable."""
+    from .check import CertificateError, check_file
+    codes = []
+    for path in args.certs:
+        try:
+            report = check_file(path)
+        except CertificateError as e:
+            _say(f"rigor-gyro: {e}", err=True)
+            codes.append(EXIT_BAD_INPUT)
+            continue
+        if not args.quiet:
+            for r in report.results:
+                _say(f"{path}: {r.item}: {'ok' if r.ok else 'FAILED'} - {r.message}")
+        bad = report.first_failure
+        _say(f"{path}: " + ("confirmed" if report.ok else f"NOT confirmed: {bad.item}: {bad.message}")
+             + f" ({len(report.results)} checks, {report.seconds:.2f} s)")
+        codes.append(0 if report.ok else 1)
+    return next(c for c in (EXIT_BAD_INPUT, 1, 0) if c in codes or c == 0)
+
+
 def _plots(scene, cert, out: str) -> int:
     """Draw the figures of a proved scene (float drawings of certified objects; never a verdict)."""
     from .kinds import plots_hook
@@ -188,6 +214,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if args.command == "list":
             return _cmd_list()
+        if args.command == "check":
+            return _cmd_check(args)
         return _cmd_prove(args)
     except RigorGyroError as e:
         return _bad(str(e))

@@ -8,7 +8,9 @@ A kind is a package ``rigor_gyro.kinds.<kind>`` whose ``__init__`` exports
 * ``attempt(model, claims, prec) -> Attempt``: one evaluation at ``prec`` bits of the requested claims
   (it computes only what they need);
 
-and may have a ``plots`` module with ``plots(scene, cert, out_dir) -> [paths]`` (the figures; float
+and has a ``check`` module with ``check(model, certificate_json) -> [CheckResult]`` that re-decides
+every claim from the certificate's stored data (used by ``rigor-gyro check``), and may have a
+``plots`` module with ``plots(scene, cert, out_dir) -> [paths]`` (the figures; float
 drawing code, imported by the driver only when ``--plots`` is given). Inside a kind, ``model``
 (or ``flow``) holds the mathematics shared by the claims and the paper audit, ``claims`` the claims,
 ``paper`` the printed formulas and the audit, ``approx`` the float/mpmath cross-checks (never a
@@ -29,7 +31,7 @@ from flint import arb
 from ..core.errors import SceneError
 from ..core.outcome import AuditRow, AuditStatus, Claim, Status
 
-__all__ = ["KINDS", "PLANNED_KINDS", "Attempt", "kind_module", "plots_hook"]
+__all__ = ["KINDS", "PLANNED_KINDS", "Attempt", "kind_module", "plots_hook", "checker"]
 
 #: kind -> package implementing it (imported only when a scene of that kind is proved)
 KINDS = {
@@ -84,3 +86,16 @@ def plots_hook(kind: str) -> Callable[..., list] | None:
             return None
         raise
     return module.plots
+
+
+def checker(kind: str) -> Callable[..., list] | None:
+    """The kind's ``check(model, data)`` function (:mod:`rigor_gyro.check`), or None if it has none."""
+    if kind not in KINDS:
+        raise SceneError(f"unknown kind {kind!r}; known kinds: {', '.join(KINDS)}")
+    try:
+        module = importlib.import_module(KINDS[kind] + ".check")
+    except ModuleNotFoundError as e:
+        if e.name == KINDS[kind] + ".check":
+            return None
+        raise
+    return module.check

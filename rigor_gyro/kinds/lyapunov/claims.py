@@ -527,7 +527,6 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     estimate = max(f1, f2, float(R_enc.mid()))
     quantities["mu_best"] = _q(mu_best)
     quantities["R_sup_at_mu_best"] = R_enc
-    quantities["R_sup_float_estimate"] = arb(str(estimate))
     sub = _Ctx(ctx.m, ctx.prec)
     sub.g = gb
     claim = None

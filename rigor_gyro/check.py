@@ -1,0 +1,160 @@
+"""Re-verify a certificate from its own data: ``rigor-gyro check CERT.json``.
+
+A certificate is worth exactly its soundness, so the checker does not trust the prover's search: it
+rebuilds the exact model from the certificate's parameters and options, and re-decides each claim
+from the stored enclosures and witnesses by a separate, simpler path (exact rational sign changes
+and comparisons, re-evaluation of the stored subdivision pieces, recomputation at a higher precision
+of every closed-form quantity). Checking an inclusion is cheaper than finding it.
+
+What is checked:
+
+* integrity: the certificate's ``integrity.sha256`` is the digest of everything else (an accidental
+  or careless edit of any field is rejected; a deliberate edit that also fixes the digest meets the
+  semantic checks below);
+* structure: the schema, the verdict rule (proved iff every claim proved, refuted iff some claim
+  refuted), the claim ids (exactly those the scene asks for), each claim's statement as the kind
+  words it, parameters and options valid for the kind;
+* every claim: a ``proved`` claim is re-proved from the stored data, a ``refuted`` one has its
+  counterexample re-certified, an ``inconclusive`` one claims nothing and is not checked;
+* every quantity the kind's checker knows: its stored [lo, hi] must contain the value (a quantity
+  the checker cannot re-verify is reported as such and makes the check fail).
+
+The audit of the paper (rows about the source, never a verdict) is covered by the digest only.
+
+Guarantee: :func:`check_certificate` returns a report whose ``ok`` is True only when every check
+passed. Fails when: the file is not readable JSON of this schema: :class:`CertificateError`.
+"""
+from __future__ import annotations
+
+import json
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from .certificate import SCHEMA, digest
+from .core.errors import RigorGyroError
+
+__all__ = ["CertificateError", "CheckResult", "CheckReport", "check_certificate", "check_file", "digest"]
+
+
+class CertificateError(RigorGyroError, ValueError):
+    """The file is not a readable certificate (not JSON, wrong schema, missing fields)."""
+
+
+@dataclass
+class CheckResult:
+    """One check: what was checked (a claim id, a quantity, 'integrity', ...), whether it passed, why."""
+
+    item: str
+    ok: bool
+    message: str
+
+
+@dataclass
+class CheckReport:
+    file: str
+    results: list[CheckResult] = field(default_factory=list)
+    seconds: float = 0.0
+
+    @property
+    def ok(self) -> bool:
+        return bool(self.results) and all(r.ok for r in self.results)
+
+    @property
+    def first_failure(self) -> CheckResult | None:
+        return next((r for r in self.results if not r.ok), None)
+
+
+def check_file(path: str | Path) -> CheckReport:
+    """Read and check a certificate file; CertificateError if it cannot be read as one."""
+    p = Path(path)
+    try:
+        data = json.loads(p.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as e:
+        raise CertificateError(f"{path}: not a readable certificate ({e})") from None
+    if isinstance(data, dict) and "total_s" in data and "schema" not in data:
+        raise CertificateError(f"{path}: a timings file (<name>.timings.json), not a certificate")
+    try:
+        report = check_certificate(data, str(path))
+    except CertificateError as e:
+        raise CertificateError(f"{path}: {e}") from None
+    return report
+
+
+def _structure(data: Any) -> None:
+    if not isinstance(data, dict):
+        raise CertificateError("a certificate is a JSON object")
+    missing = [k for k in ("schema", "scene", "precision_bits", "verdict", "claims", "quantities", "integrity")
+               if k not in data]
+    if missing:
+        raise CertificateError(f"not a certificate: missing {missing}")
+    if data["schema"] != SCHEMA:
+        raise CertificateError(f"schema {data['schema']!r}: this checker reads {SCHEMA!r}")
+    scene = data["scene"]
+    if not isinstance(scene, dict) or not {"name", "kind", "parameters"} <= set(scene):
+        raise CertificateError("scene block incomplete")
+    if not isinstance(data["claims"], list) or not isinstance(data["quantities"], dict):
+        raise CertificateError("claims must be a list and quantities an object")
+    for c in data["claims"]:
+        if not isinstance(c, dict) or not {"id", "statement", "status"} <= set(c):
+            raise CertificateError(f"malformed claim {c!r}"[:200])
+
+
+def check_certificate(data: Any, file: str = "<data>") -> CheckReport:
+    """Check a certificate given as parsed JSON; see the module docstring."""
+    from .core.balls import working_precision
+    from .kinds import checker, kind_module
+    from .prover import requested_claims
+    from .scene import Scene
+
+    t0 = time.perf_counter()
+    _structure(data)
+    report = CheckReport(file)
+    add = report.results.append
+    integrity = data.get("integrity")
+    ok = isinstance(integrity, dict) and integrity.get("sha256") == digest(data)
+    add(CheckResult("integrity", ok, "digest matches" if ok else "the digest does not match the content: "
+                    "the certificate was altered after it was written"))
+    statuses = [c["status"] for c in data["claims"]]
+    verdict = ("refuted" if "refuted" in statuses else
+               "proved" if statuses and all(s == "proved" for s in statuses) else "inconclusive")
+    add(CheckResult("verdict", data["verdict"] == verdict,
+                    f"verdict {data['verdict']!r}" + ("" if data["verdict"] == verdict else f", but the claims give {verdict!r}")))
+    bad_status = [s for s in statuses if s not in ("proved", "refuted", "inconclusive")]
+    if bad_status:
+        add(CheckResult("claims", False, f"unknown status(es) {bad_status}"))
+    sc = data["scene"]
+    try:
+        scene = Scene(name=sc["name"], kind=sc["kind"], source=sc.get("source", ""),
+                      parameters=dict(sc["parameters"]), claims_only=sc.get("claims_only"),
+                      options=dict(sc.get("options") or {}), paper={}, path=sc.get("file"))
+        module = kind_module(scene.kind)
+        model = module.validate(scene)
+        wanted = requested_claims(scene, module.CLAIMS)
+    except RigorGyroError as e:
+        add(CheckResult("scene", False, f"the certificate's scene is not valid: {e}"))
+        report.seconds = time.perf_counter() - t0
+        return report
+    ids = [c["id"] for c in data["claims"]]
+    add(CheckResult("claims", ids == wanted, "the claims the scene asks for" if ids == wanted else
+                    f"claims {ids} but the scene asks for {wanted}"))
+    for c in data["claims"]:
+        if c["id"] in module.CLAIMS and c["statement"] != module.CLAIMS[c["id"]]:
+            add(CheckResult(c["id"], False, "the statement is not the kind's statement of this claim"))
+    prec = data["precision_bits"]
+    if not isinstance(prec, int) or not 16 <= prec <= 32768:
+        add(CheckResult("precision_bits", False, f"precision_bits {prec!r} out of range"))
+        report.seconds = time.perf_counter() - t0
+        return report
+    kind_check = checker(scene.kind)
+    if kind_check is None:
+        add(CheckResult("kind", False, f"no checker for kind {scene.kind!r}"))
+    else:
+        with working_precision(max(2 * prec, 128)):
+            try:
+                report.results.extend(kind_check(model, data))
+            except (KeyError, TypeError, ValueError, ArithmeticError) as e:
+                add(CheckResult("data", False, f"the certificate's data cannot be checked: {type(e).__name__}: {e}"))
+    report.seconds = time.perf_counter() - t0
+    return report

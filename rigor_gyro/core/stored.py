@@ -1,0 +1,59 @@
+"""Stored enclosures read back exactly: the decimal ``[lo, hi]`` of a certificate as rationals.
+
+A certificate stores every enclosure as outward-rounded decimal strings. A checker reads them back
+as exact rationals (never floats) and compares them with balls it computes itself.
+
+Guarantee: :func:`interval` returns the exact rationals written; :func:`encloses` is True only when
+every point of the ball lies in the stored interval (exact comparison of the ball's endpoints);
+:func:`as_ball` is a ball containing the whole stored interval at the current precision.
+Fails when: a string is not a finite decimal or fraction: ValueError (the checker reports the
+certificate's data as uncheckable).
+"""
+from __future__ import annotations
+
+from fractions import Fraction
+
+from flint import arb, fmpq
+
+from .balls import exact_fraction, working_precision
+
+__all__ = ["number", "interval", "encloses", "as_ball", "fmpq_of", "exact_text"]
+
+
+def number(text: str) -> Fraction:
+    """A stored decimal (or ``p/q``) as an exact rational; ValueError for anything else."""
+    if not isinstance(text, str) or text.strip().lower() in ("nan", "inf", "+inf", "-inf", ""):
+        raise ValueError(f"not a finite stored number: {text!r}")
+    return Fraction(text.strip())
+
+
+def interval(q) -> tuple[Fraction, Fraction]:
+    """(lo, hi) of a stored quantity (a dict with lo/hi, or a [lo, hi] pair); ValueError if lo > hi."""
+    lo, hi = (q["lo"], q["hi"]) if isinstance(q, dict) else q
+    a, b = number(lo), number(hi)
+    if a > b:
+        raise ValueError(f"stored interval [{lo}, {hi}] has lo > hi")
+    return a, b
+
+
+def fmpq_of(x: Fraction) -> fmpq:
+    return fmpq(x.numerator, x.denominator)
+
+
+def encloses(stored: tuple[Fraction, Fraction], x: arb) -> bool:
+    """True when every point of the finite ball x lies in the stored [lo, hi] (exact)."""
+    if not x.is_finite():
+        return False
+    with working_precision(max(64, int(x.bits()) + 64)):
+        lo, hi = exact_fraction(x.lower()), exact_fraction(x.upper())
+    return stored[0] <= lo and hi <= stored[1]
+
+
+def as_ball(stored: tuple[Fraction, Fraction]) -> arb:
+    """A ball containing the whole stored interval, at the current precision."""
+    return arb(fmpq_of(stored[0])).union(arb(fmpq_of(stored[1])))
+
+
+def exact_text(x: Fraction) -> str:
+    """An exact rational as text the checker reads back (``p/q`` or an integer)."""
+    return str(x)

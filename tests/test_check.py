@@ -1,0 +1,135 @@
+"""The independent checker (``rigor-gyro check``): genuine certificates confirm, altered ones do not."""
+import copy
+import dataclasses
+import json
+from fractions import Fraction
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from rigor_gyro import load_scene, prove_scene
+from rigor_gyro.certificate import digest
+from rigor_gyro.check import CertificateError, check_certificate, check_file
+from rigor_gyro.cli import main
+
+CHECKED_KINDS = ("eigenfrequencies",)
+
+
+def _cert(name="rudenko1976", **params):
+    scene = load_scene(name)
+    if params:
+        scene = dataclasses.replace(scene, name="variant", parameters=dict(scene.parameters, **params))
+    return json.loads(json.dumps(prove_scene(scene).to_json()))
+
+
+@pytest.fixture(scope="module")
+def rudenko():
+    return _cert()
+
+
+def _refix(data):
+    data["integrity"] = {"sha256": digest(data)}
+    return data
+
+
+def test_a_genuine_certificate_confirms(rudenko):
+    report = check_certificate(rudenko)
+    assert report.ok, report.first_failure
+    assert any(r.item == "roots" and "Sturm: 4" in r.message for r in report.results)
+
+
+def test_a_refuted_certificate_confirms_its_counterexample():
+    a, b = Fraction("15.08"), Fraction("6.154")
+    data = _cert(eps=str((a - b) * (b - 1) / (a * b - 2 * a + 1)))      # nu2 = nu3 exactly
+    assert data["verdict"] == "refuted"
+    assert check_certificate(data).ok
+    bad = copy.deepcopy(data)
+    order = next(c for c in bad["claims"] if c["id"] == "nu_ordering")
+    order["counterexample"]["violations"][0]["right"] = "nu4"
+    assert not check_certificate(_refix(bad)).ok
+
+
+def test_any_edit_without_the_digest_is_rejected(rudenko):
+    bad = copy.deepcopy(rudenko)
+    bad["notes"].append("x")
+    r = check_certificate(bad)
+    assert not r.ok and r.first_failure.item == "integrity"
+
+
+def _mutations(data):
+    """(label, function) pairs that make the certificate say something false or inconsistent."""
+    q = data["quantities"]
+    names = sorted(q)
+    out = []
+    for c in range(len(data["claims"])):
+        out.append((f"status {c}", lambda d, c=c: d["claims"][c].__setitem__(
+            "status", "refuted" if d["claims"][c]["status"] == "proved" else "proved")))
+    out.append(("verdict", lambda d: d.__setitem__("verdict", "refuted")))
+    for k in data["scene"]["parameters"]:
+        out.append((f"parameter {k}", lambda d, k=k: d["scene"]["parameters"].__setitem__(
+            k, str(Fraction(d["scene"]["parameters"][k]) * Fraction(101, 100)))))
+    out.append(("option", lambda d: d["scene"]["options"].__setitem__("rel_width", "1e-60")))
+    out.append(("claims_only", lambda d: d["scene"].__setitem__("claims_only", ["roots"])))
+    for n in names:
+        def shift(d, n=n):   # the interval moved just past itself: it excludes its old content
+            lo, hi = Fraction(d["quantities"][n]["lo"]), Fraction(d["quantities"][n]["hi"])
+            w = (hi - lo) or abs(lo) / 10 ** 6 or Fraction(1, 10 ** 6)
+            d["quantities"][n]["lo"], d["quantities"][n]["hi"] = str(hi + w), str(hi + 2 * w)
+        out.append((f"bound {n}", shift))
+    out.append(("statement", lambda d: d["claims"][0].__setitem__("statement", "something else")))
+    return out
+
+
+@given(st.data())
+def test_an_altered_certificate_is_rejected_even_with_a_fixed_digest(rudenko, data):
+    label, mutate = data.draw(st.sampled_from(_mutations(rudenko)), label="mutation")
+    bad = copy.deepcopy(rudenko)
+    mutate(bad)
+    report = check_certificate(_refix(bad))
+    assert not report.ok, label
+
+
+def test_cli_check_exit_codes(tmp_path, capsys):
+    assert main(["prove", "rudenko1976", "--quiet", "--out", str(tmp_path)]) == 0
+    assert main(["check", str(tmp_path / "rudenko1976.json")]) == 0
+    data = json.loads((tmp_path / "rudenko1976.json").read_text())
+    data["claims"][0]["status"] = "refuted"
+    (tmp_path / "bad.json").write_text(json.dumps(_refix(data)))
+    assert main(["check", str(tmp_path / "bad.json")]) == 1
+    (tmp_path / "junk.json").write_text("{")
+    assert main(["check", str(tmp_path / "junk.json")]) == 2
+    assert main(["check", str(tmp_path / "rudenko1976.timings.json")]) == 2
+    out = capsys.readouterr()
+    assert "NOT confirmed" in out.out and "timings file" in out.err
+
+
+def test_unreadable_is_certificate_error(tmp_path):
+    with pytest.raises(CertificateError):
+        check_file(tmp_path / "missing.json")
+
+
+def test_every_listed_alteration_is_rejected(rudenko):
+    accepted = []
+    for label, mutate in _mutations(rudenko):
+        bad = copy.deepcopy(rudenko)
+        mutate(bad)
+        if check_certificate(_refix(bad)).ok:
+            accepted.append(label)
+    assert not accepted
+
+
+def test_certificates_validate_against_the_shipped_json_schema(tmp_path):
+    jsonschema = pytest.importorskip("jsonschema")
+    from importlib import resources
+    schema = json.loads((resources.files("rigor_gyro") / "schemas" / "certificate-2.schema.json").read_text())
+    jsonschema.Draft202012Validator.check_schema(schema)
+    a, b = Fraction("15.08"), Fraction("6.154")
+    certs = [_cert(n) for n in ("rudenko1976", "agafonov2013", "roitenberg1947")]
+    certs.append(_cert(eps=str((a - b) * (b - 1) / (a * b - 2 * a + 1))))       # a refuted one
+    for c in certs:
+        jsonschema.validate(c, schema)
+    bad = copy.deepcopy(certs[-1])
+    next(c for c in bad["claims"] if c["status"] == "refuted").pop("counterexample")
+    with pytest.raises(jsonschema.ValidationError):
+        jsonschema.validate(bad, schema)
