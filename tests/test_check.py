@@ -69,7 +69,7 @@ def _mutations(data):
     for k in data["scene"]["parameters"]:
         out.append((f"parameter {k}", lambda d, k=k: d["scene"]["parameters"].__setitem__(
             k, str(Fraction(d["scene"]["parameters"][k]) * Fraction(101, 100)))))
-    out.append(("option", lambda d: d["scene"]["options"].__setitem__("rel_width", "1e-60")))
+    out.append(("option", lambda d: d["scene"]["options"].__setitem__("rel_width", "1e-300")))
     out.append(("claims_only", lambda d: d["scene"].__setitem__("claims_only", ["roots"])))
     for n in names:
         def shift(d, n=n):   # the interval moved just past itself: it excludes its old content

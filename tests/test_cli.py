@@ -34,7 +34,7 @@ def test_prove_builtin_writes_certificate_and_report(tmp_path):
     assert r.returncode == 0, r.stderr
     assert "rudenko1976: roots: proved" in r.stdout
     cert = json.loads((tmp_path / "rudenko1976.json").read_text())
-    assert cert["schema"] == "rigor-gyro/certificate/1" and cert["verdict"] == "proved"
+    assert cert["schema"] == "rigor-gyro/certificate/2" and cert["verdict"] == "proved"
     assert set(cert) >= {"scene", "software", "precision_bits", "verdict", "claims", "quantities", "paper"}
     assert "timings" not in cert
     assert cert["scene"]["parameters"]["a"] == "15.08"

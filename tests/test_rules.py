@@ -51,7 +51,7 @@ def test_the_tree_has_the_documented_shape():
         assert {"__init__", "claims", "paper", "approx"} <= names, (k, names)
     assert not list(PKG.glob("approx")), "float code lives in each kind's approx.py"
     flat = {p.stem for p in PKG.glob("*.py")}
-    assert flat <= {"__init__", "__main__", "cli", "scene", "certificate", "prover", "report", "version"}, flat
+    assert flat <= {"__init__", "__main__", "cli", "scene", "certificate", "prover", "report", "check", "version"}, flat
 
 
 def test_only_balls_sets_precision():

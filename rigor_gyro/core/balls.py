@@ -49,7 +49,7 @@ __all__ = [
     "certainly_lt", "certainly_le", "certainly_gt", "certainly_ge", "certainly_positive",
     "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
     "overlaps", "certainly_within", "interval", "exact_fraction", "decimal_bounds", "quantity",
-    "rel_width_at_most", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
+    "rel_width_at_most", "exact_endpoints", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
 ]
 
 DEFAULT_PREC = 64
@@ -273,15 +273,30 @@ def _format_scaled(n: int, scale: int) -> str:
     return f"{sign}{mant}e{exponent:+d}"
 
 
+#: decimals are printed to the digits the ball supports (its accuracy + 3), up to this many
+MAX_DIGITS_OUT = 4000
+
+
 def _digits_for(x: arb) -> int:
-    bits = x.rel_accuracy_bits()
-    return max(6, min(60, int(bits * 0.30103) + 3))
+    """The significant digits a ball supports: its relative accuracy (at most the bits of its
+    midpoint, so an exact ball prints to its precision, not forever), plus three."""
+    bits = min(x.rel_accuracy_bits(), max(int(x.bits()), 1))
+    return max(6, min(MAX_DIGITS_OUT, int(bits * 0.30103) + 3))
 
 
-def _endpoints(x: arb) -> tuple[arb, arb]:
-    """Exact endpoint balls of x, read at a precision that keeps all of the midpoint's bits."""
-    with working_precision(max(64, int(x.bits()) + 64)):
-        return x.lower(), x.upper()
+def exact_endpoints(x: arb) -> tuple[Fraction, Fraction]:
+    """The exact rational endpoints mid - rad and mid + rad of a finite ball (no rounding at all,
+    whatever the bits of the midpoint and the exponent of the radius)."""
+    mid, rad = exact_fraction(x.mid()), exact_fraction(arb(x.rad()))
+    return mid - rad, mid + rad
+
+
+def _endpoints(x: arb) -> tuple[Fraction | None, Fraction | None]:
+    """Exact endpoints of x, None for an infinite end."""
+    if x.is_finite():
+        return exact_endpoints(x)
+    lo, hi = x.lower(), x.upper()
+    return (exact_fraction(lo) if lo.is_finite() else None), (exact_fraction(hi) if hi.is_finite() else None)
 
 
 def decimal_bounds(x: arb, digits: int | None = None) -> tuple[str, str]:
@@ -292,10 +307,10 @@ def decimal_bounds(x: arb, digits: int | None = None) -> tuple[str, str]:
     """
     if x.is_nan():
         return "nan", "nan"
-    lo_ball, hi_ball = _endpoints(x)
+    a, b = _endpoints(x)
     d = digits or _digits_for(x)
-    lo = _round_decimal(exact_fraction(lo_ball), d, "down") if lo_ball.is_finite() else "-inf"
-    hi = _round_decimal(exact_fraction(hi_ball), d, "up") if hi_ball.is_finite() else "+inf"
+    lo = _round_decimal(a, d, "down") if a is not None else "-inf"
+    hi = _round_decimal(b, d, "up") if b is not None else "+inf"
     return lo, hi
 
 
@@ -306,7 +321,7 @@ def quantity(x: arb, digits: int | None = None) -> dict[str, str]:
     if not x.is_finite():
         return {"lo": lo, "hi": hi, "mid": "nan" if x.is_nan() else "inf", "rad": "inf"}
     d = digits or _digits_for(x)
-    a, b = (exact_fraction(e) for e in _endpoints(x))
+    a, b = exact_endpoints(x)
     mid = _round_decimal((a + b) / 2, d, "nearest")
     rad = _round_decimal((b - a) / 2, 3, "up")
     return {"lo": lo, "hi": hi, "mid": mid, "rad": rad}

@@ -15,7 +15,7 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from .balls import exact_fraction, working_precision
+from .balls import exact_endpoints
 
 __all__ = ["number", "interval", "encloses", "as_ball", "fmpq_of", "exact_text"]
 
@@ -44,8 +44,7 @@ def encloses(stored: tuple[Fraction, Fraction], x: arb) -> bool:
     """True when every point of the finite ball x lies in the stored [lo, hi] (exact)."""
     if not x.is_finite():
         return False
-    with working_precision(max(64, int(x.bits()) + 64)):
-        lo, hi = exact_fraction(x.lower()), exact_fraction(x.upper())
+    lo, hi = exact_endpoints(x)
     return stored[0] <= lo and hi <= stored[1]
 
 
