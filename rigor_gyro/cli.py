@@ -28,9 +28,8 @@ _PRECEDENCE = (EXIT_INTERNAL, EXIT_BAD_INPUT, 1, 3, 0)
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message):  # usage errors are exit 2, as argparse does, with our prefix
-        self.print_usage(sys.stderr)
-        self.exit(EXIT_BAD_INPUT, f"rigor-gyro: error: {message}\n")
+    def error(self, message):  # usage errors are exit 2, as argparse does: one line, with our prefix
+        self.exit(EXIT_BAD_INPUT, f"rigor-gyro: error: {message} (see {self.prog} --help)\n")
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -85,15 +84,17 @@ def _cmd_list() -> int:
 
 def _check_out(out: str) -> str | None:
     """None if ``out`` is (or can be made) a writable folder; otherwise what is wrong with it."""
+    if not out.strip():
+        return "--out is empty: name a folder (default: proofs)"
     path = Path(out)
-    if path.exists() and not path.is_dir():
-        return f"--out {out!r} is a file, not a folder"
     try:
+        if path.exists() and not path.is_dir():
+            return f"--out {out[:200]!r} is a file, not a folder"
         path.mkdir(parents=True, exist_ok=True)
         with tempfile.TemporaryFile(dir=path):
             pass
     except OSError as e:
-        return f"--out {out!r} is not a writable folder ({e.strerror or e})"
+        return f"--out {out[:200]!r} is not a writable folder ({e.strerror or e})"
     return None
 
 
@@ -101,7 +102,7 @@ def _cmd_prove(args) -> int:
     from .certificate import EXIT_CODES
     from .kinds import kind_module
     from .prover import prove_scene
-    from .report import write_outputs
+    from .report import output_paths, write_outputs
     from .scene import builtin_scenes, load_scene
 
     if args.all and args.scenes:
@@ -111,10 +112,7 @@ def _cmd_prove(args) -> int:
         return _bad("name at least one scene (see `rigor-gyro list`) or use --all")
     if not (MIN_PREC <= args.prec <= args.maxprec <= MAX_PREC):
         return _bad(f"need {MIN_PREC} <= --prec <= --maxprec <= {MAX_PREC} (got {args.prec}, {args.maxprec})")
-    problem = _check_out(args.out)
-    if problem:
-        return _bad(problem)
-    # every scene is loaded and checked before anything is proved or written
+    # every scene is loaded and checked, and --out too, before anything is proved or written
     scenes, codes = [], []
     for ref in refs:
         try:
@@ -131,6 +129,14 @@ def _cmd_prove(args) -> int:
         return _bad(f"two scenes named {dupes[0]!r} in one call would write the same files: rename one")
     if codes:
         return EXIT_BAD_INPUT
+    problem = _check_out(args.out)
+    if problem:
+        return _bad(problem)
+    try:
+        for _, scene in scenes:
+            output_paths(scene.name, args.out)
+    except RigorGyroError as e:
+        return _bad(str(e))
     for ref, scene in scenes:
         try:
             cert = prove_scene(scene, prec=args.prec, maxprec=args.maxprec)

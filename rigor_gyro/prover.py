@@ -35,24 +35,17 @@ def requested_claims(scene: Scene, available: dict[str, str]) -> list[str]:
     return [c for c in available if c in scene.claims_only]
 
 
-#: the "appears exactly 0" rule applies only from this precision on (a margin below ~2^-(p/2) relative)
-ZERO_RULE_PREC = 256
-
-
 def _stuck(before: arb | None, after: arb | None, prec: int) -> str | None:
     """Why doubling the precision did not help the undecided ball (``before`` at prec/2, ``after`` at
-    prec), or None when it still may: the ball did not shrink by half, or it shrank around 0 by the
-    precision gained (the deciding quantity looks exactly 0, an equality case)."""
+    prec), or None when it still may: the ball did not shrink by at least half. (A ball that shrinks
+    around 0 is not taken as "exactly 0": a tiny nonzero margin is decided by more precision; exact
+    equalities are decided exactly by the kinds.)"""
     if before is None or after is None or not (before.is_finite() and after.is_finite()):
         return None
     r0, r1 = before.rad(), after.rad()
     if not (2 * r1 < r0) and not (r0.is_zero() and not r1.is_zero()):
         return ("doubling the precision did not shrink the deciding enclosure (its width is set by a "
-                "subdivision tolerance or an exact degeneracy, not by the precision)")
-    if prec >= ZERO_RULE_PREC and after.contains(0) and r1 * arb(2) ** (prec // 4) < r0:
-        return (f"the deciding quantity shrinks around 0 as the precision grows (|value| < "
-                f"{after.abs_upper().str(3, radius=False)} at {prec} bits): it looks exactly 0, an equality "
-                "the strict statement cannot pass; if it is not exactly 0, raise --prec")
+                "subdivision tolerance or budget, or by an exact degeneracy, not by the precision)")
     return None
 
 

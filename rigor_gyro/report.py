@@ -112,6 +112,7 @@ def _write_temp(folder: Path, final: str, text: str) -> Path:
     """Write ``text`` to a hidden temporary file next to ``final`` (same folder, so a rename is atomic)."""
     fd, tmp = tempfile.mkstemp(prefix=f".{final}.", suffix=".tmp", dir=folder)
     try:
+        os.chmod(tmp, 0o666 & ~_umask())        # mkstemp makes 0600; an output file is an ordinary file
         with os.fdopen(fd, "w", encoding="utf-8") as f:
             f.write(text)
             f.flush()
@@ -126,6 +127,12 @@ def _timings_path(jpath: Path) -> Path:
     return jpath.with_name(jpath.name[: -len(".json")] + ".timings.json")
 
 
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
 def output_paths(name: str, out_dir: str | Path) -> tuple[Path, Path]:
     """``<out>/<name>.json`` and ``<out>/<name>.md``; SceneError if the name would leave the folder."""
     out = Path(out_dir)
@@ -133,6 +140,9 @@ def output_paths(name: str, out_dir: str | Path) -> tuple[Path, Path]:
     jpath, mpath = out / f"{name}.json", out / f"{name}.md"
     if jpath.resolve().parent != out.resolve():
         raise SceneError(f"scene name {name!r} would write outside the output folder {str(out)!r}")
+    for path in (jpath, mpath, _timings_path(jpath)):
+        if path.exists() and not path.is_file():
+            raise SceneError(f"{str(path)!r} exists and is not a file: move it, or choose another --out")
     return jpath, mpath
 
 

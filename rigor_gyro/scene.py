@@ -103,10 +103,12 @@ def _did_you_mean(word: str, choices) -> str:
 def check_name(name: object, where: str = "scene") -> str:
     """The scene name, checked: letters, digits, '_', '.', '-', starting with a letter or digit, at most
     100 characters (it names the output files, which must stay inside the output folder)."""
-    if not isinstance(name, str) or not NAME_PATTERN.match(name) or ".." in name:
+    if (not isinstance(name, str) or not NAME_PATTERN.match(name) or ".." in name
+            or name.lower().endswith(".timings")):
         shown = name if not isinstance(name, str) or len(name) < 60 else name[:60] + "..."
         raise SceneError(f"{where}: name = {shown!r} is not allowed: use 1-100 characters from A-Z a-z 0-9 _ . -, "
-                         "starting with a letter or digit, without '..' (the name is the output file's stem)")
+                         "starting with a letter or digit, without '..' and not ending in '.timings' (the name is "
+                         "the output files' stem)")
     return name
 
 
@@ -120,7 +122,11 @@ def load_scene(ref: str) -> Scene:
         text, where = builtins[ref].read_text(encoding="utf-8"), f"builtin:{ref}"
     else:
         path = Path(ref)
-        if not path.is_file():
+        try:
+            is_file = path.is_file()
+        except (OSError, ValueError) as e:
+            raise SceneError(f"no scene {ref[:80]!r}...: not a usable path ({e})") from None
+        if not is_file:
             raise SceneError(f"no scene {ref!r}: not a built-in scene (see `rigor-gyro list`: "
                              f"{', '.join(builtins)}{_did_you_mean(ref, builtins)}) and not a file")
         try:

@@ -49,7 +49,7 @@ __all__ = [
     "certainly_lt", "certainly_le", "certainly_gt", "certainly_ge", "certainly_positive",
     "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
     "overlaps", "certainly_within", "interval", "exact_fraction", "decimal_bounds", "quantity",
-    "rel_width_at_most", "exact_endpoints", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
+    "rel_width_at_most", "sqrt_of_nonnegative", "exact_endpoints", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
 ]
 
 DEFAULT_PREC = 64
@@ -212,6 +212,18 @@ def interval(lo: object, hi: object) -> arb:
     return ball(lo).union(ball(hi))
 
 
+def sqrt_of_nonnegative(x: arb) -> arb:
+    """sqrt of a quantity the caller knows to be >= 0 (a square, a sum of squares) whose ball may
+    reach below 0: the ball [0, sqrt(upper)] then, instead of Arb's NaN. Requires: the exact value
+    is >= 0 for every point the ball stands for (otherwise the result is not an enclosure)."""
+    if not x.is_finite():
+        return arb("nan")
+    if x >= 0:
+        return x.sqrt()
+    up = x.upper()
+    return arb(0).union(up.sqrt()) if up >= 0 else arb("nan")
+
+
 def rel_width_at_most(x: arb, tol: object) -> bool:
     """True when the ball's width 2*rad is certainly <= tol * |x| (relative width), x nonzero."""
     if not x.is_finite() or possibly_zero(x):
@@ -278,9 +290,9 @@ MAX_DIGITS_OUT = 4000
 
 
 def _digits_for(x: arb) -> int:
-    """The significant digits a ball supports: its relative accuracy (at most the bits of its
-    midpoint, so an exact ball prints to its precision, not forever), plus three."""
-    bits = min(x.rel_accuracy_bits(), max(int(x.bits()), 1))
+    """The significant digits a ball supports, plus three: its relative accuracy, or for an exact ball
+    the bits of its midpoint (an exact ball prints to its precision, not forever)."""
+    bits = x.rel_accuracy_bits() if not x.rad().is_zero() else max(int(x.bits()), 1)
     return max(6, min(MAX_DIGITS_OUT, int(bits * 0.30103) + 3))
 
 

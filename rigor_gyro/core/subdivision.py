@@ -67,6 +67,7 @@ class Positivity:
     witness_value: arb | None = None
     stuck: tuple[arb, arb] | None = None  # an undecided piece (INCONCLUSIVE)
     reason: str = ""
+    stuck_value: arb | None = None        # f over the undecided piece: what would decide it
 
 
 def certify_positive(f: IntervalFunction, lo: object, hi: object, *, max_pieces: int = 20000,
@@ -91,7 +92,7 @@ def certify_positive(f: IntervalFunction, lo: object, hi: object, *, max_pieces:
                 return Positivity(Status.REFUTED, done, end, fe, reason=f"f(t) <= 0 at the point t = {end.str(20)}")
         too_small = min_width is not None and certainly_lt(b - a, ball(min_width))
         if done + len(stack) >= max_pieces or too_small or not certainly_lt(a, mid) or not certainly_lt(mid, b):
-            return Positivity(Status.INCONCLUSIVE, done, stuck=(a, b),
+            return Positivity(Status.INCONCLUSIVE, done, stuck=(a, b), stuck_value=fx,
                               reason=f"f not separated from 0 on [{a.str(12)}, {b.str(12)}] after {done} "
                                      "pieces (raise precision or max_pieces; f may touch 0 there)")
         stack.append((mid, b))

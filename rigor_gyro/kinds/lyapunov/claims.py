@@ -46,7 +46,8 @@ from fractions import Fraction
 from flint import arb, fmpq
 
 from ...core.balls import (certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds,
-                           exact_fraction, interval, rel_width_at_most, working_precision)
+                           exact_fraction, interval, rel_width_at_most, sqrt_of_nonnegative,
+                           working_precision)
 from ...core.errors import ParameterError
 from ...core.audit import check_printed
 from ...core.exact import (Exact, option_count, option_number, parse_options, parse_parameters,
@@ -66,7 +67,6 @@ PARAMETERS = {"A": "equatorial moment of inertia of the rotor", "C": "polar mome
               "a": "amplitude of the moment f", "x2_star": "half-width of the x2 range, in (0, pi/2)",
               "mu": "parameter of V (7)", "moment": "moment law: " + ", ".join(sorted(MOMENTS))}
 RATIONAL = ("A", "C", "A1", "B1", "C1", "A2", "H", "k", "a", "mu")
-STALL_PREC = 256
 #: best_mu: branch and bound over mu stops once its upper bound is within this relative gap of R_max
 BEST_MU_GAP = "1e-6"    # escalation beyond this only repeats the same subdivision (see attempt)
 OPTIONS = {"rel_width": "1e-15", "R": "", "max_pieces": "20000"}
@@ -151,8 +151,9 @@ def validate(scene) -> LyapunovModel:
 
 # ------------------------------------------------------------------------------------ helpers
 
-def _claim(cid: str, status: Status, reason: str, counterexample: dict | None = None, **details) -> Claim:
-    return Claim(cid, CLAIMS[cid], status, reason, details=details, counterexample=counterexample)
+def _claim(cid: str, status: Status, reason: str, counterexample: dict | None = None, decides: arb | None = None,
+           **details) -> Claim:
+    return Claim(cid, CLAIMS[cid], status, reason, details=details, counterexample=counterexample, decides=decides)
 
 
 def _fmt(x: arb, digits: int = 12) -> str:
@@ -229,7 +230,8 @@ class _Ctx:
         P = A0 - C0 - C0 * cs ** 2
         E1 = 4 * H ** 2 * (mu * H * cs ** 2 - m * A0) ** 2 * Ds ** 4
         E2 = A0 ** 2 * (4 * mu ** 2 * H ** 2 * P ** 2 * Ds ** 2 * s ** 2 + (mu * k * B0 * C0 - (A0 - C0) * H ** 2) ** 2)
-        R1, R2 = (D1 / D2).sqrt(), (E1 / E2).sqrt()
+        # D1, E1 are squares times positive factors and D2, E2 sums of squares: >= 0 exactly
+        R1, R2 = sqrt_of_nonnegative(D1 / D2), sqrt_of_nonnegative(E1 / E2)
         return {"R1": R1, "R2": R2, "R": R1.min(R2), "R2_base": mu * H * cs ** 2 - m * A0}
 
     def R_used(self) -> tuple[arb, str]:
@@ -278,7 +280,8 @@ def _v_positive_claim(ctx: _Ctx) -> Claim:
                                "V": _fmt(v, 20)},
                               witness={"x1": _fmt(x1q, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3q, 20)})
         return _claim("v_positive", Status.INCONCLUSIVE,
-                      f"could not certify {text} on [0, x2*]: {r.reason}; try --maxprec or max_pieces")
+                      f"could not certify {text} on [0, x2*]: {r.reason}; try --maxprec or max_pieces",
+                      decides=r.stuck_value)
     return _claim("v_positive", Status.PROVED,
                   "on [0, x2*]: " +
                   "; ".join(t for t, _ in steps) + f" certified on {pieces} pieces (S, f/x and psi are even); hence "
@@ -340,7 +343,8 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
     if not certainly_positive(cstar):
         return _claim("invariant_estimate", Status.INCONCLUSIVE,
                       f"c* = {_fmt(cstar)} is not certainly positive (cylinder bound on {cyl.pieces} pieces); "
-                      "try a smaller R (scene option) or a larger max_pieces", pieces=cyl.pieces)
+                      "try a larger max_pieces or higher --maxprec (a smaller R makes c* smaller too)",
+                      decides=cstar, pieces=cyl.pieces)
     # the set is {V < c_set}, c_set = c*'s certified lower end rounded down to 10 digits (exact)
     c_text = decimal_bounds(cstar.lower(), 10)[0]
     cl = _q(_fmpq(Fraction(c_text)))
@@ -523,7 +527,7 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     gb = g.with_mu(mu_best)
     R_enc, e = r_sup(gb, xs, rel="1e-12", max_pieces=ctx.m.max_pieces)
     if not (R_enc.is_finite() and certainly_positive(R_enc)):
-        return _claim("best_mu", Status.INCONCLUSIVE, f"R_sup(mu_best) not enclosed: {R_enc}")
+        return _claim("best_mu", Status.INCONCLUSIVE, f"R_sup(mu_best) not enclosed: {R_enc}", decides=R_enc)
     estimate = max(f1, f2, float(R_enc.mid()))
     quantities["mu_best"] = _q(mu_best)
     quantities["R_sup_at_mu_best"] = R_enc
@@ -539,14 +543,16 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
         if claim.status is Status.PROVED:
             break
     if claim.status is not Status.PROVED:
-        return _claim("best_mu", Status.INCONCLUSIVE, f"R_max could not be re-certified: {claim.reason}")
+        return _claim("best_mu", Status.INCONCLUSIVE, f"R_max could not be re-certified: {claim.reason}",
+                      decides=claim.decides)
     quantities["R_max"] = _q(R_max)
     # how good is R_max: a certified upper bound of sup over (16) of R_sup (branch and bound over mu,
     # on the hull of (16), which contains it)
     U, u_pieces = r_sup_upper_bound(g, xs, lo.lower(), hi.upper(), _q(R_max) * (1 + arb(BEST_MU_GAP)),
                                     max_pieces=ctx.m.max_pieces)
     if not (U.is_finite() and certainly_le(_q(R_max), U)):
-        return _claim("best_mu", Status.INCONCLUSIVE, f"no finite upper bound of sup R_sup over (16): {U}")
+        return _claim("best_mu", Status.INCONCLUSIVE, f"no finite upper bound of sup R_sup over (16): {U}",
+                      decides=U)
     quantities["R_sup_upper_bound"] = U
     gap = (U - _q(R_max)) / _q(R_max)
     quantities["R_max_relative_gap"] = gap
@@ -589,6 +595,7 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
              f"p = {_fmt(k['p'])}, k_min = {_fmt(k['k_min'])}, mu in ({_fmt(k['mu_min'])}, {_fmt(k['mu_max'])}), "
              f"R1 = {_fmt(k['R1'])}, R2 = {_fmt(k['R2'])}" + note) if finite and conv else
             "the maxima m, M did not converge to the requested width: raise --maxprec or the max_pieces option",
+            decides=None if finite and conv else (k["m"] if not ctx.m_max().converged else k["M"]),
             m_pieces=ctx.m_max().pieces, M_pieces=ctx.M_max().pieces))
     if "damping_condition" in wanted:
         k = ctx.constants()
@@ -597,7 +604,7 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
         holds = [certainly_gt(x, y) for _, x, y in parts]
         fails = [certainly_le(x, y) for _, x, y in parts]
         desc = "; ".join(f"{t}: {_fmt(x)} vs {_fmt(y)}" for t, x, y in parts)
-        ce = None
+        ce, decides = None, None
         if all(holds):
             st, why = Status.PROVED, "certified: " + desc
         elif any(fails):
@@ -607,9 +614,11 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
                                for (t, x, y), f in zip(parts, fails) if f]}
         else:
             st, why = Status.INCONCLUSIVE, "not separated at this precision: " + desc
+            decides = next(x - y for (_, x, y), h in zip(parts, holds) if not h)
         margin = c.k / k["k_min"] - 1
         quantities["damping_margin"] = margin
-        claims.append(_claim("damping_condition", st, why + f"; design margin k/k_min - 1 = {_fmt(margin, 6)}", ce))
+        claims.append(_claim("damping_condition", st, why + f"; design margin k/k_min - 1 = {_fmt(margin, 6)}", ce,
+                             decides))
     R, how = (None, "")
     if any(c in wanted for c in ("vdot_nonpositive", "invariant_estimate")):
         R, how = ctx.R_used()
@@ -628,15 +637,17 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
         if vclaim.status is Status.PROVED and pclaim.status is Status.PROVED:
             claims.append(_invariant(ctx, R, quantities))
         else:
+            dep = vclaim if vclaim.status is not Status.PROVED else pclaim
             claims.append(_claim("invariant_estimate", Status.INCONCLUSIVE,
-                                 "rests on vdot_nonpositive and v_positive, which are not both proved"))
+                                 "rests on vdot_nonpositive and v_positive, which are not both proved",
+                                 decides=dep.decides if dep.status is Status.INCONCLUSIVE else None))
     if "best_mu" in wanted:
         claims.append(_best_mu(ctx, quantities))
     paper, formulas, audit_notes = audit_paper(ctx, quantities)
     notes += audit_notes
-    # subdivision budgets do not grow with precision: past 256 bits an undecided claim stays undecided
-    stalled = prec >= STALL_PREC and any(c.status is Status.INCONCLUSIVE for c in claims)
-    return Attempt(claims, quantities, paper, formulas, notes, widths_met=widths_met, stalled=stalled,
+    # an undecided claim says what would decide it (Claim.decides): the prover stops when doubling the
+    # precision no longer shrinks it (a subdivision budget, a tolerance), not at a fixed precision
+    return Attempt(claims, quantities, paper, formulas, notes, widths_met=widths_met,
                    width_quantities=tuple(n for n in ("m", "M", "p", "R1", "R2")
                                           if n in quantities and not rel_width_at_most(quantities[n], model.rel_width)),
                    extra={"moment": {"name": ctx.g.law.name, "formula": ctx.g.law.formula}})

@@ -455,6 +455,7 @@ def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: i
                            f"x2 = {_fmt(x2)}, x3 = {_fmt(x3)} of the region (certified)", pieces,
                            {"witness": point}, w, {"point": point, "radius": _fmt(R, 20)})
     bad = [f"{k}: {r.reason}" for k, r in results.items() if r.status is not Status.PROVED]
+    stuck = next((r.stuck_value for r in results.values() if r.status is not Status.PROVED), None)
     return VdotVerdict(Status.INCONCLUSIVE,
                        f"{how} = {_fmt(R)}: " + "; ".join(bad) + "; no point with certified Vdot > 0 found "
-                       "(try a smaller R, higher --maxprec or a larger max_pieces option)", pieces)
+                       "(try a smaller R, higher --maxprec or a larger max_pieces option)", pieces, decides=stuck)

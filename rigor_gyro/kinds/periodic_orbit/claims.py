@@ -43,7 +43,7 @@ from typing import Any
 
 from flint import acb, acb_mat, arb, arb_series
 
-from ...core.balls import (ball, certainly_gt, certainly_le, certainly_lt, certainly_negative,
+from ...core.balls import (ball, series_coefficients, certainly_gt, certainly_le, certainly_lt, certainly_negative,
                            certainly_positive, current_precision, decimal_bounds, interval)
 from ...core.errors import ParameterError
 from ...core.audit import check_printed
@@ -338,7 +338,7 @@ def _g_series_function(sp: Spectrum):
     """g as the series function :func:`rigor_gyro.core.roots.isolate_roots` expects: given arb_series([X, 1]) it
     returns [g(X), g'(X)] (Taylor-model enclosures over the ball X; the chain-rule factor is exactly 1)."""
     def f(s: arb_series) -> arb_series:
-        c = s.coeffs()
+        c = series_coefficients(s, 2)
         if len(c) < 2 or not (c[1] - 1).is_zero():
             raise ValueError("expects the identity series [x, 1]")
         g, dg = taylor_enclosure(lambda ctr, n: g_coeffs(sp, ctr, n), c[0], TAYLOR_ORDER, (0, 1))
@@ -558,6 +558,17 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
             st = (Status.INCONCLUSIVE, "stability of the genuine orbits not decided at this precision"
                   if genuine else "no genuine orbit certified yet" + beyond)
         claims.append(_claim("stable", *st))
+    # what would decide the claims left open by an undecided piece of the range: g over that piece (the
+    # prover stops escalating when doubling the precision no longer shrinks it, e.g. at a depth limit)
+    if an.unknown:
+        u = an.unknown[0]
+        if "precision limit" in u.reason:     # more precision resolves a narrower piece: watch g there
+            gu = taylor_enclosure(lambda ctr, n: g_coeffs(sp, ctr, n), interval(u.lo, u.hi), TAYLOR_ORDER, (0,))[0]
+        else:                                 # a depth or piece budget: the same piece again means no progress
+            gu = interval(u.lo, u.hi)
+        for c in claims:
+            if c.status is Status.INCONCLUSIVE:
+                c.decides = gu
     # ---- notes and extra: every root with its verdict
     rows = []
     for k, v in enumerate(an.roots, start=1):
