@@ -56,6 +56,7 @@ class Certificate:
     formulas: list[dict[str, str]] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     extra: dict[str, Any] = field(default_factory=dict)
+    witnesses: dict[str, Any] = field(default_factory=dict)
 
     @property
     def verdict(self) -> Status:
@@ -101,6 +102,7 @@ class Certificate:
             "formulas": self.formulas,
             "notes": self.notes,
             **({"extra": self.extra} if self.extra else {}),
+            **({"witnesses": self.witnesses} if self.witnesses else {}),
         }
         data["integrity"] = {"sha256": digest(data)}
         return data

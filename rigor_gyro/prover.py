@@ -151,4 +151,4 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
     return Certificate(scene=scene.header(), precision_bits=esc.prec, claims=final.claims,
                        quantities=final.quantities, paper=final.paper,
                        timings={"total_s": round(elapsed, 4)}, precisions_tried=esc.tried,
-                       formulas=final.formulas, notes=notes, extra=final.extra)
+                       formulas=final.formulas, notes=notes, extra=final.extra, witnesses=final.witnesses)

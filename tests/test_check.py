@@ -13,7 +13,8 @@ from rigor_gyro.certificate import digest
 from rigor_gyro.check import CertificateError, check_certificate, check_file
 from rigor_gyro.cli import main
 
-CHECKED_KINDS = ("eigenfrequencies",)
+#: built-in scenes of the kinds the checker covers
+CHECKED = ("rudenko1976", "roitenberg1947")
 
 
 def _cert(name="rudenko1976", **params):
@@ -26,6 +27,11 @@ def _cert(name="rudenko1976", **params):
 @pytest.fixture(scope="module")
 def rudenko():
     return _cert()
+
+
+@pytest.fixture(scope="module", params=CHECKED)
+def builtin(request):
+    return _cert(request.param)
 
 
 def _refix(data):
@@ -78,6 +84,26 @@ def _mutations(data):
             d["quantities"][n]["lo"], d["quantities"][n]["hi"] = str(hi + w), str(hi + 2 * w)
         out.append((f"bound {n}", shift))
     out.append(("statement", lambda d: d["claims"][0].__setitem__("statement", "something else")))
+    w = data.get("witnesses", {}).get("half_period")
+    if w:
+        def flip_piece(d, i):
+            pc = d["witnesses"]["half_period"]["pieces"][i]
+            pc["kind"] = "empty" if pc["kind"] == "unique" else "unique"
+        first_unique = next(i for i, pc in enumerate(w["pieces"]) if pc["kind"] == "unique")
+        out.append(("witness: a unique piece called empty", lambda d: flip_piece(d, first_unique)))
+        out.append(("witness: an empty piece called unique", lambda d: flip_piece(d, 0)))
+        out.append(("witness: a piece dropped", lambda d: d["witnesses"]["half_period"]["pieces"].pop(1)))
+        out.append(("witness: theta_min too large", lambda d: d["witnesses"]["half_period"].__setitem__("theta_min", "1/2")))
+        out.append(("witness: T short of the tail", lambda d: d["witnesses"]["half_period"].__setitem__(
+            "T", str(Fraction(d["witnesses"]["half_period"]["T"]) / 2))))
+        g = next(i for i, r in enumerate(w["roots"]) if r["kind"] == "genuine")
+        out.append(("witness: d1 past the middle", lambda d: d["witnesses"]["half_period"]["roots"][g].__setitem__(
+            "d1", d["witnesses"]["half_period"]["roots"][g]["right_start"])))
+        out.append(("witness: middle dropped", lambda d: d["witnesses"]["half_period"]["roots"][g].__setitem__("middle", [])))
+        s = next(i for i, r in enumerate(w["roots"]) if r["kind"] == "spurious")
+        out.append(("witness: spurious called genuine", lambda d: d["witnesses"]["half_period"]["roots"][s].__setitem__(
+            "kind", "genuine")))
+        out.append(("witness: removed", lambda d: d.pop("witnesses")))
     return out
 
 
@@ -109,10 +135,15 @@ def test_unreadable_is_certificate_error(tmp_path):
         check_file(tmp_path / "missing.json")
 
 
-def test_every_listed_alteration_is_rejected(rudenko):
+def test_the_builtin_certificates_confirm(builtin):
+    report = check_certificate(builtin)
+    assert report.ok, report.first_failure
+
+
+def test_every_listed_alteration_is_rejected(builtin):
     accepted = []
-    for label, mutate in _mutations(rudenko):
-        bad = copy.deepcopy(rudenko)
+    for label, mutate in _mutations(builtin):
+        bad = copy.deepcopy(builtin)
         mutate(bad)
         if check_certificate(_refix(bad)).ok:
             accepted.append(label)

@@ -64,6 +64,8 @@ class RootPiece:
     enclosure: arb | None = None
     reason: str = ""
     iterations: int = 0
+    #: the inner endpoints of the pieces merged into this one (a root on a shared endpoint)
+    parts: tuple = ()
 
 
 def enclose_f_df(f: SeriesFunction, x: arb) -> tuple[arb, arb]:
@@ -191,7 +193,7 @@ def merge_shared_roots(f: SeriesFunction, pieces: list[RootPiece], rel_tol: obje
             if r.status is RootStatus.UNIQUE:
                 out[-1] = RootPiece(q.lo, p.hi, RootStatus.UNIQUE, r.enclosure,
                                     "root on a piece boundary, unique on the hull of both enclosures",
-                                    q.iterations + p.iterations + r.iterations)
+                                    q.iterations + p.iterations + r.iterations, parts=q.parts + (q.hi,) + p.parts)
             else:
                 for x in (q, p):
                     x.status, x.enclosure = RootStatus.UNKNOWN, None

@@ -71,8 +71,9 @@ class Positivity:
 
 
 def certify_positive(f: IntervalFunction, lo: object, hi: object, *, max_pieces: int = 20000,
-                     min_width: object = None) -> Positivity:
-    """Decide f > 0 on [lo, hi] by bisection; see the module docstring."""
+                     min_width: object = None, record: list | None = None) -> Positivity:
+    """Decide f > 0 on [lo, hi] by bisection; see the module docstring. With ``record`` (a list), each
+    piece (a, b) on which f > 0 was certified is appended to it: the witness a checker re-evaluates."""
     stack = [(ball(lo), ball(hi))]
     done = 0
     while stack:
@@ -81,6 +82,8 @@ def certify_positive(f: IntervalFunction, lo: object, hi: object, *, max_pieces:
         fx = f(x)
         done += 1
         if certainly_positive(fx):
+            if record is not None:
+                record.append((a, b))
             continue
         mid = ((a + b) / 2).mid()
         fm = f(mid)

@@ -56,6 +56,8 @@ class Attempt:
     extra: dict[str, Any] = field(default_factory=dict)
     #: the quantities whose requested widths are not met yet (the prover watches them shrink)
     width_quantities: tuple[str, ...] = ()
+    #: JSON-able data for rigor-gyro check, per claim (pieces, points), exact rationals as text
+    witnesses: dict[str, Any] = field(default_factory=dict)
     #: set by a kind when more precision cannot help the undecided claims (e.g. subdivision budgets
     #: exhausted on wide pieces): escalation stops there and the claims say what to change instead
     stalled: bool = False

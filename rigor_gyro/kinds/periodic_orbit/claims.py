@@ -43,7 +43,7 @@ from typing import Any
 
 from flint import acb, acb_mat, arb, arb_series
 
-from ...core.balls import (ball, series_coefficients, certainly_gt, certainly_le, certainly_lt, certainly_negative,
+from ...core.balls import (ball, exact_fraction, series_coefficients, certainly_gt, certainly_le, certainly_lt, certainly_negative,
                            certainly_positive, current_precision, decimal_bounds, interval)
 from ...core.errors import ParameterError
 from ...core.audit import check_printed
@@ -164,11 +164,16 @@ class RootVerdict:
     margin: arb | None = None
     jacobian_note: str = ""
     multiplier_reason: str = ""
+    #: the witness of "genuine": beta' > 0 on [0, d1], beta' < 0 on [right_start, theta], beta > 0 on
+    #: the middle pieces (exact endpoints), for rigor-gyro check
+    d1: arb | None = None
+    right_start: arb | None = None
+    middle: list = field(default_factory=list)
 
 
-def _beta_positive_on(beta, lo: arb, hi: arb):
+def _beta_positive_on(beta, lo: arb, hi: arb, record: list | None = None):
     f = lambda X: taylor_enclosure(beta.coeffs, X, TAYLOR_ORDER, (0,))[0]
-    return certify_positive(f, lo, hi, max_pieces=50000)
+    return certify_positive(f, lo, hi, max_pieces=50000, record=record)
 
 
 def _dbeta(beta, X: arb) -> arb:
@@ -201,15 +206,16 @@ def classify_root(sp: Spectrum, theta: arb) -> RootVerdict:
     d2 = None
     for j in range(1, 60):
         d = th_lo * arb(2) ** (-j)
-        if certainly_negative(_dbeta(beta, interval(th_lo - d, th_hi))):
+        if certainly_negative(_dbeta(beta, interval((th_lo - d).lower(), th_hi))):
             d2 = d
             break
     if d1 is None or d2 is None:
         return RootVerdict(theta, x0, "undecided", "could not certify the sign of beta' near the switchings "
                            "(raise precision)")
-    lo, hi = d1, th_lo - d2
+    lo, hi = d1, (th_lo - d2).lower()
+    middle_pieces: list = []
     if certainly_lt(lo, hi):
-        pos = _beta_positive_on(beta, lo, hi)
+        pos = _beta_positive_on(beta, lo, hi, middle_pieces)
         if pos.status is Status.REFUTED:
             t = pos.witness
             return RootVerdict(theta, x0, "spurious", f"beta(t) = {_fmt(pos.witness_value, 6)} <= 0 at "
@@ -221,7 +227,7 @@ def classify_root(sp: Spectrum, theta: arb) -> RootVerdict:
         middle = "the two end intervals cover (0, theta*)"
     return RootVerdict(theta, x0, "genuine",
                        f"beta'(0) = {_fmt(bd0, 10)} > 0; beta' > 0 on [0, {_fmt(d1, 6)}]; beta' < 0 on "
-                       f"[theta* - {_fmt(d2, 6)}, theta*]; {middle}")
+                       f"[theta* - {_fmt(d2, 6)}, theta*]; {middle}", d1=d1, right_start=hi, middle=middle_pieces)
 
 
 def _multipliers(sp: Spectrum, v: RootVerdict) -> None:
@@ -298,6 +304,7 @@ class Analysis:
     unknown: list = field(default_factory=list)
     roots: list[RootVerdict] = field(default_factory=list)
     problem: str = ""
+    piece_list: list = field(default_factory=list)
 
 
 def _slowest_scale(sp: Spectrum) -> arb:
@@ -322,13 +329,13 @@ def _tail_point(sp: Spectrum) -> arb | None:
     a, b = sp.a, sp.b
     start = (-b / a).mid() if certainly_negative(b) else arb(0)
     fastest = max((float(abs(m.lam).mid()) for m in sp.modes))  # float picks a start only
-    start = start.max(arb(1) / arb(int(fastest) + 1))
+    start = start.max((arb(1) / arb(int(fastest) + 1)).mid())   # exact dyadic points: re-checkable pieces
     cap = _slowest_scale(sp) * TAIL_CAP_FACTOR
     T = start
     for _ in range(400):
         if certainly_positive(tail_bound(sp, T).lower()):
             return T
-        T = T * 9 / 8
+        T = (T * 9 / 8).mid()
         if certainly_gt(T, cap):
             return None
     return None
@@ -388,7 +395,7 @@ def analyse(model: RelayModel) -> Analysis:
     an = Analysis(sp)
     an.T_tail = _tail_point(sp)
     if model.T_max is not None:
-        Tm = ball(model.T_max.fmpq())
+        Tm = ball(model.T_max.fmpq()).upper()        # an exact point >= T_max: the search covers (0, T_max]
         if an.T_tail is not None and certainly_lt(an.T_tail, Tm):
             an.T_search, an.covers_all = an.T_tail, True
         else:
@@ -400,14 +407,15 @@ def analyse(model: RelayModel) -> Analysis:
                       "time scale: set option T_max to search a finite range")
         return an
     fastest = max((float(abs(m.lam).mid()) for m in sp.modes))  # float picks a start only
-    start = arb(1) / arb(int(fastest) + 1)
-    start = start.min(an.T_search / 4)
+    start = (arb(1) / arb(int(fastest) + 1)).mid()
+    start = start.min((an.T_search / 4).mid())
     an.theta_min = _theta_min(sp, start)
     if an.theta_min is None:
         an.problem = "could not certify g^(5) > 0 near theta = 0 (raise precision)"
         return an
     iso = _isolate(_g_series_function(sp), an.theta_min, an.T_search)
     an.pieces = len(iso.pieces)
+    an.piece_list = iso.pieces
     an.unknown = iso.unknown
     for r in iso.roots:
         an.roots.append(classify_root(sp, r))
@@ -584,6 +592,7 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
                  f"{_fmt(an.T_tail, 8) if an.T_tail is not None else 'not certified'}; "
                  f"scene orbit: {why_main}.")
     extra["roots"] = rows
+    witnesses = _witnesses(an) if hp[0] is Status.PROVED else {}
     paper: list = []
     formulas = formula_table()
     if main is not None:
@@ -592,4 +601,33 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
         notes.extend(fnotes)
         if model.paper:
             paper = audit_paper(model, sp, main)
-    return Attempt(claims, quantities, paper, formulas, notes, widths_met, extra, width_quantities=("theta_star",))
+    return Attempt(claims, quantities, paper, formulas, notes, widths_met, extra, width_quantities=("theta_star",),
+                   witnesses=witnesses)
+
+
+def _q(x: arb) -> str:
+    """An exact ball (a dyadic point) as the exact rational text a checker reads back."""
+    return str(exact_fraction(x))
+
+
+def _witnesses(an: Analysis) -> dict[str, Any]:
+    """What rigor-gyro check re-verifies: the isolation of every root of g on the searched range (the
+    pieces with their verdicts, theta_min, the tail point) and, per root, its classification."""
+    pieces = []
+    for pc in an.piece_list:
+        item = {"lo": _q(pc.lo.lower()), "hi": _q(pc.hi.upper()), "kind": pc.status.value}
+        if pc.parts:
+            item["splits"] = [_q(s) for s in pc.parts]
+        pieces.append(item)
+    roots = []
+    for v in an.roots:
+        r: dict[str, Any] = {"kind": v.kind}
+        if v.witness_t is not None:
+            r["witness_t"] = _q(v.witness_t)
+        if v.kind == "genuine":
+            r["d1"] = _q(v.d1)
+            r["right_start"] = _q(v.right_start)
+            r["middle"] = [[_q(a.lower()), _q(b.upper())] for a, b in v.middle]
+        roots.append(r)
+    return {"half_period": {"theta_min": _q(an.theta_min), "T": _q(an.T_search), "covers_all": an.covers_all,
+                            "pieces": pieces, "roots": roots}}

@@ -1,0 +1,317 @@
+"""Independent re-check of a periodic-orbit certificate (``rigor-gyro check``).
+
+The prover searches: it bisects the range of the half-period function g, runs interval Newton with
+restarts, merges roots on shared endpoints, searches for witnesses. This checker only verifies the
+stored outcome of that search, at twice the certificate's precision:
+
+* the exact moment identities e1^T M^j e = 0 (j <= 3), so g = O(theta^5) at 0, and g^(5)/5! > 0 on
+  [0, theta_min] (Taylor model): no root in (0, theta_min];
+* the stored pieces tile [theta_min, T] exactly; each "empty" piece holds no root (g excludes 0 on
+  it, or one Newton image misses it), each "unique" piece exactly one (a Newton image inside the
+  current box, by its own short Newton loop; a piece merged at ``splits`` is two unique halves whose
+  roots coincide: unique on the hull of both enclosures); beyond T, when the whole of (0, oo) is
+  claimed, the tail bound a T + b - B(T) > 0;
+* per root, its classification: a spurious root's witness (beta(t) < 0 at the stored t, or
+  beta'(0) < 0), a genuine root's beta'(0) > 0, beta' > 0 on [0, d1], beta' < 0 on
+  [right_start, theta], beta > 0 on each stored middle piece (tiling [d1, right_start]);
+* the multipliers of the scene's orbit: the Jacobian recomputed at the checker's own enclosure of
+  theta*, its eigenvalues by a different algorithm (van der Hoeven-Mourrain) with the smallest
+  through the exact Liouville product; stability re-decided on these moduli;
+* every stored quantity contains the checker's recomputed enclosure.
+"""
+from __future__ import annotations
+
+from flint import acb, acb_mat, arb
+
+from ...check import CheckResult
+from ...core.balls import (ball, certainly_gt, certainly_lt, certainly_negative, certainly_positive, interval)
+from ...core.stored import encloses, fmpq_of, interval as stored_interval, number
+from .claims import TAYLOR_ORDER, RootVerdict
+from .flow import (DegenerateSpectrum, Spectrum, g_coeffs, half_period_jacobian, moment_zero_orders,
+                   orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure, x0_at)
+from .paper import orbit_quantities
+
+__all__ = ["check"]
+
+NEWTON_STEPS = 60
+
+
+def _pt(text: str) -> arb:
+    return arb(fmpq_of(number(text)))
+
+
+class _G:
+    """g and g' on a ball by the flow's Taylor models (the model's evaluation; no search)."""
+
+    def __init__(self, sp: Spectrum):
+        self.sp = sp
+
+    def both(self, X: arb) -> tuple[arb, arb]:
+        g, dg = taylor_enclosure(lambda c, n: g_coeffs(self.sp, c, n), X, TAYLOR_ORDER, (0, 1))
+        return g, dg
+
+    def at(self, t: arb) -> arb:
+        return g_coeffs(self.sp, t, 1)[0]
+
+
+def _newton(G: _G, X: arb) -> tuple[str, arb | None]:
+    """("empty", None), ("unique", enclosure) or ("unknown", None) for the box X: Moore's theorem on
+    x_{k+1} = x_k n N(x_k); every root of X stays in x_k, N(x) inside int(x) means exactly one."""
+    g, _ = G.both(X)
+    if not g.contains(0):
+        return "empty", None
+    x = X
+    for _ in range(NEWTON_STEPS):
+        m = arb(x.mid())
+        gm = G.at(m)
+        _, dg = G.both(x)
+        if dg.contains(0) or not dg.is_finite():
+            return "unknown", None
+        n = m - gm / dg
+        if not n.overlaps(x):
+            return "empty", None
+        if x.contains_interior(n):
+            for _ in range(NEWTON_STEPS):          # refine: the root stays in the shrinking box
+                m = arb(n.mid())
+                _, dg = G.both(n)
+                n2 = (m - G.at(m) / dg).intersection(n)
+                if not certainly_lt(n2.rad(), n.rad()):
+                    break
+                n = n2
+            return "unique", n
+        x = x.intersection(n)
+    return "unknown", None
+
+
+def _merged_unique(G: _G, lo: arb, hi: arb, splits: list[arb]) -> tuple[bool, arb | None]:
+    """A piece merged at ``splits``: each part unique, and one root on the hull of their enclosures."""
+    edges = [lo] + splits + [hi]
+    encl = []
+    for a, b in zip(edges, edges[1:]):
+        st, e = _newton(G, interval(a, b))
+        if st != "unique":
+            return False, None
+        encl.append(e)
+    hull = encl[0]
+    for e in encl[1:]:
+        hull = hull.union(e)
+    pad = hull.rad() + hull.abs_upper() * arb(2) ** -40
+    st, e = _newton(G, interval(hull.lower() - pad, hull.upper() + pad))
+    return st == "unique", e
+
+
+def _dbeta(beta, X: arb) -> arb:
+    return taylor_enclosure(beta.coeffs, X, TAYLOR_ORDER, (1,))[0]
+
+
+def _beta(beta, X: arb) -> arb:
+    return taylor_enclosure(beta.coeffs, X, TAYLOR_ORDER, (0,))[0]
+
+
+def _classify(sp: Spectrum, theta: arb, w: dict) -> tuple[bool, str]:
+    """Re-verify one root's stored classification."""
+    x0 = x0_at(sp, theta)
+    beta = orbit_expsums(sp, x0)[0]
+    bd0 = x0[1]
+    if w["kind"] == "spurious":
+        if "witness_t" in w:
+            t = _pt(w["witness_t"])
+            ok = certainly_positive(t) and certainly_lt(t, theta) and certainly_negative(beta(t))
+            return ok, f"spurious: beta(t) < 0 at the stored t: {ok}"
+        ok = certainly_negative(bd0)
+        return ok, f"spurious: beta'(0) < 0: {ok}"
+    if w["kind"] != "genuine":
+        return False, f"root classified {w['kind']!r}"
+    d1, rs = _pt(w["d1"]), _pt(w["right_start"])
+    ok = (certainly_positive(bd0) and certainly_positive(d1) and certainly_lt(rs, theta)
+          and certainly_positive(_dbeta(beta, interval(arb(0), d1)))
+          and certainly_negative(_dbeta(beta, interval(rs, theta.upper()))))
+    middle = [(number(a), number(b)) for a, b in w.get("middle", [])]
+    d1q, rsq = number(w["d1"]), number(w["right_start"])
+    if middle:
+        tiles = middle[0][0] <= d1q and middle[-1][1] >= rsq and all(
+            middle[i][1] >= middle[i + 1][0] for i in range(len(middle) - 1))
+        pos = all(certainly_positive(_beta(beta, interval(arb(fmpq_of(a)), arb(fmpq_of(b))))) for a, b in middle)
+        ok = ok and tiles and pos
+    else:
+        ok = ok and d1q >= rsq
+    return ok, f"genuine: beta'(0) > 0, end intervals and {len(middle)} middle pieces re-verified: {ok}"
+
+
+def _multipliers(sp: Spectrum, theta: arb) -> list[acb] | None:
+    """Eigenvalues of the half-period Jacobian, sorted by decreasing modulus (floats only order)."""
+    J = half_period_jacobian(sp, theta, x0_at(sp, theta))
+    try:
+        eig = list(acb_mat(J).eig(algorithm="vdhoeven_mourrain"))
+    except ValueError:
+        try:
+            eig = list(acb_mat(J).eig(algorithm="rump"))
+        except ValueError:
+            return None
+    P = sp.P
+    liou = acb(-((-(1 / ball(P.tau) + 1 / ball(P.sigma))) * theta).exp())
+    k = min(range(4), key=lambda i: float(abs(eig[i]).upper()))
+    rest = acb(1)
+    for i in range(4):
+        if i != k:
+            rest *= eig[i]
+    if rest.is_finite() and certainly_positive(abs(rest)):
+        z = liou / rest
+        if z.is_finite() and z.overlaps(eig[k]) and (not certainly_positive(abs(eig[k]))
+                                                     or certainly_lt(z.rad(), eig[k].rad())):
+            eig[k] = z
+    for i, z in enumerate(eig):       # J real: a ball meeting no other's conjugate is real
+        if z.imag.contains(0) and not any(z.conjugate().overlaps(w) for j, w in enumerate(eig) if j != i):
+            eig[i] = acb(z.real, 0)
+    out = sorted(eig, key=lambda z: -float(abs(z).mid()))
+    for k in range(3):                # a conjugate pair: the member with Im > 0 first (as stored)
+        a, b = out[k], out[k + 1]
+        if abs(a).overlaps(abs(b)) and certainly_negative(a.imag) and certainly_positive(b.imag):
+            out[k], out[k + 1] = b, a
+    return out
+
+
+def check(model, data: dict) -> list[CheckResult]:
+    """Re-decide every claim of a periodic-orbit certificate; see the module docstring."""
+    res: list[CheckResult] = []
+    say = lambda item, ok, msg: res.append(CheckResult(item, ok, msg))  # noqa: E731
+    q = data["quantities"]
+    verified: set[str] = set()
+
+    def contains(name: str, x: arb) -> None:
+        if name not in q:
+            return
+        if encloses(stored_interval(q[name]), x):
+            verified.add(name)
+        else:
+            say(name, False, f"stored [{q[name]['lo']}, {q[name]['hi']}] does not contain the recomputed value")
+
+    claims = {c["id"]: c for c in data["claims"]}
+    try:
+        sp = Spectrum(model.params)
+    except DegenerateSpectrum as e:
+        for cid, c in claims.items():
+            say(cid, c["status"] == "inconclusive", f"degenerate spectrum ({e})")
+        return res
+    G = _G(sp)
+    w = (data.get("witnesses") or {}).get("half_period")
+    roots: list[arb] = []
+    classes: list[tuple[bool, str]] = []
+    half_ok, why = False, "no isolation witness stored"
+    if w is not None:
+        mom = moment_zero_orders(model.params)
+        t_min, T = _pt(w["theta_min"]), _pt(w["T"])
+        steps = [("g = O(theta^5)", all(m == 0 for m in mom[:4]) and mom[4] != 0),
+                 ("g^(5) > 0 on [0, theta_min]", certainly_positive(taylor5_leading_coefficient(sp, interval(arb(0), t_min))))]
+        pcs = w["pieces"]
+        tiles = bool(pcs) and number(pcs[0]["lo"]) <= number(w["theta_min"]) and number(pcs[-1]["hi"]) >= number(w["T"])
+        tiles = tiles and all(number(pcs[i]["hi"]) == number(pcs[i + 1]["lo"]) for i in range(len(pcs) - 1))
+        steps.append(("the pieces tile [theta_min, T]", tiles))
+        if w["covers_all"]:
+            steps.append(("tail bound > 0 beyond T", certainly_positive(tail_bound(sp, T).lower())))
+        elif model.T_max is not None:
+            steps.append(("T >= T_max", number(w["T"]) >= model.T_max.rational))
+        else:
+            steps.append(("covers (0, oo)", False))
+        pieces_ok = True
+        for pc in pcs:
+            lo, hi = _pt(pc["lo"]), _pt(pc["hi"])
+            if pc["kind"] == "empty":
+                st, e = _newton(G, interval(lo, hi))
+                pieces_ok = pieces_ok and st == "empty"
+            elif pc["kind"] == "unique":
+                if pc.get("splits"):
+                    ok, e = _merged_unique(G, lo, hi, [_pt(s) for s in pc["splits"]])
+                else:
+                    st, e = _newton(G, interval(lo, hi))
+                    ok = st == "unique"
+                pieces_ok = pieces_ok and ok
+                if ok:
+                    roots.append(e)
+            else:
+                pieces_ok = False
+            if not pieces_ok:
+                steps.append((f"piece [{float(number(pc['lo'])):.6g}, {float(number(pc['hi'])):.6g}] ({pc['kind']})", False))
+                break
+        steps.append(("every piece re-decided", pieces_ok))
+        steps.append(("one classification per root", len(w.get("roots", [])) == len(roots)))
+        if pieces_ok and len(w.get("roots", [])) == len(roots):
+            classes = [_classify(sp, th, rw) for th, rw in zip(roots, w["roots"])]
+            steps.append(("every classification re-verified", all(ok for ok, _ in classes)))
+        half_ok = all(ok for _, ok in steps)
+        why = "; ".join(f"{name}: {'ok' if ok else 'FAILED'}" for name, ok in steps)
+    genuine = [th for th, rw in zip(roots, (w or {}).get("roots", [])) if rw["kind"] == "genuine"] if half_ok else []
+    main = None
+    if "theta_star" in q and genuine:
+        s = stored_interval(q["theta_star"])
+        main = next((th for th in genuine if encloses(s, th)), None)
+        if main is not None:
+            verified.add("theta_star")
+            contains("period", 2 * main)
+    moduli_main, mults_main = None, None
+    if main is not None:
+        x0 = x0_at(sp, main)
+        for name, k in (("beta_dot_0", 1), ("Omega_0", 2), ("i_0", 3), ("I_0", 4)):
+            contains(name, x0[k])
+        oq, _ = orbit_quantities(model, sp, RootVerdict(main, x0, "genuine", ""))
+        for name, x in oq.items():
+            contains(name, x)
+        mults_main = _multipliers(sp, main)
+        if mults_main is not None:
+            moduli_main = [abs(z) for z in mults_main]
+            for j, (z, m) in enumerate(zip(mults_main, moduli_main), start=1):
+                contains(f"multiplier_modulus_{j}", m)
+                contains(f"multiplier_{j}_re", z.real)
+                contains(f"multiplier_{j}_im", z.imag)
+            mx = moduli_main[0]
+            for m in moduli_main[1:]:
+                mx = mx.max(m)
+            contains("stability_margin", 1 - mx)
+    others = [th for th in genuine if th is not main]
+    other_moduli = {}
+    for k, th in enumerate(others, start=2):
+        contains(f"theta_star_{k}", th)
+        mm = _multipliers(sp, th)
+        if mm is not None:
+            other_moduli[k] = [abs(z) for z in mm]
+            mx = other_moduli[k][0]
+            for m in other_moduli[k][1:]:
+                mx = mx.max(m)
+            contains(f"stability_margin_{k}", 1 - mx)
+    exhaustive = half_ok and w["covers_all"]
+    all_moduli = ([moduli_main] if moduli_main else []) + list(other_moduli.values())
+    for cid, c in claims.items():
+        st = c["status"]
+        if st == "inconclusive":
+            say(cid, True, "inconclusive: claims nothing")
+        elif cid == "half_period":
+            say(cid, st == "proved" and half_ok, why)
+        elif cid == "orbit_genuine":
+            if st == "proved":
+                say(cid, main is not None, "the stored theta* is a re-verified genuine root" if main is not None
+                    else "no re-verified genuine root inside the stored theta*")
+            else:
+                say(cid, exhaustive and not genuine, "exhaustive search with every root spurious, re-verified")
+        elif cid == "initial_point":
+            say(cid, (main is not None) if st == "proved" else (exhaustive and not genuine),
+                "x(0) of the re-verified orbit recomputed")
+        elif cid == "multipliers":
+            say(cid, (moduli_main is not None and len(other_moduli) == len(others)) if st == "proved"
+                else (exhaustive and not genuine), "eigenvalues of the recomputed Jacobian (another algorithm)")
+        elif cid == "stable":
+            if st == "proved":
+                ok = any(m is not None and all(certainly_lt(x, 1) for x in m) for m in all_moduli)
+                say(cid, ok, "a genuine orbit with every modulus < 1, re-decided")
+            else:
+                ok = exhaustive and (not genuine or (len(all_moduli) == len(genuine) and
+                                                     all(any(certainly_gt(x, 1) for x in m) for m in all_moduli)))
+                say(cid, ok, "exhaustive: no genuine orbit, or every one with a modulus > 1, re-decided")
+        else:
+            say(cid, False, f"unknown claim {cid!r}")
+    unverified = sorted(set(q) - verified)
+    say("quantities", not unverified, f"{len(verified)} stored enclosures verified"
+        + (f"; not verified: {unverified}" if unverified else ""))
+    if classes:
+        say("roots", all(ok for ok, _ in classes), f"{len(classes)} roots classified: "
+            + "; ".join(m for _, m in classes[:3]) + (" ..." if len(classes) > 3 else ""))
+    return res
