@@ -14,7 +14,7 @@ from rigor_gyro.check import CertificateError, check_certificate, check_file
 from rigor_gyro.cli import main
 
 #: built-in scenes of the kinds the checker covers
-CHECKED = ("rudenko1976", "roitenberg1947")
+CHECKED = ("rudenko1976", "roitenberg1947", "agafonov2013")
 
 
 def _cert(name="rudenko1976", **params):
@@ -63,6 +63,12 @@ def test_any_edit_without_the_digest_is_rejected(rudenko):
     assert not r.ok and r.first_failure.item == "integrity"
 
 
+#: quantities that are certified upper bounds (a number the proof computed), not enclosures of one value
+UPPER_BOUNDS = {"R_sup_upper_bound", "R_max_relative_gap", "bound_x1", "bound_x3"}
+#: parameters no claim depends on (the lyapunov model uses C only through H = C r0, given as H)
+UNUSED = {("lyapunov", "C")}
+
+
 def _mutations(data):
     """(label, function) pairs that make the certificate say something false or inconsistent."""
     q = data["quantities"]
@@ -72,16 +78,33 @@ def _mutations(data):
         out.append((f"status {c}", lambda d, c=c: d["claims"][c].__setitem__(
             "status", "refuted" if d["claims"][c]["status"] == "proved" else "proved")))
     out.append(("verdict", lambda d: d.__setitem__("verdict", "refuted")))
+    def changed(v: str) -> str:
+        if v in ("sine", "linear"):
+            return "linear" if v == "sine" else "sine"
+        try:
+            return str(Fraction(v) * Fraction(101, 100))
+        except ValueError:
+            return v + "*101/100"
     for k in data["scene"]["parameters"]:
+        if (data["scene"]["kind"], k) in UNUSED:
+            continue
         out.append((f"parameter {k}", lambda d, k=k: d["scene"]["parameters"].__setitem__(
-            k, str(Fraction(d["scene"]["parameters"][k]) * Fraction(101, 100)))))
-    out.append(("option", lambda d: d["scene"]["options"].__setitem__("rel_width", "1e-300")))
+            k, changed(d["scene"]["parameters"][k]))))
+    if data["scene"]["kind"] == "eigenfrequencies":
+        out.append(("option", lambda d: d["scene"]["options"].__setitem__("rel_width", "1e-300")))
+    if data["scene"]["kind"] == "lyapunov":
+        out.append(("option R", lambda d: d["scene"]["options"].__setitem__("R", "0.5")))
+    # periodic_orbit: no option changes what a certificate of a search of all of (0, oo) says
     out.append(("claims_only", lambda d: d["scene"].__setitem__("claims_only", ["roots"])))
     for n in names:
         def shift(d, n=n):   # the interval moved just past itself: it excludes its old content
             lo, hi = Fraction(d["quantities"][n]["lo"]), Fraction(d["quantities"][n]["hi"])
             w = (hi - lo) or abs(lo) / 10 ** 6 or Fraction(1, 10 ** 6)
-            d["quantities"][n]["lo"], d["quantities"][n]["hi"] = str(hi + w), str(hi + 2 * w)
+            if n in UPPER_BOUNDS:          # a certified upper bound stays true when raised: lower it by 1%
+                w = abs(lo) / 100
+                d["quantities"][n]["lo"], d["quantities"][n]["hi"] = str(lo - 2 * w), str(lo - w)
+            else:
+                d["quantities"][n]["lo"], d["quantities"][n]["hi"] = str(hi + w), str(hi + 2 * w)
         out.append((f"bound {n}", shift))
     out.append(("statement", lambda d: d["claims"][0].__setitem__("statement", "something else")))
     w = data.get("witnesses", {}).get("half_period")

@@ -17,7 +17,7 @@ from flint import arb, fmpq
 
 from .balls import exact_endpoints
 
-__all__ = ["number", "interval", "encloses", "as_ball", "fmpq_of", "exact_text"]
+__all__ = ["number", "interval", "encloses", "as_ball", "fmpq_of", "exact_text", "pieces_text", "ball_text"]
 
 
 def number(text: str) -> Fraction:
@@ -56,3 +56,19 @@ def as_ball(stored: tuple[Fraction, Fraction]) -> arb:
 def exact_text(x: Fraction) -> str:
     """An exact rational as text the checker reads back (``p/q`` or an integer)."""
     return str(x)
+
+
+def pieces_text(pairs) -> list[list[str]]:
+    """Pieces (a, b) of balls as exact [lo, hi] texts covering them: [a.lower, b.upper]."""
+    out = []
+    for a, b in pairs:
+        lo = exact_endpoints(a)[0] if a.is_finite() else None
+        hi = exact_endpoints(b)[1] if b.is_finite() else None
+        out.append([exact_text(lo), exact_text(hi)])
+    return out
+
+
+def ball_text(x) -> list[str]:
+    """A finite ball as its exact [lo, hi] texts."""
+    lo, hi = exact_endpoints(x)
+    return [exact_text(lo), exact_text(hi)]

@@ -28,7 +28,7 @@ Example:
 from __future__ import annotations
 
 import heapq
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Callable
 
 from flint import arb
@@ -112,6 +112,9 @@ class Extremum:
     argpoint: arb
     pieces: int
     converged: bool
+    #: the final pieces (a, b), covering [lo, hi]: the upper end of the ball is the largest upper
+    #: bound of f over them, and the lower end f at ``argpoint``; the witness a checker re-evaluates
+    cover: list = field(default_factory=list)
 
 
 def enclose_max(f: IntervalFunction, lo: object, hi: object, *, abs_tol: object = "1e-12",
@@ -159,11 +162,11 @@ def enclose_max(f: IntervalFunction, lo: object, hi: object, *, abs_tol: object 
     upper = best
     for item in heap:                       # the heap's pieces cover [lo, hi]
         upper = upper.max(item[4])          # certified max of upper bounds
-    return Extremum(best.union(upper), best_pt, count, converged)
+    return Extremum(best.union(upper), best_pt, count, converged, [(item[2], item[3]) for item in heap])
 
 
 def enclose_min(f: IntervalFunction, lo: object, hi: object, *, abs_tol: object = "1e-12",
                 rel_tol: object = 0, max_pieces: int = 20000) -> Extremum:
     """Enclose min of f over [lo, hi] (as -max(-f))."""
     m = enclose_max(lambda x: -f(x), lo, hi, abs_tol=abs_tol, rel_tol=rel_tol, max_pieces=max_pieces)
-    return Extremum(-m.ball, m.argpoint, m.pieces, m.converged)
+    return Extremum(-m.ball, m.argpoint, m.pieces, m.converged, m.cover)

@@ -46,16 +46,17 @@ from fractions import Fraction
 from flint import arb, fmpq
 
 from ...core.balls import (certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds,
-                           exact_fraction, interval, rel_width_at_most, sqrt_of_nonnegative,
-                           working_precision)
-from ...core.errors import ParameterError
+                           exact_fraction, interval, rel_width_at_most, working_precision)
 from ...core.audit import check_printed
+from ...core.errors import ParameterError
 from ...core.exact import (Exact, option_count, option_number, parse_options, parse_parameters,
                            require_rational)
 from ...core.outcome import Claim, Status
+from ...core.stored import ball_text, pieces_text
 from ...core.subdivision import certify_positive, enclose_max
 from .. import Attempt
-from .model import Gimbal, certify_vdot_nonpositive, hypot_ball, mean_value_enclosure
+from .model import (Gimbal, certify_vdot_nonpositive, closed_form_constants, cylinder_lower_bound, hypot_ball,
+                    mean_value_enclosure)
 from .moments import MOMENTS
 from .paper import PAPER_SCHEMA, audit as audit_paper
 
@@ -177,6 +178,8 @@ class _Ctx:
         self.g = model.gimbal
         self.prec = prec
         self._memo: dict = {}
+        #: per claim, the data rigor-gyro check re-evaluates (pieces, points; exact texts)
+        self.witnesses: dict = {}
 
     def memo(self, key, fn):
         if key not in self._memo:
@@ -209,30 +212,8 @@ class _Ctx:
 
     def constants(self) -> dict[str, arb]:
         def run():
-            c = self.g.c
-            cs2 = self.xs.cos() ** 2
-            m, M = self.m_max().ball, self.M_max().ball
-            pA = c.A0 * m / cs2
-            p = M.max(pA)
-            out = {"A0": c.A0, "B0": c.B0, "C0": c.C0, "m": m, "M": M, "A0_m_over_cos2": pA, "p": p,
-                   "k_min": p * c.A0 / c.H, "mu_min": p / c.H, "mu_max": c.k / c.A0}
-            out.update(self.r12(m))
-            return out
+            return closed_form_constants(self.g, self.m_max().ball, self.M_max().ball)
         return self.memo("constants", run)
-
-    def r12(self, m: arb) -> dict[str, arb]:
-        c = self.g.c
-        A0, B0, C0, H, k, mu = c.A0, c.B0, c.C0, c.H, c.k, c.mu
-        s, cs = self.xs.sin(), self.xs.cos()
-        Ds = A0 - C0 * s ** 2
-        D1 = 108 * A0 * (A0 - C0) * H ** 4 * cs ** 4 * (k / A0 - mu) ** 2
-        D2 = 16 * mu ** 2 * A0 * (A0 - C0) * H ** 2 * C0 ** 2 + 27 * (mu * k * B0 * C0 + (A0 - C0) * H ** 2) ** 2
-        P = A0 - C0 - C0 * cs ** 2
-        E1 = 4 * H ** 2 * (mu * H * cs ** 2 - m * A0) ** 2 * Ds ** 4
-        E2 = A0 ** 2 * (4 * mu ** 2 * H ** 2 * P ** 2 * Ds ** 2 * s ** 2 + (mu * k * B0 * C0 - (A0 - C0) * H ** 2) ** 2)
-        # D1, E1 are squares times positive factors and D2, E2 sums of squares: >= 0 exactly
-        R1, R2 = sqrt_of_nonnegative(D1 / D2), sqrt_of_nonnegative(E1 / E2)
-        return {"R1": R1, "R2": R2, "R": R1.min(R2), "R2_base": mu * H * cs ** 2 - m * A0}
 
     def R_used(self) -> tuple[arb, str]:
         if self.m.R_option is not None:
@@ -244,8 +225,9 @@ class _Ctx:
 # ------------------------------------------------------------------------------------ Vdot
 
 def _vdot_claim(ctx: _Ctx, R: arb, how: str) -> tuple[Claim, dict]:
-    v = certify_vdot_nonpositive(ctx.g, ctx.xs, R, how, ctx.m.max_pieces)
-    info = {"pieces": v.pieces, "R": R}
+    record: dict = {}
+    v = certify_vdot_nonpositive(ctx.g, ctx.xs, R, how, ctx.m.max_pieces, record=record)
+    info = {"pieces": v.pieces, "R": R, "record": record}
     if v.witness is not None:
         info["witness"] = v.witness
     claim = _claim("vdot_nonpositive", v.status, v.reason, v.counterexample, **v.details)
@@ -262,12 +244,17 @@ def _v_positive_claim(ctx: _Ctx) -> Claim:
              ("f(x2)/x2 > 0 (so F > 0 for x2 != 0)", lambda x: g.law.f_over_x(c.a, x)),
              ("psi > 0 (so phi = (F/S) psi > 0 for x2 != 0)", g.psi)]
     pieces = 0
-    for text, fn in steps:
-        r = certify_positive(fn, 0, xs, max_pieces=ctx.m.max_pieces)
+    record: dict = {}
+    for key, (text, fn) in zip(("S", "f_over_x", "psi"), steps):
+        kept: list = []
+        r = certify_positive(fn, 0, xs, max_pieces=ctx.m.max_pieces, record=kept)
         pieces += r.pieces
         if r.status is Status.PROVED:
+            record[key] = pieces_text(kept)
+            ctx.witnesses["v_positive"] = record
             continue
-        if r.status is Status.REFUTED and text.startswith("psi") and certainly_gt(r.witness, 0):
+        if (r.status is Status.REFUTED and text.startswith("psi") and r.witness.rad().is_zero()
+                and certainly_gt(r.witness, 0) and certainly_le(r.witness, xs)):
             x2 = r.witness
             x1, x3 = g.phi_minimiser(x2)
             x1q, x3q = (_q(_fmpq(exact_fraction(y.mid()))) for y in (x1, x3))
@@ -276,7 +263,7 @@ def _v_positive_claim(ctx: _Ctx) -> Claim:
                 return _claim("v_positive", Status.REFUTED,
                               f"V = {_fmt(v, 6)} <= 0 at x1 = {_fmt(x1q)}, x2 = {_fmt(x2)}, x3 = {_fmt(x3q)} "
                               f"(certified; psi <= 0 there, i.e. mu H - q + ... fails)",
-                              {"point": {"x1": _fmt(x1q, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3q, 20)},
+                              {"point": {"x1": ball_text(x1q), "x2": ball_text(x2), "x3": ball_text(x3q)},
                                "V": _fmt(v, 20)},
                               witness={"x1": _fmt(x1q, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3q, 20)})
         return _claim("v_positive", Status.INCONCLUSIVE,
@@ -292,24 +279,6 @@ def _v_positive_claim(ctx: _Ctx) -> Claim:
 
 # ------------------------------------------------------------------------------------ c*
 
-def cylinder_lower_bound(g: Gimbal, R: arb):
-    """x2 piece -> a lower bound of min over theta of V(R cos theta, x2, R sin theta).
-
-    On the circle V = alpha + beta sin(th) + gamma cos(2 th) + delta sin(2 th) with
-    alpha = mu F + (f2 + mu f1 + h^2) R^2/4, beta = f3 R, gamma = (h^2 - f2 - mu f1) R^2/4,
-    delta = mu h R^2/2 (h = H cos x2 / B0), so V >= alpha - |beta| - sqrt(gamma^2 + delta^2)."""
-    c = g.c
-
-    def lb(x2):
-        h = c.H * x2.cos() / c.B0
-        e = g.f2(x2) + c.mu * g.f1(x2)
-        alpha = c.mu * g.F(x2) + (e + h * h) * R * R / 4
-        gamma = (h * h - e) * R * R / 4
-        delta = c.mu * h * R * R / 2
-        return alpha - abs(g.f3(x2)) * R - hypot_ball(gamma, delta)
-    return lb
-
-
 def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
     g, xs = ctx.g, ctx.xs
     face = g.phi(xs)
@@ -321,6 +290,7 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
     cyl = enclose_max(lambda x: -cylinder_lower_bound(g, R)(x), 0, xs, rel_tol=arb("1e-6"),
                       abs_tol=(abs(face) + R * R) * arb(2) ** (-ctx.prec // 2), max_pieces=ctx.m.max_pieces)
     cyl_lb = (-cyl.ball).lower()
+    ctx.witnesses["invariant_estimate"] = {"cylinder": pieces_text(cyl.cover)}
     # an upper bound of the boundary minimum: V at boundary points
     samples = [g.V(R * arb(math.cos(2 * math.pi * j / 32)), x2, R * arb(math.sin(2 * math.pi * j / 32)))
                for x2 in (arb(0), xs / 2, xs) for j in range(32)]
@@ -345,8 +315,11 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
                       f"c* = {_fmt(cstar)} is not certainly positive (cylinder bound on {cyl.pieces} pieces); "
                       "try a larger max_pieces or higher --maxprec (a smaller R makes c* smaller too)",
                       decides=cstar, pieces=cyl.pieces)
-    # the set is {V < c_set}, c_set = c*'s certified lower end rounded down to 10 digits (exact)
-    c_text = decimal_bounds(cstar.lower(), 10)[0]
+    # the set is {V < c_set}, c_set = c*'s certified lower end, less a margin of 4 relative widths of R
+    # (c* moves like R^2: a checker with its own enclosure of R must still find c_set below its bound),
+    # rounded down to 10 digits (exact)
+    margin = 4 * R.rad() / R.abs_lower() + arb(2) ** -40
+    c_text = decimal_bounds((cstar.lower() * (1 - margin)).lower(), 10)[0]
     cl = _q(_fmpq(Fraction(c_text)))
     quantities["c_set"] = cl
     # inner extents: the set contains these segments of the axes
@@ -379,8 +352,10 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
     def x3_bound(x2):
         S = g.S(x2)
         return (2 * cu / S).sqrt() + abs(g.f3(x2)) / S
-    ob1 = enclose_max(x1_bound, 0, xs, abs_tol=arb("1e-9") * R, max_pieces=4000).ball.min(R)
-    ob3 = enclose_max(x3_bound, 0, xs, abs_tol=arb("1e-9") * R, max_pieces=4000).ball.min(R)
+    e1 = enclose_max(x1_bound, 0, xs, abs_tol=arb("1e-9") * R, max_pieces=4000)
+    e3 = enclose_max(x3_bound, 0, xs, abs_tol=arb("1e-9") * R, max_pieces=4000)
+    ob1, ob3 = e1.ball.min(R), e3.ball.min(R)
+    ctx.witnesses["invariant_estimate"].update(bound_x1=pieces_text(e1.cover), bound_x3=pieces_text(e3.cover))
     for k, v in ext.items():
         quantities[f"extent_{k}"] = v
     quantities["bound_x1"], quantities["bound_x3"] = ob1, ob3
@@ -475,7 +450,7 @@ def r_sup_upper_bound(g: Gimbal, xs: arb, mu_lo: arb, mu_hi: arb, target: arb, m
     upper = heap[0][4]
     for item in heap:               # the heap's pieces cover [mu_lo, mu_hi]
         upper = upper.max(item[4])
-    return upper, count
+    return upper, count, [(item[2], item[3]) for item in heap], points
 
 
 def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
@@ -548,8 +523,13 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     quantities["R_max"] = _q(R_max)
     # how good is R_max: a certified upper bound of sup over (16) of R_sup (branch and bound over mu,
     # on the hull of (16), which contains it)
-    U, u_pieces = r_sup_upper_bound(g, xs, lo.lower(), hi.upper(), _q(R_max) * (1 + arb(BEST_MU_GAP)),
-                                    max_pieces=ctx.m.max_pieces)
+    # over the hull of (16), padded by 4 radii of its ends: a checker's own enclosure of (16) must lie inside
+    U, u_pieces, u_cover, u_points = r_sup_upper_bound(g, xs, (lo.lower() - 4 * lo.rad()).lower(),
+                                                       (hi.upper() + 4 * hi.rad()).upper(),
+                                                       _q(R_max) * (1 + arb(BEST_MU_GAP)), max_pieces=ctx.m.max_pieces)
+    ctx.witnesses["best_mu"] = {"vdot_at_R_max": info["record"], "r_sup_cover": pieces_text(e.cover),
+                                "r_sup_point": ball_text(e.argpoint), "mu_pieces": pieces_text(u_cover),
+                                "x2_points": [ball_text(x) for x in u_points]}
     if not (U.is_finite() and certainly_le(_q(R_max), U)):
         return _claim("best_mu", Status.INCONCLUSIVE, f"no finite upper bound of sup R_sup over (16): {U}",
                       decides=U)
@@ -582,6 +562,9 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
         for name in ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R"):
             quantities[name] = k[name]
         widths_met = all(rel_width_at_most(k[n], model.rel_width) for n in ("m", "M", "p", "R1", "R2"))
+    if need_constants:
+        ctx.witnesses["constants"] = {n: {"cover": pieces_text(e.cover), "point": ball_text(e.argpoint)}
+                                      for n, e in (("m", ctx.m_max()), ("M", ctx.M_max()))}
     if "constants" in wanted:
         k = ctx.constants()
         finite = all(v.is_finite() for v in k.values())
@@ -625,7 +608,9 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
         quantities["R_used"] = R
     vclaim = None
     if "vdot_nonpositive" in wanted or "invariant_estimate" in wanted:
-        vclaim, _ = _vdot_claim(ctx, R, how)
+        vclaim, vinfo = _vdot_claim(ctx, R, how)
+        if vclaim.status is Status.PROVED:
+            ctx.witnesses["vdot_nonpositive"] = {"R": ball_text(R), **vinfo["record"]}
         if "vdot_nonpositive" in wanted:
             claims.append(vclaim)
     pclaim = None
@@ -650,5 +635,6 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
     return Attempt(claims, quantities, paper, formulas, notes, widths_met=widths_met,
                    width_quantities=tuple(n for n in ("m", "M", "p", "R1", "R2")
                                           if n in quantities and not rel_width_at_most(quantities[n], model.rel_width)),
-                   extra={"moment": {"name": ctx.g.law.name, "formula": ctx.g.law.formula}})
+                   extra={"moment": {"name": ctx.g.law.name, "formula": ctx.g.law.formula}},
+                   witnesses=ctx.witnesses)
 

@@ -41,14 +41,16 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from ...core.balls import certainly_positive, current_precision, decimal_bounds, exact_fraction
+from ...core.balls import (certainly_le, certainly_positive, current_precision, decimal_bounds, exact_fraction,
+                           sqrt_of_nonnegative)
 from ...core.exact import Exact
 from ...core.outcome import Status
+from ...core.stored import ball_text, pieces_text
 from ...core.subdivision import certify_positive
 from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
-           "VdotVerdict", "certify_vdot_nonpositive"]
+           "VdotVerdict", "certify_vdot_nonpositive", "closed_form_constants", "cylinder_lower_bound"]
 
 
 class Dual:
@@ -422,7 +424,8 @@ class VdotVerdict:
     decides: arb | None = None
 
 
-def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: int) -> VdotVerdict:
+def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: int,
+                             record: dict | None = None) -> VdotVerdict:
     """Decide Vdot = -Psi1 x1^2 - Psi2 x3^2 <= 0 on |x2| <= x2*, x1^2 + x3^2 <= R^2.
 
     Guarantee: PROVED when min over the disc of Psi1 and of Psi2 is certified > 0 on x2 pieces covering
@@ -435,7 +438,10 @@ def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: i
     psi1, psi2 = psi_min_functions(g, R)
     results, pieces = {}, 0
     for name, fn in (("Psi1", psi1), ("Psi2", psi2)):
-        r = certify_positive(fn, -xs, xs, max_pieces=max_pieces)
+        kept: list = []
+        r = certify_positive(fn, -xs, xs, max_pieces=max_pieces, record=kept)
+        if record is not None and r.status is Status.PROVED:
+            record[name] = pieces_text(kept)
         results[name] = r
         pieces += r.pieces
     if all(r.status is Status.PROVED for r in results.values()):
@@ -444,18 +450,65 @@ def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: i
                            f"{results['Psi1'].pieces} + {results['Psi2'].pieces} x2 pieces of [-x2*, x2*]; "
                            "Vdot = 0 exactly on x1 = x3 = 0 by the factored form (checked against automatic "
                            "differentiation of (7) along (2))", pieces, {"pieces": pieces})
-    points = [r.witness for r in results.values() if r.witness is not None]
-    points += [xs * arb(j) / 8 for j in range(-8, 9)]
+    # exact points of [-x2*, x2*] (the ends of the x2 range are balls: take its exact lower end)
+    points = [r.witness for r in results.values() if r.witness is not None and r.witness.rad().is_zero()
+              and certainly_le(abs(r.witness), xs)]
+    xq = exact_fraction(xs.lower())
+    points += [arb(fmpq((xq * j / 8).numerator, (xq * j / 8).denominator)) for j in range(-8, 9)]
     w = vdot_witness(g, R, points)
     if w is not None:
         x1, x2, x3, v = w
         point = {"x1": _fmt(x1, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3, 20), "vdot": _fmt(v, 8)}
+        exact = {"x1": ball_text(x1), "x2": ball_text(x2), "x3": ball_text(x3)}
         return VdotVerdict(Status.REFUTED,
                            f"{how} = {_fmt(R)}: grad V . f = {_fmt(v, 6)} > 0 at the point x1 = {_fmt(x1)}, "
                            f"x2 = {_fmt(x2)}, x3 = {_fmt(x3)} of the region (certified)", pieces,
-                           {"witness": point}, w, {"point": point, "radius": _fmt(R, 20)})
+                           {"witness": point}, w, {"point": exact, "vdot": _fmt(v, 20), "radius": _fmt(R, 20)})
     bad = [f"{k}: {r.reason}" for k, r in results.items() if r.status is not Status.PROVED]
     stuck = next((r.stuck_value for r in results.values() if r.status is not Status.PROVED), None)
     return VdotVerdict(Status.INCONCLUSIVE,
                        f"{how} = {_fmt(R)}: " + "; ".join(bad) + "; no point with certified Vdot > 0 found "
                        "(try a smaller R, higher --maxprec or a larger max_pieces option)", pieces, decides=stuck)
+
+# ------------------------------------------------------------------------------------ constants, c*
+# Closed forms shared by the claims and the checker (rigor-gyro check recomputes them from its own m, M).
+
+def closed_form_constants(g: Gimbal, m: arb, M: arb) -> dict[str, arb]:
+    """A0, B0, C0, p = max(M, A0 m / cos^2 x2*), k_min, the mu interval (16), R1 (13), R2 (14), R, for
+    enclosures m, M of the maxima (every returned ball contains the value for every m, M in them)."""
+    c = g.c
+    A0, B0, C0, H, k, mu = c.A0, c.B0, c.C0, c.H, c.k, c.mu
+    xs = c.x2_star
+    s, cs = xs.sin(), xs.cos()
+    pA = A0 * m / cs ** 2
+    p = M.max(pA)
+    out = {"A0": A0, "B0": B0, "C0": C0, "m": m, "M": M, "A0_m_over_cos2": pA, "p": p,
+           "k_min": p * A0 / H, "mu_min": p / H, "mu_max": k / A0}
+    Ds = A0 - C0 * s ** 2
+    D1 = 108 * A0 * (A0 - C0) * H ** 4 * cs ** 4 * (k / A0 - mu) ** 2
+    D2 = 16 * mu ** 2 * A0 * (A0 - C0) * H ** 2 * C0 ** 2 + 27 * (mu * k * B0 * C0 + (A0 - C0) * H ** 2) ** 2
+    P = A0 - C0 - C0 * cs ** 2
+    E1 = 4 * H ** 2 * (mu * H * cs ** 2 - m * A0) ** 2 * Ds ** 4
+    E2 = A0 ** 2 * (4 * mu ** 2 * H ** 2 * P ** 2 * Ds ** 2 * s ** 2 + (mu * k * B0 * C0 - (A0 - C0) * H ** 2) ** 2)
+    # D1, E1 are squares times positive factors and D2, E2 sums of squares: >= 0 exactly
+    R1, R2 = sqrt_of_nonnegative(D1 / D2), sqrt_of_nonnegative(E1 / E2)
+    out.update({"R1": R1, "R2": R2, "R": R1.min(R2), "R2_base": mu * H * cs ** 2 - m * A0})
+    return out
+
+
+def cylinder_lower_bound(g: Gimbal, R: arb):
+    """x2 piece -> a lower bound of min over theta of V(R cos theta, x2, R sin theta).
+
+    On the circle V = alpha + beta sin(th) + gamma cos(2 th) + delta sin(2 th) with
+    alpha = mu F + (f2 + mu f1 + h^2) R^2/4, beta = f3 R, gamma = (h^2 - f2 - mu f1) R^2/4,
+    delta = mu h R^2/2 (h = H cos x2 / B0), so V >= alpha - |beta| - sqrt(gamma^2 + delta^2)."""
+    c = g.c
+
+    def lb(x2):
+        h = c.H * x2.cos() / c.B0
+        e = g.f2(x2) + c.mu * g.f1(x2)
+        alpha = c.mu * g.F(x2) + (e + h * h) * R * R / 4
+        gamma = (h * h - e) * R * R / 4
+        delta = c.mu * h * R * R / 2
+        return alpha - abs(g.f3(x2)) * R - hypot_ball(gamma, delta)
+    return lb

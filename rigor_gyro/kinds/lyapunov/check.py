@@ -1,0 +1,294 @@
+"""Independent re-check of a Lyapunov certificate (``rigor-gyro check``).
+
+The prover runs branch-and-bound searches (maxima m and M, the cylinder bound of c*, the radius over
+mu) and bisections (Psi > 0, S, f/x, psi > 0). This checker does not search: it re-evaluates the
+model's enclosures on the stored pieces only, at twice the certificate's precision, and checks
+
+* that the stored pieces cover their range (exact endpoints; overlaps allowed, gaps not);
+* m, M: the largest upper bound over the stored cover, and the value at the stored point, give the
+  checker's own enclosure of each maximum; every closed form after them (p, k_min, (16), R1, R2, R)
+  is recomputed from those;
+* Psi1, Psi2 > 0 over the disc on every stored piece (Vdot <= 0 on (17)); S, f/x, psi > 0 (V > 0);
+  c* from the faces' closed form and the cylinder bound on the stored cover, the level c_set below it,
+  the extents; at mu_best, Psi > 0 on the disc of radius R_max, R_sup(mu_best) on its cover, and the
+  upper bound of R_sup over (16) re-derived from the stored mu pieces and x2 points;
+* a refuted claim's counterexample (a point where grad V . f > 0 or V <= 0, a violated inequality);
+* every stored quantity contains the checker's recomputed enclosure (bounds: the certified side).
+"""
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+
+from flint import arb
+
+from ...check import CheckResult
+from ...core.balls import certainly_gt, certainly_le, certainly_lt, certainly_positive, exact_endpoints
+from ...core.stored import encloses, fmpq_of, interval as stored_interval, number
+from .claims import rho_function, rho_lower
+from .model import closed_form_constants, cylinder_lower_bound, mean_value_enclosure, psi_min_functions
+
+__all__ = ["check"]
+
+
+def _b(pair) -> arb:
+    """The ball of a stored exact [lo, hi] pair."""
+    lo, hi = (number(x) for x in pair)
+    return arb(fmpq_of(lo)).union(arb(fmpq_of(hi)))
+
+
+def _covers(pieces, lo: arb, hi: arb) -> bool:
+    """The stored pieces (sorted by their lower ends) cover [lo, hi]: no gap, overlaps allowed."""
+    if not pieces:
+        return False
+    ivs = sorted(((number(a), number(b)) for a, b in pieces), key=lambda p: p[0])
+    lo_q = _lower(lo)
+    hi_q = _upper(hi)
+    if ivs[0][0] > lo_q:
+        return False
+    reach = ivs[0][1]
+    for a, b in ivs[1:]:
+        if a > reach:
+            return False
+        reach = max(reach, b)
+    return reach >= hi_q
+
+
+def _lower(x: arb) -> Fraction:
+    return exact_endpoints(x)[0]
+
+
+def _upper(x: arb) -> Fraction:
+    return exact_endpoints(x)[1]
+
+
+def _max_upper(f, pieces) -> arb:
+    """The largest upper bound of f over the pieces (a certified bound of its maximum there)."""
+    up = None
+    for p in pieces:
+        u = f(_b(p)).upper()
+        up = u if up is None else up.max(u)
+    return up
+
+
+def _all_positive(f, pieces) -> bool:
+    return all(certainly_positive(f(_b(p))) for p in pieces)
+
+
+def check(model, data: dict) -> list[CheckResult]:
+    """Re-decide every claim of a Lyapunov certificate; see the module docstring."""
+    res: list[CheckResult] = []
+    say = lambda item, ok, msg: res.append(CheckResult(item, ok, msg))  # noqa: E731
+    q, W = data["quantities"], data.get("witnesses") or {}
+    claims = {c["id"]: c for c in data["claims"]}
+    verified: set[str] = set()
+    g = model.gimbal
+    c = g.c
+    xs = c.x2_star
+
+    def contains(name: str, x: arb) -> bool:
+        if name not in q:
+            return True
+        ok = encloses(stored_interval(q[name]), x)
+        if ok:
+            verified.add(name)
+        else:
+            say(name, False, f"stored [{q[name]['lo']}, {q[name]['hi']}] does not contain the recomputed value")
+        return ok
+
+    def upper_bound_holds(name: str, x: arb) -> bool:
+        """A stored *bound* (a number the proof computed): its upper end is >= the checker's bound."""
+        if name not in q:
+            return True
+        ok = x.is_finite() and stored_interval(q[name])[1] >= _upper(x)
+        if ok:
+            verified.add(name)
+        else:
+            say(name, False, "the stored bound is below the bound the checker re-derives")
+        return ok
+
+    # ---------------------------------------------------------------- the maxima m and M
+    K = None
+    wc = W.get("constants")
+    if wc:
+        mv = mean_value_enclosure(g.m_signed)
+        m_fn = lambda X: g.m_quotient(X).min(abs(mv(X)))      # both enclose |cos f'|/D  # noqa: E731
+        ok = _covers(wc["m"]["cover"], arb(0), xs) and _covers(wc["M"]["cover"], arb(0), xs)
+        if ok:
+            m = g.m_quotient(_b(wc["m"]["point"])).lower().union(_max_upper(m_fn, wc["m"]["cover"]))
+            M = g.q(_b(wc["M"]["point"])).lower().union(_max_upper(g.q, wc["M"]["cover"]))
+            if m.is_finite() and M.is_finite():
+                K = closed_form_constants(g, m, M)
+                for name in ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R"):
+                    contains(name, K[name])
+                contains("damping_margin", c.k / K["k_min"] - 1)
+        if K is None:
+            say("constants", False, "the stored covers of m and M do not cover [0, x2*] or give no finite bound")
+    R = None
+    if model.R_option is not None:
+        R = arb(model.R_option)
+    elif K is not None:
+        R = K["R"]
+    if R is not None:
+        contains("R_used", R)
+
+    def vdot_holds(gm, radius, rec) -> bool:
+        if not rec or not (radius.is_finite() and certainly_positive(radius)):
+            return False
+        p1, p2 = psi_min_functions(gm, radius)
+        return all(_covers(rec[k], -xs, xs) for k in ("Psi1", "Psi2")) and \
+            _all_positive(p1, rec["Psi1"]) and _all_positive(p2, rec["Psi2"])
+
+    # ---------------------------------------------------------------- V > 0
+    wv = W.get("v_positive")
+    v_ok = False
+    if wv and all(k in wv for k in ("S", "f_over_x", "psi")):
+        v_ok = (all(_covers(wv[k], arb(0), xs) for k in ("S", "f_over_x", "psi"))
+                and _all_positive(g.S, wv["S"]) and _all_positive(lambda x: g.law.f_over_x(c.a, x), wv["f_over_x"])
+                and _all_positive(g.psi, wv["psi"]))
+    vdot_ok = R is not None and vdot_holds(g, R, W.get("vdot_nonpositive"))
+
+    # ---------------------------------------------------------------- c*, the set, its extents
+    inv_ok = False
+    wi = W.get("invariant_estimate")
+    ic = claims.get("invariant_estimate", {})
+    if wi and R is not None and vdot_ok and v_ok and ic.get("status") == "proved":
+        face = g.phi(xs)
+        m1, m3 = g.phi_minimiser(xs)
+        inside = certainly_lt(m1 ** 2 + m3 ** 2, R ** 2)
+        lb = cylinder_lower_bound(g, R)
+        cyl = None
+        if _covers(wi["cylinder"], arb(0), xs):
+            for p in wi["cylinder"]:
+                v = lb(_b(p)).lower()
+                cyl = v if cyl is None else cyl.min(v)
+        if cyl is not None:
+            lower = face.lower().min(cyl) if inside else cyl
+            samples = [g.V(R * arb(math.cos(2 * math.pi * j / 32)), x2, R * arb(math.sin(2 * math.pi * j / 32)))
+                       for x2 in (arb(0), xs / 2, xs) for j in range(32)]
+            upper = samples[0]
+            for s in samples[1:]:
+                upper = upper.min(s)
+            upper = upper.upper().min(face.upper()) if inside else upper.upper()
+            cstar_lo_ok = "c_star" in q and stored_interval(q["c_star"])[0] <= _lower(lower)
+            cstar_hi_ok = "c_star" in q and stored_interval(q["c_star"])[1] >= _upper(upper)
+            if cstar_lo_ok and cstar_hi_ok:
+                verified.add("c_star")
+            contains("c_star_face", face)
+            c_text = ic.get("details", {}).get("c_set")
+            if c_text is not None:
+                cl = arb(fmpq_of(Fraction(c_text)))
+                contains("c_set", cl)
+                hx = c.H / c.B0
+                contains("extent_x1_axis", ((2 * cl).sqrt() / hx).min(R))
+                contains("extent_x3_axis", ((2 * cl) / (g.f2(arb(0)) + c.mu * g.f1(arb(0)))).sqrt().min(R))
+                if "extent_x2_axis" in q:
+                    e_lo, e_hi = stored_interval(q["extent_x2_axis"])
+                    lo_b, hi_b = arb(fmpq_of(e_lo)), arb(fmpq_of(e_hi))
+                    capped = certainly_lt(c.mu * g.F(xs), cl) and encloses((e_lo, e_hi), xs)
+                    root_in = (certainly_lt(c.mu * g.F(lo_b), cl) or not certainly_positive(lo_b)) and \
+                        (certainly_gt(c.mu * g.F(hi_b.min(xs)), cl) or encloses((e_lo, e_hi), xs))
+                    if capped or root_in:
+                        verified.add("extent_x2_axis")
+                mu = c.mu
+
+                def x1_bound(x2):
+                    S = g.S(x2)
+                    return ((2 * cl * (S + mu ** 2) / S).sqrt() + mu * abs(g.f3(x2)) / S) / (c.H * x2.cos() / c.B0)
+
+                def x3_bound(x2):
+                    S = g.S(x2)
+                    return (2 * cl / S).sqrt() + abs(g.f3(x2)) / S
+                for name, fn in (("bound_x1", x1_bound), ("bound_x3", x3_bound)):
+                    if _covers(wi[name], arb(0), xs):
+                        upper_bound_holds(name, _max_upper(fn, wi[name]).min(R))
+                inv_ok = (cstar_lo_ok and cstar_hi_ok and certainly_positive(cl)
+                          and certainly_le(cl, lower))
+
+    # ---------------------------------------------------------------- best mu
+    bm_ok = False
+    wb = W.get("best_mu")
+    bc = claims.get("best_mu", {})
+    if wb and K is not None and bc.get("status") == "proved":
+        d = bc.get("details", {})
+        mu_b = fmpq_of(Fraction(d["mu_best"]))
+        R_max = arb(fmpq_of(Fraction(d["R_max"])))
+        gb = g.with_mu(mu_b)
+        contains("mu_best", arb(mu_b))
+        contains("R_max", R_max)
+        inside16 = certainly_lt(K["mu_min"], arb(mu_b)) and certainly_lt(arb(mu_b), K["mu_max"])
+        at_R_max = vdot_holds(gb, R_max, wb["vdot_at_R_max"])
+        rho = rho_function(gb)
+        if _covers(wb["r_sup_cover"], arb(0), xs):
+            top = _max_upper(rho, wb["r_sup_cover"])
+            low = rho(_b(wb["r_sup_point"])).lower()
+            contains("R_sup_at_mu_best", (1 / top).union(1 / low) if certainly_positive(low) else arb("nan"))
+        points = [_b(p) for p in wb["x2_points"]]
+        U = None
+        if _covers(wb["mu_pieces"], K["mu_min"].lower(), K["mu_max"].upper()):
+            for p in wb["mu_pieces"]:
+                Mu = _b(p)
+                L = arb(0)
+                for x in points:
+                    L = L.max(rho_lower(g, x, Mu))
+                u = (1 / L).upper() if certainly_positive(L) else arb("inf")
+                U = u if U is None else U.max(u)
+        if U is not None and U.is_finite():
+            upper_bound_holds("R_sup_upper_bound", U)
+            upper_bound_holds("R_max_relative_gap", (U - R_max) / R_max)
+        bm_ok = inside16 and at_R_max and U is not None and U.is_finite()
+
+    # ---------------------------------------------------------------- the claims
+    for cid, cl_ in claims.items():
+        st = cl_["status"]
+        ce = cl_.get("counterexample") or {}
+        if st == "inconclusive":
+            say(cid, True, "inconclusive: claims nothing")
+        elif cid == "constants":
+            say(cid, st == "proved" and K is not None and all(v.is_finite() for v in K.values()),
+                "m, M re-bounded on the stored covers; closed forms recomputed")
+        elif cid == "damping_condition":
+            if K is None:
+                say(cid, False, "needs the re-verified constants")
+                continue
+            parts = [(c.k, K["k_min"]), (c.mu, K["mu_min"]), (K["mu_max"], c.mu)]
+            if st == "proved":
+                say(cid, all(certainly_gt(x, y) for x, y in parts), "k > k_min and mu inside (16), re-decided")
+            else:
+                say(cid, any(certainly_le(x, y) for x, y in parts), "a violated inequality re-derived")
+        elif cid == "vdot_nonpositive":
+            if st == "proved":
+                say(cid, vdot_ok, "Psi1, Psi2 > 0 over the disc on every stored x2 piece, re-evaluated")
+            else:
+                pt = ce.get("point", {})
+                x1, x2, x3 = (_b(_pair(pt[k])) for k in ("x1", "x2", "x3"))
+                ok = (R is not None and certainly_positive(g.vdot(x1, x2, x3)) and certainly_le(abs(x2), xs)
+                      and certainly_lt(x1 * x1 + x3 * x3, R * R))
+                say(cid, ok, "grad V . f > 0 at the stored point of the region, re-evaluated")
+        elif cid == "v_positive":
+            if st == "proved":
+                say(cid, v_ok, "S, f/x, psi > 0 on every stored piece of [0, x2*], re-evaluated")
+            else:
+                pt = ce.get("point", {})
+                x1, x2, x3 = (_b(_pair(pt[k])) for k in ("x1", "x2", "x3"))
+                say(cid, certainly_le(g.V(x1, x2, x3), 0) and certainly_le(abs(x2), xs),
+                    "V <= 0 at the stored point, re-evaluated")
+        elif cid == "invariant_estimate":
+            say(cid, st == "proved" and inv_ok, "c* re-bounded on the stored cylinder cover; c_set below it")
+        elif cid == "best_mu":
+            if st == "proved":
+                say(cid, bm_ok, "mu_best inside (16), Psi > 0 at R_max, the bound over (16) re-derived")
+            else:
+                say(cid, K is not None and certainly_le(K["mu_max"], K["mu_min"]), "the interval (16) is empty")
+        else:
+            say(cid, False, f"unknown claim {cid!r}")
+    unverified = sorted(set(q) - verified)
+    say("quantities", not unverified, f"{len(verified)} stored enclosures verified"
+        + (f"; not verified: {unverified}" if unverified else ""))
+    return res
+
+
+def _pair(value) -> list[str]:
+    """A counterexample coordinate as stored: an exact [lo, hi] pair of texts."""
+    lo, hi = value
+    return [lo, hi]
