@@ -187,3 +187,14 @@ def test_certificates_validate_against_the_shipped_json_schema(tmp_path):
     next(c for c in bad["claims"] if c["status"] == "refuted").pop("counterexample")
     with pytest.raises(jsonschema.ValidationError):
         jsonschema.validate(bad, schema)
+
+
+def test_refuted_lyapunov_certificate_confirms_its_counterexamples():
+    data = _cert("agafonov2013", H="10", a="1e4", mu="0.01", k="0.1")
+    assert data["verdict"] == "refuted"
+    assert check_certificate(data).ok
+    bad = copy.deepcopy(data)
+    v = next(c for c in bad["claims"] if c["id"] == "vdot_nonpositive")
+    v["counterexample"]["point"]["x1"] = ["0", "0"]          # on the x2 axis Vdot = 0: no counterexample
+    v["counterexample"]["point"]["x3"] = ["0", "0"]
+    assert not check_certificate(_refix(bad)).ok
