@@ -22,6 +22,7 @@ from .version import __version__
 __all__ = ["main", "EXIT_BAD_INPUT", "EXIT_INTERNAL"]
 
 EXIT_BAD_INPUT = 2
+_KIND_NAMES = ("eigenfrequencies", "lyapunov", "periodic_orbit")
 EXIT_INTERNAL = 4
 #: the worst exit status wins when several scenes are proved
 _PRECEDENCE = (EXIT_INTERNAL, EXIT_BAD_INPUT, 1, 3, 0)
@@ -51,6 +52,14 @@ def _parser() -> argparse.ArgumentParser:
     pr.add_argument("--plots", action="store_true",
                     help="also draw the scene's figures into --out (needs the 'plots' extra: matplotlib)")
     pr.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
+    cp = sub.add_parser("campaign", help="prove N random scenes of a kind and compare them with mpmath, "
+                        "floats and independent decisions (needs the 'crosscheck' extra)")
+    cp.add_argument("--kind", required=True, choices=sorted(_KIND_NAMES))
+    cp.add_argument("--cases", type=int, default=100, help="number of random scenes (default 100)")
+    cp.add_argument("--seed", type=int, default=0, help="seed of the draw (default 0)")
+    cp.add_argument("--workers", type=int, default=1, help="processes (default 1)")
+    cp.add_argument("--out", default=None, help="also write the summary (Markdown) and the results (JSON) here")
+    cp.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     ck = sub.add_parser("check", help="re-verify certificates from their own data (exit 0 all confirm, "
                         "1 one does not, 2 unreadable)")
     ck.add_argument("certs", nargs="+", metavar="CERT.json", help="certificate files written by 'prove'")
@@ -166,6 +175,33 @@ def _cmd_prove(args) -> int:
     return next(c for c in _PRECEDENCE if c in codes or c == 0)
 
 
+def _cmd_campaign(args) -> int:
+    """Exit 0 when no containment failure, verdict disagreement or crash, 1 otherwise."""
+    import json
+    from .campaign import run_campaign, summary_table
+    if not (1 <= args.cases <= 10 ** 6 and 1 <= args.workers <= 64):
+        return _bad("need 1 <= --cases <= 1000000 and 1 <= --workers <= 64")
+    tty = sys.stderr.isatty()
+
+    def progress(done, total):
+        if tty and (done % 10 == 0 or done == total):
+            print(f"\r{args.kind}: {done}/{total} cases", end="" if done < total else "\n", file=sys.stderr, flush=True)
+    try:
+        results = run_campaign(args.kind, args.cases, args.seed, args.workers, progress)
+    except ImportError as e:
+        return _bad(f"campaign needs the cross-check libraries ({e.name}): pip install 'rigor_gyro[crosscheck]'")
+    table = summary_table(args.kind, args.seed, results)
+    _say(table)
+    if args.out:
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        (out / f"campaign_{args.kind}_{args.seed}.md").write_text(table + "\n", encoding="utf-8")
+        (out / f"campaign_{args.kind}_{args.seed}.json").write_text(json.dumps(results, indent=1) + "\n",
+                                                                     encoding="utf-8")
+    bad = any(r["containment_failures"] or r["verdict_disagreements"] or r["error"] for r in results)
+    return 1 if bad else 0
+
+
 def _cmd_check(args) -> int:
     """Exit 0 when every certificate confirms, 1 naming the first check that does not, 2 unreadable."""
     from .check import CertificateError, check_file
@@ -222,6 +258,8 @@ def main(argv: list[str] | None = None) -> int:
             return _cmd_list()
         if args.command == "check":
             return _cmd_check(args)
+        if args.command == "campaign":
+            return _cmd_campaign(args)
         return _cmd_prove(args)
     except RigorGyroError as e:
         return _bad(str(e))

@@ -22,7 +22,7 @@ PKG = Path(__file__).resolve().parent.parent / "rigor_gyro"
 GRAPH = import_graph.graph()
 APPLICATION = {"rigor_gyro", "rigor_gyro.__main__", "rigor_gyro.cli", "rigor_gyro.scene", "rigor_gyro.prover",
                "rigor_gyro.certificate", "rigor_gyro.report"}
-FLOAT_SIDE = ("approx", "plots")
+FLOAT_SIDE = ("approx", "plots", "campaign")
 FLOAT_LIBRARIES = ("numpy", "scipy", "mpmath", "matplotlib")
 
 
