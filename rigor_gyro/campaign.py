@@ -99,7 +99,7 @@ def summary_table(kind: str, seed: int, results: list[dict[str, Any]]) -> str:
     times = sorted(r["seconds"] for r in results) or [0.0]
     compared = sum(r["compared"] for r in results)
     lines = ["| kind | seed | cases | proved | refuted | inconclusive | crashes | containment failures | "
-             f"verdict disagreements | values compared | float misses (worst rel. error) | s/case median (max) |",
+             "verdict disagreements | values compared | float misses (worst rel. error) | s/case median (max) |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|",
              f"| {kind} | {seed} | {n} | {by['proved']} | {by['refuted']} | {by['inconclusive']} | {len(errs)} | "
              f"{len(cf)} | {len(vd)} | {compared} | {len(fm)} ({worst:.2g}) | {times[len(times) // 2]:.2f} "
