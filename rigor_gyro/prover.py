@@ -61,6 +61,9 @@ def no_progress(prev: tuple[int, Attempt], now: tuple[int, Attempt]) -> dict[str
     for c in a1.claims:
         if c.status is not Status.INCONCLUSIVE:
             continue
+        if c.precision_cannot_help:
+            why[c.id] = c.precision_cannot_help
+            continue
         b = before.get(c.id)
         reason = _stuck(b.decides if b is not None and b.status is Status.INCONCLUSIVE else None, c.decides, p1)
         if reason is None:

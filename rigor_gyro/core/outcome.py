@@ -69,6 +69,9 @@ class Claim:
     #: for an INCONCLUSIVE claim, the ball whose certain sign would decide it (a margin, a difference);
     #: the prover compares it across precisions to tell whether doubling the precision still helps
     decides: arb | None = field(default=None, compare=False, repr=False)
+    #: for an INCONCLUSIVE claim that no precision can decide (it rests on a refuted claim, or on a
+    #: search range the scene restricts), why: the prover stops escalating for it
+    precision_cannot_help: str | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.status is Status.REFUTED and not self.counterexample:

@@ -262,9 +262,14 @@ def check(model, data: dict) -> list[CheckResult]:
             else:
                 pt = ce.get("point", {})
                 x1, x2, x3 = (_b(_pair(pt[k])) for k in ("x1", "x2", "x3"))
-                ok = (R is not None and certainly_positive(g.vdot(x1, x2, x3)) and certainly_le(abs(x2), xs)
-                      and certainly_lt(x1 * x1 + x3 * x3, R * R))
-                say(cid, ok, "grad V . f > 0 at the stored point of the region, re-evaluated")
+                in_region = (R is not None and certainly_le(abs(x2), xs) and certainly_lt(x1 * x1 + x3 * x3, R * R))
+                if "psi" in ce:          # the statement's Psi test fails at the point
+                    c0, c1, c3 = g.psi_coefficients(x2)[0 if ce["psi"] == "Psi1" else 1]
+                    ok = in_region and certainly_le(c0 + c1 * x1 + c3 * x3, 0)
+                    say(cid, ok, f"{ce['psi']} <= 0 at the stored point of the region, re-evaluated")
+                else:
+                    ok = in_region and certainly_positive(g.vdot(x1, x2, x3))
+                    say(cid, ok, "grad V . f > 0 at the stored point of the region, re-evaluated")
         elif cid == "v_positive":
             if st == "proved":
                 say(cid, v_ok, "S, f/x, psi > 0 on every stored piece of [0, x2*], re-evaluated")

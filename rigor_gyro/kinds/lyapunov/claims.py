@@ -626,6 +626,8 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
             claims.append(_claim("invariant_estimate", Status.INCONCLUSIVE,
                                  "rests on vdot_nonpositive and v_positive, which are not both proved",
                                  decides=dep.decides if dep.status is Status.INCONCLUSIVE else None))
+            if dep.status is Status.REFUTED:
+                claims[-1].precision_cannot_help = f"it rests on {dep.id}, which is refuted"
     if "best_mu" in wanted:
         claims.append(_best_mu(ctx, quantities))
     paper, formulas, audit_notes = audit_paper(ctx, quantities)

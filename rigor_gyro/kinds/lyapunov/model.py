@@ -50,7 +50,7 @@ from ...core.subdivision import certify_positive
 from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
-           "VdotVerdict", "certify_vdot_nonpositive", "closed_form_constants", "cylinder_lower_bound"]
+           "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound"]
 
 
 class Dual:
@@ -410,6 +410,28 @@ def vdot_witness(g: Gimbal, R: arb, x2_points: list[arb]) -> tuple[arb, arb, arb
     return None
 
 
+def psi_counterexample(g: Gimbal, x2: arb, R: arb, which: int):
+    """A point (x1, x2, x3) of the open disc of radius R (exact rationals) where Psi_which <= 0 certainly,
+    near the minimiser -R (ci1, ci3)/|(ci1, ci3)| of the affine Psi over the disc; None if not found."""
+    c0, c1, c3 = g.psi_coefficients(x2)[which]
+    d1, d3 = float(c1.mid()), float(c3.mid())
+    norm = math.hypot(d1, d3)
+    if norm == 0 or not math.isfinite(norm):
+        return None
+    Rq = exact_fraction(R.lower())
+    for shrink in (Fraction(1) - Fraction(1, 2 ** 30), Fraction(1) - Fraction(1, 2 ** 16)):
+        u1 = Fraction(-d1 / norm).limit_denominator(10 ** 15)
+        u3 = Fraction(-d3 / norm).limit_denominator(10 ** 15)
+        p1, p3 = u1 * Rq * shrink, u3 * Rq * shrink
+        if not p1 * p1 + p3 * p3 < Rq * Rq:
+            continue
+        b1, b3 = arb(fmpq(p1.numerator, p1.denominator)), arb(fmpq(p3.numerator, p3.denominator))
+        val = c0 + c1 * b1 + c3 * b3
+        if certainly_le(val, 0):
+            return b1, x2, b3, val
+    return None
+
+
 @dataclass
 class VdotVerdict:
     """The outcome of :func:`certify_vdot_nonpositive`: status, the reason as the report prints it, the
@@ -464,6 +486,25 @@ def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: i
                            f"{how} = {_fmt(R)}: grad V . f = {_fmt(v, 6)} > 0 at the point x1 = {_fmt(x1)}, "
                            f"x2 = {_fmt(x2)}, x3 = {_fmt(x3)} of the region (certified)", pieces,
                            {"witness": point}, w, {"point": exact, "vdot": _fmt(v, 20), "radius": _fmt(R, 20)})
+    # no point with Vdot > 0: the statement's "Psi1 > 0 and Psi2 > 0 on the region" may still fail at a
+    # certified point (the paper's test, sufficient, not necessary)
+    for name, r in results.items():
+        if r.status is not Status.REFUTED:
+            continue
+        w = r.witness            # an exact point of [-x2*, x2*]: the ends of the range are balls, take inside
+        w = w if w.rad().is_zero() else (w.lower() if certainly_positive(w) else w.upper())
+        if not certainly_le(abs(w), xs):
+            continue
+        point = psi_counterexample(g, w, R, 0 if name == "Psi1" else 1)
+        if point is not None:
+            x1, x2, x3, val = point
+            exact = {"x1": ball_text(x1), "x2": ball_text(x2), "x3": ball_text(x3)}
+            return VdotVerdict(Status.REFUTED,
+                               f"{how} = {_fmt(R)}: {name} = {_fmt(val, 6)} <= 0 at the point x1 = {_fmt(x1)}, "
+                               f"x2 = {_fmt(x2)}, x3 = {_fmt(x3)} of the region (certified): the test Psi1, Psi2 > 0 "
+                               "of the statement fails there (Vdot itself may still be <= 0: no point with "
+                               "Vdot > 0 was found)", pieces, {}, None,
+                               {"point": exact, "psi": name, "value": _fmt(val, 20), "radius": _fmt(R, 20)})
     bad = [f"{k}: {r.reason}" for k, r in results.items() if r.status is not Status.PROVED]
     stuck = next((r.stuck_value for r in results.values() if r.status is not Status.PROVED), None)
     return VdotVerdict(Status.INCONCLUSIVE,

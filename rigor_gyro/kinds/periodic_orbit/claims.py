@@ -568,6 +568,11 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
         claims.append(_claim("stable", *st))
     # what would decide the claims left open by an undecided piece of the range: g over that piece (the
     # prover stops escalating when doubling the precision no longer shrinks it, e.g. at a depth limit)
+    if complete and not an.covers_all:      # everything in (0, T_max] decided: precision cannot add more
+        for c in claims:
+            if c.status is Status.INCONCLUSIVE:
+                c.precision_cannot_help = ("the scene restricts the search to (0, T_max] and every root there is "
+                                           "decided; set option T_max = \"auto\" to search all of (0, oo)")
     if an.unknown:
         u = an.unknown[0]
         if "precision limit" in u.reason:     # more precision resolves a narrower piece: watch g there

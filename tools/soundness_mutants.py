@@ -1,0 +1,127 @@
+"""Named soundness mutants: each weakens one step a proof rests on; the default tests must kill all.
+
+    python tools/soundness_mutants.py [--only NAME ...] [--list] [--out proofs/mutation.md]
+
+Each mutant is one textual substitution in one file. It is applied to a fresh copy of the package and
+the tests (in a temporary folder), and the README's test command runs there (``python -m pytest -x``,
+the ``ci`` hypothesis profile, with the copy first on ``sys.path``). A mutant is *killed* when the
+tests fail. Prints a table (and writes it with ``--out``); exits 1 if any mutant survives.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+#: (name, file, original text, mutated text, what it breaks)
+MUTANTS = [
+    ("certainly_lt_to_possibly", "rigor_gyro/core/balls.py", "    if x < y:\n        return -1",
+     "    if not (x > y):\n        return -1", "a certainty predicate weakened to 'possibly' (compare / certainly_lt)"),
+    ("certainly_le_to_possibly", "rigor_gyro/core/balls.py", "return bool(x.is_finite() and y.is_finite() and x <= y)",
+     "return bool(x.is_finite() and y.is_finite() and not (x > y))", "certainly_le weakened to 'possibly'"),
+    ("nan_decides", "rigor_gyro/core/balls.py", "    if not (x.is_finite() and y.is_finite()):\n        return None\n",
+     "", "NaN/infinite balls allowed to decide a comparison"),
+    ("rounding_to_nearest", "rigor_gyro/core/balls.py",
+     'lo = _round_decimal(a, d, "down") if a is not None else "-inf"',
+     'lo = _round_decimal(a, d, "nearest") if a is not None else "-inf"', "outward rounding of decimals turned to nearest"),
+    ("taylor_remainder_halved", "rigor_gyro/kinds/periodic_orbit/flow.py",
+     "        tot += comb(order, k) * cN * _ipow(w, order - k)\n",
+     "        tot += comb(order, k) * cN * _ipow(w, order - k) / 2\n", "a Taylor (Lagrange) remainder shrunk"),
+    ("subdivision_piece_skipped", "rigor_gyro/core/subdivision.py", "        stack.append((mid, b))\n        stack.append((a, mid))",
+     "        stack.append((a, mid))", "certify_positive skips the right half of every bisected piece"),
+    ("max_cover_dropped", "rigor_gyro/core/subdivision.py", "        upper = upper.max(item[4])          # certified max of upper bounds",
+     "        pass", "enclose_max forgets the upper bounds of the pieces left (a maximum enclosed too low)"),
+    ("spurious_witness_possibly", "rigor_gyro/kinds/periodic_orbit/claims.py",
+     "            if certainly_negative(beta(t)):", "            if not certainly_positive(beta(t)):",
+     "a spurious-root witness accepted on 'possibly <= 0'"),
+    ("stable_possibly_below_1", "rigor_gyro/kinds/periodic_orbit/claims.py",
+     "    if all(certainly_lt(m, 1) for m in v.moduli):", "    if all(not certainly_gt(m, 1) for m in v.moduli):",
+     "stability accepted on 'possibly < 1'"),
+    ("psi_disc_term_dropped", "rigor_gyro/kinds/lyapunov/model.py", "        return c10 - R * hypot_ball(c11, c13)",
+     "        return c10 - R * abs(c11)", "one term dropped from the Psi1 disc minimum"),
+    ("sign_change_check_removed", "rigor_gyro/core/polyroots.py", "        elif not (p(lo) * p(hi) < 0):",
+     "        elif False:", "the exact sign-change check of a real polynomial root removed"),
+    ("newton_inside_to_overlap", "rigor_gyro/core/roots.py", "        inside = bool(x.contains_interior(n))",
+     "        inside = bool(x.overlaps(n))", "interval Newton's uniqueness condition weakened"),
+    ("tail_bound_loosened", "rigor_gyro/kinds/periodic_orbit/flow.py", "        B += amp * q / (1 - q)",
+     "        B += amp * q", "a term of the relay tail bound shrunk"),
+    ("branch_inside_possibly", "rigor_gyro/kinds/eigenfrequencies/claims.py",
+     "        inside = certainly_lt(lo, w) and (hi is None or certainly_lt(w, hi))",
+     "        inside = not certainly_ge(lo, w) and (hi is None or not certainly_ge(w, hi))",
+     "a root accepted on its branch on 'possibly inside'"),
+    ("verdict_ignores_inconclusive", "rigor_gyro/certificate.py",
+     "        if Status.INCONCLUSIVE in statuses or not self.claims:", "        if not self.claims:",
+     "the verdict 'proved' despite an inconclusive claim"),
+    ("series_padded_with_zeros", "rigor_gyro/core/balls.py", "    if s.prec < n:\n        raise SeriesTruncated(",
+     "    if False:\n        raise SeriesTruncated(", "a series cut by ctx.cap padded with zeros"),
+    ("checker_ignores_integrity", "rigor_gyro/check.py", 'ok = isinstance(integrity, dict) and integrity.get("sha256") == digest(data)',
+     "ok = True", "the checker accepts an altered certificate"),
+    ("checker_trusts_stored_status", "rigor_gyro/kinds/eigenfrequencies/check.py",
+     '                say(cid, all(certainly_lt(chain[i], chain[i + 1]) for i in range(6)), "0 < nu1 < ... < nu6 re-decided")',
+     '                say(cid, True, "0 < nu1 < ... < nu6 re-decided")', "the checker trusts a stored 'proved'"),
+    ("refutation_without_counterexample", "rigor_gyro/kinds/periodic_orbit/claims.py",
+     "    exhaustive = complete and an.covers_all", "    exhaustive = complete",
+     "a search restricted by T_max allowed to refute"),
+]
+
+
+def run(names: list[str] | None, out: str | None) -> int:
+    rows, survivors = [], []
+    for name, path, old, new, what in MUTANTS:
+        if names and name not in names:
+            continue
+        text = (ROOT / path).read_text()
+        if text.count(old) != 1:
+            rows.append((name, what, "NOT APPLIED (text not found once: update the mutant)", 0.0))
+            survivors.append(name)
+            continue
+        with tempfile.TemporaryDirectory() as tmp:
+            for part in ("rigor_gyro", "tests"):
+                shutil.copytree(ROOT / part, Path(tmp) / part, ignore=shutil.ignore_patterns("__pycache__"))
+            shutil.copy(ROOT / "pyproject.toml", tmp)
+            (Path(tmp) / path).write_text(text.replace(old, new))
+            env = dict(os.environ, PYTHONPATH=tmp, HYPOTHESIS_PROFILE="ci")
+            t0 = time.time()
+            r = subprocess.run([sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider"], cwd=tmp,
+                               env=env, capture_output=True, text=True)
+            secs = time.time() - t0
+        killed = r.returncode != 0
+        failed = next((ln.split(" ")[1] for ln in r.stdout.splitlines() if ln.startswith("FAILED ")), "")
+        rows.append((name, what, f"killed by {failed}" if killed else "SURVIVED", secs))
+        if not killed:
+            survivors.append(name)
+        print(f"{name}: {'killed' if killed else 'SURVIVED'} ({secs:.0f} s) {failed}", flush=True)
+    table = ["| mutant | what it breaks | outcome | seconds |", "|---|---|---|---|"]
+    table += [f"| `{n}` | {w} | {o} | {s:.0f} |" for n, w, o, s in rows]
+    killed = sum(1 for r in rows if r[2].startswith("killed"))
+    table.append("")
+    table.append(f"{killed} of {len(rows)} named soundness mutants killed by the default tests.")
+    text = "\n".join(table)
+    print(text)
+    if out:
+        Path(out).write_text(text + "\n")
+    return 1 if survivors else 0
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--only", nargs="*")
+    ap.add_argument("--list", action="store_true")
+    ap.add_argument("--out")
+    args = ap.parse_args()
+    if args.list:
+        for name, path, *_rest, what in MUTANTS:
+            print(f"{name:36s} {path}: {what}")
+        return 0
+    return run(args.only, args.out)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
