@@ -273,3 +273,25 @@ def test_proving_the_orbit_imports_neither_numpy_nor_scipy():
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip() == "[]"
+
+
+@pytest.mark.parametrize("order", [2, 3, 8])
+def test_taylor_enclosure_contains_the_function_on_the_whole_box(order):
+    """The Lagrange remainder is what makes a Taylor model an enclosure: for exp (coefficients known
+    exactly) the enclosure of f and f' over X must contain their values at points of X. The direct
+    enclosure over X is made deliberately loose here (still valid), so the Taylor part decides: a
+    remainder shrunk even by half misses the values at the ends of X."""
+    from math import factorial
+    from flint import arb as A
+
+    def coeffs(center, n):
+        c = [center.exp() / factorial(j) for j in range(n)]
+        if not center.rad().is_zero() and n == 2:   # the direct enclosure: valid but loose
+            c = [x + A(0, 10 * abs(x).upper()) for x in c]
+        return c
+    with working_precision(128):
+        X = A("0.5").union(A("1.5"))
+        f, df = taylor_enclosure(coeffs, X, order, (0, 1))
+        for t in ("0.5", "0.75", "1", "1.5"):
+            v = A(t).exp()
+            assert f.contains(v) and df.contains(v), (order, t)
