@@ -39,10 +39,12 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--version", action="version", version=f"rigor-gyro {__version__}")
     p.add_argument("--debug", action="store_true", help="print the traceback of an internal error")
     sub = p.add_subparsers(dest="command", parser_class=_Parser)
-    sub.add_parser("list", help="list the built-in scenes")
+    sub.add_parser("list", help="list the built-in scenes (the papers' examples, then the demos)")
     pr = sub.add_parser("prove", help="prove scenes; write <name>.json and <name>.md")
     pr.add_argument("scenes", nargs="*", metavar="SCENE", help="built-in scene name or path to a TOML file")
-    pr.add_argument("--all", action="store_true", help="prove every built-in scene")
+    pr.add_argument("--all", action="store_true", help="prove every built-in scene of the papers")
+    pr.add_argument("--group", choices=("paper", "demo", "all"), default=None,
+                    help="prove every built-in scene of a group (demo: planted refuted/inconclusive outcomes)")
     pr.add_argument("--prec", type=int, default=DEFAULT_PREC,
                     help=f"starting precision in bits, {MIN_PREC}..{MAX_PREC} (default {DEFAULT_PREC})")
     pr.add_argument("--maxprec", type=int, default=DEFAULT_MAXPREC,
@@ -85,9 +87,10 @@ def _bad(message: str) -> int:
 
 def _cmd_list() -> int:
     from .scene import builtin_scenes, load_scene
-    for name in builtin_scenes():
-        s = load_scene(name)
-        _say(f"{name:24s} {s.kind:18s} {s.source.splitlines()[0][:90] if s.source else ''}")
+    for group in ("paper", "demo"):
+        for name in builtin_scenes(group):
+            s = load_scene(name)
+            _say(f"{group:6s} {name:34s} {s.kind:18s} {s.source.splitlines()[0][:80] if s.source else ''}")
     return 0
 
 
@@ -114,9 +117,9 @@ def _cmd_prove(args) -> int:
     from .report import output_paths, write_outputs
     from .scene import builtin_scenes, load_scene
 
-    if args.all and args.scenes:
-        return _bad("give scene names or --all, not both")
-    refs = list(builtin_scenes()) if args.all else args.scenes
+    if (args.all or args.group) and args.scenes or (args.all and args.group):
+        return _bad("give scene names, --all or --group, one of them")
+    refs = list(builtin_scenes()) if args.all else list(builtin_scenes(args.group)) if args.group else args.scenes
     if not refs:
         return _bad("name at least one scene (see `rigor-gyro list`) or use --all")
     if not (MIN_PREC <= args.prec <= args.maxprec <= MAX_PREC):

@@ -79,10 +79,21 @@ def _builtin_dir():
     return resources.files("rigor_gyro") / "scenes"
 
 
-def builtin_scenes() -> dict[str, Any]:
-    """Built-in scene name -> resource (a TOML file shipped inside the package)."""
+#: groups of built-in scenes: the papers' worked examples (``prove --all``), and demonstrations of
+#: refuted and inconclusive outcomes (planted; ``prove --group demo``)
+GROUPS = {"paper": "", "demo": "demos"}
+
+
+def builtin_scenes(group: str = "paper") -> dict[str, Any]:
+    """Built-in scene name -> resource (a TOML file shipped inside the package), for one group
+    (``paper``: the worked examples, what ``prove --all`` proves; ``demo``; ``all``: both)."""
+    if group == "all":
+        return {**builtin_scenes("paper"), **builtin_scenes("demo")}
+    if group not in GROUPS:
+        raise SceneError(f"unknown scene group {group!r}; groups: {', '.join(GROUPS)}, all")
+    folder = _builtin_dir() / GROUPS[group] if GROUPS[group] else _builtin_dir()
     out = {}
-    for entry in sorted(_builtin_dir().iterdir(), key=lambda e: e.name):
+    for entry in sorted(folder.iterdir(), key=lambda e: e.name):
         if entry.name.endswith(".toml"):
             out[entry.name[:-5]] = entry
     return out
@@ -117,7 +128,7 @@ def load_scene(ref: str) -> Scene:
     if not isinstance(ref, (str, os.PathLike)):
         raise SceneError(f"a scene is a built-in name or a path, got {type(ref).__name__}")
     ref = os.fspath(ref)
-    builtins = builtin_scenes()
+    builtins = builtin_scenes("all")
     if ref in builtins:
         text, where = builtins[ref].read_text(encoding="utf-8"), f"builtin:{ref}"
     else:
