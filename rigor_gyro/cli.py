@@ -113,7 +113,7 @@ def _check_out(out: str) -> str | None:
 def _cmd_prove(args) -> int:
     from .certificate import EXIT_CODES
     from .kinds import kind_module
-    from .prover import prove_scene
+    from .prover import prove_scene, requested_claims
     from .report import output_paths, write_outputs
     from .scene import builtin_scenes, load_scene
 
@@ -129,7 +129,9 @@ def _cmd_prove(args) -> int:
     for ref in refs:
         try:
             scene = load_scene(ref)
-            kind_module(scene.kind).validate(scene)
+            module = kind_module(scene.kind)
+            module.validate(scene)
+            requested_claims(scene, module.CLAIMS)
         except RigorGyroError as e:
             _say(f"rigor-gyro: {ref}: bad input: {e}", err=True)
             codes.append(EXIT_BAD_INPUT)
