@@ -457,3 +457,43 @@ def test_review_a_degenerate_lyapunov_case_stops_early_with_a_finite_radius():
     assert max(cert.precisions_tried) <= 256
     assert "did not shrink" in cert.claim("damping_condition").reason
     assert cert.quantities["R2"].is_finite()
+
+
+# ------------------------------------------------------------------ soundness mutants that survived
+
+def test_a_spurious_witness_is_a_point_where_beta_is_certainly_negative(monkeypatch):
+    """beta'(0) < 0; beta(t) straddles 0 for t > theta/8 and is certainly < 0 below: the stored witness
+    must be one of the certain points (a witness accepted on 'possibly <= 0' is not one)."""
+    from flint import arb
+    theta = arb("0.1")
+
+    class Beta:
+        def __call__(self, t):
+            return arb(0, 1) if t > theta / 8 else arb(-1)
+    monkeypatch.setattr(relay_claims, "x0_at", lambda sp, th: [arb(0), arb(-1), arb(0), arb(0), arb(0)])
+    monkeypatch.setattr(relay_claims, "orbit_expsums", lambda sp, x0: [Beta()])
+    with working_precision(64):
+        v = relay_claims.classify_root(None, theta)
+    assert v.kind == "spurious" and v.witness_t is not None
+    assert Beta()(v.witness_t).upper() < 0
+
+
+def test_stability_needs_every_modulus_certainly_below_1(monkeypatch):
+    """A multiplier ball straddling 1 leaves stability undecided (never 'possibly < 1')."""
+    from flint import arb, arb_mat
+    P = RelayParams.from_strings(**RELAY.parameters)
+    with working_precision(64):
+        theta = arb("0.13")
+        liou = -((-(1 / ball(P.tau) + 1 / ball(P.sigma))) * theta).exp()
+        z1 = arb(1, arb("1e-12"))
+        z4 = liou / (z1 * arb("0.5") * arb("0.25"))
+        J = arb_mat([[z1, 0, 0, 0], [0, arb("0.5"), 0, 0], [0, 0, arb("0.25"), 0], [0, 0, 0, z4]])
+        monkeypatch.setattr(relay_claims, "half_period_jacobian", lambda sp, th, x0: J)
+
+        class Sp:
+            pass
+        sp = Sp()
+        sp.P = P
+        v = relay_claims.RootVerdict(theta, [arb(0)] * 5, "genuine", "")
+        relay_claims._multipliers(sp, v)
+    assert v.moduli and v.stable is None
