@@ -49,6 +49,11 @@ def _stuck(before: arb | None, after: arb | None, prec: int) -> str | None:
     return None
 
 
+def _final(a: Attempt, item: str) -> bool:
+    c = next((c for c in a.claims if c.id == item), None)
+    return c is not None and bool(c.precision_cannot_help)
+
+
 def no_progress(prev: tuple[int, Attempt], now: tuple[int, Attempt]) -> dict[str, str] | None:
     """If nothing undecided at ``now`` can be helped by more precision, {item: why} (items: claim ids,
     ``widths``, ``row:<id>``); None as soon as one undecided item may still progress.
@@ -119,7 +124,10 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
         if len(history) < 2:
             return False
         why = no_progress(history[-2], history[-1])
-        if why is not None:
+        # a claim that rests on a refuted one, or on a restricted search, is final at once; a deciding
+        # ball must stop shrinking over two doublings running before escalation stops for it
+        if why is not None and (all(_final(history[-1][1], k) for k in why)
+                                or len(history) >= 3 and no_progress(history[-3], history[-2]) is not None):
             hopeless.update(why)
             return True
         return False

@@ -346,7 +346,7 @@ def test_9_the_exact_pole_of_r2_makes_brackets_9_and_10_undefined_at_once():
 
 def test_9_a_width_set_by_a_subdivision_tolerance_is_not_escalated():
     cert = prove_scene(dataclasses.replace(LYAP, name="mu", parameters=dict(LYAP.parameters, mu="0.01333333334")))
-    assert cert.precisions_tried == [64, 128]
+    assert max(cert.precisions_tried) <= 256           # two doublings without progress, then stop
     assert any("did not shrink" in n for n in cert.notes)
 
 
@@ -362,6 +362,7 @@ def _attempt(claim_decides, prec_pairs=None):
     ("nan", "nan", 256, False),                            # no information: may still progress
 ])
 def test_9_no_progress_rule(before, after, prec, stuck):
+    """One doubling's evidence (the prover stops only after two doublings running say the same)."""
     from flint import arb
     prev = (prec // 2, _attempt(arb(before)))
     now = (prec, _attempt(arb(after)))
@@ -497,3 +498,10 @@ def test_stability_needs_every_modulus_certainly_below_1(monkeypatch):
         v = relay_claims.RootVerdict(theta, [arb(0)] * 5, "genuine", "")
         relay_claims._multipliers(sp, v)
     assert v.moduli and v.stable is None
+
+
+def test_9_a_margin_decided_only_at_256_bits_is_not_given_up_at_128():
+    """Found by the campaign: nu4 vs its lower bound (5) differ by 1e-31 relative; the polynomial roots
+    are refined to the working precision and the prover waits for two doublings without progress."""
+    cert = prove_scene(_rudenko("tight", a="120.392", b="1.00000001", eps="4.46363e-11", Omega2="3.25847e+09"))
+    assert cert.verdict is Status.PROVED and 256 in cert.precisions_tried

@@ -36,8 +36,9 @@ from dataclasses import dataclass, field
 
 from flint import acb, arb, fmpq, fmpq_poly
 
-from .balls import certainly_nonzero, exact_fraction, rel_width_at_most
+from .balls import certainly_nonzero, current_precision, exact_fraction, rel_width_at_most
 from .errors import ParameterError
+from .roots import RootStatus, newton_root
 
 __all__ = ["PolynomialRoots", "isolate_polynomial"]
 
@@ -58,6 +59,26 @@ class PolynomialRoots:
 
 def _fmpq(q) -> fmpq:
     return fmpq(q.numerator, q.denominator)
+
+
+def _refine(p: fmpq_poly, x: arb) -> arb:
+    """The root of p in the isolating ball x, refined by interval Newton to about 2^-(prec - 8) relative
+    (x itself when Newton cannot improve it); the exact sign change is checked afterwards on the result."""
+    if x.rad().is_zero():
+        return x
+    coeffs = [arb(c) for c in p.coeffs()]
+
+    def f(s):
+        acc = coeffs[-1] + 0 * s
+        for c in reversed(coeffs[:-1]):
+            acc = acc * s + c
+        return acc
+    r = newton_root(f, x.lower(), x.upper(), rel_tol=arb(2) ** (8 - current_precision()))
+    if r.status is RootStatus.UNIQUE and r.enclosure is not None and r.enclosure.is_finite():
+        y = r.enclosure
+        if x.contains(y) or y.rad() < x.rad():
+            return y
+    return x
 
 
 def isolate_polynomial(p: fmpq_poly, rel_tol: object | None = None) -> PolynomialRoots:
@@ -81,6 +102,9 @@ def isolate_polynomial(p: fmpq_poly, rel_tol: object | None = None) -> Polynomia
         else:
             problems.append(f"root {z}: imaginary part neither exactly zero nor excluded from zero")
     real.sort(key=lambda x: float(x.mid()))  # float orders disjoint balls only
+    # Arb's root finder stops at its own accuracy; refine each root to the working precision, so that
+    # doubling the precision narrows every root (and whatever is decided on them) as it should
+    real = [_refine(p, x) for x in real]
     # Independent existence proof of each real root: an exact sign change of p across its ball.
     for x in real:
         lo, hi = _fmpq(exact_fraction(x.lower())), _fmpq(exact_fraction(x.upper()))

@@ -269,8 +269,9 @@ def _check_bounds(items: list[tuple[str, arb, arb, arb]]) -> tuple[Status, str, 
             ce.append({"quantity": label, "value": _bounds(x), "lower_bound": _bounds(lo), "upper_bound": _bounds(hi)})
         else:
             und.append(label)
-            if decides is None:
-                decides = (x - lo) if not certainly_le(lo, x) else (hi - x)
+            margin = (x - lo) if not certainly_le(lo, x) else (hi - x)
+            if decides is None or margin.rad() > decides.rad():     # the widest undecided margin
+                decides = margin
     if fails:
         return Status.REFUTED, "certified violation(s): " + "; ".join(fails), {"violations": ce}, None
     if und:
