@@ -80,3 +80,18 @@ def test_decimal_bounds_contain_the_ball(num, den, radexp, prec):
     rad = Fraction(int(rman)) * Fraction(2) ** int(rexp)
     assert Fraction(lo) <= mid - rad and mid + rad <= Fraction(hi)
     assert Fraction(q["rad"]) >= 0
+
+
+def test_quantity_keeps_its_keys_and_digits_for_every_ball():
+    from rigor_gyro.core.balls import quantity
+    for x in (arb("nan"), arb("inf"), arb(1) / 3):
+        assert set(quantity(x)) == {"lo", "hi", "mid", "rad"}
+    assert len(quantity(arb(1) / 3, 5)["lo"]) < len(quantity(arb(1) / 3)["lo"])
+
+
+def test_an_audit_row_with_a_value_prints_its_enclosure():
+    from rigor_gyro.core.outcome import AuditRow, AuditStatus
+    row = AuditRow("x", "1", "r", arb(1) / 3, AuditStatus.AGREES).to_json()
+    assert Fraction(row["lo"]) <= Fraction(1, 3) <= Fraction(row["hi"])
+    empty = AuditRow("x", "1", "r", None, AuditStatus.AGREES).to_json()
+    assert empty["lo"] == "" and empty["hi"] == ""

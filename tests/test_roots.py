@@ -70,3 +70,29 @@ def test_polynomial_width_not_met_is_reported():
 def test_constant_polynomial_rejected():
     with pytest.raises(ValueError):
         isolate_polynomial(fmpq_poly([3]))
+
+
+# ---------------------------------------------------------------- written against surviving mutants
+
+def test_isolate_roots_finds_every_root_to_the_requested_width():
+    """sin on [1, 10]: exactly the three roots pi, 2 pi, 3 pi, each to rel_tol, and complete."""
+    with working_precision(128):
+        iso = isolate_roots(lambda x: x.sin(), "1", "10", rel_tol="1e-30")
+        assert iso.complete and len(iso.roots) == 3
+        for k, r in enumerate(iso.roots, start=1):
+            assert r.overlaps(k * arb.pi()) and r.sin().contains(0) and 2 * r.rad() <= arb("1e-30") * abs(r).lower()
+        decided = {p.status for p in iso.pieces}
+        assert decided <= {RootStatus.UNIQUE, RootStatus.EMPTY}
+
+
+def test_isolate_roots_budget_leaves_pieces_unknown_with_the_diagnostic():
+    with working_precision(128):
+        iso = isolate_roots(lambda x: (x - 1) ** 2, "0", "2", max_depth=3)
+        assert not iso.complete and iso.unknown
+        for p in iso.unknown:
+            assert "f' may vanish" in p.reason and "(after 3 bisections)" in p.reason
+
+
+def test_isolate_roots_rejects_an_empty_bracket_with_a_message():
+    with working_precision(64), pytest.raises(ValueError, match=r"bracket \[2, 1\]"):
+        isolate_roots(lambda x: x, "2", "1")

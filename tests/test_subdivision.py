@@ -23,3 +23,15 @@ def test_max_with_removable_singularity_is_enclosed():
         assert m.converged and m.ball.contains(1) and m.ball.rad() < arb("1e-19")
         n = enclose_min(lambda x: x.cos(), "0", "4", abs_tol="1e-15")
         assert n.ball.contains(-1)
+
+
+def test_enclose_min_encloses_the_minimum_and_reports_its_point():
+    from flint import arb
+    with working_precision(64):
+        m = enclose_min(lambda x: (x - arb("0.3")) ** 2 + 1, "-1", "2", abs_tol="1e-10")
+        assert m.ball.contains(1) and m.ball.lower() > arb("0.999999") and m.converged
+        assert m.pieces > 1 and m.cover and abs(m.argpoint - arb("0.3")) < arb("0.01")
+        loose = enclose_min(lambda x: (x - arb("0.3")) ** 2 + 1, "-1", "2", abs_tol="0.5")
+        assert loose.ball.contains(1) and loose.ball.rad() > m.ball.rad()
+        tight_rel = enclose_min(lambda x: (x - arb("0.3")) ** 2 + 1, "-1", "2", abs_tol="0", rel_tol="1e-9")
+        assert tight_rel.ball.rad() < loose.ball.rad()
