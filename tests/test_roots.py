@@ -96,3 +96,16 @@ def test_isolate_roots_budget_leaves_pieces_unknown_with_the_diagnostic():
 def test_isolate_roots_rejects_an_empty_bracket_with_a_message():
     with working_precision(64), pytest.raises(ValueError, match=r"bracket \[2, 1\]"):
         isolate_roots(lambda x: x, "2", "1")
+
+
+def test_a_real_root_ball_without_an_exact_sign_change_is_not_verified(monkeypatch):
+    """If the root finder returned a wrong real ball, the exact sign-change check must catch it."""
+    from flint import acb
+    from rigor_gyro.core import polyroots
+    p = fmpq_poly([-2, 0, 1])                                      # x^2 - 2
+    wrong = [(acb(arb("1.3", "0.01")), 1), (acb(arb("-1.4142135623730950488", "1e-15")), 1)]
+    monkeypatch.setattr(polyroots, "arb_complex_roots", lambda q: wrong)
+    monkeypatch.setattr(polyroots, "_refine", lambda q, x: x)
+    with working_precision(64):
+        r = isolate_polynomial(p)
+    assert not r.verified and "sign change" in r.reason

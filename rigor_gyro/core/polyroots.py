@@ -61,6 +61,12 @@ def _fmpq(q) -> fmpq:
     return fmpq(q.numerator, q.denominator)
 
 
+def arb_complex_roots(p: fmpq_poly) -> list:
+    """Arb's isolation of the complex roots of p: [(acb, multiplicity)] (trusted only as far as the
+    exact checks of :func:`isolate_polynomial` confirm it)."""
+    return p.complex_roots()
+
+
 def _refine(p: fmpq_poly, x: arb) -> arb:
     """The root of p in the isolating ball x, refined by interval Newton to about 2^-(prec - 8) relative
     (x itself when Newton cannot improve it); the exact sign change is checked afterwards on the result."""
@@ -87,7 +93,7 @@ def isolate_polynomial(p: fmpq_poly, rel_tol: object | None = None) -> Polynomia
         raise ParameterError(f"polynomial {p} has no roots to isolate (degree {p.degree()})")
     g = p.gcd(p.derivative())
     squarefree = g.degree() == 0
-    found = p.complex_roots()
+    found = arb_complex_roots(p)
     if not squarefree:
         return PolynomialRoots(p, False, multiplicities=found,
                                reason=f"not squarefree: gcd(p, p') = {g} (a multiple root)")
