@@ -97,3 +97,15 @@ def test_refuted_ordering_is_a_verdict_not_a_crash():
     c = cert.claim("nu_ordering")
     assert c.status is Status.REFUTED and ">=" in c.reason
     assert cert.claim("roots").status in (Status.PROVED, Status.REFUTED)
+
+
+def test_a_root_straddling_its_branch_end_is_not_on_the_branch():
+    """omega_1's ball reaches past nu1: 'branches' must not be proved (kills 'possibly inside')."""
+    from flint import arb
+    from rigor_gyro.kinds.eigenfrequencies.claims import _branch_claim
+    nus = {k: arb(k) for k in range(1, 7)}
+    omegas = [arb(1, arb("0.1")), arb("2.5"), arb("4.5"), arb(7)]
+    c = _branch_claim(omegas, nus, True)
+    assert c.status is Status.INCONCLUSIVE
+    omegas[0] = arb("0.5")
+    assert _branch_claim(omegas, nus, True).status is Status.PROVED
