@@ -198,3 +198,25 @@ def test_refuted_lyapunov_certificate_confirms_its_counterexamples():
     v["counterexample"]["point"]["x1"] = ["0", "0"]          # on the x2 axis Vdot = 0: no counterexample
     v["counterexample"]["point"]["x3"] = ["0", "0"]
     assert not check_certificate(_refix(bad)).ok
+
+
+@pytest.mark.parametrize("name, params", [
+    ("rudenko1976", dict(a="3", b="2", eps="50", Omega2="1")),
+    ("agafonov2013", dict(H="10", a="1e4", mu="0.01", k="0.1")),
+    ("roitenberg1947", dict(H="10000")),
+])
+def test_a_refuted_claim_relabelled_proved_is_never_confirmed(name, params):
+    """The worst forgery: a false statement marked 'proved' (its counterexample removed, the verdict
+    and the digest made consistent). The checker re-decides the claim and rejects it."""
+    data = _cert(name, **params)
+    refuted = [i for i, c in enumerate(data["claims"]) if c["status"] == "refuted"]
+    assert refuted
+    for i in refuted:
+        bad = copy.deepcopy(data)
+        bad["claims"][i]["status"] = "proved"
+        bad["claims"][i].pop("counterexample", None)
+        statuses = [c["status"] for c in bad["claims"]]
+        bad["verdict"] = ("refuted" if "refuted" in statuses else
+                          "proved" if all(s == "proved" for s in statuses) else "inconclusive")
+        report = check_certificate(_refix(bad))
+        assert not report.ok, (name, bad["claims"][i]["id"])
