@@ -74,18 +74,23 @@ MUTANTS = [
 
 def run(names: list[str] | None, out: str | None) -> int:
     rows, survivors = [], []
+    # one snapshot of the tree, taken now: edits made while the mutants run do not leak into them
+    snapshot = Path(tempfile.mkdtemp(prefix="mutants-snapshot-"))
+    for part in ("rigor_gyro", "tests"):
+        shutil.copytree(ROOT / part, snapshot / part, ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copy(ROOT / "pyproject.toml", snapshot)
     for name, path, old, new, what in MUTANTS:
         if names and name not in names:
             continue
-        text = (ROOT / path).read_text()
+        text = (snapshot / path).read_text()
         if text.count(old) != 1:
             rows.append((name, what, "NOT APPLIED (text not found once: update the mutant)", 0.0))
             survivors.append(name)
             continue
         with tempfile.TemporaryDirectory() as tmp:
             for part in ("rigor_gyro", "tests"):
-                shutil.copytree(ROOT / part, Path(tmp) / part, ignore=shutil.ignore_patterns("__pycache__"))
-            shutil.copy(ROOT / "pyproject.toml", tmp)
+                shutil.copytree(snapshot / part, Path(tmp) / part)
+            shutil.copy(snapshot / "pyproject.toml", tmp)
             (Path(tmp) / path).write_text(text.replace(old, new))
             env = dict(os.environ, PYTHONPATH=tmp, HYPOTHESIS_PROFILE="ci")
             t0 = time.time()
@@ -98,6 +103,7 @@ def run(names: list[str] | None, out: str | None) -> int:
         if not killed:
             survivors.append(name)
         print(f"{name}: {'killed' if killed else 'SURVIVED'} ({secs:.0f} s) {failed}", flush=True)
+    shutil.rmtree(snapshot, ignore_errors=True)
     table = ["| mutant | what it breaks | outcome | seconds |", "|---|---|---|---|"]
     table += [f"| `{n}` | {w} | {o} | {s:.0f} |" for n, w, o, s in rows]
     killed = sum(1 for r in rows if r[2].startswith("killed"))
