@@ -76,28 +76,25 @@ def kind_module(kind: str) -> ModuleType:
         raise SceneError(f"unknown kind {kind!r}; known kinds: {', '.join(KINDS)}") from None
 
 
-def plots_hook(kind: str) -> Callable[..., list] | None:
-    """The kind's ``plots(scene, cert, out_dir)`` function, or None when the kind draws no figures.
-    Imports the kind's float drawing module: call it only when figures were asked for."""
+def _optional(kind: str, name: str, attr: str) -> Callable[..., list] | None:
+    """``attr`` of the kind's optional module ``name`` (imported now), or None when the kind has none."""
     if kind not in KINDS:
         raise SceneError(f"unknown kind {kind!r}; known kinds: {', '.join(KINDS)}")
     try:
-        module = importlib.import_module(KINDS[kind] + ".plots")
+        module = importlib.import_module(f"{KINDS[kind]}.{name}")
     except ModuleNotFoundError as e:
-        if e.name == KINDS[kind] + ".plots":
+        if e.name == f"{KINDS[kind]}.{name}":
             return None
         raise
-    return module.plots
+    return getattr(module, attr)
+
+
+def plots_hook(kind: str) -> Callable[..., list] | None:
+    """The kind's ``plots(scene, cert, out_dir)`` function, or None when the kind draws no figures.
+    Imports the kind's float drawing module: call it only when figures were asked for."""
+    return _optional(kind, "plots", "plots")
 
 
 def checker(kind: str) -> Callable[..., list] | None:
     """The kind's ``check(model, data)`` function (:mod:`rigor_gyro.check`), or None if it has none."""
-    if kind not in KINDS:
-        raise SceneError(f"unknown kind {kind!r}; known kinds: {', '.join(KINDS)}")
-    try:
-        module = importlib.import_module(KINDS[kind] + ".check")
-    except ModuleNotFoundError as e:
-        if e.name == KINDS[kind] + ".check":
-            return None
-        raise
-    return module.check
+    return _optional(kind, "check", "check")
