@@ -95,3 +95,18 @@ def test_an_audit_row_with_a_value_prints_its_enclosure():
     assert Fraction(row["lo"]) <= Fraction(1, 3) <= Fraction(row["hi"])
     empty = AuditRow("x", "1", "r", None, AuditStatus.AGREES).to_json()
     assert empty["lo"] == "" and empty["hi"] == ""
+
+
+def test_the_small_predicates_decide_only_on_certainty():
+    from rigor_gyro.core.balls import certainly_within, contains, is_finite, overlaps
+    from rigor_gyro.core.outcome import Status
+    assert certainly_within(arb(1), 0, 2) and not certainly_within(arb(0), 0, 2)
+    assert not certainly_within(arb(1, 1), 0, 2) and not certainly_within(arb("nan"), 0, 2)
+    assert contains(arb(1, 1), arb(1)) and not contains(arb(1, 1), arb(3))
+    assert not contains(arb("nan"), arb(1)) and not contains(arb(1, 1), arb("inf"))
+    assert overlaps(arb(1, 1), arb(2, 1)) and not overlaps(arb(0), arb(1))
+    assert is_finite(arb(1)) and not is_finite(arb("inf")) and not is_finite(arb("nan"))
+    assert Status.of(True, False) is Status.PROVED and Status.of(False, True) is Status.REFUTED
+    assert Status.of(False, False) is Status.INCONCLUSIVE
+    with pytest.raises(AssertionError):
+        Status.of(True, True)
