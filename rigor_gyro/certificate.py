@@ -109,7 +109,7 @@ class Certificate:
 
     def timings_json(self) -> dict[str, Any]:
         """The run-dependent part, kept out of the certificate so that the same scene at the same
-        settings gives byte-identical certificate and report files (written as <name>.timings.json)."""
+        settings gives byte-identical certificate and report files (written to timings/<name>.json)."""
         return {"scene": self.scene.get("name"), "precisions_tried": self.precisions_tried, **self.timings}
 
     def dumps(self) -> str:

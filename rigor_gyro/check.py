@@ -74,7 +74,7 @@ def check_file(path: str | Path) -> CheckReport:
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as e:
         raise CertificateError(f"{path}: not a readable certificate ({e})") from None
     if isinstance(data, dict) and "total_s" in data and "schema" not in data:
-        raise CertificateError(f"{path}: a timings file (<name>.timings.json), not a certificate")
+        raise CertificateError(f"{path}: a timings file (timings/<name>.json), not a certificate")
     try:
         report = check_certificate(data, str(path))
     except CertificateError as e:

@@ -124,7 +124,9 @@ def _write_temp(folder: Path, final: str, text: str) -> Path:
 
 
 def _timings_path(jpath: Path) -> Path:
-    return jpath.with_name(jpath.name[: -len(".json")] + ".timings.json")
+    """``<out>/timings/<name>.json``: beside the outputs, never among them (a glob of <out>/*.json
+    sees certificates only)."""
+    return jpath.parent / "timings" / jpath.name
 
 
 def _umask() -> int:
@@ -148,7 +150,7 @@ def output_paths(name: str, out_dir: str | Path) -> tuple[Path, Path]:
 
 def write_outputs(cert: Certificate, out_dir: str | Path) -> tuple[Path, Path]:
     """Write ``<name>.json`` and ``<name>.md`` into ``out_dir`` (created if needed), and the run's wall
-    times to ``<name>.timings.json`` (git-ignored: the pair itself is byte-identical across runs).
+    times to ``timings/<name>.json`` (git-ignored: the pair itself is byte-identical across runs).
 
     Guarantee: each file is written whole to a temporary name in the same folder and renamed into
     place; both are complete before either is replaced, and the old report is removed before the new
@@ -169,8 +171,10 @@ def write_outputs(cert: Certificate, out_dir: str | Path) -> tuple[Path, Path]:
         os.replace(temps[0], jpath)
         os.replace(temps[1], mpath)
         # run-dependent data (wall time) beside the pair, never inside it: the pair is reproducible
-        temps.append(_write_temp(out, _timings_path(jpath).name, json.dumps(cert.timings_json(), indent=2) + "\n"))
-        os.replace(temps[2], _timings_path(jpath))
+        tpath = _timings_path(jpath)
+        tpath.parent.mkdir(exist_ok=True)
+        temps.append(_write_temp(tpath.parent, tpath.name, json.dumps(cert.timings_json(), indent=2) + "\n"))
+        os.replace(temps[2], tpath)
     finally:
         for tmp in temps:
             tmp.unlink(missing_ok=True)

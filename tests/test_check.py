@@ -148,7 +148,7 @@ def test_cli_check_exit_codes(tmp_path, capsys):
     assert main(["check", str(tmp_path / "bad.json")]) == 1
     (tmp_path / "junk.json").write_text("{")
     assert main(["check", str(tmp_path / "junk.json")]) == 2
-    assert main(["check", str(tmp_path / "rudenko1976.timings.json")]) == 2
+    assert main(["check", str(tmp_path / "timings" / "rudenko1976.json")]) == 2
     out = capsys.readouterr()
     assert "NOT confirmed" in out.out and "timings file" in out.err
 

@@ -98,9 +98,9 @@ def test_proving_imports_neither_numpy_nor_scipy():
 
 
 def test_the_same_scene_gives_byte_identical_outputs(tmp_path):
-    """Run-dependent data (timings) live in <name>.timings.json; certificate and report are reproducible."""
+    """Run-dependent data (timings) live in timings/<name>.json; certificate and report are reproducible."""
     for d in ("a", "b"):
         assert run("prove", "rudenko1976", "agafonov2013", "--quiet", "--out", str(tmp_path / d)).returncode == 0
     for name in ("rudenko1976.json", "rudenko1976.md", "agafonov2013.json", "agafonov2013.md"):
         assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes(), name
-    assert json.loads((tmp_path / "a" / "rudenko1976.timings.json").read_text())["total_s"] > 0
+    assert json.loads((tmp_path / "a" / "timings" / "rudenko1976.json").read_text())["total_s"] > 0

@@ -297,14 +297,14 @@ def test_8_outputs_are_written_whole_or_not_at_all(tmp_path, monkeypatch):
     from rigor_gyro import report
     cert = prove_scene(parse_scene(GOOD))
     report.write_outputs(cert, tmp_path)
-    before = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    before = {p.name: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
 
     def failing(data):
         raise OSError("disk full")
     monkeypatch.setattr(report, "render_markdown", failing)
     with pytest.raises(OSError):
         report.write_outputs(cert, tmp_path)
-    after = {p.name: p.read_bytes() for p in tmp_path.iterdir()}
+    after = {p.name: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
     assert after == before          # the old pair intact, no temporary file left behind
 
 
