@@ -215,6 +215,24 @@ def test_plots_are_drawn(tmp_path):
     assert cli.main(["prove", "agafonov2013", "--out", str(tmp_path), "--quiet", "--plots"]) == 0
     names = sorted(p.name for p in tmp_path.glob("*.png"))
     assert names == ["agafonov2013_psi.png", "agafonov2013_slices.png", "agafonov2013_trajectories.png"]
+    assert_figures_have_content(tmp_path.glob("*.png"))
+
+
+def assert_figures_have_content(paths):
+    """Each figure opens as an image of a sensible size that is not one flat colour."""
+    import matplotlib.image as mpimg
+    import numpy as np
+    for path in paths:
+        img = mpimg.imread(path)
+        assert img.shape[0] > 200 and img.shape[1] > 200, path
+        assert float(np.std(img[..., :3])) > 0.02, f"{path} is (nearly) blank"
+
+
+def test_the_relay_figure_is_drawn(tmp_path):
+    pytest.importorskip("matplotlib")
+    assert cli.main(["prove", "roitenberg1947", "--out", str(tmp_path), "--quiet", "--plots"]) == 0
+    assert [p.name for p in tmp_path.glob("*.png")] == ["roitenberg1947_orbit.png"]
+    assert_figures_have_content(tmp_path.glob("*.png"))
 
 
 def test_mu_best_is_certainly_inside_the_interval(example):
