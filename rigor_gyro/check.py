@@ -71,8 +71,8 @@ def check_file(path: str | Path) -> CheckReport:
     p = Path(path)
     try:
         data = json.loads(p.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as e:
-        raise CertificateError(f"{path}: not a readable certificate ({e})") from None
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError, RecursionError) as e:
+        raise CertificateError(f"{path}: not a readable certificate ({type(e).__name__}: {str(e)[:200]})") from None
     if isinstance(data, dict) and "total_s" in data and "schema" not in data:
         raise CertificateError(f"{path}: a timings file (timings/<name>.json), not a certificate")
     try:
@@ -99,11 +99,15 @@ def _structure(data: Any) -> None:
     for c in data["claims"]:
         if not isinstance(c, dict) or not {"id", "statement", "status"} <= set(c):
             raise CertificateError(f"malformed claim {c!r}"[:200])
+        if not isinstance(c.get("counterexample", {}), dict) or not isinstance(c.get("details", {}), dict):
+            raise CertificateError(f"claim {c['id']!r}: counterexample and details must be objects")
+    if not isinstance(data.get("witnesses", {}), dict):
+        raise CertificateError("witnesses must be an object")
 
 
 def check_certificate(data: Any, file: str = "<data>") -> CheckReport:
     """Check a certificate given as parsed JSON; see the module docstring."""
-    from .core.balls import working_precision
+    from .core.balls import MAX_PREC, working_precision
     from .kinds import checker, kind_module
     from .prover import requested_claims
     from .scene import Scene
@@ -126,13 +130,15 @@ def check_certificate(data: Any, file: str = "<data>") -> CheckReport:
         add(CheckResult("claims", False, f"unknown status(es) {bad_status}"))
     sc = data["scene"]
     try:
+        if not all(isinstance(sc.get(k, {}), dict) for k in ("parameters", "options")):
+            raise CertificateError("scene parameters and options must be objects")
         scene = Scene(name=sc["name"], kind=sc["kind"], source=sc.get("source", ""),
                       parameters=dict(sc["parameters"]), claims_only=sc.get("claims_only"),
                       options=dict(sc.get("options") or {}), paper={}, path=sc.get("file"))
         module = kind_module(scene.kind)
         model = module.validate(scene)
         wanted = requested_claims(scene, module.CLAIMS)
-    except RigorGyroError as e:
+    except (RigorGyroError, TypeError, ValueError) as e:
         add(CheckResult("scene", False, f"the certificate's scene is not valid: {e}"))
         report.seconds = time.perf_counter() - t0
         return report
@@ -151,10 +157,10 @@ def check_certificate(data: Any, file: str = "<data>") -> CheckReport:
     if kind_check is None:
         add(CheckResult("kind", False, f"no checker for kind {scene.kind!r}"))
     else:
-        with working_precision(max(2 * prec, 128)):
+        with working_precision(min(max(2 * prec, 128), MAX_PREC)):
             try:
                 report.results.extend(kind_check(model, data))
-            except (KeyError, TypeError, ValueError, ArithmeticError) as e:
+            except (KeyError, TypeError, ValueError, ArithmeticError, AttributeError, IndexError, RecursionError) as e:
                 add(CheckResult("data", False, f"the certificate's data cannot be checked: {type(e).__name__}: {e}"))
     report.seconds = time.perf_counter() - t0
     return report

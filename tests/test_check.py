@@ -220,3 +220,63 @@ def test_a_refuted_claim_relabelled_proved_is_never_confirmed(name, params):
                           "proved" if all(s == "proved" for s in statuses) else "inconclusive")
         report = check_certificate(_refix(bad))
         assert not report.ok, (name, bad["claims"][i]["id"])
+
+
+# ---------------------------------------------------------------- forgeries found by a hostile review
+
+def test_a_made_up_refutation_at_the_origin_is_rejected():
+    data = _cert("agafonov2013")
+    c = next(c for c in data["claims"] if c["id"] == "v_positive")
+    c["status"] = "refuted"
+    c["counterexample"] = {"point": {"x1": ["0", "0"], "x2": ["0", "0"], "x3": ["0", "0"]}}
+    data["verdict"] = "refuted"
+    assert not check_certificate(_refix(data)).ok
+
+
+def test_witness_points_outside_the_range_prove_nothing():
+    data = _cert("agafonov2013")
+    bad = copy.deepcopy(data)
+    bad["witnesses"]["constants"]["M"]["point"] = ["3/2", "3/2"]
+    bad["quantities"]["M"] = {"lo": "106", "hi": "115", "mid": "110.5", "rad": "4.5"}
+    assert not check_certificate(_refix(bad)).ok
+    bad = copy.deepcopy(data)
+    bad["witnesses"]["best_mu"]["x2_points"].append(["15707/10000", "15707/10000"])
+    bad["quantities"]["R_sup_upper_bound"] = {"lo": "0.001", "hi": "0.001", "mid": "0.001", "rad": "0"}
+    bad["quantities"]["R_max_relative_gap"] = {"lo": "-0.9", "hi": "-0.9", "mid": "-0.9", "rad": "0"}
+    assert not check_certificate(_refix(bad)).ok
+
+
+def test_relay_splits_outside_their_piece_are_rejected():
+    data = _cert("roitenberg1947")
+    w = data["witnesses"]["half_period"]
+    pcs = w["pieces"]
+    i = next(k for k, pc in enumerate(pcs) if pc["kind"] == "empty" and k > 0 and pcs[k - 1]["kind"] == "unique")
+    a, b, c = pcs[i - 1]["lo"], pcs[i]["lo"], pcs[i]["hi"]
+    mid = str((Fraction(b) + Fraction(c)) / 2)
+    pcs[i:i + 1] = [{"lo": b, "hi": mid, "kind": "unique", "splits": [a]}, {"lo": mid, "hi": c, "kind": "empty"}]
+    w["roots"].insert(1, dict(w["roots"][0]))
+    assert not check_certificate(_refix(data)).ok
+
+
+def test_a_proved_claim_without_the_quantities_it_names_is_rejected():
+    for name, drop in (("rudenko1976", "approx_rel_error_1"), ("agafonov2013", "M"), ("roitenberg1947", "I_0")):
+        data = _cert(name)
+        data["quantities"].pop(drop)
+        assert not check_certificate(_refix(data)).ok, (name, drop)
+
+
+@pytest.mark.parametrize("edit", [
+    lambda d: d["claims"][1].__setitem__("counterexample", [1]),
+    lambda d: d.__setitem__("witnesses", "x"),
+    lambda d: d["scene"].__setitem__("parameters", ["a"]),
+    lambda d: d["quantities"]["omega_1"].__setitem__("lo", "1e999999999"),
+])
+def test_malformed_data_is_rejected_without_a_crash_or_a_hang(tmp_path, edit):
+    import time
+    data = _cert()
+    edit(data)
+    path = tmp_path / "c.json"
+    path.write_text(json.dumps(_refix(data)))
+    t0 = time.perf_counter()
+    code = main(["check", "--quiet", str(path)])
+    assert code in (1, 2) and time.perf_counter() - t0 < 5

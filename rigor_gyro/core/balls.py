@@ -225,10 +225,12 @@ def sqrt_of_nonnegative(x: arb) -> arb:
 
 
 def rel_width_at_most(x: arb, tol: object) -> bool:
-    """True when the ball's width 2*rad is certainly <= tol * |x| (relative width), x nonzero."""
+    """True when the ball's width 2*rad is certainly <= tol * |x| (relative width), x nonzero, with a
+    margin of 1/100 of tol for the outward rounding of its printed decimals (so the decimal interval a
+    certificate stores also has relative width <= tol)."""
     if not x.is_finite() or possibly_zero(x):
         return False
-    return certainly_le(2 * x.rad(), ball(tol) * x.abs_lower())
+    return certainly_le(2 * x.rad(), ball(tol) * x.abs_lower() * arb("0.99"))
 
 
 # ---------------------------------------------------------------- decimal output, rounded outward

@@ -11,6 +11,7 @@ certificate's data as uncheckable).
 """
 from __future__ import annotations
 
+import re
 from fractions import Fraction
 
 from flint import arb, fmpq
@@ -20,10 +21,15 @@ from .balls import exact_endpoints
 __all__ = ["number", "interval", "encloses", "as_ball", "fmpq_of", "exact_text", "pieces_text", "ball_text"]
 
 
+#: a stored number: a decimal (exponent within +-4000) or an exact p/q (dyadics at high precision have
+#: many digits), at most 20000 characters; anything else is rejected before any arithmetic
+_STORED = re.compile(r"^-?[0-9]+(?:\.[0-9]+)?(?:e[+-]?[0-9]{1,4})?$|^-?[0-9]+/[0-9]+$", re.ASCII)
+
+
 def number(text: str) -> Fraction:
     """A stored decimal (or ``p/q``) as an exact rational; ValueError for anything else."""
-    if not isinstance(text, str) or text.strip().lower() in ("nan", "inf", "+inf", "-inf", ""):
-        raise ValueError(f"not a finite stored number: {text!r}")
+    if not isinstance(text, str) or len(text) > 20000 or not _STORED.match(text.strip()):
+        raise ValueError(f"not a finite stored number: {str(text)[:40]!r}")
     return Fraction(text.strip())
 
 

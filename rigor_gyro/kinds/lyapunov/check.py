@@ -62,6 +62,22 @@ def _upper(x: arb) -> Fraction:
     return exact_endpoints(x)[1]
 
 
+def _within(x: arb, lo: arb, hi: arb) -> bool:
+    """The stored point ball x certainly meets the range [lo, hi] (some t of x lies in it): then an
+    enclosure of f over x has its lower end <= f(t) <= the maximum over the range. A point outside the
+    range proves nothing."""
+    if not (x.is_finite() and lo.is_finite() and hi.is_finite()):
+        return False
+    (xl, xh), (_, lh), (hl, _) = exact_endpoints(x), exact_endpoints(lo), exact_endpoints(hi)
+    return max(xl, lh) <= min(xh, hl)
+
+
+#: per claim, the quantities its statement names: a proved claim without them is not confirmed
+REQUIRED = {"constants": ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R"),
+            "invariant_estimate": ("c_star", "c_set"),
+            "best_mu": ("mu_best", "R_max", "R_sup_upper_bound", "R_max_relative_gap")}
+
+
 def _max_upper(f, pieces) -> arb:
     """The largest upper bound of f over the pieces (a certified bound of its maximum there)."""
     up = None
@@ -113,7 +129,8 @@ def check(model, data: dict) -> list[CheckResult]:
     if wc:
         mv = mean_value_enclosure(g.m_signed)
         m_fn = lambda X: g.m_quotient(X).min(abs(mv(X)))      # both enclose |cos f'|/D  # noqa: E731
-        ok = _covers(wc["m"]["cover"], arb(0), xs) and _covers(wc["M"]["cover"], arb(0), xs)
+        ok = (_covers(wc["m"]["cover"], arb(0), xs) and _covers(wc["M"]["cover"], arb(0), xs)
+              and _within(_b(wc["m"]["point"]), arb(0), xs) and _within(_b(wc["M"]["point"]), arb(0), xs))
         if ok:
             m = g.m_quotient(_b(wc["m"]["point"])).lower().union(_max_upper(m_fn, wc["m"]["cover"]))
             M = g.q(_b(wc["M"]["point"])).lower().union(_max_upper(g.q, wc["M"]["cover"]))
@@ -221,9 +238,11 @@ def check(model, data: dict) -> list[CheckResult]:
         rho = rho_function(gb)
         if _covers(wb["r_sup_cover"], arb(0), xs):
             top = _max_upper(rho, wb["r_sup_cover"])
-            low = rho(_b(wb["r_sup_point"])).lower()
+            point = _b(wb["r_sup_point"])
+            low = rho(point).lower() if _within(abs(point), arb(0), xs) else arb(0)
             contains("R_sup_at_mu_best", (1 / top).union(1 / low) if certainly_positive(low) else arb("nan"))
         points = [_b(p) for p in wb["x2_points"]]
+        points = [x for x in points if _within(abs(x), arb(0), xs)]      # outside the range: proves nothing
         U = None
         if _covers(wb["mu_pieces"], K["mu_min"].lower(), K["mu_max"].upper()):
             for p in wb["mu_pieces"]:
@@ -276,8 +295,9 @@ def check(model, data: dict) -> list[CheckResult]:
             else:
                 pt = ce.get("point", {})
                 x1, x2, x3 = (_b(_pair(pt[k])) for k in ("x1", "x2", "x3"))
-                say(cid, certainly_le(g.V(x1, x2, x3), 0) and certainly_le(abs(x2), xs),
-                    "V <= 0 at the stored point, re-evaluated")
+                off_origin = certainly_positive(x1 * x1 + x2 * x2 + x3 * x3)
+                say(cid, off_origin and certainly_le(g.V(x1, x2, x3), 0) and certainly_le(abs(x2), xs),
+                    "V <= 0 at the stored point (away from the origin), re-evaluated")
         elif cid == "invariant_estimate":
             say(cid, st == "proved" and inv_ok, "c* re-bounded on the stored cylinder cover; c_set below it")
         elif cid == "best_mu":
@@ -287,6 +307,11 @@ def check(model, data: dict) -> list[CheckResult]:
                 say(cid, K is not None and certainly_le(K["mu_max"], K["mu_min"]), "the interval (16) is empty")
         else:
             say(cid, False, f"unknown claim {cid!r}")
+    for cid, names in REQUIRED.items():
+        if claims.get(cid, {}).get("status") == "proved":
+            missing = [n for n in names if n not in q]
+            if missing:
+                say(cid, False, f"a proved {cid} without the quantities its statement names: {missing}")
     unverified = sorted(set(q) - verified)
     say("quantities", not unverified, f"{len(verified)} stored enclosures verified"
         + (f"; not verified: {unverified}" if unverified else ""))

@@ -34,6 +34,12 @@ from .paper import orbit_quantities
 __all__ = ["check"]
 
 NEWTON_STEPS = 60
+#: per claim, the quantities its statement names: a proved claim without them is not confirmed
+REQUIRED = {"orbit_genuine": ("theta_star", "period"),
+            "initial_point": ("beta_dot_0", "Omega_0", "i_0", "I_0"),
+            "multipliers": tuple(f"multiplier_modulus_{j}" for j in range(1, 5))
+            + tuple(f"multiplier_{j}_{p}" for j in range(1, 5) for p in ("re", "im")),
+            "stable": ("stability_margin",)}
 
 
 def _pt(text: str) -> arb:
@@ -84,8 +90,11 @@ def _newton(G: _G, X: arb) -> tuple[str, arb | None]:
 
 
 def _merged_unique(G: _G, lo: arb, hi: arb, splits: list[arb]) -> tuple[bool, arb | None]:
-    """A piece merged at ``splits``: each part unique, and one root on the hull of their enclosures."""
+    """A piece merged at ``splits``: each part unique, and one root on the hull of their enclosures.
+    The splits must lie strictly inside the piece, in increasing order (the parts tile it)."""
     edges = [lo] + splits + [hi]
+    if not all(certainly_lt(a, b) for a, b in zip(edges, edges[1:])):
+        return False, None
     encl = []
     for a, b in zip(edges, edges[1:]):
         st, e = _newton(G, interval(a, b))
@@ -308,6 +317,11 @@ def check(model, data: dict) -> list[CheckResult]:
                 say(cid, ok, "exhaustive: no genuine orbit, or every one with a modulus > 1, re-decided")
         else:
             say(cid, False, f"unknown claim {cid!r}")
+    for cid, names in REQUIRED.items():
+        if claims.get(cid, {}).get("status") == "proved":
+            missing = [n for n in names if n not in q]
+            if missing:
+                say(cid, False, f"a proved {cid} without the quantities its statement names: {missing}")
     unverified = sorted(set(q) - verified)
     say("quantities", not unverified, f"{len(verified)} stored enclosures verified"
         + (f"; not verified: {unverified}" if unverified else ""))
