@@ -3,6 +3,7 @@ settings, each with the outcome it must get. None is ever proved; every certific
 confirmed by the independent checker; a refuted claim carries a counterexample the checker re-derives.
 Three of them are also built in as demos (``rigor-gyro list``, ``prove --group demo``)."""
 import json
+from fractions import Fraction
 from pathlib import Path
 
 import mpmath
@@ -22,6 +23,7 @@ EXPECTED = {
     "relay_sign_condition_fails": {"half_period": "proved", "orbit_genuine": "inconclusive", "stable": "inconclusive"},
     "relay_no_root_below_t_max": {"half_period": "proved", "orbit_genuine": "inconclusive"},
     "relay_unstable": {"orbit_genuine": "proved", "stable": "refuted"},
+    "relay_multiplier_near_one": {"orbit_genuine": "proved", "stable": "refuted"},
     "lyap_radius_above_sup_psi1": {"vdot_nonpositive": "refuted"},
     "lyap_radius_above_sup_psi2": {"vdot_nonpositive": "refuted"},
     "lyap_v_not_positive": {"v_positive": "refuted", "damping_condition": "refuted"},
@@ -57,6 +59,23 @@ def test_the_refutations_carry_the_right_counterexamples(certs):
     assert "vdot" in psi2["counterexample"]               # Psi2 binds at mu = 0.014: Vdot > 0 on x1 = 0
     og = next(c for c in certs["relay_sign_condition_fails"]["claims"] if c["id"] == "orbit_genuine")
     assert "beta(t) = [-" in og["reason"] and "not a refutation" in og["reason"]
+
+
+def test_a_modulus_within_1e_30_of_one_is_refuted_only_with_the_digits_that_show_it(certs):
+    """The orbit theta* ~ 0.12113 has modulus 1 + ~1e-33: the stored lower bound is certainly > 1 and
+    within 1e-30 of 1 (so the counterexample really is the knife edge, printed to the digits that show it)."""
+    stable = next(c for c in certs["relay_multiplier_near_one"]["claims"] if c["id"] == "stable")
+    lows = [Fraction(o["modulus_above_1"][0]) for o in stable["counterexample"]["orbits"]]
+    assert all(lo > 1 for lo in lows)
+    assert any(lo < 1 + Fraction(1, 10 ** 30) for lo in lows)
+    assert "max |.| = [1.0000000000000000000000000000000" in stable["reason"]
+
+
+def test_a_modulus_within_1e_30_of_one_is_inconclusive_at_64_bits():
+    """Precision caps never refute: pinned at 64 bits, the knife-edge orbit's stability is undecided."""
+    cert = prove_scene(load_scene(str(CORPUS / "relay_multiplier_near_one.toml")), prec=64, maxprec=64)
+    assert cert.claim("stable").status.value == "inconclusive"
+    assert cert.claim("orbit_genuine").status.value == "proved"
 
 
 def test_the_near_double_case_is_decided_the_way_mpmath_says():

@@ -328,6 +328,22 @@ def decimal_bounds(x: arb, digits: int | None = None) -> tuple[str, str]:
     return lo, hi
 
 
+def decimal_bounds_apart(x: arb, value: object, digits: int) -> tuple[str, str]:
+    """:func:`decimal_bounds` with at least ``digits`` significant digits, and more when needed so that
+    the printed interval excludes ``value`` whenever the ball certainly does (a modulus certainly > 1
+    never prints as [1, 1.0001]). Up to the ball's own accuracy plus three digits."""
+    v = ball(value)
+    apart = certainly_lt(x, v) or certainly_gt(x, v)
+    d, top = digits, max(digits, _digits_for(x))
+    while True:
+        lo, hi = decimal_bounds(x, d)
+        if not apart or d >= top:
+            return lo, hi
+        if certainly_gt(x, v) and Fraction(lo) > exact_fraction(v) or certainly_lt(x, v) and Fraction(hi) < exact_fraction(v):
+            return lo, hi
+        d = min(top, 2 * d)
+
+
 def quantity(x: arb, digits: int | None = None) -> dict[str, str]:
     """The certificate form of a ball: outward-rounded ``lo``/``hi``, and the midpoint (nearest) and
     half-width (rounded up, 3 digits) of the exact interval [x.lower(), x.upper()]."""

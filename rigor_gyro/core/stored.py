@@ -54,6 +54,16 @@ def encloses(stored: tuple[Fraction, Fraction], x: arb) -> bool:
     return stored[0] <= lo and hi <= stored[1]
 
 
+def meets(stored: tuple[Fraction, Fraction], x: arb) -> bool:
+    """True when the finite ball x and the stored [lo, hi] share a point (exact). Two enclosures of
+    the same number always meet, whatever their precisions; a stored value that misses the
+    checker's own enclosure cannot contain the number."""
+    if not x.is_finite():
+        return False
+    lo, hi = exact_endpoints(x)
+    return stored[0] <= hi and lo <= stored[1]
+
+
 def as_ball(stored: tuple[Fraction, Fraction]) -> arb:
     """A ball containing the whole stored interval, at the current precision."""
     return arb(fmpq_of(stored[0])).union(arb(fmpq_of(stored[1])))

@@ -26,7 +26,7 @@ from flint import arb, fmpq, fmpq_poly
 from ...check import CheckResult
 from ...core.balls import ball, certainly_ge, certainly_gt, certainly_le, certainly_lt, current_precision
 from ...core.roots import RootStatus, newton_root
-from ...core.stored import encloses, fmpq_of, interval
+from ...core.stored import encloses, fmpq_of, interval, meets
 from .model import (BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic, nu_bounds,
                     nu_identities, nu_quadratics, nus_exactly_equal, r2_denominator)
 
@@ -240,7 +240,7 @@ def check(model, data: dict) -> list[CheckResult]:
                     break
                 i, j = names.index(v["left"]), names.index(v["right"])
                 equal = i > 0 and j == i + 1 and nus_exactly_equal(ident[i], ident[j])
-                values_ok = all(encloses(interval(v[f"{side}_value"]), chain[k])
+                values_ok = all(meets(interval(v[f"{side}_value"]), chain[k])
                                 for side, k in (("left", i), ("right", j)) if f"{side}_value" in v)
                 ok = ok and j == i + 1 and values_ok and (equal if "exactly_equal" in v else certainly_ge(chain[i], chain[j]))
             say(cid, ok, "the stored violations re-derived" if ok else "a stored violation does not hold")
@@ -256,7 +256,7 @@ def check(model, data: dict) -> list[CheckResult]:
                 items = (c.get("counterexample") or {}).get("outside", [])
                 roots_named = [o.get("root") for o in items]
                 ok = bool(items) and all(r in (f"omega_{j}" for j in range(1, 5)) for r in roots_named)
-                ok = ok and all(outside[int(o["root"][6]) - 1] and encloses(interval(o["value"]), omegas[int(o["root"][6]) - 1])
+                ok = ok and all(outside[int(o["root"][6]) - 1] and meets(interval(o["value"]), omegas[int(o["root"][6]) - 1])
                                 for o in items)
                 say(cid, ok, "the roots outside their branch re-derived")
         elif cid == "nu_bounds":

@@ -113,7 +113,7 @@ def _fmt(x: arb) -> str:
 
 def _bounds(x: arb) -> list[str]:
     """[lo, hi] as outward-rounded decimals (the form a counterexample is stored in)."""
-    return list(decimal_bounds(x, 30))
+    return list(decimal_bounds(x))
 
 
 def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:

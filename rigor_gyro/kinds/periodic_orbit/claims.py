@@ -44,7 +44,7 @@ from typing import Any
 from flint import acb, acb_mat, arb, arb_series
 
 from ...core.balls import (ball, exact_fraction, series_coefficients, certainly_gt, certainly_le, certainly_lt, certainly_negative,
-                           certainly_positive, current_precision, decimal_bounds, interval)
+                           certainly_positive, current_precision, decimal_bounds, decimal_bounds_apart, interval)
 from ...core.errors import ParameterError
 from ...core.audit import check_printed
 from ...core.exact import Exact, option_number, parse_options, parse_parameters, require_rational
@@ -141,8 +141,15 @@ def _fmt(x: arb, digits: int = 12) -> str:
 
 
 def _bounds(x: arb) -> list[str]:
-    """[lo, hi] as outward-rounded decimals (the form a counterexample is stored in)."""
-    return list(decimal_bounds(x, 30))
+    """[lo, hi] as outward-rounded decimals to the ball's accuracy (the form a counterexample is
+    stored in: a modulus certainly > 1 keeps the digits that show it)."""
+    return list(decimal_bounds(x))
+
+
+def _fmt1(x: arb, digits: int) -> str:
+    """A modulus as [lo, hi], with the extra digits that keep it apart from 1 when it certainly is."""
+    lo, hi = decimal_bounds_apart(x, 1, digits)
+    return f"[{lo}, {hi}]"
 
 
 def _fmt_c(z: acb, digits: int = 12) -> str:
@@ -547,13 +554,13 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
         stable = [v for v in genuine if v.stable is True]
         if stable:
             s = stable[0] if main not in stable else main
-            st = (Status.PROVED, f"the orbit theta* = {_fmt(s.theta, 12)} has max modulus {_fmt(s.moduli[0], 10)} < 1; "
+            st = (Status.PROVED, f"the orbit theta* = {_fmt(s.theta, 12)} has max modulus {_fmt1(s.moduli[0], 10)} < 1; "
                   f"stability margin {_fmt(s.margin, 10)}" + (f"; {len(stable)} stable genuine orbits" if len(stable) > 1 else "")
                   + (f"; unstable: {', '.join(_fmt(v.theta, 8) for v in genuine if v.stable is False)}"
                      if any(v.stable is False for v in genuine) else ""))
         elif complete and genuine and all(v.stable is False for v in genuine):
             text = ("every genuine orbit has a multiplier of modulus certainly > 1: "
-                    + "; ".join(f"theta = {_fmt(v.theta, 10)}: max |.| = {_fmt(v.moduli[0], 10)}" for v in genuine))
+                    + "; ".join(f"theta = {_fmt(v.theta, 10)}: max |.| = {_fmt1(v.moduli[0], 10)}" for v in genuine))
             unstable = {"searched": "(0, oo)", "tail_point": _bounds(an.T_tail) if an.T_tail is not None else None,
                         "orbits": [{"theta": _bounds(v.theta),
                                     "modulus_above_1": _bounds(next(m for m in v.moduli if certainly_gt(m, 1)))}
@@ -588,9 +595,9 @@ def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
         line = f"root {k}: theta = {_fmt(v.theta, 14)}: {v.kind}: {v.reason}"
         if v.moduli:
             line += "; multipliers " + ", ".join(_fmt_c(z, 8) for z in v.multipliers) + "; moduli " + ", ".join(
-                _fmt(m, 8) for m in v.moduli) + ("; STABLE" if v.stable else "; UNSTABLE" if v.stable is False else "")
+                _fmt1(m, 8) for m in v.moduli) + ("; STABLE" if v.stable else "; UNSTABLE" if v.stable is False else "")
         rows.append({"theta": list(decimal_bounds(v.theta, 20)), "kind": v.kind, "reason": v.reason,
-                     "moduli": [list(decimal_bounds(m, 12)) for m in v.moduli],
+                     "moduli": [list(decimal_bounds_apart(m, 1, 12)) for m in v.moduli],
                      "stable": v.stable})
         notes.append(line)
     notes.insert(0, f"Searched range {rng}; theta_min = {_fmt(an.theta_min, 6)}; tail point "
