@@ -113,6 +113,15 @@ def check_certificate(data: Any, file: str = "<data>") -> CheckReport:
     from .scene import Scene
 
     t0 = time.perf_counter()
+    if isinstance(data, dict) and data.get("schema") == "rigor-gyro/paving/1":
+        from .margins.check import check_paving
+        report = CheckReport(file)
+        try:
+            report.results.extend(check_paving(data))
+        except (KeyError, TypeError, ValueError, ArithmeticError, AttributeError, IndexError) as e:
+            report.results.append(CheckResult("data", False, f"the paving's data cannot be checked: {type(e).__name__}: {e}"))
+        report.seconds = time.perf_counter() - t0
+        return report
     _structure(data)
     report = CheckReport(file)
     add = report.results.append

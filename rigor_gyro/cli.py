@@ -53,7 +53,21 @@ def _parser() -> argparse.ArgumentParser:
     pr.add_argument("--quiet", action="store_true", help="print only the verdict line of each scene")
     pr.add_argument("--plots", action="store_true",
                     help="also draw the scene's figures into --out (needs the 'plots' extra: matplotlib)")
+    pr.add_argument("--workers", type=int, default=None,
+                    help="processes for the sub-boxes of scenes with tolerances (default: the cores)")
+    pr.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                    help="run the sub-boxes on a Dask distributed scheduler (tcp://host:8786, or 'local' for a "
+                         "LocalCluster of --workers processes; needs the 'dask' extra)")
     pr.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
+    mg = sub.add_parser("margin", help="certified threshold: where a claim stops holding as one parameter moves")
+    mg.add_argument("scene", metavar="SCENE", help="built-in scene name or path to a TOML file")
+    mg.add_argument("--param", required=True, help="the parameter to move")
+    mg.add_argument("--lo", default=None, help="lower end of the search (exact number; default: value / 2)")
+    mg.add_argument("--hi", default=None, help="upper end of the search (exact number; default: 2 value)")
+    mg.add_argument("--claim", default=None, help="the claim (default: the scene's first claim)")
+    mg.add_argument("--width", default="1e-6", help="relative width of the threshold bracket (default 1e-6)")
+    mg.add_argument("--out", default=None, help="also write margin_<scene>_<param>.json/.md here")
+    mg.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     cp = sub.add_parser("campaign", help="prove N random scenes of a kind and compare them with mpmath, "
                         "floats and independent decisions (needs the 'crosscheck' extra)")
     cp.add_argument("--kind", required=True, choices=sorted(_KIND_NAMES))
@@ -115,6 +129,7 @@ def _cmd_prove(args) -> int:
     from .kinds import kind_module
     from .prover import prove_scene, requested_claims
     from .report import output_paths, write_outputs
+    from .margins.paving import box_scene, has_tolerances
     from .scene import builtin_scenes, load_scene
 
     if (args.all or args.group) and args.scenes or (args.all and args.group):
@@ -129,15 +144,18 @@ def _cmd_prove(args) -> int:
     for ref in refs:
         try:
             scene = load_scene(ref)
-            module = kind_module(scene.kind)
-            module.validate(scene)
-            requested_claims(scene, module.CLAIMS)
+            if has_tolerances(scene):
+                scene = box_scene(scene)        # a claim for every parameter in the box: a paving
+            else:
+                module = kind_module(scene.kind)
+                module.validate(scene)
+                requested_claims(scene, module.CLAIMS)
         except RigorGyroError as e:
             _say(f"rigor-gyro: {ref}: bad input: {e}", err=True)
             codes.append(EXIT_BAD_INPUT)
             continue
         scenes.append((ref, scene))
-    names = [s.name for _, s in scenes]
+    names = [getattr(s, "scene", s).name for _, s in scenes]
     dupes = sorted({n for n in names if names.count(n) > 1})
     if dupes:
         return _bad(f"two scenes named {dupes[0]!r} in one call would write the same files: rename one")
@@ -147,11 +165,35 @@ def _cmd_prove(args) -> int:
     if problem:
         return _bad(problem)
     try:
-        for _, scene in scenes:
-            output_paths(scene.name, args.out)
+        for name in names:
+            output_paths(name, args.out)
     except RigorGyroError as e:
         return _bad(str(e))
+    if args.workers is not None and not 1 <= args.workers <= 256:
+        return _bad(f"need 1 <= --workers <= 256 (got {args.workers})")
+    executor = None
     for ref, scene in scenes:
+        if not hasattr(scene, "box"):
+            continue
+        try:
+            if executor is None:
+                from .margins.executors import make_executor
+                executor = make_executor(args.workers, args.scheduler)
+            codes.append(_pave(scene, executor, args))
+        except RigorGyroError as e:
+            _say(f"rigor-gyro: {ref}: bad input: {e}", err=True)
+            codes.append(EXIT_BAD_INPUT)
+        except OSError as e:
+            _say(f"rigor-gyro: {ref}: cannot write to --out {args.out!r}: {e.strerror or e}", err=True)
+            codes.append(EXIT_BAD_INPUT)
+        except Exception as e:  # a bug: one line, never exit 1
+            _internal(e, args, where=ref)
+            codes.append(EXIT_INTERNAL)
+    if executor is not None:
+        executor.close()
+    for ref, scene in scenes:
+        if hasattr(scene, "box"):
+            continue
         try:
             cert = prove_scene(scene, prec=args.prec, maxprec=args.maxprec)
             jpath, mpath = write_outputs(cert, args.out)
@@ -178,6 +220,46 @@ def _cmd_prove(args) -> int:
              f"at {cert.precision_bits} bits -> {jpath}, {mpath}")
         codes.append(EXIT_CODES[cert.verdict])
     return next(c for c in _PRECEDENCE if c in codes or c == 0)
+
+
+def _pave(bs, executor, args) -> int:
+    """Pave one scene with tolerances; print its claims and verdict; write its paving pair."""
+    from .margins.paving import pave
+    from .margins.report import write_paving
+    tty = sys.stderr.isatty() and not args.quiet
+
+    def progress(done, queued, result):
+        if tty:
+            print(f"\r{bs.scene.name}: {done} boxes evaluated, {queued} queued", end="", file=sys.stderr, flush=True)
+    paving = pave(bs, executor, progress)
+    if tty:
+        print(file=sys.stderr)
+    jpath, mpath = write_paving(paving, args.out)
+    if not args.quiet:
+        for c in paving.claims:
+            v = c.volume(bs.box)
+            _say(f"{bs.scene.name}: {c.id}: {c.status} over the box (volume proved {float(v['proved']):.4g}, "
+                 f"refuted {float(v['refuted']):.4g}, undecided {float(v['undecided']):.4g})")
+    _say(f"{bs.scene.name}: verdict {paving.verdict} over the box in {paving.seconds:.2f} s "
+         f"({paving.evaluated} boxes, {executor.label}) -> {jpath}, {mpath}")
+    return paving.exit_code
+
+
+def _cmd_margin(args) -> int:
+    from .margins.threshold import find_threshold, write_threshold
+    from .scene import load_scene
+    scene = load_scene(args.scene)
+    if args.out is not None:
+        problem = _check_out(args.out)
+        if problem:
+            return _bad(problem)
+    res = find_threshold(scene, args.param, lo=args.lo, hi=args.hi, claim=args.claim, width=args.width)
+    for line in res.lines():
+        _say(line)
+    if args.out is not None:
+        for path in write_threshold(res, args.out):
+            _say(f"-> {path}")
+    return res.exit_code
 
 
 def _cmd_campaign(args) -> int:
@@ -265,6 +347,8 @@ def main(argv: list[str] | None = None) -> int:
             return _cmd_check(args)
         if args.command == "campaign":
             return _cmd_campaign(args)
+        if args.command == "margin":
+            return _cmd_margin(args)
         return _cmd_prove(args)
     except RigorGyroError as e:
         return _bad(str(e))

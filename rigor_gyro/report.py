@@ -15,7 +15,7 @@ from .certificate import Certificate
 from .core.errors import SceneError
 from .scene import check_name
 
-__all__ = ["render_markdown", "write_outputs", "output_paths"]
+__all__ = ["render_markdown", "write_outputs", "write_pair", "output_paths"]
 
 _MARK = {"proved": "PROVED", "refuted": "REFUTED", "inconclusive": "INCONCLUSIVE"}
 
@@ -157,12 +157,17 @@ def write_outputs(cert: Certificate, out_dir: str | Path) -> tuple[Path, Path]:
     certificate appears, so a reader never sees a truncated file nor a certificate beside the report
     of another run (an interruption between the renames leaves the new certificate without a report).
     Fails when: the folder cannot be created or written (OSError), the name is unsafe (SceneError)."""
+    data = cert.to_json()
+    return write_pair(out_dir, data["scene"]["name"], json.dumps(data, indent=2, ensure_ascii=False) + "\n",
+                      render_markdown(data), cert.timings_json())
+
+
+def write_pair(out_dir: str | Path, name: str, jtext: str, mtext: str, timings: dict | None) -> tuple[Path, Path]:
+    """Write ``<name>.json`` (``jtext``) and ``<name>.md`` (``mtext``), and ``timings/<name>.json``, with
+    the guarantees of :func:`write_outputs` (which uses it; so do margin reports)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    data = cert.to_json()
-    jpath, mpath = output_paths(data["scene"]["name"], out)
-    jtext = json.dumps(data, indent=2, ensure_ascii=False) + "\n"
-    mtext = render_markdown(data)
+    jpath, mpath = output_paths(name, out)
     temps: list[Path] = []
     try:
         temps.append(_write_temp(out, jpath.name, jtext))
@@ -170,11 +175,12 @@ def write_outputs(cert: Certificate, out_dir: str | Path) -> tuple[Path, Path]:
         mpath.unlink(missing_ok=True)
         os.replace(temps[0], jpath)
         os.replace(temps[1], mpath)
-        # run-dependent data (wall time) beside the pair, never inside it: the pair is reproducible
-        tpath = _timings_path(jpath)
-        tpath.parent.mkdir(exist_ok=True)
-        temps.append(_write_temp(tpath.parent, tpath.name, json.dumps(cert.timings_json(), indent=2) + "\n"))
-        os.replace(temps[2], tpath)
+        if timings is not None:
+            # run-dependent data (wall time) beside the pair, never inside it: the pair is reproducible
+            tpath = _timings_path(jpath)
+            tpath.parent.mkdir(exist_ok=True)
+            temps.append(_write_temp(tpath.parent, tpath.name, json.dumps(timings, indent=2) + "\n"))
+            os.replace(temps[2], tpath)
     finally:
         for tmp in temps:
             tmp.unlink(missing_ok=True)

@@ -61,6 +61,10 @@ CLAIMS = {
 }
 
 
+#: parameters a claim does not depend on (a threshold search over them is bad input)
+CLAIMS_INDEPENDENT_OF = {"hz_scale": tuple(CLAIMS)}
+
+
 @dataclass(frozen=True)
 class RudenkoModel:
     """Validated exact parameters of an eigenfrequency scene."""

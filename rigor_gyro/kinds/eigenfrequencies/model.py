@@ -149,14 +149,23 @@ def _hi7(p: Params, sign: int) -> arb:
     a, b, e, W = p
     lam = (b * (b - 1) + e) / (b * (b - 1))
     r = (e * a / (b * (a - b) + sign * (a - 1) * e) + W / (lam * b * b)) / 2
-    return r - _sqrt(r * r - e * W / ((a - b) * lam * b * b), "(7) upper")
+    q = e * W / ((a - b) * lam * b * b)
+    # r - sqrt(r^2 - q) = q / (r + sqrt(r^2 - q)): the same number, without the cancellation that
+    # makes a ball over a parameter box hundreds of times wider than the bound's range
+    root = _sqrt(r * r - q, "(7) upper")
+    return q / (r + root) if certainly_lt(0, r) else r - root
 
 
 def _lo8(p: Params, sign: int) -> arb:
+    """1/(b-1) + h - sqrt(h^2 + R1 c), h = (D + R1)/2, c = 1/(b-1) + sign eps a/(b(a-b)), evaluated as
+    1/(b-1) - c / (h' + sqrt(h'^2 + c s)) with s = 1/R1 and h' = (D s + 1)/2: the same number (divide
+    by R1 > 0), without the cancellation h - sqrt(...) and with Omega2 only in s (a ball over a box of
+    parameters stays as narrow as the bound's range)."""
     a, b, e, W = p
-    r1 = a * b * b / ((a - b) * (b - 1) * W)
-    h = (e / (b * (b - 1)) + r1) / 2
-    return 1 / (b - 1) + h - _sqrt(h * h + r1 * (1 / (b - 1) + sign * e * a / (b * (a - b))), "(8) lower")
+    s = (a - b) * (b - 1) * W / (a * b * b)
+    c = 1 / (b - 1) + sign * e * a / (b * (a - b))
+    h = (e / (b * (b - 1)) * s + 1) / 2
+    return 1 / (b - 1) - c / (h + _sqrt(h * h + c * s, "(8) lower"))
 
 
 def _hi8(p: Params) -> arb:
@@ -177,6 +186,9 @@ def _lo9_10(p: Params, root: int, squared: bool, c_reading: bool) -> arb:
     s = d + r2
     c = 1 - e / (b - 1) if c_reading else 1 + e / b
     inner = (s * s if squared else s) / 4 + r2 * c
+    if squared and root < 0 and certainly_lt(0, s):
+        # s/2 - sqrt(s^2/4 + r2 c) = -r2 c / (s/2 + sqrt(s^2/4 + r2 c)): cancellation-free
+        return b / (b - 1) - r2 * c / (s / 2 + _sqrt(inner, "(9)/(10) lower"))
     return b / (b - 1) + s / 2 + root * _sqrt(inner, "(9)/(10) lower")
 
 

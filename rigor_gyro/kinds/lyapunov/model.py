@@ -49,7 +49,7 @@ from ...core.stored import ball_text, pieces_text
 from ...core.subdivision import certify_positive
 from .moments import MomentLaw
 
-__all__ = ["Dual", "Gimbal", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
+__all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
            "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound"]
 
 
@@ -139,7 +139,7 @@ def hypot_ball(a: arb, b: arb) -> arb:
 
 
 @dataclass
-class _Balls:
+class ParameterBalls:
     A0: arb
     B0: arb
     C0: arb
@@ -165,17 +165,17 @@ class Gimbal:
     law: MomentLaw
 
     def __post_init__(self):
-        self._cache: dict[int, _Balls] = {}
+        self._cache: dict[int, ParameterBalls] = {}
 
     def with_mu(self, mu: fmpq) -> "Gimbal":
         return Gimbal(self.A0, self.B0, self.C0, self.H, self.k, self.a, mu, self.x2_star, self.law)
 
     @property
-    def c(self) -> _Balls:
+    def c(self) -> ParameterBalls:
         """The parameters as balls at the current precision (cached per precision)."""
         p = current_precision()
         if p not in self._cache:
-            self._cache[p] = _Balls(*(arb(v) for v in (self.A0, self.B0, self.C0, self.H, self.k, self.a,
+            self._cache[p] = ParameterBalls(*(arb(v) for v in (self.A0, self.B0, self.C0, self.H, self.k, self.a,
                                                         self.mu)), self.x2_star.ball())
         return self._cache[p]
 

@@ -389,11 +389,13 @@ def _isolate(f, lo: arb, hi: arb, *, max_depth: int = 48, max_pieces: int = MAX_
     return Isolation(merge_shared_roots(f, done, None))
 
 
-def analyse(model: RelayModel) -> Analysis:
-    """Isolate and classify every root at the current precision."""
+def analyse(model: RelayModel, spectrum=None) -> Analysis:
+    """Isolate and classify every root at the current precision. ``spectrum``: a callable returning
+    the :class:`Spectrum` to use (default: ``Spectrum(model.params)``; the box version passes one whose
+    balls contain a whole parameter box, :mod:`.boxes`)."""
     P = model.params
     try:
-        sp = Spectrum(P)
+        sp = spectrum() if spectrum is not None else Spectrum(P)
     except DegenerateSpectrum as e:
         return Analysis(None, problem=str(e))
     mom = moment_zero_orders(P)
@@ -447,9 +449,10 @@ def _select(genuine: list[RootVerdict]) -> tuple[RootVerdict | None, str]:
     return None, "no genuine orbit"
 
 
-def attempt(model: RelayModel, wanted: list[str], prec: int) -> Attempt:
-    """Evaluate the requested claims at the current precision (set by the prover)."""
-    an = analyse(model)
+def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> Attempt:
+    """Evaluate the requested claims at the current precision (set by the prover); ``spectrum`` as in
+    :func:`analyse`."""
+    an = analyse(model, spectrum)
     claims: list[Claim] = []
     quantities: dict[str, arb] = {}
     notes: list[str] = []

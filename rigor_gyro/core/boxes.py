@@ -1,0 +1,158 @@
+"""Exact parameter boxes: tolerances written ``"[lo, hi]"`` or ``"mid +- rad"``, split and measured exactly.
+
+A box assigns each of some parameters a closed interval [lo, hi] with exact rational endpoints (the
+other parameters stay points). A claim about a box is a statement for every parameter value in it;
+a kind decides such a statement on balls that contain the whole box (:meth:`Box.ball`).
+
+Guarantee: endpoints are exact rationals parsed by :func:`~rigor_gyro.core.exact.parse_exact` (never
+floats); :meth:`Box.ball` returns, at the current precision, a ball containing every point of the
+interval; :meth:`Box.split` halves an edge at its exact midpoint, so the two halves cover the box
+and their volumes add up exactly; :meth:`Box.midpoint` is an exact point of the box.
+
+Fails when: the text is neither a number, ``[lo, hi]`` nor ``mid +- rad``; lo > hi; rad < 0; an
+endpoint involves pi (a tolerance must be rational): :class:`ParameterError` naming the parameter.
+An interval with lo == hi is a point (allowed).
+
+Example:
+    >>> parse_tolerance("[0.132, 0.134]", "B")
+    (Fraction(33, 250), Fraction(67, 500))
+    >>> parse_tolerance("0.15 +- 0.01", "S")
+    (Fraction(7, 50), Fraction(4, 25))
+    >>> parse_tolerance("0.15", "S") is None
+    True
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from fractions import Fraction
+
+from flint import arb, fmpq
+
+from .errors import ParameterError
+from .exact import parse_exact
+
+__all__ = ["Box", "parse_tolerance", "is_tolerance", "split_parameters", "fraction_text"]
+
+_BRACKET = re.compile(r"^\[\s*([^,\[\]]+?)\s*,\s*([^,\[\]]+?)\s*\]$")
+_PLUS_MINUS = re.compile(r"^(.+?)\s*(?:\+-|\+/-|±)\s*(.+)$")
+
+
+def is_tolerance(value: object) -> bool:
+    """Whether a parameter value is written as an interval (``[lo, hi]`` or ``mid +- rad``)."""
+    return isinstance(value, str) and (value.strip().startswith("[") or any(t in value for t in ("+-", "+/-", "±")))
+
+
+def _rational(text: str, name: str, what: str) -> Fraction:
+    x = parse_exact(text, name)
+    if not x.is_rational:
+        raise ParameterError(f"parameter {name!r}: the {what} {text!r} of a tolerance must be rational (no pi)")
+    return x.rational
+
+
+def parse_tolerance(value: object, name: str) -> tuple[Fraction, Fraction] | None:
+    """(lo, hi) of a parameter written as an interval, exactly; None when it is a plain number."""
+    if not is_tolerance(value):
+        return None
+    text = value.strip()
+    m = _BRACKET.match(text)
+    if m:
+        lo, hi = _rational(m.group(1), name, "lower end"), _rational(m.group(2), name, "upper end")
+        if lo > hi:
+            raise ParameterError(f"parameter {name!r} = {value!r}: the lower end exceeds the upper end (need lo <= hi)")
+        return lo, hi
+    if text.startswith("["):
+        raise ParameterError(f"parameter {name!r} = {value!r}: write an interval as \"[lo, hi]\" with two exact "
+                             "numbers, e.g. \"[0.132, 0.134]\"")
+    m = _PLUS_MINUS.match(text)
+    if not m:
+        raise ParameterError(f"parameter {name!r} = {value!r}: write a tolerance as \"mid +- rad\", e.g. \"0.15 +- 0.01\"")
+    mid, rad = _rational(m.group(1), name, "midpoint"), _rational(m.group(2), name, "radius")
+    if rad < 0:
+        raise ParameterError(f"parameter {name!r} = {value!r}: the radius must be >= 0")
+    return mid - rad, mid + rad
+
+
+def fraction_text(q: Fraction) -> str:
+    """An exact rational as text that :func:`parse_exact` reads back to the same value."""
+    return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
+
+
+def _ball(lo: Fraction, hi: Fraction) -> arb:
+    a = arb(fmpq(lo.numerator, lo.denominator))
+    return a if lo == hi else a.union(arb(fmpq(hi.numerator, hi.denominator)))
+
+
+@dataclass(frozen=True)
+class Box:
+    """Closed intervals with exact rational endpoints, in a fixed parameter order."""
+
+    edges: tuple[tuple[str, Fraction, Fraction], ...]
+
+    @classmethod
+    def of(cls, intervals: dict[str, tuple[Fraction, Fraction]]) -> "Box":
+        return cls(tuple((k, Fraction(lo), Fraction(hi)) for k, (lo, hi) in intervals.items()))
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return tuple(k for k, _, _ in self.edges)
+
+    def interval(self, name: str) -> tuple[Fraction, Fraction]:
+        for k, lo, hi in self.edges:
+            if k == name:
+                return lo, hi
+        raise KeyError(name)
+
+    def ball(self, name: str) -> arb:
+        """A ball containing the whole interval of ``name`` (at the current precision)."""
+        return _ball(*self.interval(name))
+
+    def midpoint(self) -> dict[str, Fraction]:
+        return {k: (lo + hi) / 2 for k, lo, hi in self.edges}
+
+    def volume(self) -> Fraction:
+        """The product of the nonzero edge widths (degenerate edges do not count)."""
+        v = Fraction(1)
+        for _, lo, hi in self.edges:
+            if hi > lo:
+                v *= hi - lo
+        return v
+
+    def relative_widths(self, whole: "Box") -> dict[str, Fraction]:
+        """Each edge's width as a fraction of the same edge in ``whole`` (0 for a point edge)."""
+        out = {}
+        for k, lo, hi in self.edges:
+            wlo, whi = whole.interval(k)
+            out[k] = (hi - lo) / (whi - wlo) if whi > wlo else Fraction(0)
+        return out
+
+    def split(self, whole: "Box") -> tuple["Box", "Box"]:
+        """The two halves along the edge that is widest relative to ``whole`` (first such edge on ties)."""
+        rel = self.relative_widths(whole)
+        k = max(self.names, key=lambda n: (rel[n], -self.names.index(n)))
+        lo, hi = self.interval(k)
+        if rel[k] == 0:
+            raise ValueError("a box of points cannot be split")
+        mid = (lo + hi) / 2
+        left = tuple((n, a, mid) if n == k else (n, a, b) for n, a, b in self.edges)
+        right = tuple((n, mid, b) if n == k else (n, a, b) for n, a, b in self.edges)
+        return Box(left), Box(right)
+
+    def to_json(self) -> dict[str, list[str]]:
+        return {k: [fraction_text(lo), fraction_text(hi)] for k, lo, hi in self.edges}
+
+    @classmethod
+    def from_json(cls, data: dict[str, list[str]]) -> "Box":
+        return cls(tuple((k, Fraction(v[0]), Fraction(v[1])) for k, v in data.items()))
+
+
+def split_parameters(parameters: dict[str, object]) -> tuple[dict[str, object], Box]:
+    """Separate a scene's parameters into the points (as written) and the box of the tolerances."""
+    points, edges = {}, {}
+    for k, v in parameters.items():
+        t = parse_tolerance(v, k)
+        if t is None:
+            points[k] = v
+        else:
+            edges[k] = t
+    return points, Box.of(edges)

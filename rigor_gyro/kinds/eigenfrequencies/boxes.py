@@ -1,0 +1,210 @@
+"""Claims of the eigenfrequency kind over a box of parameters (tolerances): the parametric rigour that
+the margins layer (:mod:`rigor_gyro.margins`) paves with.
+
+For a box of (a, b, eps, Omega2) every parameter becomes a ball containing its interval. The quartic's
+coefficients are then balls containing the coefficients of every member of the family, and
+:func:`rigor_gyro.core.family_roots.family_real_roots` encloses its four roots by one interval Newton
+proof for all members at once (the midpoint's exact roots are only the starting guesses). The nus of
+(4) are enclosed the same way from the two quadratics; nu3, nu5, the bounds (5) and the brackets are
+the model's formulas evaluated on the balls.
+
+Guarantee: ``proved`` for a claim means the claim holds for every parameter value in the box;
+``refuted`` means it fails for every value in the box (a certified strict violation over the whole
+box); ``undecided`` says neither was certified at this box size (the paving splits the box). The
+``roots`` claim over a box is "four real positive simple roots for every value", without the relative
+width of the point claim (a box's roots are as wide as the box makes them).
+
+Precision: the caller's working precision (the paving fixes it); box width, not precision, dominates.
+
+Fails when: a box violates the domain somewhere (b > 1, a > b, eps > 0, Omega2 > 0 must hold at every
+point of the box, checked exactly on the box's corners, which suffices because each condition is
+monotone in each parameter), or ``hz_scale`` is given as an interval: ParameterError (exit 2).
+"""
+from __future__ import annotations
+
+from fractions import Fraction
+
+from flint import arb, arb_poly, fmpq
+
+from ...core.balls import certainly_ge, certainly_gt, certainly_le, certainly_lt, certainly_positive
+from ...core.boxes import Box
+from ...core.errors import ParameterError
+from ...core.family_roots import family_real_roots
+from ...core.polyroots import isolate_polynomial
+from .model import NotReal, Params, bracket, characteristic_quartic, nu_bounds, nu_quadratics
+from .claims import CLAIMS, REQUIRED
+
+__all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "validate_box", "evaluate_box"]
+
+#: the claims decidable over a box, with what each states at every point of it (approximations: their
+#: errors are quantities, not statements; roots: without the point claim's relative width)
+BOX_CLAIMS = {
+    "roots": "The characteristic quartic in omega has exactly four roots, all real, positive and simple.",
+    **{c: CLAIMS[c] for c in ("nu_ordering", "branches", "nu_bounds", "bracket_1", "bracket_2", "bracket_3",
+                              "bracket_4")},
+}
+#: the parameters that may be written as tolerances
+BOX_PARAMETERS = ("a", "b", "eps", "Omega2")
+
+
+def validate_box(model, box: Box) -> None:
+    """The domain at every point of the box: b > 1, a > b, eps > 0, Omega2 > 0 (exact, on corners)."""
+    bad = [n for n in box.names if n not in BOX_PARAMETERS]
+    if bad:
+        raise ParameterError(f"parameter {bad[0]!r}: kind 'eigenfrequencies' takes a tolerance only for "
+                             f"{list(BOX_PARAMETERS)}; write {bad[0]!r} as a single number")
+    lo, hi = _range(model, box)
+    if not lo["b"] > 1:
+        raise ParameterError(f"parameter 'b': need b > 1 on the whole box (its lower end is {lo['b']})")
+    if not lo["a"] > hi["b"]:
+        raise ParameterError(f"parameter 'a': need a > b on the whole box (min a = {lo['a']} <= max b = {hi['b']})")
+    if not lo["eps"] > 0:
+        raise ParameterError(f"parameter 'eps': need eps > 0 on the whole box (its lower end is {lo['eps']})")
+    if not lo["Omega2"] > 0:
+        raise ParameterError(f"parameter 'Omega2': need Omega2 > 0 on the whole box (its lower end is {lo['Omega2']})")
+
+
+def _range(model, box: Box) -> tuple[dict[str, Fraction], dict[str, Fraction]]:
+    lo, hi = {}, {}
+    for k in REQUIRED:
+        if k in box.names:
+            lo[k], hi[k] = box.interval(k)
+        else:
+            lo[k] = hi[k] = getattr(model, k).rational
+    return lo, hi
+
+
+def _balls(model, box: Box) -> Params:
+    return Params(*(box.ball(k) if k in box.names else arb(model.q(k)) for k in REQUIRED))
+
+
+def _midpoint(model, box: Box) -> list[fmpq]:
+    mid = box.midpoint()
+    return [fmpq(mid[k].numerator, mid[k].denominator) if k in mid else model.q(k) for k in REQUIRED]
+
+
+def _quartic_family(p: Params):
+    """Q(omega) = -omega P1(-omega) + Omega2 P2(-omega) over the box, as a family (value, derivative):
+    P1 and P2 have ball coefficients (a, b, eps) and Omega2 multiplies P2 once, so the enclosure keeps
+    Q's linear dependence on Omega2 (coefficient by coefficient it would not: much wider). Also the
+    leading coefficient (b-1)^2 (a-b) of Q."""
+    a, b, e, W = p
+    l = arb_poly([0, 1])
+    p1 = (l * (b - 1) + b) * (l * l * ((a - b) * (b - 1)) + l * (e * (a - 1) + b * (a - b)) + e * a)
+    p2 = (l * (b - 1) + 1) * (l * l * ((a - b) * (b - 1)) + l * (e * (a - 1) + a - b) + e)
+    d1, d2 = p1.derivative(), p2.derivative()
+
+    def family(x: arb) -> tuple[arb, arb]:
+        lam = -x                               # lambda^2 = -omega
+        value = lam * p1(lam) + W * p2(lam)
+        deriv = -(p1(lam) + lam * d1(lam)) - W * d2(lam)
+        return value, deriv
+    return family, (b - 1) * (b - 1) * (a - b)
+
+
+def _guesses(poly) -> list[arb] | None:
+    pr = isolate_polynomial(poly)
+    return pr.real if pr.verified and not pr.nonreal else None
+
+
+def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str]]:
+    """{claim: (status, reason)} over the box; status is 'proved', 'refuted' or 'undecided' (see the
+    module docstring for what each means)."""
+    p = _balls(model, box)
+    a, b, e, W = _midpoint(model, box)
+    out: dict[str, tuple[str, str]] = {}
+    # the four roots, one interval Newton proof for the whole family
+    need_roots = any(c in ("roots", "branches") or c.startswith("bracket_") for c in claims)
+    guesses = _guesses(characteristic_quartic(a, b, e, W)) if need_roots else None
+    omegas = None
+    if guesses is not None and len(guesses) == 4:
+        fam, leading = _quartic_family(p)
+        omegas = family_real_roots(fam, guesses, leading=leading)
+    if omegas is not None and not all(certainly_positive(w) for w in omegas):
+        omegas = None
+    roots_ok = omegas is not None
+    # the nus
+    q14, q26 = nu_quadratics(a, b, e)
+    c2 = (p.a - p.b) * (p.b - 1)
+    fam14 = [p.eps, -(p.eps * (p.a - 1) + p.a - p.b), c2]
+    fam26 = [p.eps * p.a, -(p.eps * (p.a - 1) + p.b * (p.a - p.b)), c2]
+    need_nus = any(c in ("nu_ordering", "branches", "nu_bounds") for c in claims)
+    g14, g26 = (_guesses(q14), _guesses(q26)) if need_nus else (None, None)
+    r14 = family_real_roots(fam14, g14) if g14 is not None and len(g14) == 2 else None
+    r26 = family_real_roots(fam26, g26) if g26 is not None and len(g26) == 2 else None
+    nus = None
+    if r14 is not None and r26 is not None:
+        nus = {1: r14[0], 2: r26[0], 3: 1 / (p.b - 1), 4: r14[1], 5: p.b / (p.b - 1), 6: r26[1]}
+    for cid in claims:
+        if cid == "roots":
+            out[cid] = ("proved", "four disjoint positive root balls, each verified by one interval Newton step for "
+                        "every parameter in the box (leading coefficient certainly nonzero)") if roots_ok else \
+                ("undecided", "the family's roots were not separated on this box")
+        elif cid == "nu_ordering":
+            out[cid] = _ordering(nus)
+        elif cid == "branches":
+            out[cid] = _branches(omegas, nus)
+        elif cid == "nu_bounds":
+            out[cid] = _nu_bounds(p, nus)
+        elif cid.startswith("bracket_"):
+            out[cid] = _bracket(int(cid[-1]), p, omegas)
+        else:
+            raise ParameterError(f"claim {cid!r} cannot be decided over a box; over boxes the kind decides {list(BOX_CLAIMS)}")
+    return out
+
+
+def _ordering(nus) -> tuple[str, str]:
+    if nus is None:
+        return "undecided", "the nu quadratics' roots were not separated on this box"
+    chain = [arb(0)] + [nus[k] for k in range(1, 7)]
+    names = ["0"] + [f"nu{k}" for k in range(1, 7)]
+    bad = [f"{names[i]} >= {names[i + 1]}" for i in range(6) if certainly_ge(chain[i], chain[i + 1])]
+    if bad:
+        return "refuted", "for every parameter in the box: " + ", ".join(bad)
+    if all(certainly_lt(chain[i], chain[i + 1]) for i in range(6)):
+        return "proved", "0 < nu1 < ... < nu6 certified for every parameter in the box"
+    return "undecided", "the nu balls overlap on this box"
+
+
+def _branches(omegas, nus) -> tuple[str, str]:
+    if omegas is None or nus is None:
+        return "undecided", "needs the roots and the nus enclosed on this box"
+    iv = [(arb(0), nus[1]), (nus[2], nus[3]), (nus[4], nus[5]), (nus[6], None)]
+    fails, und = [], []
+    for j, (w, (lo, hi)) in enumerate(zip(omegas, iv), start=1):
+        if certainly_ge(lo, w) or (hi is not None and certainly_ge(w, hi)):
+            fails.append(f"omega_{j}")
+        elif not (certainly_lt(lo, w) and (hi is None or certainly_lt(w, hi))):
+            und.append(f"omega_{j}")
+    if fails:
+        return "refuted", f"{', '.join(fails)} outside its branch for every parameter in the box"
+    if und:
+        return "undecided", f"{', '.join(und)} against its branch undecided on this box"
+    return "proved", "each omega_j strictly inside its branch for every parameter in the box"
+
+
+def _bounds_status(items) -> tuple[str, str]:
+    fails = [label for label, lo, x, hi in items if certainly_gt(lo, x) or certainly_gt(x, hi)]
+    if fails:
+        return "refuted", f"{', '.join(fails)} outside its bounds for every parameter in the box"
+    und = [label for label, lo, x, hi in items if not (certainly_le(lo, x) and certainly_le(x, hi))]
+    if und:
+        return "undecided", f"{', '.join(und)} against its bounds undecided on this box"
+    return "proved", "every inequality certified for every parameter in the box"
+
+
+def _nu_bounds(p: Params, nus) -> tuple[str, str]:
+    if nus is None:
+        return "undecided", "needs the nus enclosed on this box"
+    bounds = nu_bounds(p)
+    return _bounds_status([(f"nu{k}", bounds[k][0], nus[k], bounds[k][1]) for k in (1, 2, 4, 6)])
+
+
+def _bracket(j: int, p: Params, omegas) -> tuple[str, str]:
+    try:
+        lo, hi = bracket(j, p, reading="intended")
+    except NotReal as e:
+        return "refuted", f"the bracket has no real value anywhere in the box: {e}"
+    if omegas is None:
+        return "undecided", "needs the roots enclosed on this box"
+    return _bounds_status([(f"omega_{j}", lo, omegas[j - 1], hi)])

@@ -1,0 +1,139 @@
+"""Claims of the relay (periodic orbit) kind over a box of parameters, for :mod:`rigor_gyro.margins`.
+
+:class:`BoxSpectrum` is the :class:`.flow.Spectrum` of a whole box: the parameters are balls containing
+their intervals, the three roots of the nutation cubic (4) are enclosed for every member of the box by
+one interval Newton proof each (real roots on the line, the complex pair in the plane:
+:mod:`rigor_gyro.core.family_roots`; the midpoint's exact roots are only starting guesses), and the
+projectors, the forcing and the system matrix are the same ball formulas on the parameter balls. The
+claims of :mod:`.claims` then run unchanged on it: every enclosure they compute (g and g' on a theta
+piece, the tail bound, the sign of beta on a time piece, the Jacobian of the half-period map, its
+eigenvalues by Rump's method, which encloses the eigenvalues of every matrix in the ball matrix)
+contains the value for every parameter in the box, so a root piece with a certified sign change and a
+derivative excluding 0 holds exactly one root of g for every member, a piece with |g| > 0 none.
+
+Guarantee: ``proved`` means the claim holds for every parameter value in the box (for example
+``stable``: for every member, every genuine orbit found ... as the claim states, with the box's
+enclosures); ``refuted`` means it fails for every member; ``undecided`` otherwise. The algebraic moment
+identities e1^T M^j e = 0 (j <= 3) hold for all parameters; they are checked exactly at the box's
+midpoint (a bug check, not a proof step).
+
+Precision: the caller's (the paving fixes it).
+
+Known limit (measured on roitenberg1947, 128 bits): boxes of relative width up to about 1e-8 decide like
+the point scene; at 1e-5 the isolation of g near theta = 0 stays undecided. g = O(theta^5) there is the
+small difference of spectral terms of size O(theta) whose projectors depend on the parameters
+independently, so a parameter ball of relative width w widens g by about w times those terms. The
+remedy (next step): near 0, g's power series -S sum c_j theta^(2j+1) e1^T M^(2j) e from matrix powers
+(no cancellation: the first moments vanish identically), the spectral form only beyond.
+
+Fails when: the domain fails somewhere in the box (every parameter > 0): ParameterError. A box where
+the cubic's roots cannot be separated, or -1/sigma may be one of them, is undecided (the paving splits it).
+"""
+from __future__ import annotations
+
+import dataclasses
+
+from flint import acb, arb, arb_mat
+
+from ...core.balls import ball, certainly_nonzero, certainly_positive
+from ...core.boxes import Box
+from ...core.errors import ParameterError
+from ...core.family_roots import newton_family_root, newton_family_root_complex, polynomial_family
+from ...core.outcome import Status
+from ...core.polyroots import isolate_polynomial
+from .claims import CLAIMS, attempt
+from .flow import PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, nutation_cubic
+
+__all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "BoxSpectrum", "validate_box", "evaluate_box"]
+
+BOX_CLAIMS = {c: CLAIMS[c] for c in ("half_period", "orbit_genuine", "stable")}
+BOX_PARAMETERS = PARAMETER_NAMES
+
+
+class BoxSpectrum(Spectrum):
+    """Eigenvalues and projectors of M for every parameter in a box (see the module docstring)."""
+
+    def __init__(self, Pb: RelayParams, Pmid: RelayParams):
+        self.P = Pb
+        tau, sigma, A, n = Pb.tau, Pb.sigma, Pb.A, Pb.n
+        q2 = Pb.H * Pb.H / (Pb.A * Pb.B)
+        coeffs = [q2 / tau, q2 + n / (tau * A), 1 / tau, arb(1)]
+        family = polynomial_family(coeffs)
+        guesses = isolate_polynomial(nutation_cubic(Pmid))
+        if not guesses.verified or not guesses.squarefree:
+            raise DegenerateSpectrum("the midpoint's cubic (4) is not isolated")
+        real = [newton_family_root(family, g) for g in guesses.real]
+        upper = [newton_family_root_complex(coeffs, z) for z in guesses.nonreal if certainly_positive(z.imag)]
+        if any(r is None for r in real + upper) or len(real) + 2 * len(upper) != 3:
+            raise DegenerateSpectrum("the cubic's roots were not separated on this box")
+        if not all(certainly_positive(z.imag) for z in upper):
+            raise DegenerateSpectrum("a complex root's imaginary part may vanish on this box")
+        for i in range(len(real)):
+            for j in range(i + 1, len(real)):
+                if real[i].overlaps(real[j]):
+                    raise DegenerateSpectrum("two real roots of the cubic overlap on this box")
+        nu = -1 / sigma
+        if not certainly_nonzero(family(nu)[0]):
+            raise DegenerateSpectrum("-1/sigma may be a root of the cubic (4) on this box")
+        self.cubic = None
+        self.cubic_roots = None
+        S = ball(Pb.S)
+        modes = [self._cubic_mode(acb(lam), 1, "real root of (4)") for lam in real]
+        modes += [self._cubic_mode(z, 2, "complex pair of (4)") for z in upper]
+        modes.append(self._sigma_mode(nu))
+        self.modes = modes
+        P = Pb
+        l0 = [arb(1), P.B * P.n / (P.H * P.H), -P.A / P.H, -P.tau * P.K / P.H, -P.sigma * P.p * P.K / P.H]
+        self.P0 = arb_mat([l0] + [[arb(0)] * 5 for _ in range(4)])
+        self.p0e = [l0[4] / P.sigma * S if r == 0 else arb(0) for r in range(5)]
+        self.e = [arb(0), arb(0), arb(0), arb(0), 1 / P.sigma]
+        z = arb(0)
+        self.M = arb_mat([[z, 1, z, z, z],
+                          [z, z, -P.H / P.B, z, z],
+                          [z, P.H / P.A, z, P.K / P.A, z],
+                          [z, z, -P.n / (P.K * P.tau), -1 / P.tau, P.p / P.tau],
+                          [z, z, z, z, -1 / P.sigma]])
+
+    def _sigma_mode(self, nu: arb):
+        P = self.P
+        rho2 = -(P.B / P.H) * nu * nu
+        rho3 = (-(P.A * P.B / P.H) * nu ** 3 - P.H * nu) / P.K
+        den = (P.n / (P.K * P.tau)) * rho2 + (nu + 1 / P.tau) * rho3
+        if not certainly_nonzero(den):
+            raise DegenerateSpectrum("the -1/sigma eigenvector may be degenerate on this box")
+        r0 = (P.p / P.tau) / den
+        r = [acb(x) for x in (r0, r0 * nu, r0 * rho2, r0 * rho3, arb(1))]
+        l = [acb(0)] * 4 + [acb(1)]
+        return self._mode(acb(nu), 1, r, l, "-1/sigma (current I)")
+
+
+def validate_box(model, box: Box) -> None:
+    bad = [n for n in box.names if n not in BOX_PARAMETERS]
+    if bad:
+        raise ParameterError(f"parameter {bad[0]!r}: not a parameter of kind 'periodic_orbit'")
+    for k in box.names:
+        lo, _ = box.interval(k)
+        if not lo > 0:
+            raise ParameterError(f"parameter {k!r}: need {k} > 0 on the whole box (its lower end is {lo})")
+
+
+_STATUS = {Status.PROVED: "proved", Status.REFUTED: "refuted", Status.INCONCLUSIVE: "undecided"}
+
+
+def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str]]:
+    """{claim: (status, reason)} over the box (see the module docstring)."""
+    unknown = [c for c in claims if c not in BOX_CLAIMS]
+    if unknown:
+        raise ParameterError(f"claim {unknown[0]!r} cannot be decided over a box; over boxes the kind decides "
+                             f"{list(BOX_CLAIMS)}")
+    Pb = RelayParams(**{k: box.ball(k) if k in box.names else ball(getattr(model.params, k)) for k in PARAMETER_NAMES})
+    mid = box.midpoint()
+    Pmid = dataclasses.replace(model.params, **{k: _q(v) for k, v in mid.items()})
+    boxed = dataclasses.replace(model, params=Pmid, paper={})
+    a = attempt(boxed, list(claims), 0, spectrum=lambda: BoxSpectrum(Pb, Pmid))
+    return {c.id: (_STATUS[c.status], c.reason) for c in a.claims if c.id in claims}
+
+
+def _q(x):
+    from flint import fmpq
+    return fmpq(x.numerator, x.denominator)

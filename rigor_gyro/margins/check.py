@@ -1,0 +1,115 @@
+"""Re-verify a paving certificate (schema ``rigor-gyro/paving/1``) from its own data.
+
+Checked: the digest; the scene re-validated as a box scene (domain on the whole box, the claims, the
+settings); per claim, that the stored sub-boxes are exactly the leaves of a bisection tree of the
+whole box under the paving's split rule (so they tile it: no gap, no overlap), the volume fractions
+recomputed exactly, every proved and refuted sub-box re-evaluated on its own balls with the kind's box
+rigour at the stored precision, every stored point proof re-run by the point prover, and the claim's
+status and the verdict re-derived by the rules of :mod:`.paving`. An undecided sub-box claims nothing.
+
+Cost: one box evaluation per decided sub-box (no search, no splitting) and one point proof per stored
+point.
+"""
+from __future__ import annotations
+
+import json
+from fractions import Fraction
+from typing import Any
+
+from ..certificate import digest
+from ..core.balls import working_precision
+from ..core.boxes import Box, fraction_text
+from ..core.errors import RigorGyroError
+from ..scene import Scene
+
+__all__ = ["check_paving"]
+
+
+def _tiles(whole: Box, boxes: list[Box]) -> bool:
+    """Whether ``boxes`` are exactly the leaves of a bisection tree of ``whole`` (Box.split's rule)."""
+    want = {b.edges for b in boxes}
+    if len(want) != len(boxes):
+        return False
+    seen, budget = 0, 2 * len(boxes) + 1       # a valid tree has len(boxes) - 1 inner nodes
+    stack = [whole]
+    while stack:
+        node = stack.pop()
+        budget -= 1
+        if budget < 0:
+            return False
+        if node.edges in want:
+            seen += 1
+            continue
+        if all(hi == lo for _, lo, hi in node.edges):
+            return False
+        stack.extend(node.split(whole))
+    return seen == len(boxes)
+
+
+def check_paving(data: dict[str, Any]):
+    from ..check import CheckResult
+    from .paving import boxes_module, box_scene, evaluate_task, point_task
+    out: list = []
+    add = out.append
+    ok = isinstance(data.get("integrity"), dict) and data["integrity"].get("sha256") == digest(data)
+    add(CheckResult("integrity", ok, "digest matches" if ok else "the digest does not match the content"))
+    sc = data["scene"]
+    try:
+        scene = Scene(name=sc["name"], kind=sc["kind"], source=sc.get("source", ""), parameters=dict(sc["parameters"]),
+                      claims_only=sc.get("claims_only"), options=dict(sc.get("options") or {}), paper={},
+                      path=sc.get("file"))
+        bs = box_scene(scene)
+    except (RigorGyroError, TypeError, ValueError, KeyError) as e:
+        add(CheckResult("scene", False, f"the paving's scene is not a valid box scene: {e}"))
+        return out
+    add(CheckResult("box", data["box"] == bs.box.to_json(), "the box re-derived from the scene"))
+    settings = {"box_resolution": fraction_text(bs.resolution), "max_boxes": bs.max_boxes, "box_prec": bs.prec,
+                "max_points": bs.max_points}
+    add(CheckResult("settings", data["settings"] == settings, "the settings re-derived from the scene"))
+    ids = [c["id"] for c in data["claims"]]
+    add(CheckResult("claims", ids == bs.claims, f"claims {ids}"))
+    statements = boxes_module(bs.scene.kind).BOX_CLAIMS
+    pj = json.dumps(bs.points, sort_keys=True)
+    oj = json.dumps(bs.options, sort_keys=True)
+    mj = json.dumps({k: fraction_text(q) for k, q in bs.box.midpoint().items()}, sort_keys=True)
+    statuses = []
+    for c in data["claims"]:
+        cid = c["id"]
+        if c.get("statement") != "For every parameter value in the box: " + statements.get(cid, ""):
+            add(CheckResult(cid, False, "the statement is not the kind's box statement"))
+        boxes = [(Box.from_json(b["box"]), b["status"]) for b in c["boxes"]]
+        if any(s not in ("proved", "refuted", "undecided") for _, s in boxes):
+            add(CheckResult(cid, False, "unknown sub-box status"))
+            continue
+        tiles = _tiles(bs.box, [b for b, _ in boxes])
+        add(CheckResult(cid, tiles, "the sub-boxes tile the box (leaves of its bisection tree)" if tiles else
+                        "the sub-boxes do not tile the box"))
+        total = bs.box.volume()
+        vol = {k: sum((b.volume() for b, s in boxes if s == k), Fraction(0)) / total
+               for k in ("proved", "refuted", "undecided")}
+        add(CheckResult(cid, c["volume_fraction"] == {k: fraction_text(v) for k, v in vol.items()},
+                        "volume fractions recomputed"))
+        bad = []
+        for b, s in boxes:
+            if s == "undecided":
+                continue
+            got = evaluate_task(bs.scene.kind, pj, oj, mj, json.dumps(b.to_json()), (cid,), bs.prec)[cid][0]
+            if got != s:
+                bad.append(f"{b.to_json()}: stored {s}, re-evaluated {got}")
+        add(CheckResult(cid, not bad, "every decided sub-box re-evaluated" if not bad else bad[0]))
+        wrong = []
+        for p in c["points"]:
+            got = point_task(bs.scene.kind, json.dumps(p["point"], sort_keys=True), oj, cid)["status"]
+            inside = all(Fraction(lo) <= Fraction(p["point"][k]) <= Fraction(hi) for k, (lo, hi) in data["box"].items())
+            if got != p["status"] or not inside:
+                wrong.append(f"point {p['point']}: stored {p['status']}, re-proved {got}, inside the box: {inside}")
+        add(CheckResult(cid, not wrong, f"{len(c['points'])} point proofs re-run" if not wrong else wrong[0]))
+        status = ("refuted" if any(s == "refuted" for _, s in boxes) or any(p["status"] == "refuted" for p in c["points"])
+                  else "proved" if boxes and all(s == "proved" for _, s in boxes) else "inconclusive")
+        statuses.append(status)
+        add(CheckResult(cid, c["status"] == status, f"status {c['status']!r}" + ("" if c["status"] == status else
+                                                                                f", but the sub-boxes give {status!r}")))
+    verdict = "refuted" if "refuted" in statuses else "proved" if statuses and all(s == "proved" for s in statuses) \
+        else "inconclusive"
+    add(CheckResult("verdict", data.get("verdict") == verdict, f"verdict {data.get('verdict')!r}"))
+    return out

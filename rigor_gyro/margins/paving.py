@@ -1,0 +1,257 @@
+"""Pave a scene's tolerance box, claim by claim (SIVIA: Jaulin, Kieffer, Didrit, Walter 2001).
+
+A scene whose parameters include tolerances (``"[lo, hi]"``, ``"mid +- rad"``; :mod:`rigor_gyro.core.boxes`)
+states each claim for every parameter value in the box. The box is evaluated by the kind's ``boxes``
+module on balls containing it; where a claim is undecided the box is halved along its relatively
+widest edge, down to ``box_resolution`` (each edge at most that fraction of the whole box's edge) or
+until ``max_boxes`` evaluations were spent. Every sub-box ends, per claim, as
+
+* ``proved``: the claim holds for every parameter value in the sub-box (certified on balls);
+* ``refuted``: the claim fails for every parameter value in it (certified on balls); its midpoint is
+  re-proved refuted by the point prover (up to ``max_points`` points per claim), a counterexample
+  anyone can re-check with ``rigor-gyro prove``;
+* ``undecided``: neither, at the resolution and budget; its midpoint is proved by the point prover,
+  and a refutation there is a certified counterexample inside the box.
+
+The claim over the whole box is ``proved`` only when every sub-box is proved, ``refuted`` when some
+point is certainly a counterexample, otherwise ``inconclusive`` with the undecided volume fraction. A
+resolution or a budget never refutes.
+
+Options (the scene's ``[options]``, beside the kind's): ``box_resolution`` (relative, default 1/64),
+``max_boxes`` (default 20000), ``box_prec`` (bits for the box evaluations, default 128), ``max_points``
+(point proofs per claim and outcome, default 16).
+
+Determinism: boxes are evaluated level by level in a fixed order, and each evaluation depends only on
+its box; the paving is identical for every executor and worker count.
+"""
+from __future__ import annotations
+
+import functools
+import importlib
+import json
+import time
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
+
+from ..core.balls import working_precision
+from ..core.boxes import Box, fraction_text, split_parameters
+from ..core.errors import ParameterError, SceneError
+from ..core.exact import option_count, option_number
+from ..kinds import KINDS, kind_module
+from ..scene import Scene
+from .executors import Executor
+
+__all__ = ["MARGIN_OPTIONS", "BoxScene", "Paving", "box_scene", "pave", "has_tolerances", "boxes_module",
+           "evaluate_task", "point_task"]
+
+MARGIN_OPTIONS = {"box_resolution": "1/64", "max_boxes": "20000", "box_prec": "128", "max_points": "16"}
+SCHEMA = "rigor-gyro/paving/1"
+
+
+def has_tolerances(scene: Scene) -> bool:
+    from ..core.boxes import is_tolerance
+    return any(is_tolerance(v) for v in scene.parameters.values())
+
+
+def boxes_module(kind: str):
+    """The kind's ``boxes`` module (its rigour over parameter boxes), or None when it has none."""
+    try:
+        return importlib.import_module(f"{KINDS[kind]}.boxes")
+    except ModuleNotFoundError as e:
+        if e.name == f"{KINDS[kind]}.boxes":
+            return None
+        raise
+
+
+@dataclass
+class BoxScene:
+    """A validated scene with tolerances: the point parameters, the box, the claims and settings."""
+
+    scene: Scene
+    points: dict[str, Any]
+    box: Box
+    options: dict[str, Any]          # the kind's options (margin options removed)
+    claims: list[str]
+    resolution: Fraction
+    max_boxes: int
+    prec: int
+    max_points: int
+    skipped: list[str] = field(default_factory=list)   # requested by default, not decidable over a box
+
+    def point_parameters(self, point: dict[str, Fraction]) -> dict[str, str]:
+        return {**{k: v for k, v in self.points.items()}, **{k: fraction_text(q) for k, q in point.items()}}
+
+
+def box_scene(scene: Scene) -> BoxScene:
+    """Validate a scene with tolerances: the box, the margin options, the domain on the whole box
+    (the kind's ``validate_box``), the claims. ParameterError/SceneError naming what to change."""
+    from ..prover import requested_claims
+    points, box = split_parameters(scene.parameters)
+    point_edges = {k: lo for k, lo, hi in box.edges if lo == hi}
+    box = Box(tuple(e for e in box.edges if e[1] != e[2]))
+    points.update({k: fraction_text(q) for k, q in point_edges.items()})
+    if not box.edges:
+        raise ParameterError("every tolerance has zero width: write the parameters as numbers")
+    module = kind_module(scene.kind)
+    boxes = boxes_module(scene.kind)
+    if boxes is None:
+        raise ParameterError(f"parameter {box.names[0]!r}: kind {scene.kind!r} cannot take a tolerance yet (only a "
+                             f"point value); kinds that can: {', '.join(k for k in KINDS if boxes_module(k))}")
+    margin = {k: str(scene.options[k]) for k in MARGIN_OPTIONS if k in scene.options}
+    kind_opts = {k: v for k, v in scene.options.items() if k not in MARGIN_OPTIONS}
+    m = {**MARGIN_OPTIONS, **margin}
+    resolution = option_number(m["box_resolution"], "box_resolution", above="0", at_most="1").rational
+    if resolution < Fraction(1, 2 ** 40):
+        raise ParameterError(f"option 'box_resolution' = {m['box_resolution']!r}: need at least 2^-40")
+    max_boxes = option_count(m["max_boxes"], "max_boxes", 1, 10 ** 7)
+    prec = option_count(m["box_prec"], "box_prec", 32, 4096)
+    max_points = option_count(m["max_points"], "max_points", 0, 10 ** 4)
+    mid = Scene(name=scene.name, kind=scene.kind, source=scene.source,
+                parameters={**points, **{k: fraction_text(q) for k, q in box.midpoint().items()}},
+                claims_only=scene.claims_only, options=kind_opts, paper={}, path=scene.path)
+    model = module.validate(mid)
+    with working_precision(prec):
+        boxes.validate_box(model, box)
+    wanted = requested_claims(scene, module.CLAIMS)
+    if scene.claims_only is not None:
+        bad = [c for c in wanted if c not in boxes.BOX_CLAIMS]
+        if bad:
+            raise SceneError(f"claim {bad[0]!r} cannot be decided over a box; kind {scene.kind!r} decides "
+                             f"{list(boxes.BOX_CLAIMS)} over boxes")
+        claims, skipped = wanted, []
+    else:
+        claims = [c for c in wanted if c in boxes.BOX_CLAIMS]
+        skipped = [c for c in wanted if c not in boxes.BOX_CLAIMS]
+    return BoxScene(scene, points, box, kind_opts, claims, resolution, max_boxes, prec, max_points, skipped)
+
+
+# --------------------------------------------------------------------------- tasks (run in workers)
+
+@functools.lru_cache(maxsize=8)
+def _model(kind: str, points_json: str, options_json: str, mid_json: str):
+    module = kind_module(kind)
+    params = {**json.loads(points_json), **json.loads(mid_json)}
+    return module.validate(Scene(name="box", kind=kind, source="", parameters=params,
+                                 options=json.loads(options_json)))
+
+
+def evaluate_task(kind: str, points_json: str, options_json: str, mid_json: str, box_json: str,
+                  claims: tuple[str, ...], prec: int) -> dict[str, list[str]]:
+    """One box: {claim: [status, reason]} (strings in, strings out)."""
+    model = _model(kind, points_json, options_json, mid_json)
+    box = Box.from_json(json.loads(box_json))
+    with working_precision(prec):
+        out = boxes_module(kind).evaluate_box(model, box, list(claims))
+    return {k: [v[0], v[1]] for k, v in out.items()}
+
+
+def point_task(kind: str, params_json: str, options_json: str, claim: str) -> dict[str, Any]:
+    """The point prover on one claim at one exact parameter point."""
+    from ..prover import prove_scene
+    scene = Scene(name="point", kind=kind, source="margin point", parameters=json.loads(params_json),
+                  claims_only=[claim], options=json.loads(options_json))
+    c = prove_scene(scene).claim(claim)
+    return {"status": c.status.value, "reason": c.reason, "precision_bits": c.precision_bits}
+
+
+# --------------------------------------------------------------------------- the paving
+
+@dataclass
+class ClaimPaving:
+    id: str
+    statement: str
+    boxes: list[tuple[Box, str]] = field(default_factory=list)
+    reasons: dict[str, str] = field(default_factory=dict)      # the first reason seen per outcome
+    points: list[dict[str, Any]] = field(default_factory=list)  # point proofs at sub-box midpoints
+
+    def volume(self, whole: Box) -> dict[str, Fraction]:
+        total = whole.volume()
+        v = {"proved": Fraction(0), "refuted": Fraction(0), "undecided": Fraction(0)}
+        for b, s in self.boxes:
+            v[s] += b.volume() / total
+        return v
+
+    @property
+    def status(self) -> str:
+        if any(p["status"] == "refuted" for p in self.points) or any(s == "refuted" for _, s in self.boxes):
+            return "refuted"
+        if self.boxes and all(s == "proved" for _, s in self.boxes):
+            return "proved"
+        return "inconclusive"
+
+
+@dataclass
+class Paving:
+    bs: BoxScene
+    claims: list[ClaimPaving]
+    evaluated: int
+    levels: int
+    budget_hit: bool
+    seconds: float = 0.0
+    executor: str = ""
+
+    @property
+    def verdict(self) -> str:
+        st = [c.status for c in self.claims]
+        return "refuted" if "refuted" in st else "proved" if all(s == "proved" for s in st) else "inconclusive"
+
+    @property
+    def exit_code(self) -> int:
+        return {"proved": 0, "refuted": 1, "inconclusive": 3}[self.verdict]
+
+
+def pave(bs: BoxScene, executor: Executor | None = None, progress=None) -> Paving:
+    """The paving of ``bs.box`` for each of ``bs.claims`` (see the module docstring)."""
+    t0 = time.perf_counter()
+    ex = executor or Executor(1)
+    whole = bs.box
+    pj = json.dumps(bs.points, sort_keys=True)
+    oj = json.dumps(bs.options, sort_keys=True)
+    mj = json.dumps({k: fraction_text(q) for k, q in whole.midpoint().items()}, sort_keys=True)
+    statements = boxes_module(bs.scene.kind).BOX_CLAIMS
+    result = {c: ClaimPaving(c, "For every parameter value in the box: " + statements[c]) for c in bs.claims}
+    active: list[tuple[Box, tuple[str, ...]]] = [(whole, tuple(bs.claims))]
+    evaluated, levels, budget_hit = 0, 0, False
+    while active:
+        levels += 1
+        tasks = [(bs.scene.kind, pj, oj, mj, json.dumps(b.to_json()), open_, bs.prec) for b, open_ in active]
+        outs = ex.map(evaluate_task, tasks)
+        evaluated += len(active)
+        nxt: list[tuple[Box, tuple[str, ...]]] = []
+        for (b, open_), out in zip(active, outs):
+            undecided = []
+            for c in open_:
+                status, reason = out[c]
+                result[c].reasons.setdefault(status, reason)
+                if status == "undecided":
+                    undecided.append(c)
+                else:
+                    result[c].boxes.append((b, status))
+            if not undecided:
+                continue
+            fine = all(w <= bs.resolution for w in b.relative_widths(whole).values())
+            if fine or evaluated + len(nxt) + 2 > bs.max_boxes:
+                budget_hit = budget_hit or not fine
+                for c in undecided:
+                    result[c].boxes.append((b, "undecided"))
+            else:
+                nxt.extend((child, tuple(undecided)) for child in b.split(whole))
+        active = nxt
+        if progress:
+            progress(evaluated, len(active), result)
+    # point proofs at midpoints: refuted boxes (re-checkable counterexamples) and undecided boxes
+    ptasks, owners = [], []
+    for c, cp in result.items():
+        for outcome in ("refuted", "undecided"):
+            for b, s in [x for x in cp.boxes if x[1] == outcome][:bs.max_points]:
+                params = bs.point_parameters(b.midpoint())
+                ptasks.append((bs.scene.kind, json.dumps(params, sort_keys=True), oj, c))
+                owners.append((c, b, outcome, params))
+    for (c, b, outcome, params), res in zip(owners, ex.map(point_task, ptasks)):
+        if outcome == "refuted" and res["status"] == "proved":   # a box refuted everywhere, proved at a point
+            raise AssertionError(f"claim {c}: box {b.to_json()} refuted for every parameter, but its midpoint "
+                                 f"is proved: an unsound box or point evaluation")
+        result[c].points.append({"box_outcome": outcome, "point": params, **res})
+    return Paving(bs, [result[c] for c in bs.claims], evaluated, levels, budget_hit,
+                  time.perf_counter() - t0, ex.label)

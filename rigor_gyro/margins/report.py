@@ -1,0 +1,109 @@
+"""The paving certificate (JSON, schema ``rigor-gyro/paving/1``) and its Markdown report.
+
+The JSON holds the scene exactly as written, the whole box, the settings, and per claim: the status
+over the whole box, the volume fractions (exact rationals, and decimals for reading), every final
+sub-box with its outcome (exact endpoints), and the point proofs at sub-box midpoints. It is
+byte-identical for every executor and worker count (wall times go to ``timings/<name>.json``).
+``rigor-gyro check`` re-evaluates it (:func:`check_paving`).
+"""
+from __future__ import annotations
+
+import json
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+from ..certificate import digest
+from ..core.boxes import Box, fraction_text
+from ..report import write_pair
+from ..version import __version__
+from .paving import SCHEMA, Paving
+
+__all__ = ["paving_json", "render_paving", "write_paving"]
+
+
+def _dec(q: Fraction, digits: int = 6) -> str:
+    return f"{float(q):.{digits}g}"
+
+
+def paving_json(p: Paving) -> dict[str, Any]:
+    bs = p.bs
+    claims = []
+    for c in p.claims:
+        vol = c.volume(bs.box)
+        claims.append({
+            "id": c.id, "statement": c.statement, "status": c.status,
+            "volume_fraction": {k: fraction_text(v) for k, v in vol.items()},
+            "volume_fraction_decimal": {k: _dec(v) for k, v in vol.items()},
+            "sub_boxes": {k: sum(1 for _, s in c.boxes if s == k) for k in ("proved", "refuted", "undecided")},
+            "reasons": dict(sorted(c.reasons.items())),
+            "points": c.points,
+            "boxes": [{"box": b.to_json(), "status": s} for b, s in c.boxes],
+        })
+    data = {
+        "schema": SCHEMA,
+        "scene": bs.scene.header(),
+        "software": {"rigor_gyro": __version__},
+        "box": bs.box.to_json(),
+        "point_parameters": dict(bs.points),
+        "settings": {"box_resolution": fraction_text(bs.resolution), "max_boxes": bs.max_boxes,
+                     "box_prec": bs.prec, "max_points": bs.max_points},
+        "verdict": p.verdict,
+        "boxes_evaluated": p.evaluated, "levels": p.levels, "budget_exhausted": p.budget_hit,
+        "claims": claims,
+        "not_box_claims": bs.skipped,
+    }
+    data["integrity"] = {"sha256": digest(data)}
+    return data
+
+
+def render_paving(data: dict[str, Any]) -> str:
+    """The report: the answer first (verdict per claim with its volume fractions), then the settings."""
+    box = ", ".join(f"{k} in [{_dec(Fraction(v[0]), 10)}, {_dec(Fraction(v[1]), 10)}]" for k, v in data["box"].items())
+    out = [f"# {data['scene']['name']}: {data['verdict'].upper()} over the box {box}", ""]
+    out.append("| claim | over the whole box | proved volume | refuted volume | undecided volume | sub-boxes (p/r/u) |")
+    out.append("|---|---|---|---|---|---|")
+    for c in data["claims"]:
+        v, n = c["volume_fraction_decimal"], c["sub_boxes"]
+        out.append(f"| {c['id']} | **{c['status']}** | {v['proved']} | {v['refuted']} | {v['undecided']} | "
+                   f"{n['proved']}/{n['refuted']}/{n['undecided']} |")
+    out.append("")
+    for c in data["claims"]:
+        out.append(f"## {c['id']}: {c['status']}")
+        out.append("")
+        out.append(c["statement"])
+        out.append("")
+        for k, why in c["reasons"].items():
+            out.append(f"- a sub-box {k}: {why}")
+        ce = [p for p in c["points"] if p["status"] == "refuted"]
+        if ce:
+            pt = ce[0]["point"]
+            out.append(f"- certified counterexample ({len(ce)} point(s) re-proved refuted; the first): "
+                       + ", ".join(f"{k} = {v}" for k, v in pt.items() if k in data["box"])
+                       + f": {ce[0]['reason']}")
+        und = [p for p in c["points"] if p["box_outcome"] == "undecided"]
+        if und:
+            out.append(f"- the midpoints of {len(und)} undecided sub-box(es), proved point by point: "
+                       + ", ".join(f"{s}: {sum(1 for p in und if p['status'] == s)}"
+                                   for s in ("proved", "refuted", "inconclusive")))
+        out.append("")
+    s = data["settings"]
+    out.append(f"Settings: box_resolution {s['box_resolution']} of each edge, max_boxes {s['max_boxes']}, box "
+               f"evaluations at {s['box_prec']} bits; {data['boxes_evaluated']} boxes evaluated in "
+               f"{data['levels']} levels" + ("; the box budget was exhausted" if data["budget_exhausted"] else "") + ".")
+    if data["not_box_claims"]:
+        out.append("")
+        out.append(f"Not decided over boxes (point claims only): {', '.join(data['not_box_claims'])}.")
+    out.append("")
+    out.append("A sub-box is *proved* when the claim holds for every parameter value in it, *refuted* when it fails "
+               "for every value in it (certified on balls containing the sub-box), *undecided* otherwise; a "
+               "resolution or budget never refutes. The JSON beside this file lists every sub-box exactly "
+               f"(schema `{data['schema']}`).")
+    out.append("")
+    return "\n".join(out)
+
+
+def write_paving(p: Paving, out_dir: str | Path) -> tuple[Path, Path]:
+    data = paving_json(p)
+    return write_pair(out_dir, data["scene"]["name"], json.dumps(data, indent=1, ensure_ascii=False) + "\n",
+                      render_paving(data), {"total_s": round(p.seconds, 3), "executor": p.executor})

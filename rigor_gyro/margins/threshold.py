@@ -1,0 +1,165 @@
+"""Certified thresholds: where a claim stops holding as one parameter moves (``rigor-gyro margin``).
+
+The claim is proved by the point prover at the two ends of a search interval; when it is proved at one
+and refuted at the other, the interval is bisected at exact rational midpoints, keeping the half whose
+ends still disagree, until the bracket [l, r] is at most ``width`` relative to its magnitude. The
+result is a theorem about two exact points: the claim holds at one end and fails at the other, so its
+outcome changes somewhere in [l, r]. It does not say the change is unique (a claim may switch more
+than once); a paving of the interval (a scene with a tolerance) says what happens between points.
+
+Exit status: 0 a bracket to the requested width was certified; 3 the search stopped (both ends the
+same outcome, an inconclusive point, or the bisection budget): never 1, a search is not a refutation;
+2 bad input (the parameter is absent, not rational, not one the claim depends on; lo >= hi; an end
+outside the kind's domain; a width out of range).
+"""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+from ..core.boxes import fraction_text, is_tolerance
+from ..core.errors import ParameterError, RigorGyroError
+from ..core.exact import option_number, parse_exact
+from ..kinds import kind_module
+from ..scene import Scene
+
+__all__ = ["Threshold", "find_threshold", "write_threshold"]
+
+MAX_STEPS = 200
+
+
+@dataclass
+class Threshold:
+    scene: Scene
+    param: str
+    claim: str
+    lo: Fraction
+    hi: Fraction
+    width: Fraction
+    proved_at: Fraction | None = None
+    refuted_at: Fraction | None = None
+    steps: list[dict[str, Any]] = field(default_factory=list)
+    stopped: str = ""
+
+    @property
+    def certified(self) -> bool:
+        return self.proved_at is not None and self.refuted_at is not None and not self.stopped
+
+    @property
+    def exit_code(self) -> int:
+        return 0 if self.certified else 3
+
+    def bracket(self) -> tuple[Fraction, Fraction] | None:
+        if self.proved_at is None or self.refuted_at is None:
+            return None
+        return min(self.proved_at, self.refuted_at), max(self.proved_at, self.refuted_at)
+
+    def lines(self) -> list[str]:
+        head = f"{self.scene.name}: margin of {self.claim!r} in {self.param}"
+        b = self.bracket()
+        if b is None or self.stopped and b is None:
+            return [f"{head}: no change of outcome certified in [{_d(self.lo)}, {_d(self.hi)}]: {self.stopped}"]
+        l, r = b
+        text = (f"{head}: proved at {self.param} = {_d(self.proved_at)}, refuted at {self.param} = "
+                f"{_d(self.refuted_at)}: the outcome changes in [{_d(l)}, {_d(r)}] (width {float(r - l):.3g}, "
+                f"{len(self.steps)} point proofs)")
+        return [text] + ([f"{head}: stopped before the requested width: {self.stopped}"] if self.stopped else [])
+
+    def to_json(self) -> dict[str, Any]:
+        b = self.bracket()
+        return {"schema": "rigor-gyro/threshold/1", "scene": self.scene.header(), "param": self.param,
+                "claim": self.claim, "search": [fraction_text(self.lo), fraction_text(self.hi)],
+                "requested_relative_width": fraction_text(self.width),
+                "certified": self.certified,
+                "statement": (f"claim {self.claim!r} is proved at {self.param} = {fraction_text(self.proved_at)} "
+                              f"and refuted at {self.param} = {fraction_text(self.refuted_at)} (point proofs), so "
+                              f"its outcome changes in [{fraction_text(b[0])}, {fraction_text(b[1])}]") if b else None,
+                "bracket": [fraction_text(b[0]), fraction_text(b[1])] if b else None,
+                "bracket_decimal": [_d(b[0]), _d(b[1])] if b else None,
+                "stopped": self.stopped, "steps": self.steps}
+
+
+def _d(q: Fraction | None, digits: int = 17) -> str:
+    if q is None:
+        return "-"
+    return f"{float(q):.{digits}g}"
+
+
+def _status(scene: Scene, param: str, value: Fraction, claim: str) -> tuple[str, str]:
+    from ..prover import prove_scene
+    s = Scene(name=scene.name, kind=scene.kind, source=scene.source,
+              parameters={**scene.parameters, param: fraction_text(value)}, claims_only=[claim],
+              options=dict(scene.options))
+    try:
+        c = prove_scene(s).claim(claim)
+    except ParameterError as e:
+        raise ParameterError(f"{param} = {_d(value)} is outside the kind's domain: {e}") from None
+    return c.status.value, c.reason
+
+
+def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str | None = None,
+                   claim: str | None = None, width: str = "1e-6") -> Threshold:
+    """Bisect ``param`` between ``lo`` and ``hi`` (default value/2 and 2 value) for ``claim``."""
+    module = kind_module(scene.kind)
+    if any(is_tolerance(v) for v in scene.parameters.values()):
+        raise ParameterError("margin moves one parameter of a point scene: write the other parameters as numbers")
+    if param not in scene.parameters:
+        raise ParameterError(f"--param {param!r} is not a parameter of scene {scene.name!r}; it has "
+                             f"{sorted(scene.parameters)}")
+    module.validate(scene)
+    claims = list(module.CLAIMS) if scene.claims_only is None else [c for c in module.CLAIMS if c in scene.claims_only]
+    claim = claim or claims[0]
+    if claim not in module.CLAIMS:
+        raise ParameterError(f"--claim {claim!r}: kind {scene.kind!r} has {list(module.CLAIMS)}")
+    independent = getattr(module, "CLAIMS_INDEPENDENT_OF", {})
+    if claim in independent.get(param, ()):
+        raise ParameterError(f"claim {claim!r} does not depend on {param!r}: no threshold to find")
+    value = parse_exact(scene.parameters[param], param)
+    if not value.is_rational:
+        raise ParameterError(f"--param {param!r} = {scene.parameters[param]!r} involves pi: give --lo and --hi")
+    v = value.rational
+    lo_q = parse_exact(lo, "--lo").rational if lo is not None else min(v / 2, 2 * v)
+    hi_q = parse_exact(hi, "--hi").rational if hi is not None else max(v / 2, 2 * v)
+    if not lo_q < hi_q:
+        raise ParameterError(f"need --lo < --hi (got {lo_q}, {hi_q})")
+    w = option_number(width, "--width", above="0", at_most="1").rational
+    res = Threshold(scene, param, claim, lo_q, hi_q, w)
+    ends = {}
+    for x in (lo_q, hi_q):
+        st, why = _status(scene, param, x, claim)
+        res.steps.append({"value": fraction_text(x), "status": st, "reason": why[:300]})
+        ends[x] = st
+    if {ends[lo_q], ends[hi_q]} != {"proved", "refuted"}:
+        res.stopped = (f"the claim is {ends[lo_q]} at {param} = {_d(lo_q)} and {ends[hi_q]} at {param} = {_d(hi_q)}; "
+                       "a threshold needs one proved end and one refuted end (widen --lo/--hi)")
+        return res
+    p, r = (lo_q, hi_q) if ends[lo_q] == "proved" else (hi_q, lo_q)
+    for _ in range(MAX_STEPS):
+        if abs(r - p) <= w * max(abs(p), abs(r)):
+            break
+        m = (p + r) / 2
+        st, why = _status(scene, param, m, claim)
+        res.steps.append({"value": fraction_text(m), "status": st, "reason": why[:300]})
+        if st == "proved":
+            p = m
+        elif st == "refuted":
+            r = m
+        else:
+            res.stopped = f"the claim is inconclusive at {param} = {_d(m)}: {why[:200]}"
+            break
+    else:
+        res.stopped = f"bisection budget of {MAX_STEPS} point proofs reached"
+    res.proved_at, res.refuted_at = p, r
+    return res
+
+
+def write_threshold(res: Threshold, out_dir: str) -> list[Path]:
+    from ..report import write_pair
+    data = res.to_json()
+    md = "\n".join([f"# {line}" if i == 0 else line for i, line in enumerate(res.lines())] + ["", "| step | "
+                    f"{res.param} | status |", "|---|---|---|"] + [f"| {i} | {_d(Fraction(s['value']))} | {s['status']} |"
+                                                                   for i, s in enumerate(res.steps, 1)] + [""])
+    return list(write_pair(out_dir, f"margin_{res.scene.name}_{res.param}", json.dumps(data, indent=1) + "\n", md, None))

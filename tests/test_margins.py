@@ -1,0 +1,332 @@
+"""Tolerance boxes, pavings and thresholds (rigor_gyro.margins, core.boxes, core.family_roots,
+kinds/eigenfrequencies/boxes)."""
+import json
+import random
+import re
+from fractions import Fraction
+
+import pytest
+from flint import arb, fmpq
+from hypothesis import given, strategies as st
+
+from rigor_gyro.cli import main
+from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.boxes import Box, parse_tolerance, split_parameters
+from rigor_gyro.core.errors import ParameterError, SceneError
+from rigor_gyro.core.family_roots import family_real_roots
+from rigor_gyro.kinds.eigenfrequencies import validate
+from rigor_gyro.kinds.eigenfrequencies.boxes import BOX_CLAIMS, _bounds_status, evaluate_box
+from rigor_gyro.margins.executors import Executor
+from rigor_gyro.margins.paving import box_scene, pave
+from rigor_gyro.margins.report import paving_json
+from rigor_gyro.margins.threshold import find_threshold
+from rigor_gyro.prover import prove_scene
+from rigor_gyro.scene import Scene, load_scene, parse_scene
+
+RUDENKO_BOX = """
+name = "rudenko_box"
+kind = "eigenfrequencies"
+source = "the issue's example: each bracket (7)-(10) for every eps in [0.1, 0.12] and Omega2 in [0.6, 0.65]"
+[parameters]
+a = "15.08"
+b = "6.154"
+eps = "[0.1, 0.12]"
+Omega2 = "0.625 +- 0.025"
+[claims]
+only = ["roots", "nu_ordering", "branches", "bracket_1", "bracket_2", "bracket_3", "bracket_4"]
+[options]
+box_resolution = "1/16"
+"""
+
+
+# ----------------------------------------------------------------------------- boxes
+
+def test_tolerances_parse_exactly():
+    assert parse_tolerance("[0.132, 0.134]", "B") == (Fraction(132, 1000), Fraction(134, 1000))
+    assert parse_tolerance("0.15 +- 0.01", "S") == (Fraction(14, 100), Fraction(16, 100))
+    assert parse_tolerance("1/3 +/- 1/6", "x") == (Fraction(1, 6), Fraction(1, 2))
+    assert parse_tolerance("[2, 2]", "x") == (2, 2)
+    assert parse_tolerance("0.15", "S") is None
+
+
+@pytest.mark.parametrize("text", ["[0.2, 0.1]", "0.1 +- -0.01", "[pi, 4]", "[1, 2, 3]", "[1,]", "[x, 2]",
+                                  "1 +- ", "[1e9999, 2]"])
+def test_bad_tolerances_name_the_parameter(text):
+    with pytest.raises(ParameterError, match="'q'"):
+        parse_tolerance(text, "q")
+
+
+@given(st.lists(st.tuples(st.fractions(-10, 10), st.fractions(0, 5)), min_size=1, max_size=3))
+def test_a_split_covers_the_box_and_keeps_the_volume(edges):
+    box = Box.of({f"p{i}": (lo, lo + w) for i, (lo, w) in enumerate(edges)})
+    if all(w == 0 for _, w in edges):
+        with pytest.raises(ValueError):
+            box.split(box)
+        return
+    left, right = box.split(box)
+    assert left.volume() + right.volume() == box.volume()
+    cut = [n for n in box.names if left.interval(n) != box.interval(n)]
+    assert len(cut) == 1
+    for name in box.names:
+        lo, hi = box.interval(name)
+        assert left.interval(name)[0] == lo and right.interval(name)[1] == hi
+        if name in cut:
+            assert left.interval(name)[1] == right.interval(name)[0] == (lo + hi) / 2
+        else:
+            assert left.interval(name) == right.interval(name) == (lo, hi)
+        assert lo <= box.midpoint()[name] <= hi
+        with working_precision(64):
+            b = box.ball(name)
+            assert b.lower() <= arb(fmpq(lo.numerator, lo.denominator)) and arb(fmpq(hi.numerator, hi.denominator)) <= b.upper()
+
+
+def test_split_parameters_keeps_points_as_written():
+    points, box = split_parameters({"a": "15.08", "eps": "[0.1, 0.12]"})
+    assert points == {"a": "15.08"} and box.names == ("eps",)
+
+
+# ----------------------------------------------------------------------------- family roots
+
+@given(st.fractions(Fraction(1, 10), 10), st.fractions(0, 1))
+def test_family_roots_contain_every_members_root(c0, w):
+    """x^2 - c for every c in [c0, c0 + w]: the positive root ball contains sqrt(c0) and sqrt(c0 + w)."""
+    c1 = c0 + w
+    with working_precision(64):
+        c = arb(fmpq(c0.numerator, c0.denominator)).union(arb(fmpq(c1.numerator, c1.denominator)))
+        r = family_real_roots([-c, arb(0), arb(1)], [-(c.mid().sqrt()), c.mid().sqrt()])
+        if r is None:           # a family too wide for one Newton proof is undecided, never wrong
+            return
+        lo, hi = r[1].lower(), r[1].upper()
+        assert lo * lo <= arb(fmpq(c0.numerator, c0.denominator)) or (lo * lo).overlaps(arb(fmpq(c0.numerator, c0.denominator)))
+        assert hi * hi >= arb(fmpq(c1.numerator, c1.denominator)) or (hi * hi).overlaps(arb(fmpq(c1.numerator, c1.denominator)))
+        assert r[0].upper() < 0 < r[1].lower()
+
+
+def test_family_roots_refuse_a_double_root_and_a_zero_leading_coefficient():
+    with working_precision(64):
+        assert family_real_roots([arb(1), arb(-2), arb(1)], [arb("0.9"), arb("1.1")]) is None    # (x-1)^2
+        assert family_real_roots([arb(-1), arb(1), arb(0).union(arb(1))], [arb(1)]) is None
+
+
+# ----------------------------------------------------------------------------- box decisions
+
+def test_bounds_status_decides_only_when_certain():
+    one, two = arb(1), arb(2)
+    wide = arb(1).union(arb(3))
+    assert _bounds_status([("x", one, arb("1.5"), two)])[0] == "proved"
+    assert _bounds_status([("x", one, arb(1), two)])[0] == "proved"              # lo <= x is inclusive
+    assert _bounds_status([("x", one, arb(3), two)])[0] == "refuted"
+    assert _bounds_status([("x", one, arb("0.5"), two)])[0] == "refuted"
+    assert _bounds_status([("x", one, wide, two)])[0] == "undecided"
+    assert _bounds_status([("x", one, arb("1.5"), two), ("y", one, wide, two)])[0] == "undecided"
+    assert _bounds_status([("x", one, arb(3), two), ("y", one, wide, two)])[0] == "refuted"
+
+
+def _model():
+    return validate(load_scene("rudenko1976"))
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_a_box_verdict_agrees_with_point_proofs_inside_it(seed):
+    """Soundness against the point prover: a claim proved (refuted) over a random box is proved
+    (refuted) at random exact points of it."""
+    rng = random.Random(seed)
+    m = _model()
+    eps0, W0 = Fraction(rng.randint(1, 400), 1000), Fraction(rng.randint(1, 4000), 1000)
+    box = Box.of({"eps": (eps0, eps0 * Fraction(1001, 1000)), "Omega2": (W0, W0 * Fraction(1001, 1000))})
+    with working_precision(128):
+        out = evaluate_box(m, box, list(BOX_CLAIMS))
+    for _ in range(2):
+        pt = {k: lo + (hi - lo) * Fraction(rng.randint(0, 100), 100) for k, lo, hi in box.edges}
+        scene = Scene(name="pt", kind="eigenfrequencies", source="", parameters={
+            "a": "15.08", "b": "6.154", "eps": f"{pt['eps'].numerator}/{pt['eps'].denominator}",
+            "Omega2": f"{pt['Omega2'].numerator}/{pt['Omega2'].denominator}"})
+        cert = prove_scene(scene)
+        for cid, (status, _) in out.items():
+            if status != "undecided":
+                assert cert.claim(cid).status.value == status, (cid, pt)
+
+
+# ----------------------------------------------------------------------------- pavings
+
+def test_the_brackets_hold_on_the_issues_box_and_the_paving_is_executor_independent():
+    bs = box_scene(parse_scene(RUDENKO_BOX))
+    serial = paving_json(pave(bs, Executor(1)))
+    assert serial["verdict"] == "proved"
+    for c in serial["claims"]:
+        assert c["status"] == "proved" and c["volume_fraction"]["proved"] == "1"
+    with Executor(2) as pool:
+        assert paving_json(pave(bs, pool)) == serial
+
+
+def test_a_dask_local_cluster_gives_the_same_paving():
+    pytest.importorskip("distributed")
+    bs = box_scene(parse_scene(RUDENKO_BOX.replace('box_resolution = "1/16"', 'box_resolution = "1/4"')))
+    serial = paving_json(pave(bs, Executor(1)))
+    with Executor(2, scheduler="local") as ex:
+        assert paving_json(pave(bs, ex)) == serial
+
+
+def test_a_box_where_bracket_8_fails_is_refuted_with_reproved_counterexamples():
+    text = RUDENKO_BOX.replace('"[0.1, 0.12]"', '"0.1076"').replace('"0.625 +- 0.025"', '"[0.001, 0.005]"')
+    text = text.replace('only = [', 'only = ["bracket_2"] #')
+    bs = box_scene(parse_scene(text))
+    data = paving_json(pave(bs))
+    c = data["claims"][0]
+    assert data["verdict"] == "refuted" and c["status"] == "refuted"
+    assert Fraction(c["volume_fraction"]["refuted"]) == 1
+    assert c["points"] and all(p["status"] == "refuted" for p in c["points"])
+    pt = c["points"][0]["point"]
+    scene = Scene(name="pt", kind="eigenfrequencies", source="", parameters=pt, claims_only=["bracket_2"])
+    assert prove_scene(scene).claim("bracket_2").status.value == "refuted"
+
+
+def test_a_resolution_limit_never_refutes():
+    text = RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #').replace('"1/16"', '"1/2"')
+    data = paving_json(pave(box_scene(parse_scene(text))))
+    c = data["claims"][0]
+    assert c["status"] == "inconclusive" and Fraction(c["volume_fraction"]["undecided"]) > 0
+    assert all(p["status"] != "refuted" for p in c["points"])
+
+
+@pytest.mark.parametrize("change, match", [
+    (('hz_scale = "1"', 'hz_scale = "[1, 2]"'), "hz_scale"),
+    (('b = "6.154"', 'b = "[0.5, 7]"'), "'b'"),
+    (('box_resolution = "1/16"', 'box_resolution = "0"'), "box_resolution"),
+    (('box_resolution = "1/16"', 'max_boxes = "0"'), "max_boxes"),
+    (('only = [', 'only = ["approximations"] #'), "approximations"),
+    (('eps = "[0.1, 0.12]"', 'eps = "[0.12, 0.1]"'), "'eps'"),
+])
+def test_bad_boxes_are_bad_input(change, match):
+    text = RUDENKO_BOX.replace('[parameters]\n', '[parameters]\nhz_scale = "1"\n').replace(*change)
+    with pytest.raises((ParameterError, SceneError), match=match):
+        box_scene(parse_scene(text))
+
+
+def _agafonov_text(**changes):
+    from pathlib import Path
+    import rigor_gyro
+    src = (Path(rigor_gyro.__file__).parent / "scenes" / "agafonov2013.toml").read_text()
+    src = src[:src.index("[paper]")]
+    for k, v in changes.items():
+        src = re.sub(rf'^{k} = "[^"]*"', f'{k} = "{v}"', src, flags=re.M)
+    return src.replace('name = "agafonov2013"', 'name = "agafonov_box"')
+
+
+def test_a_parameter_the_kind_cannot_box_is_bad_input(tmp_path):
+    (tmp_path / "s.toml").write_text(_agafonov_text(x2_star="[0.5, 0.52]"))
+    assert main(["prove", str(tmp_path / "s.toml"), "--out", str(tmp_path / "o"), "--quiet"]) == 2
+    assert not (tmp_path / "o").exists() or not list((tmp_path / "o").glob("*.json"))
+
+
+def test_lyapunov_vdot_holds_for_every_k_in_the_issues_box():
+    bs = box_scene(parse_scene(_agafonov_text(k="[0.35, 0.45]")))
+    data = paving_json(pave(bs))
+    assert {c["id"]: c["status"] for c in data["claims"]} == {
+        "damping_condition": "proved", "vdot_nonpositive": "proved", "v_positive": "proved"}
+
+
+def test_lyapunov_damping_paving_respects_the_closed_form_threshold():
+    """damping_condition fails exactly for k <= mu A0 = 0.02 * 12.7 = 0.254 (mu < k/A0 binds): every
+    refuted sub-box lies at or below it, every proved one at or above it."""
+    bs = box_scene(parse_scene(_agafonov_text(k="[0.2, 0.3]") + '\n[claims]\nonly = ["damping_condition"]\n'))
+    c = paving_json(pave(bs))["claims"][0]
+    assert c["status"] == "refuted"
+    edge = Fraction(254, 1000)
+    for b in c["boxes"]:
+        lo, hi = (Fraction(x) for x in b["box"]["k"])
+        if b["status"] == "refuted":
+            assert hi <= edge
+        elif b["status"] == "proved":
+            assert lo >= edge
+    assert Fraction(c["volume_fraction"]["refuted"]) > Fraction(1, 2)
+    assert all(p["status"] == "refuted" for p in c["points"] if p["box_outcome"] == "refuted")
+
+
+def test_a_tiny_relay_box_decides_like_the_point_scene():
+    from rigor_gyro.kinds.periodic_orbit import validate as relay_validate
+    from rigor_gyro.kinds.periodic_orbit.boxes import evaluate_box as relay_box
+    m = relay_validate(load_scene("roitenberg1947"))
+    w = Fraction(1, 10 ** 9)
+    box = Box.of({"B": (Fraction(133, 1000) * (1 - w), Fraction(133, 1000) * (1 + w)),
+                  "S": (Fraction(15, 100) * (1 - w), Fraction(15, 100) * (1 + w))})
+    with working_precision(128):
+        out = relay_box(m, box, ["half_period", "orbit_genuine", "stable"])
+    assert {k: v[0] for k, v in out.items()} == {"half_period": "proved", "orbit_genuine": "proved", "stable": "proved"}
+
+
+def test_prove_writes_a_paving_pair(tmp_path):
+    (tmp_path / "box.toml").write_text(RUDENKO_BOX)
+    assert main(["prove", str(tmp_path / "box.toml"), "--out", str(tmp_path), "--quiet", "--workers", "1"]) == 0
+    data = json.loads((tmp_path / "rudenko_box.json").read_text())
+    assert data["schema"] == "rigor-gyro/paving/1" and data["verdict"] == "proved"
+    assert "PROVED over the box" in (tmp_path / "rudenko_box.md").read_text()
+
+
+# ----------------------------------------------------------------------------- thresholds
+
+def test_the_omega2_below_which_bracket_8_fails_is_bracketed():
+    res = find_threshold(load_scene("rudenko1976"), "Omega2", lo="1e-6", hi="1", claim="bracket_2", width="1e-6")
+    assert res.certified and res.exit_code == 0
+    lo, hi = res.bracket()
+    assert hi - lo <= Fraction(1, 10 ** 6) * hi
+    for value, want in ((res.proved_at, "proved"), (res.refuted_at, "refuted")):
+        s = load_scene("rudenko1976")
+        s.parameters["Omega2"] = f"{value.numerator}/{value.denominator}"
+        s.claims_only = ["bracket_2"]
+        assert prove_scene(s).claim("bracket_2").status.value == want
+
+
+def test_a_threshold_search_without_a_change_is_inconclusive_not_refuted():
+    res = find_threshold(load_scene("rudenko1976"), "Omega2", lo="0.1", hi="1", claim="bracket_4")
+    assert not res.certified and res.exit_code == 3
+
+
+@pytest.mark.parametrize("argv", [["--param", "hz_scale", "--claim", "bracket_1"], ["--param", "nope"],
+                                  ["--param", "Omega2", "--lo", "1", "--hi", "0.5"],
+                                  ["--param", "Omega2", "--lo", "-1", "--hi", "1"],
+                                  ["--param", "Omega2", "--width", "0"]])
+def test_bad_threshold_searches_are_bad_input(argv):
+    assert main(["margin", "rudenko1976", *argv]) == 2
+
+
+# ----------------------------------------------------------------------------- checking a paving
+
+def _paving_data():
+    text = RUDENKO_BOX.replace('only = [', 'only = ["bracket_1", "bracket_2"] #')
+    return paving_json(pave(box_scene(parse_scene(text))))
+
+
+def _reseal(data):
+    from rigor_gyro.certificate import digest
+    data = json.loads(json.dumps(data))
+    data.pop("integrity", None)
+    data["integrity"] = {"sha256": digest(data)}
+    return data
+
+
+def test_a_paving_is_confirmed_by_the_checker():
+    from rigor_gyro.check import check_certificate
+    report = check_certificate(_paving_data())
+    assert report.ok, report.first_failure
+
+
+@pytest.mark.parametrize("tamper", ["status", "drop_box", "volume", "verdict", "point"])
+def test_a_tampered_paving_is_rejected_even_with_a_fixed_digest(tamper):
+    from rigor_gyro.check import check_certificate
+    data = json.loads(json.dumps(_paving_data()))
+    c = data["claims"][1]
+    if tamper == "status":
+        c["boxes"][0]["status"] = "refuted"
+    elif tamper == "drop_box":
+        c["boxes"].pop()
+    elif tamper == "volume":
+        c["volume_fraction"]["proved"] = "1/2"
+    elif tamper == "verdict":
+        data["verdict"] = "refuted"
+    elif tamper == "point":
+        c["points"].append({"box_outcome": "undecided", "point": {"a": "15.08", "b": "6.154", "eps": "1/10",
+                                                                "Omega2": "3/5"}, "status": "refuted", "reason": "",
+                            "precision_bits": 64})
+    assert not check_certificate(_reseal(data)).ok
+    assert not check_certificate(data).ok          # the digest alone already rejects it
