@@ -117,7 +117,7 @@ def check_certificate(data: Any, file: str = "<data>") -> CheckReport:
         from .margins.check import check_paving
         report = CheckReport(file)
         try:
-            report.results.extend(check_paving(data))
+            report.results.extend(CheckResult(*t) for t in check_paving(data))
         except (KeyError, TypeError, ValueError, ArithmeticError, AttributeError, IndexError) as e:
             report.results.append(CheckResult("data", False, f"the paving's data cannot be checked: {type(e).__name__}: {e}"))
         report.seconds = time.perf_counter() - t0
