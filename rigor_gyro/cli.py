@@ -43,8 +43,9 @@ def _parser() -> argparse.ArgumentParser:
     pr = sub.add_parser("prove", help="prove scenes; write <name>.json and <name>.md")
     pr.add_argument("scenes", nargs="*", metavar="SCENE", help="built-in scene name or path to a TOML file")
     pr.add_argument("--all", action="store_true", help="prove every built-in scene of the papers")
-    pr.add_argument("--group", choices=("paper", "demo", "all"), default=None,
-                    help="prove every built-in scene of a group (demo: planted refuted/inconclusive outcomes)")
+    pr.add_argument("--group", choices=("paper", "demo", "margin", "all"), default=None,
+                    help="prove every built-in scene of a group (demo: planted refuted/inconclusive outcomes; "
+                         "margin: tolerance boxes and the papers' general claims, pavings that take minutes)")
     pr.add_argument("--prec", type=int, default=DEFAULT_PREC,
                     help=f"starting precision in bits, {MIN_PREC}..{MAX_PREC} (default {DEFAULT_PREC})")
     pr.add_argument("--maxprec", type=int, default=DEFAULT_MAXPREC,
@@ -101,7 +102,7 @@ def _bad(message: str) -> int:
 
 def _cmd_list() -> int:
     from .scene import builtin_scenes, load_scene
-    for group in ("paper", "demo"):
+    for group in ("paper", "demo", "margin"):
         for name in builtin_scenes(group):
             s = load_scene(name)
             _say(f"{group:6s} {name:34s} {s.kind:18s} {s.source.splitlines()[0][:80] if s.source else ''}")

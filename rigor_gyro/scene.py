@@ -79,16 +79,17 @@ def _builtin_dir():
     return resources.files("rigor_gyro") / "scenes"
 
 
-#: groups of built-in scenes: the papers' worked examples (``prove --all``), and demonstrations of
-#: refuted and inconclusive outcomes (planted; ``prove --group demo``)
-GROUPS = {"paper": "", "demo": "demos"}
+#: groups of built-in scenes: the papers' worked examples (``prove --all``), demonstrations of
+#: refuted and inconclusive outcomes (planted; ``prove --group demo``), and design margins and the
+#: papers' general claims over parameter boxes (pavings; ``prove --group margin``)
+GROUPS = {"paper": "", "demo": "demos", "margin": "margins"}
 
 
 def builtin_scenes(group: str = "paper") -> dict[str, Any]:
     """Built-in scene name -> resource (a TOML file shipped inside the package), for one group
     (``paper``: the worked examples, what ``prove --all`` proves; ``demo``; ``all``: both)."""
     if group == "all":
-        return {**builtin_scenes("paper"), **builtin_scenes("demo")}
+        return {**builtin_scenes("paper"), **builtin_scenes("demo"), **builtin_scenes("margin")}
     if group not in GROUPS:
         raise SceneError(f"unknown scene group {group!r}; groups: {', '.join(GROUPS)}, all")
     folder = _builtin_dir() / GROUPS[group] if GROUPS[group] else _builtin_dir()

@@ -330,3 +330,17 @@ def test_a_tampered_paving_is_rejected_even_with_a_fixed_digest(tamper):
                             "precision_bits": 64})
     assert not check_certificate(_reseal(data)).ok
     assert not check_certificate(data).ok          # the digest alone already rejects it
+
+
+def test_every_built_in_margin_scene_is_a_valid_box_scene():
+    from rigor_gyro.scene import builtin_scenes
+    scenes = builtin_scenes("margin")
+    assert len(scenes) >= 5
+    for name in scenes:
+        bs = box_scene(load_scene(name))
+        assert bs.claims and bs.box.edges
+
+
+def test_the_built_in_lyapunov_tolerance_scene_is_proved():
+    data = paving_json(pave(box_scene(load_scene("margin_agafonov_k_tolerance"))))
+    assert data["verdict"] == "proved"

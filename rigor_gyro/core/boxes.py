@@ -126,10 +126,14 @@ class Box:
             out[k] = (hi - lo) / (whi - wlo) if whi > wlo else Fraction(0)
         return out
 
-    def split(self, whole: "Box") -> tuple["Box", "Box"]:
-        """The two halves along the edge that is widest relative to ``whole`` (first such edge on ties)."""
+    def split(self, whole: "Box", frozen: tuple[str, ...] = ()) -> tuple["Box", "Box"]:
+        """The two halves along the edge that is widest relative to ``whole`` (first such edge on ties),
+        never along a ``frozen`` edge (a parameter the claims do not depend on)."""
         rel = self.relative_widths(whole)
-        k = max(self.names, key=lambda n: (rel[n], -self.names.index(n)))
+        names = [n for n in self.names if n not in frozen]
+        if not names:
+            raise ValueError("every edge of the box is frozen")
+        k = max(names, key=lambda n: (rel[n], -self.names.index(n)))
         lo, hi = self.interval(k)
         if rel[k] == 0:
             raise ValueError("a box of points cannot be split")

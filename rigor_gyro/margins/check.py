@@ -25,7 +25,7 @@ from ..scene import Scene
 __all__ = ["check_paving"]
 
 
-def _tiles(whole: Box, boxes: list[Box]) -> bool:
+def _tiles(whole: Box, boxes: list[Box], frozen: tuple[str, ...] = ()) -> bool:
     """Whether ``boxes`` are exactly the leaves of a bisection tree of ``whole`` (Box.split's rule)."""
     want = {b.edges for b in boxes}
     if len(want) != len(boxes):
@@ -40,9 +40,9 @@ def _tiles(whole: Box, boxes: list[Box]) -> bool:
         if node.edges in want:
             seen += 1
             continue
-        if all(hi == lo for _, lo, hi in node.edges):
+        if all(hi == lo for n, lo, hi in node.edges if n not in frozen):
             return False
-        stack.extend(node.split(whole))
+        stack.extend(node.split(whole, frozen))
     return seen == len(boxes)
 
 
@@ -69,7 +69,7 @@ def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
         return out
     add(CheckResult("box", data["box"] == bs.box.to_json(), "the box re-derived from the scene"))
     settings = {"box_resolution": fraction_text(bs.resolution), "max_boxes": bs.max_boxes, "box_prec": bs.prec,
-                "max_points": bs.max_points}
+                "max_points": bs.max_points, "unsplit": list(bs.frozen)}
     add(CheckResult("settings", data["settings"] == settings, "the settings re-derived from the scene"))
     ids = [c["id"] for c in data["claims"]]
     add(CheckResult("claims", ids == bs.claims, f"claims {ids}"))
@@ -86,7 +86,7 @@ def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
         if any(s not in ("proved", "refuted", "undecided") for _, s in boxes):
             add(CheckResult(cid, False, "unknown sub-box status"))
             continue
-        tiles = _tiles(bs.box, [b for b, _ in boxes])
+        tiles = _tiles(bs.box, [b for b, _ in boxes], bs.frozen)
         add(CheckResult(cid, tiles, "the sub-boxes tile the box (leaves of its bisection tree)" if tiles else
                         "the sub-boxes do not tile the box"))
         total = bs.box.volume()

@@ -78,6 +78,7 @@ class BoxScene:
     prec: int
     max_points: int
     skipped: list[str] = field(default_factory=list)   # requested by default, not decidable over a box
+    frozen: tuple[str, ...] = ()     # box parameters the kind's box claims do not depend on (never split)
 
     def point_parameters(self, point: dict[str, Fraction]) -> dict[str, str]:
         return {**{k: v for k, v in self.points.items()}, **{k: fraction_text(q) for k, q in point.items()}}
@@ -123,7 +124,11 @@ def box_scene(scene: Scene) -> BoxScene:
     else:
         claims = [c for c in wanted if c in boxes.BOX_CLAIMS]
         skipped = [c for c in wanted if c not in boxes.BOX_CLAIMS]
-    return BoxScene(scene, points, box, kind_opts, claims, resolution, max_boxes, prec, max_points, skipped)
+    frozen = tuple(n for n in box.names if n in getattr(boxes, "UNSPLIT_PARAMETERS", ()))
+    if len(frozen) == len(box.names):
+        frozen = frozen[1:]           # something must be splittable; the first frozen edge is
+    return BoxScene(scene, points, box, kind_opts, claims, resolution, max_boxes, prec, max_points, skipped,
+                    frozen)
 
 
 # --------------------------------------------------------------------------- tasks (run in workers)
@@ -230,13 +235,13 @@ def pave(bs: BoxScene, executor: Executor | None = None, progress=None) -> Pavin
                     result[c].boxes.append((b, status))
             if not undecided:
                 continue
-            fine = all(w <= bs.resolution for w in b.relative_widths(whole).values())
+            fine = all(w <= bs.resolution for n, w in b.relative_widths(whole).items() if n not in bs.frozen)
             if fine or evaluated + len(nxt) + 2 > bs.max_boxes:
                 budget_hit = budget_hit or not fine
                 for c in undecided:
                     result[c].boxes.append((b, "undecided"))
             else:
-                nxt.extend((child, tuple(undecided)) for child in b.split(whole))
+                nxt.extend((child, tuple(undecided)) for child in b.split(whole, bs.frozen))
         active = nxt
         if progress:
             progress(evaluated, len(active), result)

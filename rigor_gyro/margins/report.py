@@ -47,7 +47,7 @@ def paving_json(p: Paving) -> dict[str, Any]:
         "box": bs.box.to_json(),
         "point_parameters": dict(bs.points),
         "settings": {"box_resolution": fraction_text(bs.resolution), "max_boxes": bs.max_boxes,
-                     "box_prec": bs.prec, "max_points": bs.max_points},
+                     "box_prec": bs.prec, "max_points": bs.max_points, "unsplit": list(bs.frozen)},
         "verdict": p.verdict,
         "boxes_evaluated": p.evaluated, "levels": p.levels, "budget_exhausted": p.budget_hit,
         "claims": claims,
@@ -88,6 +88,10 @@ def render_paving(data: dict[str, Any]) -> str:
                                    for s in ("proved", "refuted", "inconclusive")))
         out.append("")
     s = data["settings"]
+    if s.get("unsplit"):
+        out.append(f"Not split: {', '.join(s['unsplit'])} (the box claims do not depend on it; the kind's boxes "
+                   "module says why).")
+        out.append("")
     out.append(f"Settings: box_resolution {s['box_resolution']} of each edge, max_boxes {s['max_boxes']}, box "
                f"evaluations at {s['box_prec']} bits; {data['boxes_evaluated']} boxes evaluated in "
                f"{data['levels']} levels" + ("; the box budget was exhausted" if data["budget_exhausted"] else "") + ".")

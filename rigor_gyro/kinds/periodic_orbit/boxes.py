@@ -42,12 +42,14 @@ from ...core.family_roots import newton_family_root, newton_family_root_complex,
 from ...core.outcome import Status
 from ...core.polyroots import isolate_polynomial
 from .claims import CLAIMS, attempt
-from .flow import PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, nutation_cubic
+from .flow import PARAMETER_NAMES, DegenerateSpectrum, NearZeroSeries, RelayParams, Spectrum, nutation_cubic
 
 __all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "BoxSpectrum", "validate_box", "evaluate_box"]
 
 BOX_CLAIMS = {c: CLAIMS[c] for c in ("half_period", "orbit_genuine", "stable")}
 BOX_PARAMETERS = PARAMETER_NAMES
+#: the box claims do not depend on S (homogeneity, see evaluate_box): the paving never splits it
+UNSPLIT_PARAMETERS = ("S",)
 
 
 class BoxSpectrum(Spectrum):
@@ -93,6 +95,8 @@ class BoxSpectrum(Spectrum):
                           [z, P.H / P.A, z, P.K / P.A, z],
                           [z, z, -P.n / (P.K * P.tau), -1 / P.tau, P.p / P.tau],
                           [z, z, z, z, -1 / P.sigma]])
+        # near theta = 0 the spectral terms cancel on a box: g from its power series there
+        self.near_zero = NearZeroSeries(self.M, self.e, S)
 
     def _sigma_mode(self, nu: arb):
         P = self.P
@@ -126,7 +130,15 @@ def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str
     if unknown:
         raise ParameterError(f"claim {unknown[0]!r} cannot be decided over a box; over boxes the kind decides "
                              f"{list(BOX_CLAIMS)}")
-    Pb = RelayParams(**{k: box.ball(k) if k in box.names else ball(getattr(model.params, k)) for k in PARAMETER_NAMES})
+    # S enters homogeneously: x(t; S) = S x(t; 1) (linear plant, relay amplitude S > 0), so the roots of
+    # g = S g_1, the signs of beta and the multipliers (the half-period map is homogeneous of degree 1,
+    # its Jacobian of degree 0) are the same for every S > 0: the box claims are decided at one S (the
+    # box's lower end). Taking S as a ball instead would widen every spectral term by the same factor
+    # independently and lose the cancellation that makes g small near 0.
+    scaled = [k for k in box.names if k != "S"]
+    Pb = RelayParams(**{k: box.ball(k) if k in scaled else
+                        ball(_q(box.interval("S")[0])) if k == "S" and "S" in box.names else
+                        ball(getattr(model.params, k)) for k in PARAMETER_NAMES})
     mid = box.midpoint()
     Pmid = dataclasses.replace(model.params, **{k: _q(v) for k, v in mid.items()})
     boxed = dataclasses.replace(model, params=Pmid, paper={})

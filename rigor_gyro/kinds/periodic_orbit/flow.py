@@ -54,7 +54,7 @@ from dataclasses import dataclass
 from math import comb, factorial
 from typing import Callable, Sequence
 
-from flint import acb, acb_mat, acb_series, arb, arb_mat, fmpq, fmpq_mat, fmpq_poly
+from flint import acb, acb_mat, acb_series, arb, arb_mat, arb_poly, fmpq, fmpq_mat, fmpq_poly
 
 from ...core.balls import ball, certainly_positive, series_coefficients, series_length
 from ...core.exact import parse_exact
@@ -243,9 +243,18 @@ def _half_tanh_over_lam(lam: acb, s: acb_series) -> acb_series:
 def g_coeffs(sp: Spectrum, center: arb, n: int) -> list[arb]:
     """Taylor coefficients g_j(c) = g^{(j)}(c)/j!, j < n, of g at every point c of the ball ``center``.
 
+    A spectrum may carry ``near_zero`` (a :class:`NearZeroSeries`): where it applies (|c| small), its
+    power series gives the coefficients instead of the spectral sum (the box spectrum does this: its
+    spectral terms cancel near 0).
+
     Series trap: python-flint cuts series to ``ctx.cap`` terms without warning; the series is built
     inside :func:`~rigor_gyro.core.balls.series_length` (n) and read with ``series_coefficients``,
     which raises rather than pad a cut series with zeros."""
+    near = getattr(sp, "near_zero", None)
+    if near is not None:
+        out = near.coeffs(center, n)
+        if out is not None:
+            return out
     tot = [arb(0)] * n
     with series_length(n):
         s = _series(center, n)
@@ -261,6 +270,73 @@ def g_coeffs(sp: Spectrum, center: arb, n: int) -> list[arb]:
     if n > 1:
         tot[1] -= sp.p0e[0] / 2
     return tot
+
+
+class NearZeroSeries:
+    """g near theta = 0 as its power series, from matrix powers (no spectral decomposition):
+
+        g(theta) = -S e1^T tanh(M theta / 2) M^{-1} e = sum_j a_j theta^(2j+1),
+        a_j = -S c_j e1^T M^(2j) e,   tanh(z/2)/z = sum_j c_j z^(2j),  c_j = 2 (4^(j+1) - 1) B_(2j+2) / (2j+2)!.
+
+    Guarantee: for |theta| <= rho (complex), the tail beyond j = J is at most
+    T = (2 pi^2/3) S |e|_inf Cmax rho/pi^2 q^(J+1)/(1-q), q = (rho nu/pi)^2 < 1, using |c_j| <= (2 pi^2/3)/pi^(2j+2)
+    (c_j = 2 (4^n - 1) 2 zeta(2n)/(2 pi)^(2n), n = j+1) and |e1^T M^k e| <= |M^k|_inf |e|_inf <= Cmax nu^k
+    (nu = |M^N|_inf^(1/N) >= 1, Cmax = max over r < N of |M^r|_inf nu^-r); by Cauchy's estimate the tail's Taylor
+    coefficient k at c is at most T / (rho - |c|)^k. Coefficients are returned only for |c| <= ``reach`` rho.
+    Every enclosure holds for every matrix in the ball matrix M (a box spectrum's), so the moments,
+    computed by matrix-vector products, keep the exact zeros e1^T M^j e = 0 (j <= 3) and do not cancel."""
+
+    def __init__(self, M: arb_mat, e: Sequence[arb], S: arb, terms: int = 800, N: int = 64, reach: float = 0.85):
+        v = arb_mat([[x] for x in e])
+        self.a: list[arb] = []
+        for j in range(terms + 1):
+            if j:
+                v = M * (M * v)
+            n2 = 2 * j + 2
+            c = 2 * (arb(4) ** (j + 1) - 1) * arb(fmpq.bernoulli(n2)) / arb(factorial(n2))
+            self.a.append(-S * c * v[0, 0])
+        norms, W = [], arb_mat(5, 5)
+        for i in range(5):
+            W[i, i] = 1
+        for r in range(N):
+            norms.append(_inf_norm(W))
+            W = W * M
+        nuN = _inf_norm(W)
+        self.nu = nuN.max(arb(1)) ** (arb(1) / N)
+        # |M^k| <= |M^N|^floor(k/N) |M^r| <= nu^k max_r |M^r| nu^-r  (k = N floor(k/N) + r)
+        self.cmax = max((norms[r] / self.nu ** r for r in range(N)), key=lambda x: float(x.upper())).upper()
+        self.rho = (arb.pi() / self.nu * arb("0.95")).lower()
+        q = (self.rho * self.nu / arb.pi()) ** 2
+        enorm = max((abs(x).upper() for x in e), key=float)
+        self.tail = (2 * arb.pi() ** 2 / 3) * abs(S) * enorm * self.cmax * self.rho / arb.pi() ** 2 * \
+            q ** (terms + 1) / (1 - q)
+        self.reach = arb(reach) * self.rho
+        self.J = terms
+        coeffs = [arb(0)] * (2 * terms + 2)
+        for j, a in enumerate(self.a):
+            coeffs[2 * j + 1] = a
+        self._derivs = [arb_poly(coeffs)]
+
+    def coeffs(self, center: arb, n: int) -> list[arb] | None:
+        c = abs(center).upper()
+        if not (c <= self.reach):
+            return None
+        s = self.rho - c
+        while len(self._derivs) < n:             # P^(k)/k!, built once, evaluated in C (Horner)
+            k = len(self._derivs)
+            self._derivs.append(self._derivs[-1].derivative() * (arb(1) / k))
+        return [self._derivs[k](center) + arb(0, (self.tail / s ** k).upper()) for k in range(n)]
+
+
+def _inf_norm(W: arb_mat) -> arb:
+    """An upper bound of the infinity norm (max row sum of |entries|) of every matrix in the ball W."""
+    best = arb(0)
+    for i in range(W.nrows()):
+        row = arb(0)
+        for j in range(W.ncols()):
+            row += abs(W[i, j]).upper()
+        best = best.max(row.upper())
+    return best
 
 
 def x0_at(sp: Spectrum, theta: arb) -> list[arb]:
