@@ -243,6 +243,15 @@ def _pave(bs, executor, args) -> int:
                  f"refuted {float(v['refuted']):.4g}, undecided {float(v['undecided']):.4g})")
     _say(f"{bs.scene.name}: verdict {paving.verdict} over the box in {paving.seconds:.2f} s "
          f"({paving.evaluated} boxes, {executor.label}) -> {jpath}, {mpath}")
+    if args.plots:
+        try:
+            import matplotlib  # noqa: F401  (optional extra, imported only here)
+        except ImportError:
+            return _bad("--plots needs matplotlib: pip install 'rigor_gyro[plots]'")
+        from .margins.plots import paving_plots
+        from .margins.report import paving_json
+        for path in paving_plots(paving_json(paving), args.out):
+            _say(f"{bs.scene.name}: figure -> {path}")
     return paving.exit_code
 
 

@@ -344,3 +344,13 @@ def test_every_built_in_margin_scene_is_a_valid_box_scene():
 def test_the_built_in_lyapunov_tolerance_scene_is_proved():
     data = paving_json(pave(box_scene(load_scene("margin_agafonov_k_tolerance"))))
     assert data["verdict"] == "proved"
+
+
+def test_a_paving_figure_is_an_image_with_content(tmp_path):
+    pytest.importorskip("matplotlib")
+    from rigor_gyro.margins.plots import paving_plots
+    paths = paving_plots(_paving_data(), tmp_path)
+    assert len(paths) == 2
+    import matplotlib.image as mpimg
+    img = mpimg.imread(paths[0])
+    assert img.shape[0] > 100 and img.std() > 0.01
