@@ -2,7 +2,7 @@
 
     python benchmarks/paving_speedup.py [--repeat 2]
 
-Paves two scenes (the eigenfrequency example over eps x Omega2 and a Lyapunov box in k) in process,
+Paves two scenes (the eigenfrequency example over eps x Omega2 and a Lyapunov box in k x mu) in process,
 on a pool of 1 and 2 workers and on a Dask LocalCluster of 1 and 2 workers, checks that every paving
 is identical to the in-process one, and reports the wall time (best of --repeat) and the speed-up
 against one worker of the same executor. Start-up of the pool / cluster is excluded (created once).
@@ -30,7 +30,7 @@ Omega2 = "[0.6, 0.65]"
 [options]
 box_resolution = "1/64"
 """,
-    "lyapunov k in [0.2, 0.45] (resolution 1/64)": """
+    "lyapunov k x mu (resolution 1/8)": """
 name = "bench_lyap"
 kind = "lyapunov"
 source = "benchmark"
@@ -42,13 +42,13 @@ B1 = "2.2"
 C1 = "2.8"
 A2 = "8.5"
 H = "1e4"
-k = "[0.2, 0.45]"
+k = "[0.05, 1]"
 a = "100"
 x2_star = "pi/6"
-mu = "0.02"
+mu = "[0.005, 0.05]"
 moment = "sine"
 [options]
-box_resolution = "1/64"
+box_resolution = "1/8"
 """,
 }
 

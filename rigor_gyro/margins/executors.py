@@ -69,8 +69,10 @@ class Executor:
             return []
         if self._pool is None and self._client is None:
             return [fn(*t) for t in tasks]
-        parts = self.workers * 4
-        size = max(1, -(-len(tasks) // parts))
+        # small batches balance uneven tasks (a hard box takes 100 times an easy one); batches of
+        # many cheap tasks keep the per-task overhead of the pool or the scheduler low
+        parts = self.workers * 16
+        size = max(1, len(tasks) // parts)
         batches = [tasks[i:i + size] for i in range(0, len(tasks), size)]
         if self._client is not None:
             futures = self._client.map(_run_batch, [fn] * len(batches), batches, pure=False)
