@@ -354,3 +354,16 @@ def test_a_paving_figure_is_an_image_with_content(tmp_path):
     import matplotlib.image as mpimg
     img = mpimg.imread(paths[0])
     assert img.shape[0] > 100 and img.std() > 0.01
+
+
+def test_the_audit_refutes_the_no_smallness_claim_with_a_point_below_the_threshold():
+    """The row's counterexample Omega2 lies below the certified threshold of bracket (8) (~0.0071039)."""
+    cert = prove_scene(load_scene("rudenko1976"))
+    row = next(r for r in cert.paper if r.id == "general claim: no smallness assumption")
+    assert row.status.value == "refuted" and "bracket (8)" in row.note
+    w = Fraction(row.reading.split("Omega2 = ")[1].split(",")[0])
+    assert w < Fraction(71039, 10 ** 7)
+    s = load_scene("rudenko1976")
+    s.parameters["Omega2"] = f"{w.numerator}/{w.denominator}"
+    s.claims_only = ["bracket_2"]
+    assert prove_scene(s).claim("bracket_2").status.value == "refuted"

@@ -17,7 +17,7 @@ from ...core.audit import NUMBER, audit_printed, half_unit, numbers
 from ...core.balls import ball, certainly_gt, certainly_le, certainly_positive, decimal_bounds
 from ...core.outcome import AuditRow, AuditStatus
 from ...core.polyroots import isolate_polynomial
-from .model import APPROX_TEXT, BRACKETS, NotReal, Params, approximation, characteristic_quartic
+from .model import APPROX_TEXT, BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic
 
 __all__ = ["PAPER_SCHEMA", "formula_table", "audit", "dimensional_14"]
 
@@ -150,6 +150,9 @@ def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[A
     printed_q = characteristic_quartic(a, b, e, W, factor="lambda2")
     pr = isolate_polynomial(printed_q)
     pos = [x for x in pr.real if certainly_positive(x)] if pr.squarefree else []
+    general = _general_claim_row(a, b, e)
+    if general is not None:
+        rows.append(general)
     rows.append(AuditRow("(1) factor of the second product", "lambda^2", "Omega^2", None, AuditStatus.MISPRINT,
                          f"as printed the equation does not depend on Omega^2 and has {len(pos)} positive root(s) "
                          f"{[_fmt(x) for x in pos]} and {len(pr.nonreal)} non-real: not four frequencies; the reading "
@@ -199,6 +202,40 @@ def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[A
     rows.append(_label_12_row())
     rows.extend(_fourteen_rows(model))
     return rows
+
+
+#: where the audit of the general claim looks for a counterexample: Omega2 = 10^-k with the scene's a, b, eps
+GENERAL_CLAIM_OMEGA2 = ("1/10", "1/100", "1/1000", "1/10000", "1/100000", "1/1000000")
+
+
+def _general_claim_row(a: fmpq, b: fmpq, e: fmpq) -> AuditRow | None:
+    """The paper's claim that the brackets (7)-(10) hold without any smallness assumption: refuted by a
+    certified counterexample point (the scene's a, b, eps with a small Omega2: exact quartic roots and
+    the bracket in balls), or None when none of the points tried is one (a paving over a wide domain,
+    ``rigor-gyro prove --group margin``, says more)."""
+    claim = "the brackets (7)-(10) hold without any smallness assumption (for all a > b > 1, eps, Omega2 > 0)"
+    for text in GENERAL_CLAIM_OMEGA2:
+        W = fmpq(*map(int, text.split("/")))
+        pr = isolate_polynomial(characteristic_quartic(a, b, e, W))
+        if not pr.verified or pr.nonreal or len(pr.real) != 4:
+            continue
+        p = Params(ball(a), ball(b), ball(e), ball(W))
+        for j in range(1, 5):
+            try:
+                lo, hi = bracket(j, p, reading="intended")
+            except NotReal:
+                continue
+            w = pr.real[j - 1]
+            side = "lower" if certainly_gt(lo, w) else "upper" if certainly_gt(w, hi) else None
+            if side:
+                bound = lo if side == "lower" else hi
+                return AuditRow("general claim: no smallness assumption", claim,
+                                f"counterexample: Omega2 = {text}, a, b, eps of the scene", w, AuditStatus.REFUTED,
+                                f"bracket {BRACKETS[j].eq} (reading used by the claims): omega_{j} = {_fmt(w)} is "
+                                f"{'below its lower' if side == 'lower' else 'above its upper'} bound {_fmt(bound)} "
+                                "(certified); the brackets need Omega2 not too small")
+    return None        # no counterexample among the points tried: no row (an undecided row would only
+    #                    make the prover escalate; a search that finds nothing proves nothing)
 
 
 def _five_percent_rows(bound: str, p: Params, omegas: list[arb]) -> list[AuditRow]:
