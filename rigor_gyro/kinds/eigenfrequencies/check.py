@@ -192,6 +192,7 @@ def check(model, data: dict) -> list[CheckResult]:
                     brackets[j] = bracket(j, ck.P, reading="intended")
                     ck.contains(f"bracket_{j}_lo", brackets[j][0])
                     ck.contains(f"bracket_{j}_hi", brackets[j][1])
+                    ck.contains(f"bracket_{j}_slack", (omegas[j - 1] - brackets[j][0]).min(brackets[j][1] - omegas[j - 1]))
                 except NotReal as err:
                     brackets[j] = f"no real value ({err})"
             try:

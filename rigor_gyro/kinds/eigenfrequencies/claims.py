@@ -313,6 +313,8 @@ def _bracket_claim(j: int, p: Params, omegas: list[arb], quantities: dict[str, a
         return _claim(cid, Status.REFUTED, f"the bracket has no real value for these parameters: {e}",
                       {"not_real": str(e), "radicand": _bounds(e.radicand)})
     quantities[f"bracket_{j}_lo"], quantities[f"bracket_{j}_hi"] = lo, hi
+    # the design margin of the bracket: how far omega_j is from the nearer bound (< 0: outside)
+    quantities[f"bracket_{j}_slack"] = (omegas[j - 1] - lo).min(hi - omegas[j - 1])
     st, why, ce, decides = _check_bounds([(f"omega_{j}", lo, omegas[j - 1], hi)])
     if st is Status.PROVED:
         why = f"{_fmt(lo)} <= omega_{j} <= {_fmt(hi)} certified (reading: {BRACKETS[j].reading_note})"
