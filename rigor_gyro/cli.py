@@ -231,7 +231,11 @@ def _pave(bs, executor, args) -> int:
 
     def progress(done, queued, result):
         if tty:
-            print(f"\r{bs.scene.name}: {done} boxes evaluated, {queued} queued", end="", file=sys.stderr, flush=True)
+            vols = [c.volume(bs.box) for c in result.values()]
+            worst = min(vols, key=lambda v: v["proved"])          # the claim furthest from proved
+            print(f"\r{bs.scene.name}: {done} boxes evaluated, {queued} queued; least proved claim so far: "
+                  f"proved {float(worst['proved']):.3f}, refuted {float(worst['refuted']):.3f}, undecided "
+                  f"{float(worst['undecided']):.3f} of the volume", end="", file=sys.stderr, flush=True)
     paving = pave(bs, executor, progress)
     if tty:
         print(file=sys.stderr)

@@ -367,3 +367,35 @@ def test_the_audit_refutes_the_no_smallness_claim_with_a_point_below_the_thresho
     s.parameters["Omega2"] = f"{w.numerator}/{w.denominator}"
     s.claims_only = ["bracket_2"]
     assert prove_scene(s).claim("bracket_2").status.value == "refuted"
+
+
+@pytest.mark.slow
+def test_the_h_where_a_multiplier_crosses_one_is_bracketed():
+    """The planted knife edge: |mu| = 1 at H_c ~ 9623.03639881332791437 (secant at 320 bits); the
+    certified threshold bracket must contain it."""
+    from pathlib import Path
+    corpus = Path(__file__).resolve().parent / "corpus" / "relay_multiplier_near_one.toml"
+    res = find_threshold(load_scene(str(corpus)), "H", lo="9620", hi="9630", claim="stable", width="1e-7")
+    assert res.certified
+    lo, hi = res.bracket()
+    assert lo < Fraction("9623.03639881332791437") < hi
+
+
+@pytest.mark.parametrize("terms", [4, 12, 40])
+def test_the_near_zero_series_encloses_g_whatever_its_length(terms):
+    """Few terms make the tail bound carry the truncation: the enclosure must still contain the
+    point spectrum's g and g' (computed without the series) at points up to its reach."""
+    from rigor_gyro.kinds.periodic_orbit import validate as relay_validate
+    from rigor_gyro.kinds.periodic_orbit.flow import NearZeroSeries, Spectrum, g_coeffs
+    m = relay_validate(load_scene("roitenberg1947"))
+    with working_precision(128):
+        sp = Spectrum(m.params)
+        nz = NearZeroSeries(sp.M, sp.e, arb(fmpq(m.params.S.p, m.params.S.q)), terms=terms)
+        for frac in ("0.1", "0.4", "0.8"):
+            t = (nz.reach * arb(frac)).mid()
+            got = nz.coeffs(t, 3)
+            want = g_coeffs(sp, t, 3)
+            for g, w in zip(got, want):
+                assert g.overlaps(w) and w.rad() < g.rad() + abs(w.mid()) * arb(2) ** -20, (terms, frac)
+                assert (g - w).contains(0)
+        assert nz.coeffs(nz.rho, 2) is None            # beyond its reach it declines
