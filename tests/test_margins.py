@@ -399,3 +399,23 @@ def test_the_near_zero_series_encloses_g_whatever_its_length(terms):
                 assert g.overlaps(w) and w.rad() < g.rad() + abs(w.mid()) * arb(2) ** -20, (terms, frac)
                 assert (g - w).contains(0)
         assert nz.coeffs(nz.rho, 2) is None            # beyond its reach it declines
+
+
+def test_the_whole_box_rule():
+    """Proved only if every sub-box is; refuted if one is refuted or a point proof refutes; else
+    inconclusive (a resolution limit never refutes)."""
+    from rigor_gyro.margins.paving import ClaimPaving
+    whole = Box.of({"x": (Fraction(0), Fraction(1))})
+    left, right = whole.split(whole)
+    def status(outcomes, points=()):
+        c = ClaimPaving("c", "s", boxes=list(zip((left, right), outcomes)), points=[{"status": s} for s in points])
+        return c.status
+    assert status(["proved", "proved"]) == "proved"
+    assert status(["proved", "undecided"]) == "inconclusive"
+    assert status(["undecided", "proved"]) == "inconclusive"
+    assert status(["proved", "refuted"]) == "refuted"
+    assert status(["proved", "undecided"], ["proved", "refuted"]) == "refuted"
+    assert status(["undecided", "undecided"], ["proved", "inconclusive"]) == "inconclusive"
+    assert ClaimPaving("c", "s").status == "inconclusive"
+    vol = ClaimPaving("c", "s", boxes=[(left, "proved"), (right, "undecided")]).volume(whole)
+    assert vol == {"proved": Fraction(1, 2), "refuted": 0, "undecided": Fraction(1, 2)}
