@@ -282,6 +282,18 @@ def test_a_threshold_search_without_a_change_is_inconclusive_not_refuted():
     assert not res.certified and res.exit_code == 3
 
 
+def test_relay_thresholds_refuse_s_and_pi_ends():
+    assert main(["margin", "roitenberg1947", "--param", "S", "--claim", "stable"]) == 2
+    assert main(["margin", "rudenko1976", "--param", "Omega2", "--lo", "pi/1000", "--hi", "1"]) == 2
+
+
+def test_family_roots_must_come_back_in_the_guesses_order():
+    with working_precision(64):
+        coeffs = [arb(2), arb(-3), arb(1)]                   # (x - 1)(x - 2)
+        assert family_real_roots(coeffs, [arb("0.9"), arb("2.1")]) is not None
+        assert family_real_roots(coeffs, [arb("2.1"), arb("0.9")]) is None
+
+
 @pytest.mark.parametrize("argv", [["--param", "hz_scale", "--claim", "bracket_1"], ["--param", "nope"],
                                   ["--param", "Omega2", "--lo", "1", "--hi", "0.5"],
                                   ["--param", "Omega2", "--lo", "-1", "--hi", "1"],
@@ -311,7 +323,7 @@ def test_a_paving_is_confirmed_by_the_checker():
     assert report.ok, report.first_failure
 
 
-@pytest.mark.parametrize("tamper", ["status", "drop_box", "volume", "verdict", "point"])
+@pytest.mark.parametrize("tamper", ["status", "drop_box", "volume", "verdict", "point", "point_elsewhere"])
 def test_a_tampered_paving_is_rejected_even_with_a_fixed_digest(tamper):
     from rigor_gyro.check import check_certificate
     data = json.loads(json.dumps(_paving_data()))
@@ -328,6 +340,11 @@ def test_a_tampered_paving_is_rejected_even_with_a_fixed_digest(tamper):
         c["points"].append({"box_outcome": "undecided", "point": {"a": "15.08", "b": "6.154", "eps": "1/10",
                                                                 "Omega2": "3/5"}, "status": "refuted", "reason": "",
                             "precision_bits": 64})
+    elif tamper == "point_elsewhere":     # a genuine refutation, but at other fixed parameters (review finding)
+        c["points"].append({"box_outcome": "undecided", "point": {"a": "1.2", "b": "1.1", "eps": "11/100",
+                                                                "Omega2": "5/8"}, "status": "refuted", "reason": "",
+                            "precision_bits": 64})
+        c["status"] = data["verdict"] = "refuted"
     assert not check_certificate(_reseal(data)).ok
     assert not check_certificate(data).ok          # the digest alone already rejects it
 

@@ -95,8 +95,8 @@ def _contract(F: Family, x: arb, steps: int = 12) -> arb:
 def family_real_roots(family: "Family | list[arb]", guesses: list[arb], iterations: int = 40,
                       leading: arb | None = None) -> list[arb] | None:
     """Verified, pairwise disjoint root balls of the family (a :data:`Family`, or a list of coefficient
-    balls, constant term first), one per guess, in the guesses' order; None when any is not verified or
-    two overlap. When len(guesses) is the degree and the leading coefficient (``leading``, or the last
+    balls, constant term first), one per guess (ascending guesses), certainly increasing; None when any
+    is not verified, two overlap, or they are not in the guesses' order. When len(guesses) is the degree and the leading coefficient (``leading``, or the last
     coefficient ball) excludes 0, these are all the roots of every member."""
     if isinstance(family, list):
         leading = family[-1] if family else None
@@ -113,6 +113,10 @@ def family_real_roots(family: "Family | list[arb]", guesses: list[arb], iteratio
         for j in range(i + 1, len(out)):
             if out[i].overlaps(out[j]):
                 return None
+    # callers number the roots by the guesses' order (ascending): a Newton run that wandered to
+    # another root would swap labels, so the balls must be certainly increasing in that order
+    if any(not certainly_lt(out[i], out[i + 1]) for i in range(len(out) - 1)):
+        return None
     return out
 
 

@@ -102,12 +102,22 @@ def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
             if got != s:
                 bad.append(f"{b.to_json()}: stored {s}, re-evaluated {got}")
         add(CheckResult(cid, not bad, "every decided sub-box re-evaluated" if not bad else bad[0]))
+        # the point proofs are exactly pave's: the midpoints of the first max_points refuted and the
+        # first max_points undecided sub-boxes, in order, every parameter as the scene has it
+        expected = []
+        for outcome in ("refuted", "undecided"):
+            for b, _ in [x for x in boxes if x[1] == outcome][:bs.max_points]:
+                expected.append((outcome, bs.point_parameters(b.midpoint())))
+        stored = [(p.get("box_outcome"), p.get("point")) for p in c["points"]]
+        add(CheckResult(cid, stored == expected, "the point proofs are at the midpoints pave chooses" if stored == expected
+                        else "the stored point proofs are not the midpoints of the paving's refuted and undecided sub-boxes"))
         wrong = []
-        for p in c["points"]:
+        for p in c["points"] if stored == expected else []:
             got = point_task(bs.scene.kind, json.dumps(p["point"], sort_keys=True), oj, cid)["status"]
-            inside = all(Fraction(lo) <= Fraction(p["point"][k]) <= Fraction(hi) for k, (lo, hi) in data["box"].items())
-            if got != p["status"] or not inside:
-                wrong.append(f"point {p['point']}: stored {p['status']}, re-proved {got}, inside the box: {inside}")
+            if got != p["status"]:
+                wrong.append(f"point {p['point']}: stored {p['status']}, re-proved {got}")
+            if p["box_outcome"] == "refuted" and got == "proved":
+                wrong.append(f"point {p['point']}: proved at the midpoint of a sub-box refuted everywhere")
         add(CheckResult(cid, not wrong, f"{len(c['points'])} point proofs re-run" if not wrong else wrong[0]))
         status = ("refuted" if any(s == "refuted" for _, s in boxes) or any(p["status"] == "refuted" for p in c["points"])
                   else "proved" if boxes and all(s == "proved" for _, s in boxes) else "inconclusive")

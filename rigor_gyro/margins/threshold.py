@@ -117,12 +117,17 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
     independent = getattr(module, "CLAIMS_INDEPENDENT_OF", {})
     if claim in independent.get(param, ()):
         raise ParameterError(f"claim {claim!r} does not depend on {param!r}: no threshold to find")
+    def end(text, name):
+        x = parse_exact(text, name)
+        if not x.is_rational:
+            raise ParameterError(f"{name} {text!r} involves pi: give a rational end (the bisection points are exact rationals)")
+        return x.rational
     value = parse_exact(scene.parameters[param], param)
-    if not value.is_rational:
+    if (lo is None or hi is None) and not value.is_rational:
         raise ParameterError(f"--param {param!r} = {scene.parameters[param]!r} involves pi: give --lo and --hi")
-    v = value.rational
-    lo_q = parse_exact(lo, "--lo").rational if lo is not None else min(v / 2, 2 * v)
-    hi_q = parse_exact(hi, "--hi").rational if hi is not None else max(v / 2, 2 * v)
+    v = value.rational if value.is_rational else None
+    lo_q = end(lo, "--lo") if lo is not None else min(v / 2, 2 * v)
+    hi_q = end(hi, "--hi") if hi is not None else max(v / 2, 2 * v)
     if not lo_q < hi_q:
         raise ParameterError(f"need --lo < --hi (got {lo_q}, {hi_q})")
     w = option_number(width, "--width", above="0", at_most="1").rational

@@ -6,6 +6,7 @@
   and the Vdot <= 0 decision shared by the claims and the audit;
 * :mod:`.claims`: the claims (constants, damping, Vdot <= 0, V > 0, invariant set, best mu);
 * :mod:`.paper`: the formulas as printed and the audit of the example's numbers;
+* :mod:`.boxes`: the claims over a box of parameters (for :mod:`rigor_gyro.margins`);
 * :mod:`.approx`: float/mpmath cross-checks (never a verdict); :mod:`.plots`: the figures.
 """
 from .claims import CLAIMS, PARAMETERS, attempt, validate

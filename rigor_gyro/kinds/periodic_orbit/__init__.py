@@ -5,8 +5,9 @@ seed 001).
   g, Taylor-model enclosures, the tail bound;
 * :mod:`.claims`: the claims (half-period roots, genuineness, initial point, multipliers, stability);
 * :mod:`.paper`: the paper's own forms (a_ij, determinant (12), Tables 2-4, (25)) and the audit;
+* :mod:`.boxes`: the claims over a box of parameters (for :mod:`rigor_gyro.margins`);
 * :mod:`.approx`: numpy/scipy/mpmath cross-checks (never a verdict); :mod:`.plots`: the figure.
 """
-from .claims import CLAIMS, OPTIONS, PARAMETERS, attempt, validate
+from .claims import CLAIMS, CLAIMS_INDEPENDENT_OF, OPTIONS, PARAMETERS, attempt, validate
 
-__all__ = ["CLAIMS", "PARAMETERS", "OPTIONS", "validate", "attempt"]
+__all__ = ["CLAIMS", "CLAIMS_INDEPENDENT_OF", "PARAMETERS", "OPTIONS", "validate", "attempt"]

@@ -19,12 +19,15 @@ midpoint (a bug check, not a proof step).
 
 Precision: the caller's (the paving fixes it).
 
-Known limit (measured on roitenberg1947, 128 bits): boxes of relative width up to about 1e-8 decide like
-the point scene; at 1e-5 the isolation of g near theta = 0 stays undecided. g = O(theta^5) there is the
-small difference of spectral terms of size O(theta) whose projectors depend on the parameters
-independently, so a parameter ball of relative width w widens g by about w times those terms. The
-remedy (next step): near 0, g's power series -S sum c_j theta^(2j+1) e1^T M^(2j) e from matrix powers
-(no cancellation: the first moments vanish identically), the spectral form only beyond.
+Near theta = 0, g = O(theta^5) is the small difference of spectral terms of size O(theta) whose
+projectors depend on the parameters independently, so on a box the spectral form loses about a factor
+10^6 there; :class:`BoxSpectrum` therefore carries a :class:`.flow.NearZeroSeries` (g's power series
+from matrix powers, certified tail) that :func:`.flow.g_coeffs` uses up to its reach.
+
+Known limit (measured on margin_roitenberg_b_s_tolerance, 128 bits): sub-boxes of relative width about
+4e-6 in B decide everywhere except where the spread of a root of g over the sub-box crosses the edge
+of an isolation piece (theta ~ 0.638, and at the series' reach theta ~ 0.0248): there the pieces stay
+undecided (never refuted). Isolating with pieces merged across such an edge is the next step.
 
 Fails when: the domain fails somewhere in the box (every parameter > 0): ParameterError. A box where
 the cubic's roots cannot be separated, or -1/sigma may be one of them, is undecided (the paving splits it).

@@ -97,6 +97,11 @@ TAIL_CAP_FACTOR = 100
 MAX_PIECES = 200000
 
 
+#: claims that do not depend on a parameter (a threshold search over it is bad input): the relay
+#: amplitude S scales the orbit (x(t; S) = S x(t; 1)), so the half-period roots, the sign condition
+#: and the multipliers are the same for every S > 0 (kinds/periodic_orbit/boxes.py uses the same fact)
+CLAIMS_INDEPENDENT_OF = {"S": ("half_period", "orbit_genuine", "multipliers", "stable")}
+
 @dataclass(frozen=True)
 class RelayModel:
     """Validated exact parameters and options of a periodic-orbit scene."""

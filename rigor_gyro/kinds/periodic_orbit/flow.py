@@ -304,10 +304,14 @@ class NearZeroSeries:
         nuN = _inf_norm(W)
         self.nu = nuN.max(arb(1)) ** (arb(1) / N)
         # |M^k| <= |M^N|^floor(k/N) |M^r| <= nu^k max_r |M^r| nu^-r  (k = N floor(k/N) + r)
-        self.cmax = max((norms[r] / self.nu ** r for r in range(N)), key=lambda x: float(x.upper())).upper()
+        self.cmax = arb(0)
+        for r in range(N):
+            self.cmax = self.cmax.max((norms[r] / self.nu ** r).upper())
         self.rho = (arb.pi() / self.nu * arb("0.95")).lower()
         q = (self.rho * self.nu / arb.pi()) ** 2
-        enorm = max((abs(x).upper() for x in e), key=float)
+        enorm = arb(0)
+        for x in e:
+            enorm = enorm.max(abs(x).upper())
         self.tail = (2 * arb.pi() ** 2 / 3) * abs(S) * enorm * self.cmax * self.rho / arb.pi() ** 2 * \
             q ** (terms + 1) / (1 - q)
         self.reach = arb(reach) * self.rho
