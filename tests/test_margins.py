@@ -323,7 +323,8 @@ def test_a_paving_is_confirmed_by_the_checker():
     assert report.ok, report.first_failure
 
 
-@pytest.mark.parametrize("tamper", ["status", "drop_box", "volume", "verdict", "point", "point_elsewhere"])
+@pytest.mark.parametrize("tamper", ["status", "drop_box", "volume", "verdict", "point", "point_elsewhere",
+                                    "duplicate_box"])
 def test_a_tampered_paving_is_rejected_even_with_a_fixed_digest(tamper):
     from rigor_gyro.check import check_certificate
     data = json.loads(json.dumps(_paving_data()))
@@ -340,6 +341,12 @@ def test_a_tampered_paving_is_rejected_even_with_a_fixed_digest(tamper):
         c["points"].append({"box_outcome": "undecided", "point": {"a": "15.08", "b": "6.154", "eps": "1/10",
                                                                 "Omega2": "3/5"}, "status": "refuted", "reason": "",
                             "precision_bits": 64})
+    elif tamper == "duplicate_box":       # same volumes and statuses, but the boxes no longer tile
+        same = [(i, j) for i, bi in enumerate(c["boxes"]) for j, bj in enumerate(c["boxes"])
+                if i < j and bi["status"] == bj["status"] and
+                Box.from_json(bi["box"]).volume() == Box.from_json(bj["box"]).volume()]
+        i, j = same[0]
+        c["boxes"][i] = json.loads(json.dumps(c["boxes"][j]))
     elif tamper == "point_elsewhere":     # a genuine refutation, but at other fixed parameters (review finding)
         c["points"].append({"box_outcome": "undecided", "point": {"a": "1.2", "b": "1.1", "eps": "11/100",
                                                                 "Omega2": "5/8"}, "status": "refuted", "reason": "",
