@@ -443,3 +443,13 @@ def test_the_whole_box_rule():
     assert ClaimPaving("c", "s").status == "inconclusive"
     vol = ClaimPaving("c", "s", boxes=[(left, "proved"), (right, "undecided")]).volume(whole)
     assert vol == {"proved": Fraction(1, 2), "refuted": 0, "undecided": Fraction(1, 2)}
+
+
+def test_a_threshold_with_the_other_parameters_as_a_box_is_the_robust_one():
+    """With mu in [0.019, 0.021], damping holds for every mu only when k > 0.021 A0 = 0.2667: the
+    bracket found by pavings at each step contains it."""
+    text = _agafonov_text(mu="[0.019, 0.021]") + '\n[claims]\nonly = ["damping_condition"]\n'
+    res = find_threshold(parse_scene(text), "k", lo="0.1", hi="0.4", claim="damping_condition", width="1e-3")
+    lo, hi = res.bracket()
+    assert lo <= Fraction(2667, 10000) <= hi and hi - lo <= Fraction(1, 1000) * hi
+    assert res.refuted_at < res.proved_at

@@ -1,6 +1,8 @@
 """Certified thresholds: where a claim stops holding as one parameter moves (``rigor-gyro margin``).
 
-The claim is proved by the point prover at the two ends of a search interval; when it is proved at one
+The claim is proved by the point prover at the two ends of a search interval (or, when other
+parameters of the scene are tolerances, by a paving of their box: "proved" then means for every point
+of the box, "refuted" that some point of it certainly fails); when it is proved at one
 and refuted at the other, the interval is bisected at exact rational midpoints, keeping the half whose
 ends still disagree, until the bracket [l, r] is at most ``width`` relative to its magnitude. The
 result is a theorem about two exact points: the claim holds at one end and fails at the other, so its
@@ -65,7 +67,7 @@ class Threshold:
         l, r = b
         text = (f"{head}: proved at {self.param} = {_d(self.proved_at)}, refuted at {self.param} = "
                 f"{_d(self.refuted_at)}: the outcome changes in [{_d(l)}, {_d(r)}] (width {float(r - l):.3g}, "
-                f"{len(self.steps)} point proofs)")
+                f"{len(self.steps)} proofs)")
         return [text] + ([f"{head}: stopped before the requested width: {self.stopped}"] if self.stopped else [])
 
     def to_json(self) -> dict[str, Any]:
@@ -89,11 +91,20 @@ def _d(q: Fraction | None, digits: int = 17) -> str:
 
 
 def _status(scene: Scene, param: str, value: Fraction, claim: str) -> tuple[str, str]:
+    """The claim at ``param = value``: a point proof, or, when other parameters are tolerances, the
+    paving of their box (proved: for every point of it; refuted: a certified counterexample in it)."""
     from ..prover import prove_scene
     s = Scene(name=scene.name, kind=scene.kind, source=scene.source,
               parameters={**scene.parameters, param: fraction_text(value)}, claims_only=[claim],
               options=dict(scene.options))
     try:
+        if any(is_tolerance(v) for v in s.parameters.values()):
+            from .paving import box_scene, pave
+            p = pave(box_scene(s))
+            c = p.claims[0]
+            v = c.volume(p.bs.box)
+            return c.status, (f"paving of the other parameters' box: proved {float(v['proved']):.4g}, refuted "
+                              f"{float(v['refuted']):.4g}, undecided {float(v['undecided']):.4g} of the volume")
         c = prove_scene(s).claim(claim)
     except ParameterError as e:
         raise ParameterError(f"{param} = {_d(value)} is outside the kind's domain: {e}") from None
@@ -104,12 +115,18 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
                    claim: str | None = None, width: str = "1e-6") -> Threshold:
     """Bisect ``param`` between ``lo`` and ``hi`` (default value/2 and 2 value) for ``claim``."""
     module = kind_module(scene.kind)
-    if any(is_tolerance(v) for v in scene.parameters.values()):
-        raise ParameterError("margin moves one parameter of a point scene: write the other parameters as numbers")
     if param not in scene.parameters:
         raise ParameterError(f"--param {param!r} is not a parameter of scene {scene.name!r}; it has "
                              f"{sorted(scene.parameters)}")
-    module.validate(scene)
+    if is_tolerance(scene.parameters[param]):
+        raise ParameterError(f"--param {param!r} is written as a tolerance: write it as a number (the search "
+                             "range is --lo/--hi)")
+    boxed = any(is_tolerance(v) for v in scene.parameters.values())
+    if boxed:
+        from .paving import box_scene
+        box_scene(scene)                     # the other parameters' box, validated (exit 2 if bad)
+    else:
+        module.validate(scene)
     claims = list(module.CLAIMS) if scene.claims_only is None else [c for c in module.CLAIMS if c in scene.claims_only]
     claim = claim or claims[0]
     if claim not in module.CLAIMS:
