@@ -451,5 +451,6 @@ def test_a_threshold_with_the_other_parameters_as_a_box_is_the_robust_one():
     text = _agafonov_text(mu="[0.019, 0.021]") + '\n[claims]\nonly = ["damping_condition"]\n'
     res = find_threshold(parse_scene(text), "k", lo="0.1", hi="0.4", claim="damping_condition", width="1e-3")
     lo, hi = res.bracket()
-    assert lo <= Fraction(2667, 10000) <= hi and hi - lo <= Fraction(1, 1000) * hi
+    assert lo <= Fraction(2667, 10000) <= hi and hi - lo <= Fraction(1, 1000)
     assert res.refuted_at < res.proved_at
+    assert res.certified or "inconclusive" in res.stopped     # a step near the edge may stay undecided
