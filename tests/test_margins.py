@@ -454,3 +454,19 @@ def test_a_threshold_with_the_other_parameters_as_a_box_is_the_robust_one():
     assert lo <= Fraction(2667, 10000) <= hi and hi - lo <= Fraction(1, 1000)
     assert res.refuted_at < res.proved_at
     assert res.certified or "inconclusive" in res.stopped     # a step near the edge may stay undecided
+
+
+def test_margin_and_check_on_the_command_line(tmp_path):
+    out = tmp_path / "m"
+    assert main(["margin", "rudenko1976", "--param", "Omega2", "--claim", "bracket_2", "--lo", "1e-6", "--hi", "1",
+                 "--width", "1e-3", "--out", str(out)]) == 0
+    data = json.loads((out / "margin_rudenko1976_Omega2.json").read_text())
+    assert data["certified"] and Fraction(data["bracket"][0]) < Fraction(71039, 10 ** 7) < Fraction(data["bracket"][1])
+    assert "proved at Omega2" in (out / "margin_rudenko1976_Omega2.md").read_text()
+    (tmp_path / "box.toml").write_text(RUDENKO_BOX)
+    assert main(["prove", str(tmp_path / "box.toml"), "--out", str(tmp_path), "--quiet", "--workers", "1"]) == 0
+    assert main(["check", "--quiet", str(tmp_path / "rudenko_box.json")]) == 0
+    data = json.loads((tmp_path / "rudenko_box.json").read_text())
+    data["claims"][0]["boxes"][0]["status"] = "refuted"
+    (tmp_path / "bad.json").write_text(json.dumps(data))
+    assert main(["check", "--quiet", str(tmp_path / "bad.json")]) == 1
