@@ -28,10 +28,11 @@ from typing import Any, Callable
 
 from flint import arb
 
-from ..core.errors import SceneError
+from ..core.errors import ParameterError, SceneError
 from ..core.outcome import AuditRow, AuditStatus, Claim, Status
 
-__all__ = ["KINDS", "PLANNED_KINDS", "Attempt", "kind_module", "plots_hook", "checker"]
+__all__ = ["KINDS", "PLANNED_KINDS", "Attempt", "kind_module", "plots_hook", "checker", "require_box_claims",
+           "box_outcomes"]
 
 #: kind -> package implementing it (imported only when a scene of that kind is proved)
 KINDS = {
@@ -66,6 +67,23 @@ class Attempt:
     def settled(self) -> bool:
         return (self.widths_met and all(c.status is not Status.INCONCLUSIVE for c in self.claims)
                 and all(r.status is not AuditStatus.UNDECIDED for r in self.paper))
+
+
+def require_box_claims(claims: list[str], box_claims) -> None:
+    """ParameterError unless every claim is one the kind decides over a box (its ``BOX_CLAIMS``)."""
+    unknown = [c for c in claims if c not in box_claims]
+    if unknown:
+        raise ParameterError(f"claim {unknown[0]!r} cannot be decided over a box; over boxes the kind decides "
+                             f"{list(box_claims)}")
+
+
+#: a point claim's status, read over a box: an inconclusive claim leaves the sub-box undecided
+_BOX_STATUS = {Status.PROVED: "proved", Status.REFUTED: "refuted", Status.INCONCLUSIVE: "undecided"}
+
+
+def box_outcomes(attempt: Attempt, claims: list[str]) -> dict[str, tuple[str, str]]:
+    """{claim: (status, reason)} of an attempt run on box balls (a kind's ``evaluate_box``)."""
+    return {c.id: (_BOX_STATUS[c.status], c.reason) for c in attempt.claims if c.id in claims}
 
 
 def kind_module(kind: str) -> ModuleType:

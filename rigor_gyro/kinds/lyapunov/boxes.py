@@ -28,7 +28,7 @@ from flint import arb, fmpq
 from ...core.boxes import Box
 from ...core.errors import ParameterError
 from ...core.balls import current_precision
-from ...core.outcome import Status
+from .. import box_outcomes, require_box_claims
 from .claims import CLAIMS, RATIONAL, attempt
 from .model import Gimbal, ParameterBalls
 
@@ -86,16 +86,10 @@ def validate_box(model, box: Box) -> None:
         raise ParameterError("parameters 'A2', 'C1': need A0 > C0, i.e. A2 + C1 > 0, on the whole box")
 
 
-_STATUS = {Status.PROVED: "proved", Status.REFUTED: "refuted", Status.INCONCLUSIVE: "undecided"}
-
-
 def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str]]:
     """{claim: (status, reason)} over the box (see the module docstring)."""
-    unknown = [c for c in claims if c not in BOX_CLAIMS]
-    if unknown:
-        raise ParameterError(f"claim {unknown[0]!r} cannot be decided over a box; over boxes the kind decides "
-                             f"{list(BOX_CLAIMS)}")
+    require_box_claims(claims, BOX_CLAIMS)
     g = BoxGimbal(model.gimbal, _raw(model, box))
     boxed = dataclasses.replace(model, gimbal=g, paper={}, max_pieces=min(model.max_pieces, BOX_MAX_PIECES))
     a = attempt(boxed, list(claims), current_precision())
-    return {c.id: (_STATUS[c.status], c.reason) for c in a.claims if c.id in claims}
+    return box_outcomes(a, claims)

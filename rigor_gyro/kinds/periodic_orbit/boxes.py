@@ -42,8 +42,8 @@ from ...core.balls import ball, certainly_nonzero, certainly_positive
 from ...core.boxes import Box
 from ...core.errors import ParameterError
 from ...core.family_roots import newton_family_root, newton_family_root_complex, polynomial_family
-from ...core.outcome import Status
 from ...core.polyroots import isolate_polynomial
+from .. import box_outcomes, require_box_claims
 from .claims import CLAIMS, attempt
 from .flow import PARAMETER_NAMES, DegenerateSpectrum, NearZeroSeries, RelayParams, Spectrum, nutation_cubic
 
@@ -124,15 +124,9 @@ def validate_box(model, box: Box) -> None:
             raise ParameterError(f"parameter {k!r}: need {k} > 0 on the whole box (its lower end is {lo})")
 
 
-_STATUS = {Status.PROVED: "proved", Status.REFUTED: "refuted", Status.INCONCLUSIVE: "undecided"}
-
-
 def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str]]:
     """{claim: (status, reason)} over the box (see the module docstring)."""
-    unknown = [c for c in claims if c not in BOX_CLAIMS]
-    if unknown:
-        raise ParameterError(f"claim {unknown[0]!r} cannot be decided over a box; over boxes the kind decides "
-                             f"{list(BOX_CLAIMS)}")
+    require_box_claims(claims, BOX_CLAIMS)
     # S enters homogeneously: x(t; S) = S x(t; 1) (linear plant, relay amplitude S > 0), so the roots of
     # g = S g_1, the signs of beta and the multipliers (the half-period map is homogeneous of degree 1,
     # its Jacobian of degree 0) are the same for every S > 0: the box claims are decided at one S (the
@@ -146,7 +140,7 @@ def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str
     Pmid = dataclasses.replace(model.params, **{k: _q(v) for k, v in mid.items()})
     boxed = dataclasses.replace(model, params=Pmid, paper={})
     a = attempt(boxed, list(claims), 0, spectrum=lambda: BoxSpectrum(Pb, Pmid))
-    return {c.id: (_STATUS[c.status], c.reason) for c in a.claims if c.id in claims}
+    return box_outcomes(a, claims)
 
 
 def _q(x):
