@@ -40,7 +40,7 @@ from .balls import certainly_nonzero, current_precision, exact_fraction, rel_wid
 from .errors import ParameterError
 from .roots import RootStatus, newton_root
 
-__all__ = ["PolynomialRoots", "isolate_polynomial"]
+__all__ = ["PolynomialRoots", "isolate_polynomial", "series_function"]
 
 
 @dataclass
@@ -67,11 +67,9 @@ def arb_complex_roots(p: fmpq_poly) -> list:
     return p.complex_roots()
 
 
-def _refine(p: fmpq_poly, x: arb) -> arb:
-    """The root of p in the isolating ball x, refined by interval Newton to about 2^-(prec - 8) relative
-    (x itself when Newton cannot improve it); the exact sign change is checked afterwards on the result."""
-    if x.rad().is_zero():
-        return x
+def series_function(p: fmpq_poly):
+    """p as the series function :func:`rigor_gyro.core.roots.newton_root` expects (Horner's rule on an
+    arb_series: value and derivative over a ball, exact rational coefficients as balls)."""
     coeffs = [arb(c) for c in p.coeffs()]
 
     def f(s):
@@ -79,7 +77,15 @@ def _refine(p: fmpq_poly, x: arb) -> arb:
         for c in reversed(coeffs[:-1]):
             acc = acc * s + c
         return acc
-    r = newton_root(f, x.lower(), x.upper(), rel_tol=arb(2) ** (8 - current_precision()))
+    return f
+
+
+def _refine(p: fmpq_poly, x: arb) -> arb:
+    """The root of p in the isolating ball x, refined by interval Newton to about 2^-(prec - 8) relative
+    (x itself when Newton cannot improve it); the exact sign change is checked afterwards on the result."""
+    if x.rad().is_zero():
+        return x
+    r = newton_root(series_function(p), x.lower(), x.upper(), rel_tol=arb(2) ** (8 - current_precision()))
     if r.status is RootStatus.UNIQUE and r.enclosure is not None and r.enclosure.is_finite():
         y = r.enclosure
         if x.contains(y) or y.rad() < x.rad():

@@ -25,6 +25,7 @@ from flint import arb, fmpq, fmpq_poly
 
 from ...check import CheckResult
 from ...core.balls import ball, certainly_ge, certainly_gt, certainly_le, certainly_lt, current_precision
+from ...core.polyroots import series_function
 from ...core.roots import RootStatus, newton_root
 from ...core.stored import encloses, fmpq_of, interval, meets
 from .model import (BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic, nu_bounds,
@@ -63,14 +64,7 @@ def _refine(p: fmpq_poly, lo: Fraction, hi: Fraction, bits: int) -> arb | None:
     pa, pb = p(a), p(b)
     if pa == 0 or pb == 0 or _sign(pa) == _sign(pb):
         return None
-    coeffs = [arb(c) for c in p.coeffs()]
-
-    def f(s):
-        acc = coeffs[-1] + 0 * s
-        for c in reversed(coeffs[:-1]):
-            acc = acc * s + c
-        return acc
-    r = newton_root(f, arb(a), arb(b), rel_tol=arb(2) ** (8 - bits))
+    r = newton_root(series_function(p), arb(a), arb(b), rel_tol=arb(2) ** (8 - bits))
     if r.status is RootStatus.UNIQUE and r.enclosure is not None and r.enclosure.is_finite():
         return r.enclosure
     for _ in range(200):
