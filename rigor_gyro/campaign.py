@@ -12,6 +12,8 @@ prove it and compare
   Vdot and V, a dense scan of g): a *verdict disagreement* fails the run.
 
 Cases run on a process pool (``--workers``); tasks and results are plain strings and JSON-able data.
+A case that runs longer than ``--case-timeout`` seconds is stopped and counted *timed out*: an
+inconclusive case, never an agreement (the limit is a budget, not evidence).
 The kind's sampler and references are its ``campaign`` module (float side: never imported by a proof).
 
 Exit status: 0 no containment failure and no verdict disagreement, 1 otherwise, 2 bad usage.
@@ -21,6 +23,7 @@ from __future__ import annotations
 import importlib
 import json
 import random
+import signal
 import time
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
@@ -41,19 +44,36 @@ class CaseResult:
     float_misses: list[tuple[str, float]] = field(default_factory=list)
     compared: int = 0
     error: str = ""
+    timed_out: bool = False
+
+
+class CaseTimeout(Exception):
+    """Raised inside a case by the alarm of ``--case-timeout``."""
+
+
+def _alarm(signum, frame):
+    raise CaseTimeout
 
 
 def _module(kind: str):
     return importlib.import_module(KINDS[kind] + ".campaign")
 
 
-def run_case(kind: str, params: dict[str, str], options: dict | None = None) -> dict[str, Any]:
-    """Prove one scene and compare it (runs in a worker: strings in, JSON-able dict out)."""
+def run_case(kind: str, params: dict[str, str], options: dict | None = None,
+             timeout: float | None = None) -> dict[str, Any]:
+    """Prove one scene and compare it (runs in a worker: strings in, JSON-able dict out).
+
+    ``timeout`` (seconds, Unix main thread only) stops the case: verdict ``inconclusive``, ``timed_out``.
+    """
     from .prover import prove_scene
     from .scene import Scene
     mod = _module(kind)
     res = CaseResult(dict(params))
     t0 = time.perf_counter()
+    armed = bool(timeout) and hasattr(signal, "setitimer")
+    if armed:
+        old = signal.signal(signal.SIGALRM, _alarm)
+        signal.setitimer(signal.ITIMER_REAL, float(timeout))
     try:
         scene = Scene(name="campaign", kind=kind, source="campaign", parameters=dict(params),
                       options=dict(options or mod.OPTIONS))
@@ -61,30 +81,48 @@ def run_case(kind: str, params: dict[str, str], options: dict | None = None) -> 
         res.seconds = time.perf_counter() - t0
         res.verdict = cert.verdict.value
         mod.compare(params, cert, res)
+    except CaseTimeout:
+        res.verdict, res.timed_out = "inconclusive", True
+        res.containment_failures, res.verdict_disagreements, res.float_misses, res.compared = [], [], [], 0
+        res.seconds = time.perf_counter() - t0
     except Exception as e:  # a crash in a valid case is a finding, reported as such
         res.error = f"{type(e).__name__}: {e}"[:300]
         res.seconds = time.perf_counter() - t0
+    finally:
+        if armed:
+            signal.setitimer(signal.ITIMER_REAL, 0)
+            signal.signal(signal.SIGALRM, old)
     return res.__dict__
 
 
-def run_campaign(kind: str, cases: int, seed: int, workers: int = 1, progress=None) -> list[dict[str, Any]]:
-    """Draw ``cases`` scenes from ``seed`` and run them on ``workers`` processes (1: in this process)."""
+def run_campaign(kind: str, cases: int, seed: int, workers: int = 1, progress=None,
+                 timeout: float | None = None) -> list[dict[str, Any]]:
+    """Draw ``cases`` scenes from ``seed`` and run them on ``workers`` processes (1: in this process),
+    each stopped after ``timeout`` seconds (None: no limit)."""
     mod = _module(kind)
     rng = random.Random(seed)
     drawn = [mod.draw(rng) for _ in range(cases)]
     out: list[dict[str, Any]] = []
     if workers <= 1:
         for p in drawn:
-            out.append(run_case(kind, p))
+            out.append(run_case(kind, p, None, timeout))
             if progress:
                 progress(len(out), cases)
         return out
     with ProcessPoolExecutor(max_workers=workers) as pool:
-        for r in pool.map(run_case, [kind] * len(drawn), drawn, chunksize=4):
+        for r in pool.map(run_case, [kind] * len(drawn), drawn, [None] * len(drawn),
+                              [timeout] * len(drawn), chunksize=4):
             out.append(r)
             if progress:
                 progress(len(out), cases)
     return out
+
+
+def _inconclusive(results: list[dict[str, Any]]) -> str:
+    """The inconclusive count, with how many of them hit the time limit."""
+    n = sum(1 for r in results if r["verdict"] == "inconclusive")
+    t = sum(1 for r in results if r.get("timed_out"))
+    return f"{n} ({t} timed out)" if t else str(n)
 
 
 def summary_table(kind: str, seed: int, results: list[dict[str, Any]]) -> str:
@@ -101,7 +139,7 @@ def summary_table(kind: str, seed: int, results: list[dict[str, Any]]) -> str:
     lines = ["| kind | seed | cases | proved | refuted | inconclusive | crashes | containment failures | "
              "verdict disagreements | values compared | float misses (worst rel. error) | s/case median (max) |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|",
-             f"| {kind} | {seed} | {n} | {by['proved']} | {by['refuted']} | {by['inconclusive']} | {len(errs)} | "
+             f"| {kind} | {seed} | {n} | {by['proved']} | {by['refuted']} | {_inconclusive(results)} | {len(errs)} | "
              f"{len(cf)} | {len(vd)} | {compared} | {len(fm)} ({worst:.2g}) | {times[len(times) // 2]:.2f} "
              f"({times[-1]:.2f}) |"]
     for r in (cf + vd + errs)[:10]:

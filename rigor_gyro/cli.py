@@ -75,6 +75,9 @@ def _parser() -> argparse.ArgumentParser:
     cp.add_argument("--cases", type=int, default=100, help="number of random scenes (default 100)")
     cp.add_argument("--seed", type=int, default=0, help="seed of the draw (default 0)")
     cp.add_argument("--workers", type=int, default=1, help="processes (default 1)")
+    cp.add_argument("--case-timeout", type=float, default=60.0, metavar="SECONDS",
+                    help="stop a case after this many seconds and count it inconclusive (timed out); "
+                         "0: no limit (default 60)")
     cp.add_argument("--out", default=None, help="also write the summary (Markdown) and the results (JSON) here")
     cp.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     ck = sub.add_parser("check", help="re-verify certificates from their own data (exit 0 all confirm, "
@@ -282,13 +285,16 @@ def _cmd_campaign(args) -> int:
     from .campaign import run_campaign, summary_table
     if not (1 <= args.cases <= 10 ** 6 and 1 <= args.workers <= 64):
         return _bad("need 1 <= --cases <= 1000000 and 1 <= --workers <= 64")
+    if not (args.case_timeout >= 0 and args.case_timeout < float("inf")):
+        return _bad("need a finite --case-timeout >= 0 (seconds; 0 means no limit)")
     tty = sys.stderr.isatty()
 
     def progress(done, total):
         if tty and (done % 10 == 0 or done == total):
             print(f"\r{args.kind}: {done}/{total} cases", end="" if done < total else "\n", file=sys.stderr, flush=True)
     try:
-        results = run_campaign(args.kind, args.cases, args.seed, args.workers, progress)
+        results = run_campaign(args.kind, args.cases, args.seed, args.workers, progress,
+                               args.case_timeout or None)
     except ImportError as e:
         return _bad(f"campaign needs the cross-check libraries ({e.name}): pip install 'rigor_gyro[crosscheck]'")
     table = summary_table(args.kind, args.seed, results)

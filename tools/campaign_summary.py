@@ -10,6 +10,11 @@ import sys
 from pathlib import Path
 
 
+def _timed_out(results):
+    t = sum(1 for r in results if r.get("timed_out"))
+    return f" ({t} timed out)" if t else ""
+
+
 def rows(paths):
     files = []
     for p in map(Path, paths):
@@ -23,7 +28,8 @@ def rows(paths):
         by = {v: sum(1 for r in results if r["verdict"] == v) for v in ("proved", "refuted", "inconclusive")}
         fm = [e for r in results for _, e in r["float_misses"]]
         times = sorted(r["seconds"] for r in results)
-        return (f"| {kind} | {seeds} | {len(results)} | {by['proved']} | {by['refuted']} | {by['inconclusive']} | "
+        return (f"| {kind} | {seeds} | {len(results)} | {by['proved']} | {by['refuted']} | {by['inconclusive']}"
+                f"{_timed_out(results)} | "
                 f"{sum(1 for r in results if r['error'])} | {sum(1 for r in results if r['containment_failures'])} | "
                 f"{sum(1 for r in results if r['verdict_disagreements'])} | {sum(r['compared'] for r in results)} | "
                 f"{len(fm)} ({max(fm, default=0.0):.2g}) | {times[len(times) // 2]:.2f} ({times[-1]:.2f}) | "

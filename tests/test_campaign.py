@@ -1,0 +1,47 @@
+"""The campaign driver: a small derandomized slice, the per-case time limit, and the summary table.
+
+The long campaigns (10,000 cases per kind) are commands, summarised in proofs/campaign.md.
+"""
+from __future__ import annotations
+
+import pytest
+
+pytest.importorskip("mpmath")
+pytest.importorskip("scipy")
+
+from rigor_gyro.campaign import run_campaign, run_case, summary_table  # noqa: E402
+from rigor_gyro.cli import main  # noqa: E402
+
+
+def test_eigenfrequency_slice_has_no_failure():
+    results = run_campaign("eigenfrequencies", 12, seed=7)
+    assert len(results) == 12
+    assert all(r["verdict"] in ("proved", "refuted") for r in results)
+    assert not any(r["containment_failures"] or r["verdict_disagreements"] or r["error"] for r in results)
+    assert sum(r["compared"] for r in results) >= 12 * 5
+
+
+def test_a_case_over_its_time_limit_is_inconclusive_never_agreement():
+    from rigor_gyro.kinds.lyapunov.campaign import draw
+    import random
+    params = draw(random.Random(3))
+    r = run_case("lyapunov", params, None, timeout=1e-4)
+    assert r["timed_out"] and r["verdict"] == "inconclusive"
+    assert r["compared"] == 0 and not r["containment_failures"] and not r["error"]
+    table = summary_table("lyapunov", 3, [r])
+    assert "1 (1 timed out)" in table
+
+
+def test_the_time_limit_is_disarmed_after_a_case():
+    import signal
+    from rigor_gyro.kinds.eigenfrequencies.campaign import draw
+    import random
+    r = run_case("eigenfrequencies", draw(random.Random(1)), None, timeout=30)
+    assert not r["timed_out"]
+    assert signal.getitimer(signal.ITIMER_REAL) == (0.0, 0.0)
+
+
+@pytest.mark.parametrize("value", ["-1", "inf", "nan"])
+def test_bad_case_timeout_is_bad_input(value, capsys):
+    assert main(["campaign", "--kind", "eigenfrequencies", "--cases", "1", "--case-timeout", value]) == 2
+    assert "--case-timeout" in capsys.readouterr().err
