@@ -330,8 +330,8 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
     lo, hi = arb(0), xs
     if certainly_lt(g.c.mu * g.F(xs), cl):
         ext["x2_axis"] = xs
-    else:
-        for _ in range(80):
+    else:   # bisection to the precision's resolution (it stops earlier where balls cannot decide)
+        for _ in range(ctx.prec + 8):
             mid = ((lo + hi) / 2).mid()
             val = g.c.mu * g.F(mid)
             if certainly_lt(val, cl):
@@ -352,8 +352,9 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
     def x3_bound(x2):
         S = g.S(x2)
         return (2 * cu / S).sqrt() + abs(g.f3(x2)) / S
-    e1 = enclose_max(x1_bound, 0, xs, abs_tol=arb("1e-9") * R, max_pieces=4000)
-    e3 = enclose_max(x3_bound, 0, xs, abs_tol=arb("1e-9") * R, max_pieces=4000)
+    # to the scene's rel_width (or the precision's resolution): no width fixed by a constant
+    e1 = enclose_max(x1_bound, 0, xs, abs_tol=ctx.tol(R), max_pieces=ctx.m.max_pieces)
+    e3 = enclose_max(x3_bound, 0, xs, abs_tol=ctx.tol(R), max_pieces=ctx.m.max_pieces)
     ob1, ob3 = e1.ball.min(R), e3.ball.min(R)
     ctx.witnesses["invariant_estimate"].update(bound_x1=pieces_text(e1.cover), bound_x3=pieces_text(e3.cover))
     for k, v in ext.items():
@@ -381,8 +382,9 @@ def rho_function(g: Gimbal):
     return rho
 
 
-def r_sup(g: Gimbal, xs: arb, rel: str = "1e-10", max_pieces: int = 4000):
-    """Enclosure of R_sup(mu) = 1 / max over [0, x2*] of rho (rho is even in x2)."""
+def r_sup(g: Gimbal, xs: arb, rel: str | arb = "1e-10", max_pieces: int = 4000):
+    """Enclosure of R_sup(mu) = 1 / max over [0, x2*] of rho (rho is even in x2), to relative width
+    about ``rel`` (a subdivision tolerance; at most ``max_pieces`` pieces, then wider)."""
     rho = rho_function(g)
     e = enclose_max(rho, 0, xs, abs_tol=abs(rho(xs)) * arb(rel), max_pieces=max_pieces)
     return 1 / e.ball, e
@@ -500,7 +502,7 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
                       f"({_fmt(lo)}, {_fmt(hi)})): raise --maxprec")
     mu_best = _fmpq(Fraction(mu_text))
     gb = g.with_mu(mu_best)
-    R_enc, e = r_sup(gb, xs, rel="1e-12", max_pieces=ctx.m.max_pieces)
+    R_enc, e = r_sup(gb, xs, rel=_q(ctx.m.rel_width) / 4 + arb(2) ** (-ctx.prec), max_pieces=ctx.m.max_pieces)
     if not (R_enc.is_finite() and certainly_positive(R_enc)):
         return _claim("best_mu", Status.INCONCLUSIVE, f"R_sup(mu_best) not enclosed: {R_enc}", decides=R_enc)
     estimate = max(f1, f2, float(R_enc.mid()))
