@@ -95,6 +95,16 @@ def no_progress(prev: tuple[int, Attempt], now: tuple[int, Attempt]) -> dict[str
     return why if why else None
 
 
+def _piece_counts(claims) -> dict[str, int]:
+    """Per claim, the subdivision piece counts its details record (keys ending in ``pieces``)."""
+    out = {}
+    for c in claims:
+        for k, v in c.details.items():
+            if k.endswith("pieces") and isinstance(v, int) and not isinstance(v, bool):
+                out[f"{c.id}.{k}"] = v
+    return out
+
+
 def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAULT_MAXPREC) -> Certificate:
     """Prove ``scene``; see the module docstring. Bad input raises before any computation:
     :class:`SceneError` (not a Scene, unknown kind or claim) or :class:`ParameterError` (parameters,
@@ -111,8 +121,12 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
     history: list[tuple[int, Attempt]] = []
     t0 = time.perf_counter()
 
+    attempt_seconds: list[list] = []
+
     def run(p: int) -> Attempt:
+        t = time.perf_counter()
         a = module.attempt(model, wanted, p)
+        attempt_seconds.append([p, round(time.perf_counter() - t, 4)])
         history.append((p, a))
         return a
 
@@ -161,5 +175,8 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
             row.note += f" [undecided: {hopeless[f'row:{row.id}']}]"
     return Certificate(scene=scene.header(), precision_bits=esc.prec, claims=final.claims,
                        quantities=final.quantities, paper=final.paper,
-                       timings={"total_s": round(elapsed, 4)}, precisions_tried=esc.tried,
+                       timings={"total_s": round(elapsed, 4), "attempts_s": attempt_seconds,
+                                "final_attempt_phases_s": {k: round(v, 4) for k, v in final.phase_seconds.items()},
+                                "pieces": _piece_counts(final.claims)},
+                       precisions_tried=esc.tried,
                        formulas=final.formulas, notes=notes, extra=final.extra, witnesses=final.witnesses)

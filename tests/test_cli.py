@@ -104,3 +104,14 @@ def test_the_same_scene_gives_byte_identical_outputs(tmp_path):
     for name in ("rudenko1976.json", "rudenko1976.md", "agafonov2013.json", "agafonov2013.md"):
         assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes(), name
     assert json.loads((tmp_path / "a" / "timings" / "rudenko1976.json").read_text())["total_s"] > 0
+
+
+def test_timings_file_breaks_the_proof_down_by_phase_and_counts_pieces(tmp_path):
+    from rigor_gyro.cli import main
+    assert main(["prove", "agafonov2013", "--out", str(tmp_path), "--quiet"]) == 0
+    t = json.loads((tmp_path / "timings" / "agafonov2013.json").read_text())
+    assert t["attempts_s"] and t["attempts_s"][-1][0] == t["precisions_tried"][-1]
+    phases = t["final_attempt_phases_s"]
+    assert {"best_mu", "vdot_nonpositive", "paper audit"} <= set(phases)
+    assert sum(phases.values()) <= t["total_s"] + 1e-3
+    assert t["pieces"]["constants.m_pieces"] >= 1 and t["pieces"]["invariant_estimate.pieces"] >= 1

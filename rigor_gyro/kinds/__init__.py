@@ -22,6 +22,8 @@ Only the package of the scene's kind is imported when a scene is proved (:func:`
 from __future__ import annotations
 
 import importlib
+import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from types import ModuleType
 from typing import Any, Callable
@@ -31,7 +33,7 @@ from flint import arb
 from ..core.errors import ParameterError, SceneError
 from ..core.outcome import AuditRow, AuditStatus, Claim, Status
 
-__all__ = ["KINDS", "PLANNED_KINDS", "Attempt", "kind_module", "plots_hook", "checker", "require_box_claims",
+__all__ = ["KINDS", "PLANNED_KINDS", "Attempt", "Phases", "kind_module", "plots_hook", "checker", "require_box_claims",
            "box_outcomes"]
 
 #: kind -> package implementing it (imported only when a scene of that kind is proved)
@@ -42,6 +44,24 @@ KINDS = {
 }
 #: kinds described in the documentation whose modules are not in this version yet
 PLANNED_KINDS: set[str] = set()
+
+
+class Phases:
+    """Wall time per phase of one attempt (a claim, or a stage such as root isolation), in seconds.
+
+    ``with phases("vdot_nonpositive"): ...`` adds the block's time to that phase. Timing only: it never
+    enters a certificate (the prover writes it to the timings file), so certificates stay byte-identical."""
+
+    def __init__(self) -> None:
+        self.seconds: dict[str, float] = {}
+
+    @contextmanager
+    def __call__(self, name: str):
+        t0 = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.seconds[name] = self.seconds.get(name, 0.0) + time.perf_counter() - t0
 
 
 @dataclass
@@ -62,6 +82,8 @@ class Attempt:
     #: set by a kind when more precision cannot help the undecided claims (e.g. subdivision budgets
     #: exhausted on wide pieces): escalation stops there and the claims say what to change instead
     stalled: bool = False
+    #: wall time per phase (claim or stage), seconds: timing only, never part of a certificate
+    phase_seconds: dict[str, float] = field(default_factory=dict, compare=False)
 
     @property
     def settled(self) -> bool:

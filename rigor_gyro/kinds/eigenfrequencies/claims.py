@@ -32,7 +32,7 @@ from ...core.audit import check_printed
 from ...core.exact import Exact, option_number, parse_options, parse_parameters, require_rational
 from ...core.outcome import Claim, Status
 from ...core.polyroots import isolate_polynomial
-from .. import Attempt
+from .. import Attempt, Phases
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table
 from .model import (BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic, nu_bounds,
                     nu_identities, nu_quadratics, nus_exactly_equal, r2_denominator)
@@ -126,8 +126,10 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
     claims: list[Claim] = []
     quantities: dict[str, arb] = {}
     notes: list[str] = []
+    phase = Phases()
     Q = characteristic_quartic(a, b, eps, W)
-    pr = isolate_polynomial(Q, rel_tol=model.rel_width.fmpq())
+    with phase("roots: isolation"):
+        pr = isolate_polynomial(Q, rel_tol=model.rel_width.fmpq())
     # --- roots
     omegas: list[arb] = []
     ce = None
@@ -225,8 +227,9 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
             widths_met = widths_met and rel_width_at_most(f, model.rel_width.fmpq())
     paper, formulas = [], formula_table()
     if model.paper:
-        paper = audit_paper(model, balls, omegas, nus, Q)
-    return Attempt(claims, quantities, paper, formulas, notes, widths_met,
+        with phase("paper audit"):
+            paper = audit_paper(model, balls, omegas, nus, Q)
+    return Attempt(claims, quantities, paper, formulas, notes, widths_met, phase_seconds=phase.seconds,
                    width_quantities=tuple(k for k in quantities if k.startswith(("omega_", "freq_hz_"))
                                           and not rel_width_at_most(quantities[k], model.rel_width.fmpq())))
 

@@ -54,7 +54,7 @@ from ...core.exact import (Exact, option_count, option_number, parse_options, pa
 from ...core.outcome import Claim, Status
 from ...core.stored import ball_text, pieces_text
 from ...core.subdivision import certify_positive, enclose_max
-from .. import Attempt
+from .. import Attempt, Phases
 from .model import (Gimbal, certify_vdot_nonpositive, closed_form_constants, cylinder_lower_bound, hypot_ball,
                     mean_value_enclosure)
 from .moments import MOMENTS
@@ -558,9 +558,11 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
     quantities: dict[str, arb] = {}
     widths_met = True
     notes: list[str] = []
+    phase = Phases()
     need_constants = any(c in wanted for c in ("constants", "damping_condition", "best_mu")) or model.R_option is None
     if need_constants:
-        k = ctx.constants()
+        with phase("constants (m, M by subdivision)"):
+            k = ctx.constants()
         for name in ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R"):
             quantities[name] = k[name]
         widths_met = all(rel_width_at_most(k[n], model.rel_width) for n in ("m", "M", "p", "R1", "R2"))
@@ -610,19 +612,22 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
         quantities["R_used"] = R
     vclaim = None
     if "vdot_nonpositive" in wanted or "invariant_estimate" in wanted:
-        vclaim, vinfo = _vdot_claim(ctx, R, how)
+        with phase("vdot_nonpositive"):
+            vclaim, vinfo = _vdot_claim(ctx, R, how)
         if vclaim.status is Status.PROVED:
             ctx.witnesses["vdot_nonpositive"] = {"R": ball_text(R), **vinfo["record"]}
         if "vdot_nonpositive" in wanted:
             claims.append(vclaim)
     pclaim = None
     if "v_positive" in wanted or "invariant_estimate" in wanted:
-        pclaim = _v_positive_claim(ctx)
+        with phase("v_positive"):
+            pclaim = _v_positive_claim(ctx)
         if "v_positive" in wanted:
             claims.append(pclaim)
     if "invariant_estimate" in wanted:
         if vclaim.status is Status.PROVED and pclaim.status is Status.PROVED:
-            claims.append(_invariant(ctx, R, quantities))
+            with phase("invariant_estimate"):
+                claims.append(_invariant(ctx, R, quantities))
         else:
             dep = vclaim if vclaim.status is not Status.PROVED else pclaim
             claims.append(_claim("invariant_estimate", Status.INCONCLUSIVE,
@@ -631,8 +636,10 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
             if dep.status is Status.REFUTED:
                 claims[-1].precision_cannot_help = f"it rests on {dep.id}, which is refuted"
     if "best_mu" in wanted:
-        claims.append(_best_mu(ctx, quantities))
-    paper, formulas, audit_notes = audit_paper(ctx, quantities)
+        with phase("best_mu"):
+            claims.append(_best_mu(ctx, quantities))
+    with phase("paper audit"):
+        paper, formulas, audit_notes = audit_paper(ctx, quantities)
     notes += audit_notes
     # an undecided claim says what would decide it (Claim.decides): the prover stops when doubling the
     # precision no longer shrinks it (a subdivision budget, a tolerance), not at a fixed precision
@@ -640,5 +647,5 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
                    width_quantities=tuple(n for n in ("m", "M", "p", "R1", "R2")
                                           if n in quantities and not rel_width_at_most(quantities[n], model.rel_width)),
                    extra={"moment": {"name": ctx.g.law.name, "formula": ctx.g.law.formula}},
-                   witnesses=ctx.witnesses)
+                   witnesses=ctx.witnesses, phase_seconds=phase.seconds)
 

@@ -51,7 +51,7 @@ from ...core.exact import Exact, option_number, parse_options, parse_parameters,
 from ...core.outcome import Claim, Status
 from ...core.roots import Isolation, RootPiece, RootStatus, merge_shared_roots, newton_root
 from ...core.subdivision import certify_positive
-from .. import Attempt
+from .. import Attempt, Phases
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table, orbit_quantities
 from .flow import (PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, g_coeffs, half_period_jacobian,
                    moment_zero_orders, orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure,
@@ -394,20 +394,23 @@ def _isolate(f, lo: arb, hi: arb, *, max_depth: int = 48, max_pieces: int = MAX_
     return Isolation(merge_shared_roots(f, done, None))
 
 
-def analyse(model: RelayModel, spectrum=None) -> Analysis:
+def analyse(model: RelayModel, spectrum=None, phase: Phases | None = None) -> Analysis:
     """Isolate and classify every root at the current precision. ``spectrum``: a callable returning
     the :class:`Spectrum` to use (default: ``Spectrum(model.params)``; the box version passes one whose
-    balls contain a whole parameter box, :mod:`.boxes`)."""
+    balls contain a whole parameter box, :mod:`.boxes`); ``phase`` records the time of each stage."""
     P = model.params
+    phase = phase if phase is not None else Phases()
     try:
-        sp = spectrum() if spectrum is not None else Spectrum(P)
+        with phase("spectrum"):
+            sp = spectrum() if spectrum is not None else Spectrum(P)
     except DegenerateSpectrum as e:
         return Analysis(None, problem=str(e))
     mom = moment_zero_orders(P)
     if any(m != 0 for m in mom[:4]) or mom[4] == 0:
         return Analysis(sp, problem=f"moment identities e1^T M^j e = 0 (j <= 3) fail: {mom}: a bug")
     an = Analysis(sp)
-    an.T_tail = _tail_point(sp)
+    with phase("tail point"):
+        an.T_tail = _tail_point(sp)
     if model.T_max is not None:
         Tm = ball(model.T_max.fmpq()).upper()        # an exact point >= T_max: the search covers (0, T_max]
         if an.T_tail is not None and certainly_lt(an.T_tail, Tm):
@@ -423,19 +426,23 @@ def analyse(model: RelayModel, spectrum=None) -> Analysis:
     fastest = max((float(abs(m.lam).mid()) for m in sp.modes))  # float picks a start only
     start = (arb(1) / arb(int(fastest) + 1)).mid()
     start = start.min((an.T_search / 4).mid())
-    an.theta_min = _theta_min(sp, start)
+    with phase("theta_min (g = O(theta^5))"):
+        an.theta_min = _theta_min(sp, start)
     if an.theta_min is None:
         an.problem = "could not certify g^(5) > 0 near theta = 0 (raise precision)"
         return an
-    iso = _isolate(_g_series_function(sp), an.theta_min, an.T_search)
+    with phase("half_period: root isolation"):
+        iso = _isolate(_g_series_function(sp), an.theta_min, an.T_search)
     an.pieces = len(iso.pieces)
     an.piece_list = iso.pieces
     an.unknown = iso.unknown
-    for r in iso.roots:
-        an.roots.append(classify_root(sp, r))
-    for v in an.roots:
-        if v.kind == "genuine":
-            _multipliers(sp, v)
+    with phase("orbit_genuine: classification"):
+        for r in iso.roots:
+            an.roots.append(classify_root(sp, r))
+    with phase("multipliers"):
+        for v in an.roots:
+            if v.kind == "genuine":
+                _multipliers(sp, v)
     return an
 
 
@@ -457,7 +464,8 @@ def _select(genuine: list[RootVerdict]) -> tuple[RootVerdict | None, str]:
 def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> Attempt:
     """Evaluate the requested claims at the current precision (set by the prover); ``spectrum`` as in
     :func:`analyse`."""
-    an = analyse(model, spectrum)
+    phase = Phases()
+    an = analyse(model, spectrum, phase)
     claims: list[Claim] = []
     quantities: dict[str, arb] = {}
     notes: list[str] = []
@@ -498,7 +506,7 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
               f"with g^(5) > 0 there); {len(genuine)} genuine "
               f"({', '.join(_fmt(v.theta, 10) for v in genuine)}), {len(spurious)} spurious with certified witnesses")
     if "half_period" in wanted:
-        claims.append(_claim("half_period", *hp))
+        claims.append(_claim("half_period", *hp, pieces=an.pieces, roots=len(an.roots)))
     main, why_main = _select(genuine)
     # ---- orbit_genuine
     if main is not None:
@@ -620,9 +628,10 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
         quantities.update(fq)
         notes.extend(fnotes)
         if model.paper:
-            paper = audit_paper(model, sp, main)
+            with phase("paper audit"):
+                paper = audit_paper(model, sp, main)
     return Attempt(claims, quantities, paper, formulas, notes, widths_met, extra, width_quantities=("theta_star",),
-                   witnesses=witnesses)
+                   witnesses=witnesses, phase_seconds=phase.seconds)
 
 
 def _q(x: arb) -> str:
