@@ -43,9 +43,10 @@ def _parser() -> argparse.ArgumentParser:
     pr = sub.add_parser("prove", help="prove scenes; write <name>.json and <name>.md")
     pr.add_argument("scenes", nargs="*", metavar="SCENE", help="built-in scene name or path to a TOML file")
     pr.add_argument("--all", action="store_true", help="prove every built-in scene of the papers")
-    pr.add_argument("--group", choices=("paper", "demo", "margin", "all"), default=None,
+    pr.add_argument("--group", choices=("paper", "demo", "margin", "stress", "all"), default=None,
                     help="prove every built-in scene of a group (demo: planted refuted/inconclusive outcomes; "
-                         "margin: tolerance boxes and the papers' general claims, pavings that take minutes)")
+                         "margin: tolerance boxes and the papers' general claims, pavings that take minutes; stress: the "
+                         "stiff and extreme catalog)")
     pr.add_argument("--prec", type=int, default=DEFAULT_PREC,
                     help=f"starting precision in bits, {MIN_PREC}..{MAX_PREC} (default {DEFAULT_PREC})")
     pr.add_argument("--maxprec", type=int, default=DEFAULT_MAXPREC,
@@ -80,6 +81,16 @@ def _parser() -> argparse.ArgumentParser:
                          "0: no limit (default 60)")
     cp.add_argument("--out", default=None, help="also write the summary (Markdown) and the results (JSON) here")
     cp.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
+    bn = sub.add_parser("bench", help="work-precision: widths, bits lost and times per precision, against the "
+                        "float and mpmath paths (--stress: the stiff and extreme catalog); needs 'crosscheck'")
+    bn.add_argument("scenes", nargs="*", metavar="SCENE", help="scenes (default: the papers' examples)")
+    bn.add_argument("--stress", action="store_true", help="run the stress group instead and write stress.md/.json")
+    bn.add_argument("--out", default=None, help="folder for the results (default proofs/bench; with --stress, proofs)")
+    bn.add_argument("--plots", action="store_true", help="also draw a work-precision figure per scene (needs 'plots')")
+    bn.add_argument("--schedule", default="53,64,128,256,512,1024,2048",
+                    help="precisions in bits, comma-separated (default 53,64,128,256,512,1024,2048)")
+    bn.add_argument("--repeat", type=int, default=3, help="runs per measurement; the median is reported (default 3)")
+    bn.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     ck = sub.add_parser("check", help="re-verify certificates from their own data (exit 0 all confirm, "
                         "1 one does not, 2 unreadable)")
     ck.add_argument("certs", nargs="+", metavar="CERT.json", help="certificate files written by 'prove'")
@@ -105,7 +116,7 @@ def _bad(message: str) -> int:
 
 def _cmd_list() -> int:
     from .scene import builtin_scenes, load_scene
-    for group in ("paper", "demo", "margin"):
+    for group in ("paper", "demo", "margin", "stress"):
         for name in builtin_scenes(group):
             s = load_scene(name)
             _say(f"{group:6s} {name:34s} {s.kind:18s} {s.source.splitlines()[0][:80] if s.source else ''}")
@@ -354,6 +365,77 @@ def _internal(e: BaseException, args, where: str = "") -> None:
         _say("".join(traceback.format_exception(e)), err=True)
 
 
+def _cmd_bench(args) -> int:
+    """Exit 0 when the measurements were written (a benchmark decides nothing), 2 for bad usage."""
+    import json
+    try:
+        schedule = tuple(int(x) for x in args.schedule.split(","))
+    except ValueError:
+        return _bad(f"--schedule {args.schedule!r}: give precisions in bits, comma-separated, e.g. 53,64,128")
+    for p in schedule:
+        if not MIN_PREC <= p <= MAX_PREC:
+            return _bad(f"--schedule: each precision must be in [{MIN_PREC}, {MAX_PREC}] bits (got {p})")
+    if not 1 <= args.repeat <= 100:
+        return _bad("need 1 <= --repeat <= 100")
+    if args.stress and args.scenes:
+        return _bad("give scene names or --stress, not both")
+    from importlib.util import find_spec
+    missing = [m for m in ("numpy", "scipy", "mpmath") if find_spec(m) is None]
+    if missing:
+        return _bad(f"bench needs the cross-check libraries ({', '.join(missing)}): "
+                    "pip install 'rigor_gyro[crosscheck]'")
+    if args.plots and find_spec("matplotlib") is None:
+        return _bad("--plots needs matplotlib: pip install 'rigor_gyro[plots]'")
+    tty = sys.stderr.isatty()
+
+    def progress(text):
+        if tty:
+            print(f"\r{text:70s}", end="", file=sys.stderr, flush=True)
+    if args.stress:
+        from .bench.stress import run_stress, stress_markdown
+        out = Path(args.out or "proofs")
+        problem = _check_out(str(out))
+        if problem:
+            return _bad(problem)
+        rows = run_stress(progress=progress)
+        if tty:
+            print(file=sys.stderr)
+        md = stress_markdown(rows)
+        (out / "stress.md").write_text(md, encoding="utf-8")
+        (out / "stress.json").write_text(json.dumps(rows, indent=1, default=str) + "\n", encoding="utf-8")
+        _say(md)
+        return 0
+    from .bench.tables import summary_markdown, write_scene
+    from .bench.workprecision import bench_scene
+    from .margins.paving import has_tolerances
+    from .scene import builtin_scenes, load_scene
+    refs = args.scenes or list(builtin_scenes())
+    scenes = [load_scene(r) for r in refs]
+    for sc in scenes:
+        if has_tolerances(sc):
+            return _bad(f"scene {sc.name!r} has tolerances: bench measures point scenes (a paving's cost is "
+                        "its boxes; see benchmarks/paving_speedup.py)")
+    out = Path(args.out or "proofs/bench")
+    problem = _check_out(str(out))
+    if problem:
+        return _bad(problem)
+    benches = []
+    for sc in scenes:
+        sb = bench_scene(sc, schedule, args.repeat, progress=progress)
+        benches.append(sb)
+        write_scene(sb, out)
+        if args.plots:
+            from .bench.plots import work_precision_figure
+            work_precision_figure(sb, out)
+    if tty:
+        print(file=sys.stderr)
+    summary = summary_markdown(benches)
+    if not args.scenes:
+        (out / "README.md").write_text(summary, encoding="utf-8")
+    _say(summary)
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = _parser()
     args = parser.parse_args(argv)
@@ -369,6 +451,8 @@ def main(argv: list[str] | None = None) -> int:
             return _cmd_campaign(args)
         if args.command == "margin":
             return _cmd_margin(args)
+        if args.command == "bench":
+            return _cmd_bench(args)
         return _cmd_prove(args)
     except RigorGyroError as e:
         return _bad(str(e))

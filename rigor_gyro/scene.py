@@ -81,15 +81,20 @@ def _builtin_dir():
 
 #: groups of built-in scenes: the papers' worked examples (``prove --all``), demonstrations of
 #: refuted and inconclusive outcomes (planted; ``prove --group demo``), and design margins and the
-#: papers' general claims over parameter boxes (pavings; ``prove --group margin``)
-GROUPS = {"paper": "", "demo": "demos", "margin": "margins"}
+#: papers' general claims over parameter boxes (pavings; ``prove --group margin``), and the stiff and
+#: extreme catalog (``prove --group stress``; ``rigor-gyro bench --stress`` tabulates it)
+GROUPS = {"paper": "", "demo": "demos", "margin": "margins", "stress": "stress"}
 
 
 def builtin_scenes(group: str = "paper") -> dict[str, Any]:
     """Built-in scene name -> resource (a TOML file shipped inside the package), for one group
-    (``paper``: the worked examples, what ``prove --all`` proves; ``demo``; ``all``: both)."""
+    (``paper``: the worked examples, what ``prove --all`` proves; ``demo``; ``margin``; ``stress``;
+    ``all``: every group)."""
     if group == "all":
-        return {**builtin_scenes("paper"), **builtin_scenes("demo"), **builtin_scenes("margin")}
+        out: dict[str, Any] = {}
+        for g in GROUPS:
+            out.update(builtin_scenes(g))
+        return out
     if group not in GROUPS:
         raise SceneError(f"unknown scene group {group!r}; groups: {', '.join(GROUPS)}, all")
     folder = _builtin_dir() / GROUPS[group] if GROUPS[group] else _builtin_dir()

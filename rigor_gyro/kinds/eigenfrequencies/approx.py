@@ -9,7 +9,8 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-__all__ = ["quartic_coefficients", "approx_roots_numpy", "approx_roots_brentq", "approx_roots_mpmath"]
+__all__ = ["quartic_coefficients", "approx_roots_numpy", "approx_roots_brentq", "approx_roots_mpmath",
+           "bench_float", "bench_mpmath"]
 
 
 def quartic_coefficients(a, b, eps, W) -> list:
@@ -69,3 +70,43 @@ def approx_roots_mpmath(a: str, b: str, eps: str, W: str, dps: int = 50) -> list
         coeffs = quartic_coefficients(*fr)
         r = mpmath.polyroots(coeffs, maxsteps=400, extraprec=4 * dps)
         return sorted((mpmath.re(x) for x in r), key=float)
+
+
+def _named(roots, params: dict) -> dict:
+    out = {f"omega_{j}": r for j, r in enumerate(roots, start=1)}
+    if params.get("hz_scale"):
+        h = Fraction(params["hz_scale"])
+        for j, r in enumerate(roots, start=1):
+            out[f"freq_hz_{j}"] = (r ** 0.5 if isinstance(r, float) else _mp_sqrt(r)) * (
+                float(h) if isinstance(r, float) else _mp_fraction(h))
+    return out
+
+
+def _mp_sqrt(x):
+    import mpmath
+    return mpmath.sqrt(x)
+
+
+def _mp_fraction(f: Fraction):
+    import mpmath
+    return mpmath.mpf(f.numerator) / f.denominator
+
+
+def bench_float(params: dict, hint=None) -> dict:
+    """What an uncertified float script computes: numpy.roots of the quartic, by certificate name
+    (omega_j, freq_hz_j), plus ``found`` (how many real positive roots floats report). No guarantee."""
+    a, b, eps, W = (params[k] for k in ("a", "b", "eps", "Omega2"))
+    import numpy as np
+    r = np.roots(quartic_coefficients(*_floats(a, b, eps, W)))
+    real = sorted(float(x.real) for x in r if abs(x.imag) <= 1e-12 * max(abs(x), 1e-300))
+    out = _named(sorted(float(x.real) for x in r), params)
+    out["found"] = sum(1 for x in real if x > 0)
+    return out
+
+
+def bench_mpmath(params: dict, dps: int = 30, hint=None) -> dict:
+    """The same at ``dps`` digits with mpmath.polyroots (non-rigorous). No guarantee."""
+    import mpmath
+    a, b, eps, W = (params[k] for k in ("a", "b", "eps", "Omega2"))
+    with mpmath.workdps(dps):
+        return _named(approx_roots_mpmath(a, b, eps, W, dps=dps), params)

@@ -63,7 +63,7 @@ from ...core.exact import parse_exact
 
 __all__ = ["AGAFONOV2013", "PARAMETER_NAMES", "FLOAT_MOMENTS", "FloatGimbal", "MpGimbal", "mp_constants",
            "float_constants", "time_scales", "trajectories", "TrajectoryOutcome", "edge_points", "EdgePoints",
-           "V_MONOTONE_REL_TOL", "DEFAULT_METHOD", "DEFAULT_RTOL"]
+           "V_MONOTONE_REL_TOL", "DEFAULT_METHOD", "DEFAULT_RTOL", "BENCH_NAMES", "bench_float", "bench_mpmath"]
 
 #: the paper's example (section 3), exactly as in rigor_gyro/scenes/agafonov2013.toml
 AGAFONOV2013 = {"A": "2", "C": "3.3", "A1": "2.2", "B1": "2.2", "C1": "2.8", "A2": "8.5", "H": "1e4",
@@ -1022,3 +1022,21 @@ def edge_points(params: dict, c_star: float, n: int = 8, R: float | None = None)
                         [0.95 * R, 0.5 * xs, -0.95 * R]])
     labels = ["|x2| > x2*", "|x1| > R", "|x3| > R", "in the box, outside the disc"]
     return EdgePoints(np.array(edge).reshape(-1, 3), outside, labels, R, float(c_star))
+
+
+#: the quantities the bench compares (certificate names)
+BENCH_NAMES = ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R", "c_star",
+               "extent_x1_axis", "extent_x2_axis", "extent_x3_axis")
+
+
+def bench_float(params: dict, hint=None) -> dict:
+    """What an uncertified float script computes (:func:`float_constants`, without the mu search), by
+    certificate name. No guarantee."""
+    fl = float_constants(params, with_best_mu=False)
+    return {k: float(fl[k]) for k in BENCH_NAMES if fl.get(k) is not None}
+
+
+def bench_mpmath(params: dict, dps: int = 30, hint=None) -> dict:
+    """The same by :func:`mp_constants` at ``dps`` digits (non-rigorous)."""
+    mp = mp_constants(params, dps=dps, with_best_mu=False)
+    return {k: mp[k] for k in BENCH_NAMES if mp.get(k) is not None}

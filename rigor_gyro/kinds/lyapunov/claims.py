@@ -502,7 +502,8 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
                       f"({_fmt(lo)}, {_fmt(hi)})): raise --maxprec")
     mu_best = _fmpq(Fraction(mu_text))
     gb = g.with_mu(mu_best)
-    R_enc, e = r_sup(gb, xs, rel=_q(ctx.m.rel_width) / 4 + arb(2) ** (-ctx.prec), max_pieces=ctx.m.max_pieces)
+    # to rel_width, on at most 2000 pieces (R_max keeps 10 digits: a wider R_sup only costs digits)
+    R_enc, e = r_sup(gb, xs, rel=_q(ctx.m.rel_width) / 4 + arb(2) ** (-ctx.prec), max_pieces=min(ctx.m.max_pieces, 2000))
     if not (R_enc.is_finite() and certainly_positive(R_enc)):
         return _claim("best_mu", Status.INCONCLUSIVE, f"R_sup(mu_best) not enclosed: {R_enc}", decides=R_enc)
     estimate = max(f1, f2, float(R_enc.mid()))

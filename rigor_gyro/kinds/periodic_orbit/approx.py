@@ -17,7 +17,7 @@ from __future__ import annotations
 from fractions import Fraction
 
 __all__ = ["matrices", "approx_g", "approx_roots_expm_brentq", "approx_x0", "approx_multipliers",
-           "approx_relay_simulation", "approx_orbit_mpmath"]
+           "approx_relay_simulation", "approx_orbit_mpmath", "bench_float", "bench_mpmath"]
 
 NAMES = ("A", "B", "H", "tau", "sigma", "n", "K", "p", "S")
 
@@ -130,3 +130,38 @@ def approx_orbit_mpmath(params: dict, theta_guess: float, dps: int = 40):
 
         th = mp.findroot(lambda t: x0(t)[0], mp.mpf(theta_guess))
         return th, [x0(th)[i] for i in range(5)]
+
+
+def bench_float(params: dict, hint=None) -> dict:
+    """What an uncertified float script computes: the sign changes of g on a 400-point grid of
+    (1e-3 T, T] (T = ``hint["T"]``, default 2 theta), brentq, the root nearest ``hint["theta_star"]``
+    as theta_star, and its multiplier moduli (numpy eigvals), by certificate name; ``found`` is the
+    number of roots the grid sees. No guarantee."""
+    hint = hint or {}
+    th = hint.get("theta_star", 0.5)
+    T = hint.get("T", 2 * th)
+    roots = approx_roots_expm_brentq(params, T, grid=400, t0=1e-3 * T)
+    out: dict = {"found": len(roots)}
+    if not roots:
+        return out
+    t = min(roots, key=lambda r: abs(r - th))
+    out["theta_star"] = t
+    out["period"] = 2 * t
+    x0 = approx_x0(params, t)
+    for name, k in (("beta_dot_0", 1), ("Omega_0", 2), ("i_0", 3), ("I_0", 4)):
+        out[name] = float(x0[k])
+    for j, z in enumerate(approx_multipliers(params, t), start=1):
+        out[f"multiplier_modulus_{j}"] = float(abs(z))
+    return out
+
+
+def bench_mpmath(params: dict, dps: int = 30, hint=None) -> dict:
+    """theta_star and x(0) by mpmath.findroot at ``dps`` digits from ``hint["theta_star"]`` (non-rigorous)."""
+    import mpmath as mp
+    hint = hint or {}
+    th, x0 = approx_orbit_mpmath(params, hint.get("theta_star", 0.5), dps=dps)
+    with mp.workdps(dps + 10):
+        out = {"theta_star": th, "period": 2 * th}
+    for name, k in (("beta_dot_0", 1), ("Omega_0", 2), ("i_0", 3), ("I_0", 4)):
+        out[name] = x0[k]
+    return out
