@@ -84,7 +84,8 @@ def _parser() -> argparse.ArgumentParser:
     bn = sub.add_parser("bench", help="work-precision: widths, bits lost and times per precision, against the "
                         "float and mpmath paths (--stress: the stiff and extreme catalog); needs 'crosscheck'")
     bn.add_argument("scenes", nargs="*", metavar="SCENE", help="scenes (default: the papers' examples)")
-    bn.add_argument("--stress", action="store_true", help="run the stress group instead and write stress.md/.json")
+    bn.add_argument("--stress", action="store_true", help="run the stress group instead: OUT/stress.md and "
+                    "OUT/bench/stress.json")
     bn.add_argument("--out", default=None, help="folder for the results (default proofs/bench; with --stress, proofs)")
     bn.add_argument("--plots", action="store_true", help="also draw a work-precision figure per scene (needs 'plots')")
     bn.add_argument("--schedule", default="53,64,128,256,512,1024,2048",
@@ -402,7 +403,9 @@ def _cmd_bench(args) -> int:
             print(file=sys.stderr)
         md = stress_markdown(rows)
         (out / "stress.md").write_text(md, encoding="utf-8")
-        (out / "stress.json").write_text(json.dumps(rows, indent=1, default=str) + "\n", encoding="utf-8")
+        # the data beside the work-precision results (a JSON in proofs/ itself would pass for a certificate)
+        (out / "bench").mkdir(exist_ok=True)
+        (out / "bench" / "stress.json").write_text(json.dumps(rows, indent=1, default=str) + "\n", encoding="utf-8")
         _say(md)
         return 0
     from .bench.tables import summary_markdown, write_scene

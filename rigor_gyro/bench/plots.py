@@ -19,10 +19,10 @@ def work_precision_figure(sb: SceneBench, out: Path) -> Path:
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     xs, ys, labels = [], [], []
     for r in sb.rows:
-        ws = [w for q, w in r["widths"].items() if w and sb.status(q) not in ("contains 0",)]
-        if ws:
+        ws = [w for w in r["log2_widths"].values() if isinstance(w, float)]
+        if ws and max(ws) > -1070:          # below a double's range the point cannot be drawn
             xs.append(r["times"]["median_s"])
-            ys.append(max(ws))
+            ys.append(2.0 ** max(ws))
             labels.append(str(r["prec"]))
     ax.loglog(xs, ys, "o-", label="Arb (certified width)")
     for x, y, t in zip(xs, ys, labels):

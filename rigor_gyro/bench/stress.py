@@ -75,7 +75,8 @@ def _float_cell(r: dict[str, Any]) -> str:
     parts = []
     if "worst" in f:
         k, e = f["worst"]
-        parts.append(f"worst rel. error {e:.2g} (`{k}`)")
+        parts.append(f"worst rel. error {e:.2g} (`{k}`)" if e < 1e300 else
+                     f"worst rel. error > 1e300 (`{k}`: the value is below a double's range)")
     if f.get("unusable"):
         parts.append("no usable value for " + ", ".join(f"`{k}`" for k in f["unusable"][:4]))
     if f.get("found") is not None and r["certified_roots"] is not None and f["found"] != r["certified_roots"]:

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import Any
 
@@ -12,6 +13,17 @@ __all__ = ["scene_markdown", "summary_markdown", "write_scene"]
 
 def _g(x: float | None, digits: int = 2) -> str:
     return "-" if x is None else ("0" if x == 0 else f"{x:.{digits}g}")
+
+
+def _w(log2w) -> str:
+    """A relative width from its log2, as 3.1e-153 (no float underflow)."""
+    if log2w == "exact":
+        return "0"
+    if not isinstance(log2w, float):
+        return "-"
+    e10 = log2w * 0.30102999566398120
+    k = math.floor(e10)
+    return f"{10 ** (e10 - k):.2g}e{k}"
 
 
 def _ms(t: dict[str, float]) -> str:
@@ -57,9 +69,10 @@ def scene_markdown(sb: SceneBench) -> str:
                 "roots found |", "|---|---|---|---|"]
         arb_row = next((r for r in sb.rows if r["verdict"] == "proved"), sb.rows[-1]) if sb.rows else None
         if arb_row is not None:
-            q, _ = max(((k, w) for k, w in arb_row["widths"].items() if w), key=lambda kv: kv[1], default=("-", None))
+            q, _ = max(((k, w) for k, w in arb_row["log2_widths"].items() if isinstance(w, float)),
+                       key=lambda kv: kv[1], default=("-", None))
             out.append(f"| Arb, certified, {arb_row['prec']} bits (first precision that proves) | "
-                       f"{_ms(arb_row['times'])} | width {_g(arb_row['widths'].get(q))} (`{q}`) | - |")
+                       f"{_ms(arb_row['times'])} | width {_w(arb_row['log2_widths'].get(q))} (`{q}`) | - |")
         for name, m in sb.methods.items():
             if "failed" in m:
                 out.append(f"| {name} | - | failed: {m['failed']} | - |")
@@ -74,11 +87,11 @@ def scene_markdown(sb: SceneBench) -> str:
     mp = next((m.get("errors", {}) for n, m in sb.methods.items() if n.startswith("mpmath")), {})
     for q in sb.quantities:
         cells = [_g(r["bits_lost"].get(q), 3) if q in r["bits_lost"] else "" for r in sb.rows]
-        w = sb.rows[-1]["widths"].get(q) if sb.rows else None
-        out.append(f"| `{q}` | " + " | ".join(cells) + f" | {_g(w)} | {sb.status(q)} | {_g(fl.get(q))} | {_g(mp.get(q))} |")
+        w = sb.rows[-1]["log2_widths"].get(q) if sb.rows else None
+        out.append(f"| `{q}` | " + " | ".join(cells) + f" | {_w(w)} | {sb.status(q)} | {_g(fl.get(q))} | {_g(mp.get(q))} |")
     req = sorted({v for v in sb.requested.values()})
     if req:
-        out += ["", "Requested widths (4 x the scene's option, relative): " + ", ".join(_g(v) for v in req) + "."]
+        out += ["", "Requested widths (4 x the scene's option, relative): " + ", ".join(_w(v) for v in req) + "."]
     return "\n".join(out) + "\n"
 
 
@@ -87,11 +100,14 @@ def summary_markdown(benches: list[SceneBench]) -> str:
            "Regenerate with `rigor-gyro bench --out proofs/bench --plots` (the built-in scenes) and "
            "`rigor-gyro bench --stress --out proofs` (the stress catalog, `proofs/stress.md`). Times are "
            "machine-dependent; widths and bits lost are not.", "",
-           "| scene | answer | bits lost at the top precision (quantity: bits) | Arb time at 64 / top bits ms | "
+           "| scene | answer | most bits lost at the top precision (quantity: bits; quantities at their requested width "
+           "left out) | Arb time at 64 / top bits ms | "
            "float ms (worst error) | mpmath30 ms (worst error) |", "|---|---|---|---|---|---|"]
     for sb in benches:
         top = sb.rows[-1]
-        lost = sorted(((q, v) for q, v in top["bits_lost"].items() if v is not None), key=lambda kv: -kv[1])[:6]
+        lost = sorted(((q, v) for q, v in top["bits_lost"].items()
+                       if v is not None and sb.status(q) not in ("requested width met", "exact")),
+                      key=lambda kv: -kv[1])[:6]
         bad = sum(1 for q in sb.quantities if sb.status(q).startswith(("loses", "stuck")))
         r64 = next((r for r in sb.rows if r["prec"] == 64), sb.rows[0])
 

@@ -4,8 +4,9 @@ the float and mpmath (30 digits) paths with their actual errors against the cert
 
 Definitions (all reported, none decides anything):
 
-* relative width w = 2 rad / |mid| of a quantity's ball (0 for an exact ball);
-* bits lost = log2(w / 2^-p) at precision p: how far the enclosure is from the precision's resolution;
+* relative width w = 2 rad / |mid| of a quantity's ball, kept as log2(w) (a float: w itself underflows
+  a double below 2^-1074, and 2048-bit enclosures are narrower than that); "exact" for a zero radius;
+* bits lost = log2(w / 2^-p) = log2(w) + p at precision p: how far the enclosure is from the precision's resolution;
 * a quantity *follows the precision* at p when it lost at most ``MAX_BITS_LOST`` bits, and *meets the
   requested width* when w is at most the width the scene requests (options ``rel_width``, or
   ``theta_width`` for theta*); otherwise it is *stuck* (a constant somewhere caps it);
@@ -31,7 +32,8 @@ from ..kinds import KINDS, kind_module
 from ..prover import prove_scene
 from ..scene import Scene
 
-__all__ = ["SCHEDULE", "MAX_BITS_LOST", "MP_DPS", "SceneBench", "bench_scene", "relative_width", "bits_lost",
+__all__ = ["SCHEDULE", "MAX_BITS_LOST", "MP_DPS", "SceneBench", "bench_scene", "relative_width", "log2_width",
+           "bits_lost",
            "relative_error", "float_hint", "requested_widths"]
 
 #: the precision schedule (bits)
@@ -51,11 +53,22 @@ def relative_width(x: arb) -> float | None:
     return float(2 * x.rad() / abs(x.mid()))
 
 
-def bits_lost(w: float | None, prec: int) -> float | None:
-    """log2(w / 2^-prec); None when w is 0 or unknown."""
-    if not w:
+def log2_width(x: arb) -> float | str | None:
+    """log2 of the relative width 2 rad / |mid|, computed in balls (no underflow at any precision);
+    "exact" for a zero radius; None for a non-finite ball or one containing 0."""
+    if not x.is_finite() or x.contains(0):
         return None
-    return math.log2(w) + prec
+    if x.rad() == 0:
+        return "exact"
+    with working_precision(64):
+        return float((2 * x.rad() / abs(x.mid())).log() / arb(2).log())
+
+
+def bits_lost(log2w, prec: int) -> float | None:
+    """log2(w / 2^-prec) = log2(w) + prec; None for an exact or unknown width."""
+    if not isinstance(log2w, float):
+        return None
+    return log2w + prec
 
 
 def relative_error(value, ball: arb) -> float | None:
@@ -97,41 +110,42 @@ class SceneBench:
         """At the highest precision that gave a width: 'follows 2^-p' (at most MAX_BITS_LOST bits lost),
         'requested width met', 'exact', 'contains 0' (no relative width), 'loses N bits' (the width
         shrinks like 2^-p, more than MAX_BITS_LOST bits lost) or 'stuck' (it did not shrink from the
-        precision before: a constant caps it)."""
-        have = [r for r in self.rows if name in r["widths"]]
+        precision before by at least half the precision gained: a constant caps it)."""
+        have = [r for r in self.rows if name in r["log2_widths"]]
         if not have:
             return "absent"
         last = have[-1]
-        w = last["widths"][name]
-        if w == 0.0:
+        w = last["log2_widths"][name]
+        if w == "exact":
             return "exact"
         if w is None:
             return "contains 0"
         lost = bits_lost(w, last["prec"])
-        if lost is not None and lost <= MAX_BITS_LOST:
+        if lost <= MAX_BITS_LOST:
             return "follows 2^-p"
         req = self.requested.get(name)
         if req is not None and w <= req:
             return "requested width met"
-        prev = have[-2]["widths"][name] if len(have) > 1 else None
-        if prev and w > prev * 2.0 ** (-(last["prec"] - have[-2]["prec"]) / 2):
+        prev = have[-2]["log2_widths"][name] if len(have) > 1 else None
+        if isinstance(prev, float) and w > prev - (last["prec"] - have[-2]["prec"]) / 2:
             return "stuck"
         return f"loses {lost:.0f} bits"
 
 
 def requested_widths(scene: Scene, cert) -> dict[str, float]:
-    """Per quantity, the relative width the scene requests (its options or the kind's defaults)."""
+    """Per quantity, log2 of the relative width the scene requests (its options or the kind's defaults;
+    times 4: derived quantities combine a few requested ones)."""
     claims = importlib.import_module(KINDS[scene.kind] + ".claims")
     opts = {**getattr(claims, "OPTIONS", {}), **scene.options}
     out: dict[str, float] = {}
     if "rel_width" in opts and opts["rel_width"]:
-        rw = 4 * float(Fraction(str(opts["rel_width"])))   # derived quantities combine a few of them
+        rw = math.log2(4 * float(Fraction(str(opts["rel_width"]))))
         for name in cert.quantities:
             out[name] = rw
     if "theta_width" in opts and "theta_star" in cert.quantities:
         th = float(cert.quantities["theta_star"].mid())
         for name in ("theta_star", "period"):
-            out[name] = 4 * float(Fraction(str(opts["theta_width"]))) / th
+            out[name] = math.log2(4 * float(Fraction(str(opts["theta_width"]))) / th)
     return out
 
 
@@ -146,12 +160,20 @@ def _timed(fn, repeat: int):
 
 def float_hint(cert) -> dict[str, float]:
     """Where the float paths should look (a root finder needs a start or a range; a user would have a
-    plot): the certified theta* (float), and a range of 2.2 theta*."""
+    plot): the certified theta* (float), and the range the certificate searched, (theta_min, T], so a
+    float root count is comparable with the certified one."""
     q = cert.quantities
     if "theta_star" not in q:
         return {}
     th = float(q["theta_star"].mid())
-    return {"theta_star": th, "T": 2.2 * th}
+    hint = {"theta_star": th, "T": 2.2 * th}
+    w = (cert.witnesses or {}).get("half_period") or {}
+    try:
+        hint["T"] = float(Fraction(w["T"]))
+        hint["t0"] = float(Fraction(w["theta_min"]))
+    except (KeyError, ValueError, ZeroDivisionError):
+        pass
+    return hint
 
 
 def _method(scene: Scene, cert, name: str, repeat: int) -> dict[str, Any]:
@@ -182,8 +204,8 @@ def bench_scene(scene: Scene, schedule=SCHEDULE, repeat: int = 3, methods: bool 
         if progress:
             progress(f"{scene.name}: {p} bits")
         cert, t = _timed(lambda: prove_scene(scene, prec=p, maxprec=p), repeat)
-        widths = {k: relative_width(x) for k, x in cert.quantities.items()}
-        sb.rows.append({"prec": p, "verdict": cert.verdict.value, "times": t, "widths": widths,
+        widths = {k: log2_width(x) for k, x in cert.quantities.items()}
+        sb.rows.append({"prec": p, "verdict": cert.verdict.value, "times": t, "log2_widths": widths,
                         "bits_lost": {k: bits_lost(w, p) for k, w in widths.items()},
                         "phases_s": cert.timings.get("final_attempt_phases_s", {}),
                         "pieces": cert.timings.get("pieces", {}),

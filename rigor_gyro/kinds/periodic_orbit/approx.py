@@ -133,14 +133,15 @@ def approx_orbit_mpmath(params: dict, theta_guess: float, dps: int = 40):
 
 
 def bench_float(params: dict, hint=None) -> dict:
-    """What an uncertified float script computes: the sign changes of g on a 400-point grid of
-    (1e-3 T, T] (T = ``hint["T"]``, default 2 theta), brentq, the root nearest ``hint["theta_star"]``
-    as theta_star, and its multiplier moduli (numpy eigvals), by certificate name; ``found`` is the
-    number of roots the grid sees. No guarantee."""
+    """What an uncertified float script computes: the sign changes of g on a 2000-point grid of
+    (t0, T] (``hint["t0"]``, ``hint["T"]``: the range the certificate searched; default (1e-3 T, 2 theta]),
+    refined by brentq; the root nearest ``hint["theta_star"]`` as theta_star, its x(0) and multiplier
+    moduli (numpy eigvals), by certificate name; ``found`` is the number of roots the grid sees.
+    No guarantee."""
     hint = hint or {}
     th = hint.get("theta_star", 0.5)
     T = hint.get("T", 2 * th)
-    roots = approx_roots_expm_brentq(params, T, grid=400, t0=1e-3 * T)
+    roots = approx_roots_expm_brentq(params, T, grid=2000, t0=hint.get("t0", 1e-3 * T))
     out: dict = {"found": len(roots)}
     if not roots:
         return out
