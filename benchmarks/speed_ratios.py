@@ -1,0 +1,107 @@
+"""The three speed ratios of issue 12, measured in one run on this machine. Prints a table; asserts nothing.
+
+    python benchmarks/speed_ratios.py [--repeat 3]
+
+1. Cold processes: ``rigor-gyro prove --all`` (certified, writes the certificates and reports) against
+   the equivalent uncertified float script (``--float-script`` below: numpy/scipy compute the same
+   quantities for the same scenes: the quartic's roots; m, M, the constants, c* and the mu search;
+   g's roots on the certificate's search range, x(0) and the multipliers). Median wall time of
+   ``--repeat`` runs each, imports included.
+2. Computation only (in one process, imports excluded): ``prove_scene`` against the mpmath path at 30
+   digits (non-rigorous; the kind's ``approx.bench_mpmath``, with the mu search for the Lyapunov kind).
+3. Relay fast nutation: H = 1e4 and 1e5 (the stress scenes), time, pieces and roots.
+"""
+from __future__ import annotations
+
+import argparse
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+PAPER = ("agafonov2013", "roitenberg1947", "roitenberg1947_b2over15", "rudenko1976")
+#: the range the relay certificates search, (0, T]: the float script is given the same range
+RELAY_T = {"roitenberg1947": 0.7283, "roitenberg1947_b2over15": 0.7283}
+
+
+def float_script() -> None:
+    """The uncertified equivalent of ``prove --all``: every quantity in floats, nothing certified."""
+    from rigor_gyro import load_scene
+    from rigor_gyro.kinds.eigenfrequencies.approx import bench_float as eig
+    from rigor_gyro.kinds.lyapunov.approx import float_constants
+    from rigor_gyro.kinds.periodic_orbit.approx import bench_float as relay
+    for name in PAPER:
+        sc = load_scene(name)
+        p = dict(sc.parameters)
+        if sc.kind == "eigenfrequencies":
+            eig(p)
+        elif sc.kind == "lyapunov":
+            float_constants(p, with_best_mu=True)
+        else:
+            relay(p, hint={"theta_star": 0.138, "T": RELAY_T[name], "t0": 1e-3})
+
+
+def _median_cold(cmd, repeat):
+    ts = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        subprocess.run(cmd, check=True, capture_output=True)
+        ts.append(time.perf_counter() - t)
+    return statistics.median(ts)
+
+
+def _median(fn, repeat):
+    ts = []
+    for _ in range(repeat):
+        t = time.perf_counter()
+        fn()
+        ts.append(time.perf_counter() - t)
+    return statistics.median(ts)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--float-script", action="store_true", help=argparse.SUPPRESS)
+    args = ap.parse_args()
+    if args.float_script:
+        float_script()
+        return
+    out = tempfile.mkdtemp()
+    t_prove = _median_cold([sys.executable, "-m", "rigor_gyro", "prove", "--all", "--quiet", "--out", out], args.repeat)
+    t_float = _median_cold([sys.executable, __file__, "--float-script"], args.repeat)
+    print("| measure | certified s | uncertified s | ratio |")
+    print("|---|---|---|---|")
+    print(f"| `rigor-gyro prove --all` vs the float script, cold processes | {t_prove:.2f} | {t_float:.2f} | "
+          f"{t_prove / t_float:.2f}x |")
+    from rigor_gyro import load_scene, prove_scene
+    import importlib
+    from rigor_gyro.kinds import KINDS
+    for name in PAPER:
+        sc = load_scene(name)
+        prove_scene(sc)        # warm
+        tp = _median(lambda: prove_scene(sc), args.repeat)
+        approx = importlib.import_module(KINDS[sc.kind] + ".approx")
+        p = dict(sc.parameters)
+        if sc.kind == "lyapunov":
+            fn = lambda: approx.mp_constants(p, dps=30, with_best_mu=True)  # noqa: E731
+        elif sc.kind == "periodic_orbit":
+            fn = lambda: approx.bench_mpmath(p, dps=30, hint={"theta_star": 0.138})  # noqa: E731
+        else:
+            fn = lambda: approx.bench_mpmath(p, dps=30)  # noqa: E731
+        fn()
+        tm = _median(fn, args.repeat)
+        print(f"| `{name}`: computation, prove_scene vs mpmath 30 digits | {tp:.3f} | {tm:.3f} | {tp / tm:.2f}x |")
+    for name in ("stress_relay_H_1e4", "stress_relay_H_1e5"):
+        sc = load_scene(name)
+        t = time.perf_counter()
+        c = prove_scene(sc)
+        dt = time.perf_counter() - t
+        hp = c.claim("half_period")
+        print(f"| `{name}`: {hp.details.get('roots')} roots, {hp.details.get('pieces')} pieces, "
+              f"bits {c.precisions_tried} | {dt:.2f} | - | - |")
+
+
+if __name__ == "__main__":
+    main()
