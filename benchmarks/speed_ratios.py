@@ -39,7 +39,7 @@ def float_script() -> None:
         elif sc.kind == "lyapunov":
             float_constants(p, with_best_mu=True)
         else:
-            relay(p, hint={"theta_star": 0.138, "T": RELAY_T[name], "t0": 1e-3})
+            relay(p, hint={"theta_star": 0.13827, "T": RELAY_T[name], "t0": 1e-3})
 
 
 def _median_cold(cmd, repeat):
@@ -87,7 +87,7 @@ def main() -> None:
         if sc.kind == "lyapunov":
             fn = lambda: approx.mp_constants(p, dps=30, with_best_mu=True)  # noqa: E731
         elif sc.kind == "periodic_orbit":
-            fn = lambda: approx.bench_mpmath(p, dps=30, hint={"theta_star": 0.138})  # noqa: E731
+            fn = lambda: approx.bench_mpmath(p, dps=30, hint={"theta_star": 0.13827})  # noqa: E731
         else:
             fn = lambda: approx.bench_mpmath(p, dps=30)  # noqa: E731
         fn()

@@ -92,7 +92,7 @@ def test_2_an_exhaustive_search_without_a_genuine_orbit_refutes_with_its_counter
         assert not an.covers_all and [v.kind for v in an.roots] == ["spurious"]
         inconclusive = relay_claims.attempt(model, list(relay_claims.CLAIMS), 64)
         an.covers_all, an.T_tail = True, an.T_search        # as if the tail bound had covered the rest
-        monkeypatch.setattr(relay_claims, "analyse", lambda m, spectrum=None: an)
+        monkeypatch.setattr(relay_claims, "analyse", lambda m, spectrum=None, phase=None: an)
         refuted = relay_claims.attempt(model, list(relay_claims.CLAIMS), 64)
     assert all(c.status is not Status.REFUTED for c in inconclusive.claims)
     og = next(c for c in refuted.claims if c.id == "orbit_genuine")

@@ -33,7 +33,7 @@ from typing import Callable
 
 from flint import arb
 
-from .balls import ball, certainly_le, certainly_lt, certainly_positive, exact_fraction, interval
+from .balls import ball, certainly_le, certainly_lt, certainly_positive, interval
 from .outcome import Status
 from .roots import enclose_f_df
 
@@ -103,6 +103,23 @@ def certify_positive(f: IntervalFunction, lo: object, hi: object, *, max_pieces:
     return Positivity(Status.PROVED, done, reason=f"f > 0 certified on {done} pieces")
 
 
+class _LargestFirst:
+    """Heap key putting the largest upper bound first: compared as floats (fast), and exactly only when
+    the floats tie (the balls are exact points, so the comparison is decided). The order only chooses
+    which piece to refine next; the enclosure is the max over every piece, whatever the order."""
+
+    __slots__ = ("key", "up")
+
+    def __init__(self, up: arb) -> None:
+        self.up = up
+        self.key = -float(up) if up.is_finite() else float("-inf")
+
+    def __lt__(self, other: "_LargestFirst") -> bool:
+        if self.key != other.key:
+            return self.key < other.key
+        return bool(self.up > other.up)
+
+
 @dataclass
 class Extremum:
     """A certified enclosure ``ball`` of an extremum, with the point that attains the certified
@@ -130,15 +147,15 @@ def enclose_max(f: IntervalFunction, lo: object, hi: object, *, abs_tol: object 
         v = f(p).lower()
         if certainly_lt(best, v):
             best, best_pt = v, p
-    heap: list[tuple[float, int, arb, arb, arb]] = []
+    heap: list[tuple[_LargestFirst, int, arb, arb, arb]] = []
     count = 0
 
     def push(a: arb, b: arb) -> None:
         nonlocal count
         up = f(interval(a, b)).upper()
         count += 1
-        # exact ordering key: the heap top is the piece with the largest upper bound
-        heapq.heappush(heap, (-exact_fraction(up) if up.is_finite() else float("-inf"), count, a, b, up))
+        # the heap top is the piece with the largest upper bound
+        heapq.heappush(heap, (_LargestFirst(up), count, a, b, up))
 
     push(a0, b0)
     converged = False
@@ -155,7 +172,7 @@ def enclose_max(f: IntervalFunction, lo: object, hi: object, *, abs_tol: object 
         if certainly_lt(best, v):
             best, best_pt = v, mid
         if not (certainly_lt(a, mid) and certainly_lt(mid, b)):
-            heapq.heappush(heap, (-exact_fraction(up) if up.is_finite() else float("-inf"), count, a, b, up))
+            heapq.heappush(heap, (_LargestFirst(up), count, a, b, up))
             break
         push(a, mid)
         push(mid, b)

@@ -382,26 +382,30 @@ def rho_function(g: Gimbal):
     return rho
 
 
-def _r_sup_estimate(g: Gimbal, xs: arb, grid: int = 16, steps: int = 24) -> float:
-    """A float estimate of R_sup(mu) = 1 / max over [0, x2*] of rho, from point values of rho (no
-    subdivision): the largest of ``grid`` + 1 equally spaced points, refined by ``steps`` golden-section
-    steps around it. A search heuristic (it may miss a narrow peak): it only chooses mu_best; R_sup at
-    the chosen mu is certified afterwards, and R_sup_upper_bound says how good the choice was."""
+def _r_sup_search(g: Gimbal, xs: arb, grid: int = 16, steps: int = 24) -> tuple[float, arb]:
+    """A float estimate of R_sup(mu) = 1 / max over [0, x2*] of rho, and the point x2 (an exact ball)
+    where it was found, from point values of rho (no subdivision): the largest of ``grid`` + 1 equally
+    spaced points, refined by ``steps`` golden-section steps around it. A search heuristic (it may miss a
+    narrow peak): it only chooses mu_best and the points of the upper bound's branch and bound; what is
+    certified is computed afterwards at those choices."""
     rho = rho_function(g)
 
+    def point(t: float) -> arb:
+        return arb(0) if t == 0.0 else xs if t == 1.0 else (xs * arb(t)).mid()
+
     def val(t: float) -> float:
-        r = rho(xs * arb(t) if t not in (0.0, 1.0) else (arb(0) if t == 0.0 else xs))
+        r = rho(point(t))
         return float(r.mid()) if r.is_finite() else math.inf
     pts = [j / grid for j in range(grid + 1)]
     vals = [val(t) for t in pts]
     j = max(range(len(vals)), key=vals.__getitem__)
     if math.isinf(vals[j]):
-        return 0.0
+        return 0.0, point(pts[j])
     lo, hi = pts[max(j - 1, 0)], pts[min(j + 1, grid)]
     invphi = (math.sqrt(5) - 1) / 2
     t1, t2 = hi - invphi * (hi - lo), lo + invphi * (hi - lo)
     f1, f2 = val(t1), val(t2)
-    best = max(vals[j], f1, f2)
+    best, at = max((vals[j], pts[j]), (f1, t1), (f2, t2))
     for _ in range(steps):
         if f1 > f2:
             hi, t2, f2 = t2, t1, f1
@@ -411,8 +415,8 @@ def _r_sup_estimate(g: Gimbal, xs: arb, grid: int = 16, steps: int = 24) -> floa
             lo, t1, f1 = t1, t2, f2
             t2 = lo + invphi * (hi - lo)
             f2 = val(t2)
-        best = max(best, f1, f2)
-    return 1 / best if best > 0 else 0.0
+        best, at = max((best, at), (f1, t1), (f2, t2))
+    return (1 / best if best > 0 else 0.0), point(at)
 
 
 def r_sup(g: Gimbal, xs: arb, rel: str | arb = "1e-10", max_pieces: int = 4000):
@@ -438,9 +442,9 @@ def rho_lower(g: Gimbal, x2: arb, mu: arb) -> arb:
 
 
 def _argmax_x2(g: Gimbal, xs: arb, mu: fmpq) -> arb:
-    """A point x2 near the maximiser of rho at mu (a search: any point gives a valid bound)."""
-    rho = rho_function(g.with_mu(mu))
-    return enclose_max(rho, 0, xs, abs_tol=abs(rho(xs)) * arb("1e-6"), max_pieces=200).argpoint
+    """A point x2 near the maximiser of rho at mu (a search on point values, :func:`_r_sup_search`:
+    any point gives a valid bound)."""
+    return _r_sup_search(g.with_mu(mu), xs)[1]
 
 
 def r_sup_upper_bound(g: Gimbal, xs: arb, mu_lo: arb, mu_hi: arb, target: arb, max_pieces: int = 2000):
@@ -500,7 +504,7 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
                       {"mu_min": _fmt(lo, 20), "mu_max": _fmt(hi, 20)} if empty else None)
 
     def est(mu: Fraction) -> float:
-        return _r_sup_estimate(g.with_mu(_fmpq(mu)), xs)
+        return _r_sup_search(g.with_mu(_fmpq(mu)), xs)[0]
     a = exact_fraction(lo.upper())
     b = exact_fraction(hi.lower())
     invphi = (math.sqrt(5) - 1) / 2
