@@ -22,7 +22,8 @@ from typing import Any
 
 from flint import arb
 
-from .core.balls import quantity
+from .core.balls import quantity, working_precision
+from .core.misprints import classify_row
 from .core.errors import CertificationFailed
 from .core.outcome import AuditRow, AuditStatus, Claim, Status
 from .version import __version__
@@ -85,6 +86,20 @@ class Certificate:
             raise CertificationFailed(self, f"scene {self.scene.get('name')!r} not proved: {lines}")
         return self
 
+    def _paper_json(self) -> list[dict[str, Any]]:
+        """The audit rows, each with its discrepancy ``class`` and the ``class_reading`` that explains it
+        (core.misprints; computed at the certificate's precision plus a margin, so it is reproducible)."""
+        out = []
+        with working_precision(max(self.precision_bits, 64) + 64):
+            for r in self.paper:
+                row = r.to_json()
+                c = classify_row(r)
+                row["class"], row["class_reading"] = c.cls, c.reading
+                if len(c.readings) > 1:
+                    row["class_also"] = c.readings[1:]
+                out.append(row)
+        return out
+
     def to_json(self) -> dict[str, Any]:
         import flint
 
@@ -98,7 +113,7 @@ class Certificate:
             "verdict": self.verdict.value,
             "claims": [c.to_json() for c in self.claims],
             "quantities": {k: quantity(v) for k, v in self.quantities.items()},
-            "paper": [r.to_json() for r in self.paper],
+            "paper": self._paper_json(),
             "formulas": self.formulas,
             "notes": self.notes,
             **({"extra": self.extra} if self.extra else {}),

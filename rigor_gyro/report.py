@@ -79,19 +79,7 @@ def render_markdown(cert: dict[str, Any]) -> str:
                 out.append(f"  {f['note']}")
         out.append("")
     if cert.get("paper"):
-        out.append("## Audit of the paper")
-        out.append("")
-        out.append("The audit never changes the verdict. Status: *agrees* = the printed number is a "
-                   "correct rounding of the certified value at its printed digits; *misprint* = the "
-                   "printed formula does not give it but the stated reading does; *confirmed* / "
-                   "*refuted* for verbal assertions.")
-        out.append("")
-        out.append("| item | printed | reading | certified lo | certified hi | status | note |")
-        out.append("|---|---|---|---|---|---|---|")
-        for r in cert["paper"]:
-            out.append(f"| {_esc(r['id'])} | {_esc(r['printed'])} | {_esc(r['reading'])} | {r['lo']} | "
-                       f"{r['hi']} | **{r['status']}** | {_esc(r['note'])} |")
-        out.append("")
+        out += _audit_section(cert["paper"])
     if cert.get("notes"):
         out.append("## Notes")
         out.append("")
@@ -106,6 +94,61 @@ def render_markdown(cert: dict[str, Any]) -> str:
                "file holds the same data (schema `" + cert["schema"] + "`).")
     out.append("")
     return "\n".join(out)
+
+
+def _certified_digits(lo: str, hi: str, printed: str, extra: int = 3) -> str:
+    """The certified value to the printed number's significant digits plus ``extra`` (both ends of the
+    ball round alike there; otherwise the ball's [lo, hi])."""
+    from decimal import Decimal, InvalidOperation, ROUND_HALF_EVEN, localcontext
+    try:
+        a, b, p = Decimal(lo), Decimal(hi), Decimal(printed.strip())
+    except (InvalidOperation, ValueError):
+        return f"[{lo}, {hi}]" if lo else ""
+    n = max(len(p.as_tuple().digits), 1) + extra
+    with localcontext() as c:
+        c.prec = n
+        c.rounding = ROUND_HALF_EVEN
+        ra, rb = +a, +b
+    return str(ra) if ra == rb else f"[{lo}, {hi}]"
+
+
+#: audit classes that are plain agreement (not listed among the discrepancies)
+_PLAIN = ("agrees", "assertion-confirmed")
+
+
+def _audit_section(rows: list[dict]) -> list[str]:
+    """The audit: counts by discrepancy class first, the rows that are not plain agreement next (with
+    the reading that reproduces each print), the full table last."""
+    out = ["## Audit of the paper", "",
+           "The audit never changes the verdict. Each printed number is compared with its certified value at "
+           "its printed digits (status *agrees*: a correct rounding; *misprint*: a printed formula that the "
+           "stated reading reproduces; *confirmed* / *refuted* for verbal assertions), and each row gets the "
+           "discrepancy class that explains it (core.misprints: `last-digit`, `sign`, `decimal-shift`, "
+           "`digits-transposed`, `digit-dropped`, `digit-doubled`, `digit-substituted`, `propagated`, or "
+           "`unexplained`: no single edit of the digits, sign or decimal point gives the print). A class is a reading "
+           "of the print, not a proof of what the author meant.", ""]
+    counts: dict[str, int] = {}
+    for r in rows:
+        counts[r.get("class", r["status"])] = counts.get(r.get("class", r["status"]), 0) + 1
+    out.append(f"**{len(rows)} rows:** " + ", ".join(f"{n} {c}" for c, n in
+                                                     sorted(counts.items(), key=lambda kv: (-kv[1], kv[0]))) + ".")
+    out.append("")
+    odd = [r for r in rows if r.get("class", r["status"]) not in _PLAIN]
+    if odd:
+        out += ["### Rows that are not plain agreement", "",
+                "| item | printed | reading | certified (3 digits more than printed) | class | why (the reading that "
+                "reproduces the print) | note |", "|---|---|---|---|---|---|---|"]
+        for r in odd:
+            out.append(f"| {_esc(r['id'])} | {_esc(r['printed'])} | {_esc(r['reading'])} | "
+                       f"{_certified_digits(r['lo'], r['hi'], r['printed'])} | "
+                       f"**{r.get('class', r['status'])}** | {_esc(r.get('class_reading', ''))} | {_esc(r['note'])} |")
+        out.append("")
+    plain = [r for r in rows if r.get("class", r["status"]) in _PLAIN]
+    if plain:
+        out += ["### Rows that agree", "",
+                "; ".join(f"{_esc(r['id'])} ({_esc(r['printed'])})" for r in plain) + ".", "",
+                "Every row, with its certified bounds and notes, is in the JSON certificate (`paper`).", ""]
+    return out
 
 
 def _write_temp(folder: Path, final: str, text: str) -> Path:

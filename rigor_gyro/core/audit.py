@@ -28,10 +28,12 @@ from .balls import certainly_gt, certainly_le
 from .errors import SceneError
 from .outcome import AuditStatus
 
-__all__ = ["audit_printed", "agreeing_digits", "half_unit", "check_printed", "NUMBER", "TEXT", "numbers", "keys"]
+__all__ = ["audit_printed", "agreeing_digits", "half_unit", "check_printed", "NUMBER", "TEXT", "numbers", "keys",
+           "PRINTED_NUMBER"]
 
 #: a number as a paper prints it: optional sign, ASCII digits, a point, an exponent; at most 60 characters
 _PRINTED = re.compile(r"^[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]{1,3})?$", re.ASCII)
+PRINTED_NUMBER = _PRINTED
 NUMBER = "number"
 TEXT = "text"
 

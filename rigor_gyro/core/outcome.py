@@ -98,6 +98,9 @@ class AuditRow:
     value: arb | None
     status: AuditStatus
     note: str = ""
+    #: a ball containing the value recomputed from the paper's own printed inputs, when the kind has one
+    #: (the classifier then tells the paper's computation from a misprint: class ``propagated``)
+    propagated: Any = field(default=None, compare=False, repr=False)
 
     def to_json(self) -> dict[str, Any]:
         q = quantity(self.value) if self.value is not None else {"lo": "", "hi": ""}

@@ -1,0 +1,84 @@
+"""The discrepancy classifier (core.misprints): each class on planted prints, the order of readings,
+the digit thresholds, and a property: a single planted edit of a correct rounding is read as that edit
+(or as a simpler reading that also fits), never as agreement."""
+from __future__ import annotations
+
+from decimal import Decimal
+
+import pytest
+from flint import arb, fmpq
+from hypothesis import given, strategies as st
+
+from rigor_gyro.core.misprints import CLASSES, classify_printed, classify_row, rounded_at
+from rigor_gyro.core.outcome import AuditRow, AuditStatus
+
+V = arb(fmpq(1382699412, 10 ** 10))      # 0.1382699412 exactly
+
+
+@pytest.mark.parametrize("printed, cls", [
+    ("0.13827", "agrees"),
+    ("0.13828", "last-digit"),
+    ("0.13826", "last-digit"),
+    ("-0.13827", "sign"),
+    ("1.3827", "decimal-shift"),
+    ("0.013827", "decimal-shift"),
+    ("0.13872", "digits-transposed"),
+    ("0.1387", "digit-dropped"),
+    ("0.138827", "digit-doubled"),
+    ("0.13927", "digit-substituted"),
+    ("0.13829", "unexplained"),          # the last digit two units off: a numerical difference
+    ("0.5", "unexplained"),              # one significant digit: no digit edit is a reading
+    ("0.24", "unexplained"),
+])
+def test_each_class_on_a_planted_print(printed, cls):
+    c = classify_printed(printed, V)
+    assert c.cls == cls, (printed, c)
+    assert c.readings[0] == cls and c.cls in CLASSES
+
+
+def test_propagated_comes_before_a_digit_reading():
+    c = classify_printed("0.13828", V, propagated=arb(fmpq(138281, 10 ** 6)))
+    assert c.cls == "propagated" and "last-digit" in c.readings
+
+
+def test_compound_readings_need_enough_digits_and_two_agreeing_digits_after_the_edit():
+    # a misprinted leading digit on top of the paper's own rounding (a hand-computed table)
+    c = classify_printed("0.248720", arb(fmpq(348727, 10 ** 6)))
+    assert c.cls == "digit-substituted" and "agrees with the value to 4 of 6" in c.reading
+    # the edit in the 4th of 6 digits with one agreeing digit after it: chance, not a reading
+    assert classify_printed("24.5407", arb(fmpq(245714, 10 ** 4))).cls == "unexplained"
+
+
+def test_a_wide_ball_is_undecided_not_explained():
+    wide = arb(fmpq(13827, 10 ** 5), fmpq(1, 10 ** 4))
+    assert rounded_at(wide, -5) is None
+    assert classify_printed("0.13820", wide).cls == "undecided"
+
+
+def test_row_classes_for_assertions_formulas_and_non_numbers():
+    assert classify_row(AuditRow("a", "V > 0", "", None, AuditStatus.CONFIRMED)).cls == "assertion-confirmed"
+    assert classify_row(AuditRow("a", "R = R1", "", None, AuditStatus.REFUTED)).cls == "assertion-refuted"
+    assert classify_row(AuditRow("f", "lambda^2", "Omega^2", None, AuditStatus.MISPRINT)).cls == "misprint-reading"
+    assert classify_row(AuditRow("n", "41.4, 121.5", "", V, AuditStatus.DISAGREES)).cls == "not-a-number"
+    assert classify_row(AuditRow("x", "0.13872", "", V, AuditStatus.DISAGREES)).cls == "digits-transposed"
+
+
+@given(st.integers(10 ** 5, 10 ** 6 - 1), st.integers(0, 4), st.sampled_from(["transpose", "sign", "shift"]))
+def test_a_planted_edit_is_never_read_as_agreement(n, i, edit):
+    value = arb(fmpq(n * 1000 + 123, 10 ** 9))            # 0.nnnnnn123: rounds to 0.nnnnnn
+    true = rounded_at(value, -6)
+    digits = list(str(true)[2:])
+    if edit == "transpose":
+        if digits[i] == digits[i + 1]:
+            return
+        digits[i], digits[i + 1] = digits[i + 1], digits[i]
+        # (a transposition that moves a leading digit past a zero is also a decimal shift)
+        printed, expect = "0." + "".join(digits), {"digits-transposed", "last-digit", "decimal-shift"}
+    elif edit == "sign":
+        printed, expect = str(-true), {"sign"}
+    else:
+        printed, expect = str(true * 10), {"decimal-shift"}
+    c = classify_printed(printed, value)
+    assert c.cls != "agrees"
+    assert c.cls in expect or set(c.readings) & expect, (printed, c)
+    assert Decimal(printed) != true
