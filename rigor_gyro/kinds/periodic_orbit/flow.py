@@ -458,13 +458,14 @@ def taylor_enclosure(coeff_fn: CoeffFn, X: arb, order: int = 8, derivs: Sequence
     over X, intersected with the direct enclosure over X. ``coeff_fn(center, n)`` must return balls
     containing f^{(j)}(c)/j! (j < n) for every point c of the ball ``center``."""
     kmax = max(derivs)
-    direct = coeff_fn(X, kmax + 1)
     if X.rad().is_zero():
+        direct = coeff_fn(X, kmax + 1)
         return [direct[k] * factorial(k) for k in derivs]
     m = arb(X.mid())
     w = X - m
     c = coeff_fn(m, order)
-    cN = coeff_fn(X, order + 1)[order]
+    over = coeff_fn(X, order + 1)       # one evaluation over X: the direct enclosures and the remainder's
+    direct, cN = over[:kmax + 1], over[order]
     out = []
     for k in derivs:
         tot = arb(0)
