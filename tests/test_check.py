@@ -280,3 +280,32 @@ def test_malformed_data_is_rejected_without_a_crash_or_a_hang(tmp_path, edit):
     t0 = time.perf_counter()
     code = main(["check", "--quiet", str(path)])
     assert code in (1, 2) and time.perf_counter() - t0 < 5
+
+
+@pytest.mark.parametrize("scene", ["stress_gimbal_H_10", "stress_relay_sigma_1e-6", "stress_relay_tau_1e-4"])
+def test_stress_certificates_are_confirmed(scene):
+    """Found by the stress catalog: a derived quantity (damping_margin) recomputed by the checker from its own
+    k_min, inside the stored decimals of k_min but outside the prover's ball, escaped the stored margin; and a
+    multiplier modulus of 1e-55701 was not a readable stored number. Both certificates were right."""
+    import json
+    from rigor_gyro.check import check_certificate
+    from rigor_gyro.prover import prove_scene
+    from rigor_gyro.scene import load_scene
+    data = json.loads(json.dumps(prove_scene(load_scene(scene)).to_json()))
+    report = check_certificate(data)
+    assert report.ok, report.first_failure
+
+
+def test_stored_hull_contains_the_stored_decimals():
+    from fractions import Fraction
+    from flint import arb, fmpq
+    from rigor_gyro.core.balls import decimal_bounds, stored_hull
+    from rigor_gyro.core.stored import number
+    x = arb(fmpq(508, 3), fmpq(1, 10 ** 14))
+    lo, hi = decimal_bounds(x)
+    h = stored_hull(x)
+    assert h.contains(arb(fmpq(*Fraction(lo).as_integer_ratio()))) and h.contains(arb(fmpq(*Fraction(hi).as_integer_ratio())))
+    assert h.contains(x)
+    assert number("3.047974992074806571730325466537e-55701") > 0
+    with pytest.raises(ValueError):
+        number("1e-1000000")

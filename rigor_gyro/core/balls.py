@@ -48,7 +48,7 @@ __all__ = [
     "DEFAULT_PREC", "DEFAULT_MAXPREC", "working_precision", "current_precision", "ball", "is_finite",
     "certainly_lt", "certainly_le", "certainly_gt", "certainly_ge", "certainly_positive",
     "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
-    "overlaps", "certainly_within", "interval", "exact_fraction", "decimal_bounds", "quantity",
+    "overlaps", "certainly_within", "interval", "exact_fraction", "decimal_bounds", "quantity", "stored_hull",
     "rel_width_at_most", "sqrt_of_nonnegative", "exact_endpoints", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
 ]
 
@@ -355,6 +355,20 @@ def quantity(x: arb, digits: int | None = None) -> dict[str, str]:
     mid = _round_decimal((a + b) / 2, d, "nearest")
     rad = _round_decimal((b - a) / 2, 3, "up")
     return {"lo": lo, "hi": hi, "mid": mid, "rad": rad}
+
+
+def stored_hull(x: arb) -> arb:
+    """A ball containing the certificate's decimal interval [lo, hi] of ``x`` (:func:`quantity`).
+
+    Use: a quantity derived from ``stored_hull(x)`` contains whatever a checker derives from any value
+    in the stored interval of x, not only from values in the ball x (the decimals are rounded outward,
+    so a checker's own enclosure of x may lie in that slack and still be confirmed). Non-finite balls
+    are returned unchanged."""
+    if not x.is_finite():
+        return x
+    lo, hi = decimal_bounds(x)
+    a, b = Fraction(lo), Fraction(hi)
+    return interval(arb(fmpq(a.numerator, a.denominator)), arb(fmpq(b.numerator, b.denominator)))
 
 
 # ---------------------------------------------------------------- precision escalation

@@ -21,9 +21,9 @@ from .balls import exact_endpoints
 __all__ = ["number", "interval", "encloses", "as_ball", "fmpq_of", "exact_text", "pieces_text", "ball_text"]
 
 
-#: a stored number: a decimal (exponent within +-4000) or an exact p/q (dyadics at high precision have
+#: a stored number: a decimal (exponent within +-999999: a stiff multiplier is 1e-55701) or an exact p/q (dyadics at high precision have
 #: many digits), at most 20000 characters; anything else is rejected before any arithmetic
-_STORED = re.compile(r"^-?[0-9]+(?:\.[0-9]+)?(?:e[+-]?[0-9]{1,4})?$|^-?[0-9]+/[0-9]+$", re.ASCII)
+_STORED = re.compile(r"^-?[0-9]+(?:\.[0-9]+)?(?:e[+-]?[0-9]{1,6})?$|^-?[0-9]+/[0-9]+$", re.ASCII)
 
 
 def number(text: str) -> Fraction:

@@ -46,7 +46,7 @@ from fractions import Fraction
 from flint import arb, fmpq
 
 from ...core.balls import (certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds,
-                           exact_fraction, interval, rel_width_at_most, working_precision)
+                           exact_fraction, interval, rel_width_at_most, stored_hull, working_precision)
 from ...core.audit import check_printed
 from ...core.errors import ParameterError
 from ...core.exact import (Exact, option_count, option_number, parse_options, parse_parameters,
@@ -212,7 +212,12 @@ class _Ctx:
 
     def constants(self) -> dict[str, arb]:
         def run():
-            return closed_form_constants(self.g, self.m_max().ball, self.M_max().ball)
+            # derived from the hulls of m's and M's stored decimal intervals: a checker's own m, M (confirmed
+            # inside those intervals) then give p, k_min, ... inside the stored ones (no decimal slack escapes)
+            m, M = self.m_max().ball, self.M_max().ball
+            k = closed_form_constants(self.g, stored_hull(m), stored_hull(M))
+            k["m"], k["M"] = m, M
+            return k
         return self.memo("constants", run)
 
     def R_used(self) -> tuple[arb, str]:

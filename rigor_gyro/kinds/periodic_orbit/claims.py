@@ -44,7 +44,8 @@ from typing import Any
 from flint import acb, acb_mat, arb, arb_series
 
 from ...core.balls import (ball, exact_fraction, series_coefficients, certainly_gt, certainly_le, certainly_lt, certainly_negative,
-                           certainly_positive, current_precision, decimal_bounds, decimal_bounds_apart, interval)
+                           certainly_positive, current_precision, decimal_bounds, decimal_bounds_apart, interval,
+                           working_precision)
 from ...core.errors import ParameterError
 from ...core.audit import check_printed
 from ...core.exact import Exact, option_number, parse_options, parse_parameters, require_rational
@@ -92,6 +93,8 @@ CLAIMS = {
 
 #: Taylor order of the enclosures over pieces (point coefficients + Lagrange remainder)
 TAYLOR_ORDER = 8
+#: bits above the working precision at which a genuine orbit's final quantities are recomputed
+GUARD_BITS = 32
 #: the tail point is searched up to this multiple of the slowest time scale 1/min|Re lambda|
 TAIL_CAP_FACTOR = 100
 MAX_PIECES = 200000
@@ -317,6 +320,9 @@ class Analysis:
     roots: list[RootVerdict] = field(default_factory=list)
     problem: str = ""
     piece_list: list = field(default_factory=list)
+    #: the spectrum at the guard precision (current + GUARD_BITS) that the genuine orbits' final
+    #: quantities (theta*, x(0), multipliers, D1..D5) were computed with; None if there are none
+    sp_fine: Spectrum | None = None
 
 
 def _slowest_scale(sp: Spectrum) -> arb:
@@ -440,9 +446,21 @@ def analyse(model: RelayModel, spectrum=None, phase: Phases | None = None) -> An
         for r in iso.roots:
             an.roots.append(classify_root(sp, r))
     with phase("multipliers"):
-        for v in an.roots:
-            if v.kind == "genuine":
-                _multipliers(sp, v)
+        genuine = [v for v in an.roots if v.kind == "genuine"]
+        if genuine:
+            # guard bits: theta*, x(0) and the multipliers are recomputed GUARD_BITS above the working
+            # precision, so their widths follow 2^-prec instead of losing the bits that the spectral
+            # sums and the eigenvalue problem cancel (the checker works at >= 2 prec, above this)
+            with working_precision(current_precision() + GUARD_BITS):
+                fine = spectrum() if spectrum is not None else Spectrum(P)
+                gf = _g_series_function(fine)
+                for v in genuine:
+                    piece = newton_root(gf, v.theta.lower(), v.theta.upper())
+                    if piece.status is RootStatus.UNIQUE and piece.enclosure.is_finite():
+                        v.theta = piece.enclosure.intersection(v.theta)
+                        v.x0 = x0_at(fine, v.theta)
+                    _multipliers(fine, v)
+            an.sp_fine = fine
     return an
 
 
@@ -624,7 +642,8 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
     paper: list = []
     formulas = formula_table()
     if main is not None:
-        fq, fnotes = orbit_quantities(model, sp, main)
+        with working_precision(current_precision() + (GUARD_BITS if an.sp_fine is not None else 0)):
+            fq, fnotes = orbit_quantities(model, an.sp_fine or sp, main)
         quantities.update(fq)
         notes.extend(fnotes)
         if model.paper:
