@@ -9,7 +9,9 @@ prove it and compare
 * the float (numpy/scipy) result: a float outside its tolerance is a *float miss*, counted and listed
   with its relative error (floats are not references);
 * every verdict with an independent decision where one exists (mpmath brackets and orderings, sampled
-  Vdot and V, a dense scan of g): a *verdict disagreement* fails the run.
+  Vdot and V, a dense scan of g): a *verdict disagreement* fails the run;
+* the certificate itself with the independent checker (``rigor-gyro check``, after a JSON round trip):
+  a certificate it does not confirm is a *check failure* and fails the run.
 
 Cases run on a process pool (``--workers``); tasks and results are plain strings and JSON-able data.
 A case that runs longer than ``--case-timeout`` seconds is stopped and counted *timed out*: an
@@ -45,6 +47,7 @@ class CaseResult:
     compared: int = 0
     error: str = ""
     timed_out: bool = False
+    check_failures: list[str] = field(default_factory=list)
 
 
 class CaseTimeout(Exception):
@@ -65,6 +68,7 @@ def run_case(kind: str, params: dict[str, str], options: dict | None = None,
 
     ``timeout`` (seconds, Unix main thread only) stops the case: verdict ``inconclusive``, ``timed_out``.
     """
+    from .check import check_certificate
     from .prover import prove_scene
     from .scene import Scene
     mod = _module(kind)
@@ -81,9 +85,14 @@ def run_case(kind: str, params: dict[str, str], options: dict | None = None,
         res.seconds = time.perf_counter() - t0
         res.verdict = cert.verdict.value
         mod.compare(params, cert, res)
+        report = check_certificate(json.loads(json.dumps(cert.to_json())))
+        if not report.ok:
+            f = report.first_failure
+            res.check_failures.append(f"{f.item}: {f.message}"[:300] if f else "no check ran")
     except CaseTimeout:
         res.verdict, res.timed_out = "inconclusive", True
         res.containment_failures, res.verdict_disagreements, res.float_misses, res.compared = [], [], [], 0
+        res.check_failures = []
         res.seconds = time.perf_counter() - t0
     except Exception as e:  # a crash in a valid case is a finding, reported as such
         res.error = f"{type(e).__name__}: {e}"[:300]
@@ -131,19 +140,22 @@ def summary_table(kind: str, seed: int, results: list[dict[str, Any]]) -> str:
     by = {v: sum(1 for r in results if r["verdict"] == v) for v in ("proved", "refuted", "inconclusive")}
     cf = [r for r in results if r["containment_failures"]]
     vd = [r for r in results if r["verdict_disagreements"]]
+    ck = [r for r in results if r.get("check_failures")]
     errs = [r for r in results if r["error"]]
     fm = [(name, err) for r in results for name, err in r["float_misses"]]
     worst = max((e for _, e in fm), default=0.0)
     times = sorted(r["seconds"] for r in results) or [0.0]
     compared = sum(r["compared"] for r in results)
     lines = ["| kind | seed | cases | proved | refuted | inconclusive | crashes | containment failures | "
-             "verdict disagreements | values compared | float misses (worst rel. error) | s/case median (max) |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|",
+             "verdict disagreements | check failures | values compared | float misses (worst rel. error) | "
+             "s/case median (max) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
              f"| {kind} | {seed} | {n} | {by['proved']} | {by['refuted']} | {_inconclusive(results)} | {len(errs)} | "
-             f"{len(cf)} | {len(vd)} | {compared} | {len(fm)} ({worst:.2g}) | {times[len(times) // 2]:.2f} "
-             f"({times[-1]:.2f}) |"]
-    for r in (cf + vd + errs)[:10]:
+             f"{len(cf)} | {len(vd)} | {len(ck)} | {compared} | {len(fm)} ({worst:.2g}) | "
+             f"{times[len(times) // 2]:.2f} ({times[-1]:.2f}) |"]
+    for r in (cf + vd + ck + errs)[:10]:
         lines.append("")
         lines.append(f"- FAILED scene {json.dumps(r['params'])}: " + "; ".join(
-            r["containment_failures"] + r["verdict_disagreements"] + ([r["error"]] if r["error"] else []))[:600])
+            r["containment_failures"] + r["verdict_disagreements"] + r.get("check_failures", [])
+            + ([r["error"]] if r["error"] else []))[:600])
     return "\n".join(lines)

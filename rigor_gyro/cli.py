@@ -317,7 +317,8 @@ def _cmd_campaign(args) -> int:
         (out / f"campaign_{args.kind}_{args.seed}.md").write_text(table + "\n", encoding="utf-8")
         (out / f"campaign_{args.kind}_{args.seed}.json").write_text(json.dumps(results, indent=1) + "\n",
                                                                      encoding="utf-8")
-    bad = any(r["containment_failures"] or r["verdict_disagreements"] or r["error"] for r in results)
+    bad = any(r["containment_failures"] or r["verdict_disagreements"] or r.get("check_failures") or r["error"]
+              for r in results)
     return 1 if bad else 0
 
 

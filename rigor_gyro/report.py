@@ -24,6 +24,54 @@ def _esc(text: Any) -> str:
     return str(text).replace("|", "\\|").replace("\n", " ")
 
 
+def _short(q: dict[str, str], digits: int = 10) -> str:
+    """A stored quantity as its midpoint to ``digits`` significant digits and its certified half-width."""
+    from decimal import Decimal, InvalidOperation, localcontext
+    try:
+        mid = Decimal(q["mid"])
+    except (InvalidOperation, KeyError, ValueError):
+        return f"[{q.get('lo')}, {q.get('hi')}]"
+    with localcontext() as c:
+        c.prec = digits
+        m = +mid
+    return f"{m} (+- {q['rad']})"
+
+
+def _summary(cert: dict[str, Any]) -> list[str]:
+    """The answer first: the verdict and its claims in one line each, the numbers an engineer wants
+    (the kind's HEADLINE quantities, midpoint and certified half-width), and how to read the rest."""
+    from .kinds import kind_module
+    claims = cert["claims"]
+    by: dict[str, list[str]] = {}
+    for c in claims:
+        by.setdefault(c["status"], []).append(c["id"])
+    out = ["## Summary", "",
+           f"**Verdict: {cert['verdict']}** ({len(claims)} claims: "
+           + ", ".join(f"{len(by[s])} {s}" for s in ("proved", "refuted", "inconclusive") if s in by) + ")."]
+    for c in claims:
+        if c["status"] != "proved":
+            out.append(f"- `{c['id']}` **{c['status']}**: {_esc(c['reason'])[:300]}"
+                       + ("..." if len(c["reason"]) > 300 else ""))
+    try:
+        headline = getattr(kind_module(cert["scene"]["kind"]), "HEADLINE", {})
+    except Exception:
+        headline = {}
+    q = cert["quantities"]
+    rows = [(name, what) for name, what in headline.items() if name in q]
+    if any(n.startswith("freq_hz_") for n, _ in rows):         # Hz given: the omegas are in the details
+        rows = [(n, w) for n, w in rows if not n.startswith("omega_")]
+    if rows:
+        out += ["", "| quantity | certified value (midpoint, +- half-width) |", "|---|---|"]
+        for name, what in rows:
+            out.append(f"| {what} (`{name}`) | {_short(q[name])} |")
+    out += ["", "*How to read this report:* the verdict is *proved* only if every claim is; a *refuted* claim "
+            "carries a certified counterexample in its reason; an *inconclusive* one says what to try. Every number "
+            "is a ball that certainly contains the exact value for the exact parameters below (full bounds under "
+            "*Certified enclosures*, all data in the JSON certificate); the audit of the paper comes last and never "
+            "changes the verdict.", ""]
+    return out
+
+
 def render_markdown(cert: dict[str, Any]) -> str:
     """The Markdown report of a certificate given in its JSON form."""
     scene = cert["scene"]
@@ -37,6 +85,7 @@ def render_markdown(cert: dict[str, Any]) -> str:
                f"{cert['software']['python_flint']}, rigor_gyro {cert['software']['rigor_gyro']}). "
                f"Working precision: {cert['precision_bits']} bits (tried {cert.get('precisions_tried', [])}).")
     out.append("")
+    out += _summary(cert)
     out.append("## Parameters (exact)")
     out.append("")
     out.append("| name | value |")

@@ -45,3 +45,18 @@ def test_the_time_limit_is_disarmed_after_a_case():
 def test_bad_case_timeout_is_bad_input(value, capsys):
     assert main(["campaign", "--kind", "eigenfrequencies", "--cases", "1", "--case-timeout", value]) == 2
     assert "--case-timeout" in capsys.readouterr().err
+
+
+def test_every_case_is_re_verified_by_the_checker(monkeypatch):
+    results = run_campaign("eigenfrequencies", 3, seed=11)
+    assert all(r["check_failures"] == [] for r in results)
+    import rigor_gyro.check as check
+
+    class Bad:
+        ok = False
+        first_failure = check.CheckResult("roots", False, "planted")
+    monkeypatch.setattr(check, "check_certificate", lambda data: Bad())
+    r = run_case("eigenfrequencies", results[0]["params"])
+    assert r["check_failures"] == ["roots: planted"]
+    table = summary_table("eigenfrequencies", 11, [r])
+    assert "check failures" in table and "FAILED" in table and "planted" in table

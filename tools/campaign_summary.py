@@ -10,6 +10,13 @@ import sys
 from pathlib import Path
 
 
+def _checked(results):
+    """Check failures; '-' for result files written before the campaign ran the checker."""
+    if not any("check_failures" in r for r in results):
+        return "-"
+    return str(sum(1 for r in results if r.get("check_failures")))
+
+
 def _timed_out(results):
     t = sum(1 for r in results if r.get("timed_out"))
     return f" ({t} timed out)" if t else ""
@@ -21,8 +28,8 @@ def rows(paths):
         files += sorted(p.glob("campaign_*.json")) if p.is_dir() else [p]
     per_kind: dict[str, list] = {}
     out = ["| kind | seed(s) | cases | proved | refuted | inconclusive | crashes | containment failures | "
-           "verdict disagreements | values compared | float misses (worst rel. error) | s/case median (max) | "
-           "s/case mean |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           "verdict disagreements | check failures | values compared | float misses (worst rel. error) | "
+           "s/case median (max) | s/case mean |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
 
     def line(kind, seeds, results):
         by = {v: sum(1 for r in results if r["verdict"] == v) for v in ("proved", "refuted", "inconclusive")}
@@ -31,7 +38,8 @@ def rows(paths):
         return (f"| {kind} | {seeds} | {len(results)} | {by['proved']} | {by['refuted']} | {by['inconclusive']}"
                 f"{_timed_out(results)} | "
                 f"{sum(1 for r in results if r['error'])} | {sum(1 for r in results if r['containment_failures'])} | "
-                f"{sum(1 for r in results if r['verdict_disagreements'])} | {sum(r['compared'] for r in results)} | "
+                f"{sum(1 for r in results if r['verdict_disagreements'])} | {_checked(results)} | "
+                f"{sum(r['compared'] for r in results)} | "
                 f"{len(fm)} ({max(fm, default=0.0):.2g}) | {times[len(times) // 2]:.2f} ({times[-1]:.2f}) | "
                 f"{sum(times) / len(times):.2f} |")
     for f in files:

@@ -7,6 +7,6 @@ gimbal (Rudenko 1976, seed 002).
 * :mod:`.boxes`: the claims over a box of parameters (tolerances; used by :mod:`rigor_gyro.margins`);
 * :mod:`.approx`: numpy/mpmath cross-checks (never a verdict).
 """
-from .claims import CLAIMS, CLAIMS_INDEPENDENT_OF, PARAMETERS, attempt, validate
+from .claims import CLAIMS, HEADLINE, CLAIMS_INDEPENDENT_OF, PARAMETERS, attempt, validate
 
-__all__ = ["CLAIMS", "CLAIMS_INDEPENDENT_OF", "PARAMETERS", "validate", "attempt"]
+__all__ = ["CLAIMS", "HEADLINE", "CLAIMS_INDEPENDENT_OF", "PARAMETERS", "validate", "attempt"]

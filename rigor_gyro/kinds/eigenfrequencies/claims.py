@@ -45,6 +45,12 @@ PARAMETERS = {"a": "(A1+A2+A3)/A3", "b": "(A2+A3)/A3", "eps": "K2/K3", "Omega2":
 REQUIRED = ("a", "b", "eps", "Omega2")
 OPTIONS = {"rel_width": "1e-30"}
 
+#: the numbers a report's summary opens with (quantity name -> what it is), in this order
+HEADLINE = {"freq_hz_1": "eigenfrequency 1 (Hz)", "freq_hz_2": "eigenfrequency 2 (Hz)",
+            "freq_hz_3": "eigenfrequency 3 (Hz)", "freq_hz_4": "eigenfrequency 4 (Hz)",
+            "omega_1": "omega_1 (root 1 of the quartic)", "omega_2": "omega_2", "omega_3": "omega_3",
+            "omega_4": "omega_4"}
+
 CLAIMS = {
     "roots": "The characteristic quartic in omega has exactly four roots, all real, positive and simple; "
              "they are enclosed as omega_1 < omega_2 < omega_3 < omega_4 to the requested relative width.",

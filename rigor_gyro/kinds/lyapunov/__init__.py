@@ -9,6 +9,6 @@
 * :mod:`.boxes`: the claims over a box of parameters (for :mod:`rigor_gyro.margins`);
 * :mod:`.approx`: float/mpmath cross-checks (never a verdict); :mod:`.plots`: the figures.
 """
-from .claims import CLAIMS, PARAMETERS, attempt, validate
+from .claims import CLAIMS, HEADLINE, PARAMETERS, attempt, validate
 
-__all__ = ["CLAIMS", "PARAMETERS", "validate", "attempt"]
+__all__ = ["CLAIMS", "HEADLINE", "PARAMETERS", "validate", "attempt"]

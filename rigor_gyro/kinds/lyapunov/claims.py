@@ -73,6 +73,12 @@ BEST_MU_GAP = "1e-6"    # escalation beyond this only repeats the same subdivisi
 OPTIONS = {"rel_width": "1e-15", "R": "", "max_pieces": "20000"}
 MAX_PIECES_LIMIT = 1_000_000
 
+#: the numbers a report's summary opens with (quantity name -> what it is), in this order
+HEADLINE = {"R_used": "radius R of region (17) used", "c_star": "level c* of the invariant estimate {V < c*}",
+            "R_max": "certified radius R_max at mu_best (Psi test)", "mu_best": "mu_best (a search result)",
+            "R_sup_upper_bound": "no mu in (16) gives the Psi test a radius above this",
+            "k_min": "k_min = p A0 / H of (18)", "damping_margin": "design margin k/k_min - 1"}
+
 CLAIMS = {
     "constants": "Enclosures of A0, B0, C0, m, M, p, k_min = p A0/H, the mu interval (p/H, k/A0), R1, R2 and "
                  "R = min(R1, R2); m and M are certified maxima over |x2| <= x2*.",

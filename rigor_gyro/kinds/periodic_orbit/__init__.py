@@ -8,6 +8,6 @@ seed 001).
 * :mod:`.boxes`: the claims over a box of parameters (for :mod:`rigor_gyro.margins`);
 * :mod:`.approx`: numpy/scipy/mpmath cross-checks (never a verdict); :mod:`.plots`: the figure.
 """
-from .claims import CLAIMS, CLAIMS_INDEPENDENT_OF, OPTIONS, PARAMETERS, attempt, validate
+from .claims import CLAIMS, HEADLINE, CLAIMS_INDEPENDENT_OF, OPTIONS, PARAMETERS, attempt, validate
 
-__all__ = ["CLAIMS", "CLAIMS_INDEPENDENT_OF", "PARAMETERS", "OPTIONS", "validate", "attempt"]
+__all__ = ["CLAIMS", "HEADLINE", "CLAIMS_INDEPENDENT_OF", "PARAMETERS", "OPTIONS", "validate", "attempt"]

@@ -74,6 +74,12 @@ PARAMETERS = {
 }
 OPTIONS = {"T_max": "auto", "theta_width": "1e-12"}
 
+#: the numbers a report's summary opens with (quantity name -> what it is), in this order
+HEADLINE = {"theta_star": "half-period theta* (s)", "period": "period 2 theta* (s)",
+            "multiplier_modulus_1": "largest multiplier modulus", "multiplier_modulus_2": "multiplier modulus 2",
+            "multiplier_modulus_3": "multiplier modulus 3", "multiplier_modulus_4": "multiplier modulus 4",
+            "stability_margin": "stability margin 1 - max modulus"}
+
 CLAIMS = {
     "half_period": "Every root of the half-period equation g(theta) = 0 (the paper's (13); g = beta(0) of the "
                    "symmetric solution) on the searched range is isolated: each piece of the range is certified "
