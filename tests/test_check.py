@@ -64,7 +64,8 @@ def test_any_edit_without_the_digest_is_rejected(rudenko):
 
 
 #: quantities that are certified upper bounds (a number the proof computed), not enclosures of one value
-UPPER_BOUNDS = {"R_sup_upper_bound", "R_max_relative_gap", "bound_x1", "bound_x3"}
+UPPER_BOUNDS = {"R_sup_upper_bound", "R_max_relative_gap", "bound_x1", "bound_x3", "R_direct_upper",
+                "R_direct_relative_gap"}
 #: parameters no claim depends on (the lyapunov model uses C only through H = C r0, given as H)
 UNUSED = {("lyapunov", "C")}
 
@@ -309,3 +310,24 @@ def test_stored_hull_contains_the_stored_decimals():
     assert number("3.047974992074806571730325466537e-55701") > 0
     with pytest.raises(ValueError):
         number("1e-1000000")
+
+
+def test_the_direct_vdot_witness_is_re_verified():
+    """vdot_direct: a dropped (x2, t) box, a larger R_direct or a moved counterexample point is rejected."""
+    from rigor_gyro.prover import prove_scene
+    from rigor_gyro.scene import load_scene
+    data = json.loads(json.dumps(prove_scene(load_scene("agafonov2013")).to_json()))
+    assert check_certificate(data).ok
+    w = data["witnesses"]["vdot_direct"]
+    assert len(w["boxes"]) > 10 and "point" in w
+
+    def bad(mutate):
+        d = copy.deepcopy(data)
+        mutate(d["witnesses"]["vdot_direct"], d)
+        return not check_certificate(_refix(d)).ok
+    assert bad(lambda w, d: w["boxes"].pop(3))
+    assert bad(lambda w, d: w.__setitem__("R", str(Fraction(w["R"]) * Fraction(101, 100))))
+
+    def origin(w, d):           # Vdot = 0 at the origin: not a point where Vdot > 0
+        w["point"] = {k: ["0", "0"] for k in ("x1", "x2", "x3")}
+    assert bad(origin)

@@ -46,7 +46,8 @@ def near(ball, ref, rel):
 
 def test_example_every_claim_proved(example):
     assert {c.id: c.status for c in example.claims} == {c: Status.PROVED for c in (
-        "constants", "damping_condition", "vdot_nonpositive", "v_positive", "invariant_estimate", "best_mu")}
+        "constants", "damping_condition", "vdot_nonpositive", "vdot_direct", "v_positive", "invariant_estimate",
+        "best_mu")}
     assert example.precision_bits == 64
 
 

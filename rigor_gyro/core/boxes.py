@@ -32,7 +32,7 @@ from flint import arb, fmpq
 from .errors import ParameterError
 from .exact import parse_exact
 
-__all__ = ["Box", "parse_tolerance", "is_tolerance", "split_parameters", "fraction_text"]
+__all__ = ["Box", "parse_tolerance", "is_tolerance", "split_parameters", "fraction_text", "tiles_by_bisection"]
 
 _BRACKET = re.compile(r"^\[\s*([^,\[\]]+?)\s*,\s*([^,\[\]]+?)\s*\]$")
 _PLUS_MINUS = re.compile(r"^(.+?)\s*(?:\+-|\+/-|±)\s*(.+)$")
@@ -160,3 +160,25 @@ def split_parameters(parameters: dict[str, object]) -> tuple[dict[str, object], 
         else:
             edges[k] = t
     return points, Box.of(edges)
+
+
+def tiles_by_bisection(whole: Box, boxes: list[Box], frozen: tuple[str, ...] = ()) -> bool:
+    """Whether ``boxes`` are exactly the leaves of a bisection tree of ``whole`` (:meth:`Box.split`'s
+    rule): then they cover ``whole`` and meet only on faces. Exact; linear in the number of boxes."""
+    want = {b.edges for b in boxes}
+    if len(want) != len(boxes):
+        return False
+    seen, budget = 0, 2 * len(boxes) + 1       # a valid tree has len(boxes) - 1 inner nodes
+    stack = [whole]
+    while stack:
+        node = stack.pop()
+        budget -= 1
+        if budget < 0:
+            return False
+        if node.edges in want:
+            seen += 1
+            continue
+        if all(hi == lo for n, lo, hi in node.edges if n not in frozen):
+            return False
+        stack.extend(node.split(whole, frozen))
+    return seen == len(boxes)

@@ -31,13 +31,14 @@ import heapq
 from dataclasses import dataclass, field
 from typing import Callable
 
-from flint import arb
+from flint import arb, fmpq
 
 from .balls import ball, certainly_le, certainly_lt, certainly_positive, interval
 from .outcome import Status
 from .roots import enclose_f_df
 
-__all__ = ["Positivity", "Extremum", "mean_value_form", "certify_positive", "enclose_max", "enclose_min"]
+__all__ = ["Positivity", "Extremum", "BoxPositivity", "mean_value_form", "certify_positive", "certify_positive_on_box",
+           "enclose_max", "enclose_min"]
 
 IntervalFunction = Callable[[arb], arb]
 
@@ -187,3 +188,51 @@ def enclose_min(f: IntervalFunction, lo: object, hi: object, *, abs_tol: object 
     """Enclose min of f over [lo, hi] (as -max(-f))."""
     m = enclose_max(lambda x: -f(x), lo, hi, abs_tol=abs_tol, rel_tol=rel_tol, max_pieces=max_pieces)
     return Extremum(-m.ball, m.argpoint, m.pieces, m.converged, m.cover)
+
+
+BoxFunction = Callable[[dict], arb]
+
+
+@dataclass
+class BoxPositivity:
+    """Outcome of :func:`certify_positive_on_box`: the status, the leaves on which f > 0 was certified
+    (PROVED: they tile the box, the witness a checker re-evaluates), a point (exact rationals, by
+    name) where f <= 0 certainly (REFUTED), or the undecided box (INCONCLUSIVE)."""
+
+    status: Status
+    leaves: list = field(default_factory=list)
+    witness: dict | None = None
+    witness_value: arb | None = None
+    stuck: object = None
+    reason: str = ""
+
+
+def certify_positive_on_box(f: BoxFunction, whole, *, max_pieces: int = 20000) -> BoxPositivity:
+    """Decide f > 0 on a box (a :class:`rigor_gyro.core.boxes.Box`) by bisection along its relatively
+    widest edge (:meth:`Box.split`). ``f`` maps {name: ball} (each ball containing the box's edge) to a
+    ball containing f over the box.
+
+    Guarantee: PROVED only when f > 0 certainly on every leaf, and the leaves are the leaves of a
+    bisection tree of ``whole`` (so they cover it); REFUTED only with a witness point (the box's exact
+    midpoint) where f <= 0 certainly; INCONCLUSIVE when ``max_pieces`` is exhausted (never a refutation).
+    Precision: the current working precision."""
+    leaves: list = []
+    stack = [whole]
+    count = 0
+    while stack:
+        box = stack.pop()
+        count += 1
+        v = f({k: box.ball(k) for k in box.names})
+        if certainly_positive(v):
+            leaves.append(box)
+            continue
+        mid = box.midpoint()
+        vm = f({k: arb(fmpq(q.numerator, q.denominator)) for k, q in mid.items()})
+        if certainly_le(vm, 0):
+            return BoxPositivity(Status.REFUTED, leaves, witness=mid, witness_value=vm,
+                                 reason="f <= 0 at a point (certified)")
+        if count + len(stack) >= max_pieces:
+            return BoxPositivity(Status.INCONCLUSIVE, leaves, stuck=box,
+                                 reason=f"undecided after {count} boxes (raise max_pieces or the precision)")
+        stack.extend(reversed(box.split(whole)))
+    return BoxPositivity(Status.PROVED, leaves, reason=f"f > 0 certified on {len(leaves)} boxes")

@@ -18,7 +18,7 @@ from typing import Any
 
 from ..certificate import digest
 from ..core.balls import working_precision
-from ..core.boxes import Box, fraction_text
+from ..core.boxes import Box, fraction_text, tiles_by_bisection
 from ..core.errors import RigorGyroError
 from ..scene import Scene
 
@@ -27,23 +27,7 @@ __all__ = ["check_paving"]
 
 def _tiles(whole: Box, boxes: list[Box], frozen: tuple[str, ...] = ()) -> bool:
     """Whether ``boxes`` are exactly the leaves of a bisection tree of ``whole`` (Box.split's rule)."""
-    want = {b.edges for b in boxes}
-    if len(want) != len(boxes):
-        return False
-    seen, budget = 0, 2 * len(boxes) + 1       # a valid tree has len(boxes) - 1 inner nodes
-    stack = [whole]
-    while stack:
-        node = stack.pop()
-        budget -= 1
-        if budget < 0:
-            return False
-        if node.edges in want:
-            seen += 1
-            continue
-        if all(hi == lo for n, lo, hi in node.edges if n not in frozen):
-            return False
-        stack.extend(node.split(whole, frozen))
-    return seen == len(boxes)
+    return tiles_by_bisection(whole, boxes, frozen)
 
 
 def CheckResult(item: str, ok: bool, message: str) -> tuple[str, bool, str]:

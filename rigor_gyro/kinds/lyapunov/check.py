@@ -9,6 +9,9 @@ model's enclosures on the stored pieces only, at twice the certificate's precisi
   checker's own enclosure of each maximum; every closed form after them (p, k_min, (16), R1, R2, R)
   is recomputed from those;
 * Psi1, Psi2 > 0 over the disc on every stored piece (Vdot <= 0 on (17)); S, f/x, psi > 0 (V > 0);
+* the direct test: the stored (x2, t) boxes are the leaves of a bisection tree of the domain, A - R|B| > 0
+  on each at the stored R_direct, and Vdot > 0 at the stored point (|x2| <= x2*) whose radius bounds
+  R_direct_upper;
   c* from the faces' closed form and the cylinder bound on the stored cover, the level c_set below it,
   the extents; at mu_best, Psi > 0 on the disc of radius R_max, R_sup(mu_best) on its cover, and the
   upper bound of R_sup over (16) re-derived from the stored mu pieces and x2 points;
@@ -25,8 +28,10 @@ from flint import arb
 from ...check import CheckResult
 from ...core.balls import certainly_gt, certainly_le, certainly_lt, certainly_positive, exact_endpoints
 from ...core.stored import encloses, fmpq_of, interval as stored_interval, number
+from ...core.boxes import Box, tiles_by_bisection
 from .claims import rho_function, rho_lower
-from .model import closed_form_constants, cylinder_lower_bound, mean_value_enclosure, psi_min_functions
+from .model import (DIRECT_DOMAIN, closed_form_constants, cylinder_lower_bound, direct_margin, mean_value_enclosure,
+                    psi_min_functions)
 
 __all__ = ["check"]
 
@@ -75,7 +80,8 @@ def _within(x: arb, lo: arb, hi: arb) -> bool:
 #: per claim, the quantities its statement names: a proved claim without them is not confirmed
 REQUIRED = {"constants": ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R"),
             "invariant_estimate": ("c_star", "c_set"),
-            "best_mu": ("mu_best", "R_max", "R_sup_upper_bound", "R_max_relative_gap")}
+            "best_mu": ("mu_best", "R_max", "R_sup_upper_bound", "R_max_relative_gap"),
+            "vdot_direct": ("R_direct",)}
 
 
 def _max_upper(f, pieces) -> arb:
@@ -257,6 +263,27 @@ def check(model, data: dict) -> list[CheckResult]:
             upper_bound_holds("R_max_relative_gap", (U - R_max) / R_max)
         bm_ok = inside16 and at_R_max and U is not None and U.is_finite()
 
+    # ---------------------------------------------------------------- Vdot < 0 directly
+    direct_ok = False
+    wd = W.get("vdot_direct")
+    if wd and claims.get("vdot_direct", {}).get("status") == "proved":
+        Rd = arb(fmpq_of(number(wd["R"])))
+        contains("R_direct", Rd)
+        boxes = [Box.from_json(b) for b in wd.get("boxes", [])]
+        whole = Box.of(DIRECT_DOMAIN)
+        G = direct_margin(g, Rd)
+        direct_ok = (certainly_positive(Rd) and tiles_by_bisection(whole, boxes)
+                     and all(certainly_positive(G({k: b.ball(k) for k in b.names})) for b in boxes))
+        pt = wd.get("point")
+        if pt and direct_ok:
+            x1, x2, x3 = (_b(_pair(pt[k])) for k in ("x1", "x2", "x3"))
+            if certainly_le(abs(x2), xs) and certainly_positive(g.vdot(x1, x2, x3)):
+                radius = (x1 * x1 + x3 * x3).sqrt()
+                upper_bound_holds("R_direct_upper", radius)
+                if "R_direct_upper" in q:
+                    up = arb(fmpq_of(stored_interval(q["R_direct_upper"])[1]))
+                    upper_bound_holds("R_direct_relative_gap", (up - Rd) / Rd)
+
     # ---------------------------------------------------------------- the claims
     for cid, cl_ in claims.items():
         st = cl_["status"]
@@ -289,6 +316,9 @@ def check(model, data: dict) -> list[CheckResult]:
                 else:
                     ok = in_region and certainly_positive(g.vdot(x1, x2, x3))
                     say(cid, ok, "grad V . f > 0 at the stored point of the region, re-evaluated")
+        elif cid == "vdot_direct":
+            say(cid, st == "proved" and direct_ok, "A - R_direct |B| > 0 on every stored (x2, t) box, the boxes "
+                "tile the domain; the point above the radius re-evaluated")
         elif cid == "v_positive":
             if st == "proved":
                 say(cid, v_ok, "S, f/x, psi > 0 on every stored piece of [0, x2*], re-evaluated")

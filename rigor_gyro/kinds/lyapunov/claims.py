@@ -53,9 +53,10 @@ from ...core.exact import (Exact, option_count, option_number, parse_options, pa
                            require_rational)
 from ...core.outcome import Claim, Status
 from ...core.stored import ball_text, pieces_text
-from ...core.subdivision import certify_positive, enclose_max
+from ...core.boxes import Box
+from ...core.subdivision import certify_positive, certify_positive_on_box, enclose_max
 from .. import Attempt, Phases
-from .model import (Gimbal, certify_vdot_nonpositive, closed_form_constants, cylinder_lower_bound, hypot_ball,
+from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, direct_margin, vdot_polar, closed_form_constants, cylinder_lower_bound, hypot_ball,
                     mean_value_enclosure)
 from .moments import MOMENTS
 from .paper import PAPER_SCHEMA, audit as audit_paper
@@ -75,6 +76,8 @@ MAX_PIECES_LIMIT = 1_000_000
 
 #: the numbers a report's summary opens with (quantity name -> what it is), in this order
 HEADLINE = {"R_used": "radius R of region (17) used", "c_star": "level c* of the invariant estimate {V < c*}",
+            "R_direct": "radius with Vdot < 0 certified directly (scene's mu)",
+            "R_direct_upper": "Vdot > 0 at a certified point of this radius",
             "R_max": "certified radius R_max at mu_best (Psi test)", "mu_best": "mu_best (a search result)",
             "R_sup_upper_bound": "no mu in (16) gives the Psi test a radius above this",
             "k_min": "k_min = p A0 / H of (18)", "damping_margin": "design margin k/k_min - 1"}
@@ -85,6 +88,12 @@ CLAIMS = {
     "damping_condition": "k > p A0 / H (18) and p/H < mu < k/A0 (16).",
     "vdot_nonpositive": "Vdot = grad V . f = -Psi1 x1^2 - Psi2 x3^2 <= 0 on region (17) (|x2| <= x2*, "
                         "x1^2 + x3^2 <= R^2), with Psi1 > 0 and Psi2 > 0 there (so Vdot = 0 only on x1 = x3 = 0).",
+    "vdot_direct": "Vdot < 0 on |x2| <= x2*, 0 < x1^2 + x3^2 <= R_direct^2 (so Vdot <= 0 there, = 0 only on "
+                   "x1 = x3 = 0), certified on Vdot itself (polar form Vdot = -r^2 (A + r B): A - R_direct |B| > 0 "
+                   "on boxes covering the (x2, t) domain), not through Psi1 > 0 and Psi2 > 0 separately; and Vdot > 0 "
+                   "at a certified point with |x2| <= x2* at radius R_direct_upper, so the largest radius for which "
+                   "Vdot <= 0 on the whole disc cylinder lies in [R_direct, R_direct_upper] (at the scene's mu; "
+                   "R_direct is a search result, fixed as a decimal, and certified).",
     "v_positive": "V > 0 for |x2| <= x2*, (x1, x2, x3) != 0.",
     "invariant_estimate": "c* = min of V over the boundary of region (17) is enclosed and positive: "
                           "{x in (17): V(x) < c*} is positively invariant and lies in the domain of attraction.",
@@ -244,6 +253,102 @@ def _vdot_claim(ctx: _Ctx, R: arb, how: str) -> tuple[Claim, dict]:
     claim = _claim("vdot_nonpositive", v.status, v.reason, v.counterexample, **v.details)
     claim.decides = v.decides
     return claim, info
+
+
+# ------------------------------------------------------------------------------------ Vdot < 0 directly
+
+#: relative distance of R_direct below, and of the counterexample's radius above, the searched infimum
+DIRECT_MARGINS = ("4e-7", "4e-6", "4e-5", "4e-4", "4e-3")
+
+
+def _direct_search(g: Gimbal) -> tuple[float, float, float, float | None]:
+    """A float search for inf over (x2, t) of A/|B| (the supremum radius of the direct test): the
+    smallest value on a 33 x 65 grid of (u, s) (x2 = u x2*, t = pi s), refined by a pattern search.
+    Returns (estimate, u, s, the smallest A seen). A heuristic: it only chooses R_direct and the
+    counterexample's direction; both are certified afterwards."""
+    xs, pi = g.c.x2_star, arb.pi()
+
+    def ratio(u: float, sv: float) -> tuple[float, float]:
+        A, B = vdot_polar(g, xs * arb(u), pi * arb(sv))
+        a, b = float(A.mid()), float(B.mid())
+        return (a / abs(b) if b != 0 else math.inf), a
+    best, amin = (math.inf, 0.0, 0.5), math.inf
+    for i in range(33):
+        for j in range(65):
+            u, sv = -1 + 2 * i / 32, j / 64
+            r, a = ratio(u, sv)
+            amin = min(amin, a)
+            if r < best[0]:
+                best = (r, u, sv)
+    r0, u, sv = best
+    hu, hs = 2 / 32, 1 / 64
+    for _ in range(90):
+        moved = False
+        for du, ds in ((hu, 0), (-hu, 0), (0, hs), (0, -hs)):
+            nu, ns = u + du, sv + ds
+            if -1 <= nu <= 1 and 0 <= ns <= 1:
+                r, a = ratio(nu, ns)
+                amin = min(amin, a)
+                if r < r0:
+                    r0, u, sv, moved = r, nu, ns, True
+        if not moved:
+            hu, hs = hu / 2, hs / 2
+    return r0, u, sv, amin
+
+
+def _vdot_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
+    g, xs = ctx.g, ctx.xs
+    est, u0, s0, amin = _direct_search(g)
+    if not (math.isfinite(est) and est > 0 and amin > 0):
+        return _claim("vdot_direct", Status.INCONCLUSIVE,
+                      f"the search found no positive radius (inf A/|B| ~ {est:.6g}, min A ~ {amin:.3g}): the direct "
+                      "test gives nothing here (A <= 0 somewhere means Vdot > 0 arbitrarily near x1 = x3 = 0)")
+    whole = Box.of(DIRECT_DOMAIN)
+    cert, R_text = None, ""
+    for m in DIRECT_MARGINS:
+        R_text = decimal_bounds(arb(est) * (1 - arb(m)), 10)[0]
+        R = _q(_fmpq(Fraction(R_text)))
+        cert = certify_positive_on_box(direct_margin(g, R), whole, max_pieces=ctx.m.max_pieces)
+        if cert.status is Status.PROVED:
+            break
+    if cert is None or cert.status is not Status.PROVED:
+        return _claim("vdot_direct", Status.INCONCLUSIVE,
+                      f"A - R |B| > 0 not certified at R = {R_text} (search estimate {est:.10g}): {cert.reason}; "
+                      "try a larger max_pieces or --maxprec")
+    R_direct = _q(_fmpq(Fraction(R_text)))
+    # an upper bound of the supremum: a certified point of the region where Vdot > 0
+    pi = arb.pi()
+    x2p = _q(_fmpq(exact_fraction((xs * arb(u0)).mid())))
+    x2p = x2p if certainly_le(abs(x2p), xs) else (xs.lower() if u0 > 0 else -xs.lower())
+    x2p = _q(_fmpq(exact_fraction(x2p.mid()))) if not x2p.rad().is_zero() else x2p
+    point, up = None, None
+    for m in DIRECT_MARGINS:
+        rr = arb(est) * (1 + arb(m))
+        t = pi * arb(s0)
+        x1, x3 = (_q(_fmpq(exact_fraction((rr * t.cos()).mid()))), _q(_fmpq(exact_fraction((rr * t.sin()).mid()))))
+        if certainly_le(abs(x2p), xs) and certainly_positive(g.vdot(x1, x2p, x3)):
+            point, up = (x1, x2p, x3), (x1 * x1 + x3 * x3).sqrt()
+            break
+    ctx.witnesses["vdot_direct"] = {"R": R_text, "boxes": [b.to_json() for b in cert.leaves]}
+    quantities["R_direct"] = R_direct
+    if point is None:
+        return _claim("vdot_direct", Status.PROVED,
+                      f"A - R |B| > 0 certified at R_direct = {R_text} on {len(cert.leaves)} boxes of (x2, t) (search "
+                      f"estimate of the supremum {est:.10g}); no certified point above it was found, so no upper bound "
+                      "of the supremum is stated", R_direct=R_text, boxes=len(cert.leaves))
+    ctx.witnesses["vdot_direct"]["point"] = {"x1": ball_text(point[0]), "x2": ball_text(point[1]),
+                                            "x3": ball_text(point[2])}
+    up_text = decimal_bounds(up, 12)[1]
+    quantities["R_direct_upper"] = _q(_fmpq(Fraction(up_text)))
+    gap = (quantities["R_direct_upper"] - R_direct) / R_direct
+    quantities["R_direct_relative_gap"] = gap
+    return _claim("vdot_direct", Status.PROVED,
+                  f"A - R |B| > 0 certified at R_direct = {R_text} on {len(cert.leaves)} boxes of (x2, t) (centered "
+                  f"form; the search put the supremum at x2 = {float(u0):.6g} x2*, t = {float(s0):.6g} pi); Vdot = "
+                  f"{_fmt(g.vdot(*point), 4)} > 0 at the point x1 = {_fmt(point[0], 8)}, x2 = {_fmt(point[1], 8)}, "
+                  f"x3 = {_fmt(point[2], 8)} (radius <= {up_text}), so the supremum radius lies in [{R_text}, {up_text}] "
+                  f"(relative gap {decimal_bounds(gap, 2)[1]})",
+                  R_direct=R_text, R_direct_upper=up_text, boxes=len(cert.leaves))
 
 
 # ------------------------------------------------------------------------------------ V > 0
@@ -666,6 +771,9 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
             ctx.witnesses["vdot_nonpositive"] = {"R": ball_text(R), **vinfo["record"]}
         if "vdot_nonpositive" in wanted:
             claims.append(vclaim)
+    if "vdot_direct" in wanted:
+        with phase("vdot_direct"):
+            claims.append(_vdot_direct(ctx, quantities))
     pclaim = None
     if "v_positive" in wanted or "invariant_estimate" in wanted:
         with phase("v_positive"):

@@ -41,8 +41,8 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from ...core.balls import (certainly_le, certainly_positive, current_precision, decimal_bounds, exact_fraction,
-                           sqrt_of_nonnegative)
+from ...core.balls import (certainly_le, certainly_negative, certainly_positive, current_precision, decimal_bounds,
+                           exact_fraction, sqrt_of_nonnegative)
 from ...core.exact import Exact
 from ...core.outcome import Status
 from ...core.stored import ball_text, pieces_text
@@ -50,7 +50,8 @@ from ...core.subdivision import certify_positive
 from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
-           "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound"]
+           "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound",
+           "DIRECT_DOMAIN", "vdot_polar", "direct_margin"]
 
 
 class Dual:
@@ -553,3 +554,55 @@ def cylinder_lower_bound(g: Gimbal, R: arb):
         delta = c.mu * h * R * R / 2
         return alpha - abs(g.f3(x2)) * R - hypot_ball(gamma, delta)
     return lb
+
+
+# --------------------------------------------------------------------------- Vdot <= 0 directly
+
+#: the (x2, t) domain of the direct test, in exact coordinates: x2 = u x2*, t = pi s
+DIRECT_DOMAIN = {"u": (Fraction(-1), Fraction(1)), "s": (Fraction(0), Fraction(1))}
+
+
+def vdot_polar(g: Gimbal, x2, t):
+    """(A, B) with Vdot(r cos t, x2, r sin t) = -r^2 (A + r B) for every r, exactly (Vdot's Psi form:
+    A = c10 cos^2 t + c20 sin^2 t, B = c11 cos^3 t + c13 sin t cos^2 t + c21 cos t sin^2 t + c23 sin^3 t).
+    Accepts balls or :class:`Dual` numbers in x2 and t."""
+    (c10, c11, c13), (c20, c21, c23) = g.psi_coefficients(x2)
+    c, s = t.cos(), t.sin()
+    A = c10 * c * c + c20 * s * s
+    B = c11 * c * c * c + c13 * s * c * c + c21 * c * s * s + c23 * s * s * s
+    return A, B
+
+
+def direct_margin(g: Gimbal, R: arb):
+    """The box function {u, s} -> A - R |B| at x2 = u x2*, t = pi s (see :func:`vdot_polar`), enclosed
+    in a centered (mean-value) form where B has one sign on the box, intersected with the direct one.
+
+    Guarantee: if it is > 0 on boxes covering DIRECT_DOMAIN, then for every (x2, t) with |x2| <= x2*,
+    A > R |B| >= 0, so A + r B > 0 for all 0 <= r <= R (affine in r): Vdot < 0 on the whole region
+    |x2| <= x2*, 0 < x1^2 + x3^2 <= R^2 (B(t + pi) = -B(t), A(t + pi) = A(t): t in [0, pi] suffices)."""
+    xs, pi = g.c.x2_star, arb.pi()
+
+    def at(U, S):
+        return vdot_polar(g, xs * U, pi * S)
+
+    def f(box: dict) -> arb:
+        U, S = box["u"], box["s"]
+        A, B = at(U, S)
+        direct = A - R * abs(B)
+        if U.rad().is_zero() and S.rad().is_zero():
+            return direct
+        if certainly_positive(B):
+            sgn = 1
+        elif certainly_negative(B):
+            sgn = -1
+        else:
+            return direct
+        Au, Bu = at(Dual(U, arb(1)), Dual(S, arb(0)))
+        As, Bs = at(Dual(U, arb(0)), Dual(S, arb(1)))
+        um, sm = arb(U.mid()), arb(S.mid())
+        Am, Bm = at(um, sm)
+        mv = (Am - R * abs(Bm) + (Au.d - R * sgn * Bu.d) * (U - um) + (As.d - R * sgn * Bs.d) * (S - sm))
+        if not mv.is_finite():
+            return direct
+        return direct.intersection(mv) if direct.overlaps(mv) else mv
+    return f
