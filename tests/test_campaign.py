@@ -60,3 +60,19 @@ def test_every_case_is_re_verified_by_the_checker(monkeypatch):
     assert r["check_failures"] == ["roots: planted"]
     table = summary_table("eigenfrequencies", 11, [r])
     assert "check failures" in table and "FAILED" in table and "planted" in table
+
+
+def test_a_timeout_inside_a_c_callback_is_a_timeout_not_a_crash(monkeypatch):
+    """Found by the campaign: the alarm fired inside acb.integral's callback, which python-flint turns
+    into a SystemError; that case must count as timed out, never as a crash."""
+    import rigor_gyro.campaign as campaign
+    import rigor_gyro.prover as prover
+
+    def slow(*a, **k):
+        campaign._FIRED[0] = True           # as the alarm handler does, then python-flint's wrapping
+        raise SystemError("<cyfunction acb.integral> returned a result with an exception set")
+    monkeypatch.setattr(prover, "prove_scene", slow)
+    from rigor_gyro.kinds.eigenfrequencies.campaign import draw
+    import random
+    r = run_case("eigenfrequencies", draw(random.Random(2)), None, timeout=30)
+    assert r["timed_out"] and r["verdict"] == "inconclusive" and not r["error"]

@@ -331,3 +331,16 @@ def test_the_direct_vdot_witness_is_re_verified():
     def origin(w, d):           # Vdot = 0 at the origin: not a point where Vdot > 0
         w["point"] = {k: ["0", "0"] for k in ("x1", "x2", "x3")}
     assert bad(origin)
+
+
+def test_a_linear_moment_certificate_is_confirmed():
+    """Found by the campaign (seed 901): the checker bounded m over the stored cover with arb's min of two
+    enclosures, which widens ((x + y - |x - y|)/2), so its m poked out of a correct stored m."""
+    from rigor_gyro.prover import prove_scene
+    from rigor_gyro.scene import Scene
+    p = {"A": "2.37917", "C": "5.77822", "A1": "4.20265", "B1": "0.566959", "C1": "0.881917", "A2": "3.93439",
+         "H": "1028.77", "k": "0.380781", "a": "794.194", "x2_star": "0.829073", "mu": "0.0325221", "moment": "linear"}
+    sc = Scene(name="x", kind="lyapunov", source="", parameters=p, options={"max_pieces": "4000"})
+    data = json.loads(json.dumps(prove_scene(sc, maxprec=512).to_json()))
+    report = check_certificate(data)
+    assert report.ok, report.first_failure

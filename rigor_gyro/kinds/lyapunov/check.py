@@ -134,11 +134,15 @@ def check(model, data: dict) -> list[CheckResult]:
     wc = W.get("constants")
     if wc:
         mv = mean_value_enclosure(g.m_signed)
-        m_fn = lambda X: g.m_quotient(X).min(abs(mv(X)))      # both enclose |cos f'|/D  # noqa: E731
+        def m_fn(X):        # both enclose |cos f'|/D over X: keep the one with the lower upper end
+            a, b = g.m_quotient(X), abs(mv(X))    # (arb's min of the two balls widens: (x + y - |x - y|)/2)
+            return a if certainly_le(a.upper(), b.upper()) else b
         ok = (_covers(wc["m"]["cover"], arb(0), xs) and _covers(wc["M"]["cover"], arb(0), xs)
               and _within(_b(wc["m"]["point"]), arb(0), xs) and _within(_b(wc["M"]["point"]), arb(0), xs))
         if ok:
-            m = g.m_quotient(_b(wc["m"]["point"])).lower().union(_max_upper(m_fn, wc["m"]["cover"]))
+            pt = _b(wc["m"]["point"])       # m >= its value at the point: the tighter of the two forms there
+            m_at = g.m_quotient(pt).lower().max(abs(g.m_signed(pt)).lower())
+            m = m_at.union(_max_upper(m_fn, wc["m"]["cover"]))
             M = g.q(_b(wc["M"]["point"])).lower().union(_max_upper(g.q, wc["M"]["cover"]))
             if m.is_finite() and M.is_finite():
                 K = closed_form_constants(g, m, M)
