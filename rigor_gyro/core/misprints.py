@@ -20,7 +20,8 @@ print of at least ``MIN_DIGITS_FOR_COMPOUND`` significant digits, an edit also e
 reproduces to within one unit in the last place, and, failing that, a print whose digits after the
 edit agree with the value to at least ``MIN_DIGITS_FOR_EDITS`` significant digits, the edited one among
 them and two agreeing digits after it (a misprint on top of the paper's own rounding); with the one-unit
-relaxation the edit must leave two digits after it; the reading says which;
+relaxation the edit must leave three digits after it (two exact, the last one unit off); the reading
+says which;
 ``unexplained``       none of these;
 ``undecided``         the ball is too wide to tell (it straddles a rounding boundary of the printed place
                       in a way that matters): raise the precision.
@@ -240,7 +241,7 @@ def classify_printed(printed: str, value: arb, propagated: arb | None = None) ->
                 continue
             a = _place_digits(cand, exp)
             i = _transposed(a, b)
-            if i is not None and (not extra or i + 1 <= len(a) - 3):
+            if i is not None and (not extra or i + 1 <= len(a) - 4):
                 fits.append(("digits-transposed", f"the value reads {T} at the printed place; the print swaps "
                                                   f"the digits {a[i]}{a[i + 1]} of {cand} to {b[i]}{b[i + 1]}{extra}"))
                 break
@@ -250,7 +251,7 @@ def classify_printed(printed: str, value: arb, propagated: arb | None = None) ->
             a = _place_digits(cand, exp)
             i = _substituted(a, b)
             # not in the last place: a last digit off by a few units is a numerical difference, not a misprint
-            if i is not None and i < len(a) - 1 and (not extra or i <= len(a) - 3):
+            if i is not None and i < len(a) - 1 and (not extra or i <= len(a) - 4):
                 fits.append(("digit-substituted", f"the value reads {T} at the printed place; the print has {b[i]} "
                                                   f"for the digit {a[i]} of {cand}{extra}"))
                 break
@@ -260,7 +261,7 @@ def classify_printed(printed: str, value: arb, propagated: arb | None = None) ->
             if cand.adjusted() != P.adjusted():
                 continue
             i = _one_removed(_digits(cand), _digits(P))
-            if i is not None and (not extra or i <= len(_digits(cand)) - 3):
+            if i is not None and (not extra or i <= len(_digits(cand)) - 4):
                 fits.append(("digit-dropped", f"the value reads {up} to {nsig + 1} significant digits; the print "
                                               f"leaves out the digit {_digits(cand)[i]} (position {i + 1}) of "
                                               f"{cand}{extra}"))
@@ -273,7 +274,7 @@ def classify_printed(printed: str, value: arb, propagated: arb | None = None) ->
                 continue
             dd = _digits(cand)
             twice = [i for i in range(1, len(dp)) if dp[i] == dp[i - 1] and dp[:i] + dp[i + 1:] == dd
-                     and (not extra or i <= len(dp) - 3)]
+                     and (not extra or i <= len(dp) - 4)]
             if twice:
                 fits.append(("digit-doubled", f"the value reads {down} to {nsig - 1} significant digits; the print "
                                               f"writes the digit {dp[twice[0]]} of {cand} twice{extra}"))

@@ -1,0 +1,91 @@
+"""The README section "What the papers got wrong", generated from the committed certificates.
+
+    python tools/papers_wrong.py            # print the section
+    python tools/papers_wrong.py --write    # replace it in README.md (between the markers)
+
+Per paper (one certificate per source; for Roitenberg the reading B = 2/15 that reproduces the paper's
+own cubic), from the audit rows and their discrepancy classes (rigor_gyro.core.misprints): the
+counts by class, every refuted assertion and every printed formula that a stated reading corrects,
+and every printed number the classifier explains by a single edit. Nothing here is typed by hand:
+tests/test_readme.py fails when the section is out of date.
+"""
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+BEGIN, END = "<!-- papers-wrong:begin -->", "<!-- papers-wrong:end -->"
+#: the certificate that audits each paper
+PAPERS = {"Rudenko (1976), eigenfrequency brackets": "rudenko1976",
+          "Agafonov et al. (2013), attraction estimate": "agafonov2013",
+          "Roitenberg (1947), relay self-oscillation (read with B = 2/15)": "roitenberg1947_b2over15"}
+EDITS = ("sign", "decimal-shift", "digits-transposed", "digit-dropped", "digit-doubled", "digit-substituted")
+
+
+def _cell(text: str, n: int = 160) -> str:
+    text = str(text).replace("|", "\\|").replace("\n", " ")
+    return text if len(text) <= n else text[:n - 3] + "..."
+
+
+def section(proofs: Path = ROOT / "proofs") -> str:
+    out = [BEGIN, "", "## What the papers got wrong", "",
+           "Generated from the audit rows of the committed certificates by `python tools/papers_wrong.py --write` "
+           "(each row's class comes from `rigor_gyro.core.misprints`; a class is a reading of a print, not a "
+           "proof of what the author meant). The full audit, with every row, is in each report.", ""]
+    for title, name in PAPERS.items():
+        data = json.loads((proofs / f"{name}.json").read_text(encoding="utf-8"))
+        rows = data.get("paper", [])
+        counts: dict[str, int] = {}
+        for r in rows:
+            counts[r["class"]] = counts.get(r["class"], 0) + 1
+        out += [f"### {title}", "", f"{len(rows)} audited items (`proofs/{name}.md`): " + ", ".join(
+            f"{n} {c}" for c, n in sorted(counts.items(), key=lambda kv: (-kv[1], kv[0]))) + ".", ""]
+        wrong = [r for r in rows if r["class"] == "assertion-refuted"]
+        if wrong:
+            out += ["Assertions certified false:", ""]
+            out += [f"- **{_cell(r['id'], 80)}**: printed \"{_cell(r['printed'], 100)}\"; {_cell(r['note'], 220)}"
+                    for r in wrong]
+            out.append("")
+        formulas = [r for r in rows if r["class"] == "misprint-reading"]
+        if formulas:
+            out += ["Printed formulas that do not give the paper's own numbers, and the reading that does:", ""]
+            out += [f"- **{_cell(r['id'], 80)}**: printed `{_cell(r['printed'], 90)}`, read as `{_cell(r['reading'], 90)}`"
+                    for r in formulas]
+            out.append("")
+        edits = [r for r in rows if r["class"] in EDITS]
+        if edits:
+            out += ["Printed numbers explained by one edit (misprints found by the classifier):", "",
+                    "| item | printed | class | reading |", "|---|---|---|---|"]
+            out += [f"| {_cell(r['id'], 50)} | {_cell(r['printed'], 30)} | {r['class']} | {_cell(r['class_reading'])} |"
+                    for r in edits]
+            out.append("")
+        rest = counts.get("unexplained", 0) + counts.get("last-digit", 0)
+        if rest:
+            out += [f"Besides: {counts.get('last-digit', 0)} numbers one unit off in the last digit (rounding) and "
+                    f"{counts.get('unexplained', 0)} that no single edit explains (listed in the report).", ""]
+    out.append(END)
+    return "\n".join(out)
+
+
+def write(readme: Path = ROOT / "README.md") -> bool:
+    """Replace the section in the README; True if the file changed."""
+    text = readme.read_text(encoding="utf-8")
+    new = section()
+    if BEGIN in text and END in text:
+        head, rest = text.split(BEGIN, 1)
+        _, tail = rest.split(END, 1)
+        updated = head + new + tail
+    else:
+        updated = text.rstrip("\n") + "\n\n" + new + "\n"
+    if updated != text:
+        readme.write_text(updated, encoding="utf-8")
+    return updated != text
+
+
+if __name__ == "__main__":
+    if "--write" in sys.argv[1:]:
+        print("README.md updated" if write() else "README.md already up to date")
+    else:
+        print(section())
