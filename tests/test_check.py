@@ -344,3 +344,20 @@ def test_a_linear_moment_certificate_is_confirmed():
     data = json.loads(json.dumps(prove_scene(sc, maxprec=512).to_json()))
     report = check_certificate(data)
     assert report.ok, report.first_failure
+
+
+def test_the_equilibria_witness_is_re_verified():
+    from rigor_gyro.prover import prove_scene
+    from rigor_gyro.scene import load_scene
+    data = json.loads(json.dumps(prove_scene(load_scene("agafonov2013")).to_json()))
+    claim = next(c for c in data["claims"] if c["id"] == "equilibria")
+    assert claim["status"] == "proved" and check_certificate(data).ok
+
+    def bad(mutate):
+        d = copy.deepcopy(data)
+        mutate(d)
+        return not check_certificate(_refix(d)).ok
+    eq = lambda d: next(c for c in d["claims"] if c["id"] == "equilibria")      # noqa: E731
+    assert bad(lambda d: d["witnesses"]["equilibria"]["pieces"]["f"].pop(1))
+    assert bad(lambda d: eq(d)["details"]["equilibria"].pop())
+    assert bad(lambda d: eq(d)["details"]["equilibria"][-1].__setitem__("stability", "asymptotically stable"))

@@ -47,7 +47,7 @@ def near(ball, ref, rel):
 def test_example_every_claim_proved(example):
     assert {c.id: c.status for c in example.claims} == {c: Status.PROVED for c in (
         "constants", "damping_condition", "vdot_nonpositive", "vdot_direct", "v_positive", "invariant_estimate",
-        "best_mu")}
+        "equilibria", "best_mu")}
     assert example.precision_bits == 64
 
 
@@ -248,3 +248,14 @@ def test_negative_C0_puts_M_at_the_removable_singularity():
     with working_precision(128):
         assert cert.quantities["M"].contains(100)
         assert certainly_lt(cert.quantities["M"].rad(), arb("1e-12"))
+
+
+def test_example_equilibria_are_listed_and_classified(example):
+    rows = example.claim("equilibria").details["equilibria"]
+    by_x2 = {r["x2"]: r for r in rows}
+    assert set(by_x2) == {"0", "pi", "-pi", "pi/2", "-pi/2"}
+    assert by_x2["0"]["stability"] == "asymptotically stable" and by_x2["0"]["estimate"] == "inside the estimate"
+    assert by_x2["pi/2"]["stability"] == "unstable" and by_x2["-pi/2"]["stability"] == "unstable"
+    assert all(r["estimate"].startswith("outside") for x, r in by_x2.items() if x != "0")
+    # x1 = -f(pi/2)/k = -a/k = -250 at the equilibrium x2 = pi/2
+    assert "-250.00001" in by_x2["pi/2"]["x1"] or "-250" in by_x2["pi/2"]["x1"]

@@ -23,13 +23,15 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
-from flint import arb
+from flint import arb, fmpq
 
 from ...check import CheckResult
 from ...core.balls import certainly_gt, certainly_le, certainly_lt, certainly_positive, exact_endpoints
 from ...core.stored import encloses, fmpq_of, interval as stored_interval, number
 from ...core.boxes import Box, tiles_by_bisection
+from ...core.roots import RootStatus, enclose_f_df, newton_root
 from .claims import rho_function, rho_lower
+from .equilibria import Equilibrium, classify as classify_equilibrium
 from .model import (DIRECT_DOMAIN, closed_form_constants, cylinder_lower_bound, direct_margin, mean_value_enclosure,
                     psi_min_functions)
 
@@ -288,6 +290,12 @@ def check(model, data: dict) -> list[CheckResult]:
                     up = arb(fmpq_of(stored_interval(q["R_direct_upper"])[1]))
                     upper_bound_holds("R_direct_relative_gap", (up - Rd) / Rd)
 
+    # ---------------------------------------------------------------- equilibria
+    eq_ok, eq_msg = False, "no stored pieces"
+    we = W.get("equilibria")
+    if we and claims.get("equilibria", {}).get("status") == "proved":
+        eq_ok, eq_msg = _check_equilibria(g, we["pieces"], claims["equilibria"].get("details", {}).get("equilibria", []))
+
     # ---------------------------------------------------------------- the claims
     for cid, cl_ in claims.items():
         st = cl_["status"]
@@ -323,6 +331,8 @@ def check(model, data: dict) -> list[CheckResult]:
         elif cid == "vdot_direct":
             say(cid, st == "proved" and direct_ok, "A - R_direct |B| > 0 on every stored (x2, t) box, the boxes "
                 "tile the domain; the point above the radius re-evaluated")
+        elif cid == "equilibria":
+            say(cid, st == "proved" and eq_ok, eq_msg)
         elif cid == "v_positive":
             if st == "proved":
                 say(cid, v_ok, "S, f/x, psi > 0 on every stored piece of [0, x2*], re-evaluated")
@@ -350,6 +360,73 @@ def check(model, data: dict) -> list[CheckResult]:
     say("quantities", not unverified, f"{len(verified)} stored enclosures verified"
         + (f"; not verified: {unverified}" if unverified else ""))
     return res
+
+
+def _decided_roots(fn, pieces, pi: arb):
+    """The roots of fn certified by the stored pieces, if the pieces are contiguous, cover [-pi, pi] and
+    are each decided (empty: fn excludes 0, or one Newton image misses the piece; unique: a Newton image
+    inside it); None otherwise. Returns [(lo, hi, enclosure)] of the unique pieces."""
+    if not pieces:
+        return None
+    bounds = [(_b(p["lo"]), _b(p["hi"])) for p in pieces]
+    if not (certainly_le(bounds[0][0], -pi) and certainly_le(pi, bounds[-1][1])):
+        return None
+    for (a, b), (c2, _) in zip(bounds, bounds[1:]):
+        if not (a.rad().is_zero() and b.rad().is_zero() and b == c2):
+            return None
+    series = lambda x: fn(x)              # noqa: E731
+    roots = []
+    for (a, b), p in zip(bounds, pieces):
+        if p["kind"] == "empty":
+            fx, _ = enclose_f_df(series, a.union(b))
+            if not (fx.is_finite() and (certainly_positive(fx) or certainly_positive(-fx))):
+                r = newton_root(series, a, b)
+                if r.status is not RootStatus.EMPTY:
+                    return None
+        elif p["kind"] == "unique":
+            r = newton_root(series, a, b)
+            if r.status is not RootStatus.UNIQUE:
+                return None
+            roots.append((a, b, r.enclosure))
+        else:
+            return None
+    return roots
+
+
+def _check_equilibria(g, pieces: dict, rows: list) -> tuple[bool, str]:
+    """Re-derive the equilibria from the stored isolation pieces of f and h, and their stability."""
+    c = g.c
+    pi = arb.pi()
+    rf = _decided_roots(lambda x: g.f(x), pieces.get("f"), pi)
+    rh = _decided_roots(lambda x: c.k * c.H + c.C0 * x.sin() * g.f(x), pieces.get("h"), pi)
+    if rf is None or rh is None:
+        return False, "the stored pieces do not cover [-pi, pi] with every piece decided"
+    points = []
+    zeros = [arb(fmpq_of(r)) * pi for r in g.law.zeros_over_pi()]
+    for a, b, root in rf:
+        named = [z for z in zeros if certainly_le(a, z) and certainly_le(z, b)]
+        if len(named) == 1:
+            if certainly_le(abs(named[0]), pi * (1 + arb(2) ** -40)):
+                points.append(Equilibrium(arb(0), named[0], "f(x2) = 0"))
+        elif certainly_lt(abs(root), pi):
+            points.append(Equilibrium(arb(0), root, "f(x2) = 0"))
+        elif not certainly_lt(pi, abs(root)):
+            return False, "a root of f is not separated from |x2| = pi"
+    for sgn in (1, -1):
+        points.append(Equilibrium(-g.f(sgn * pi / 2) / c.k, sgn * pi / 2, "cos x2 = 0"))
+    for a, b, root in rh:
+        if certainly_lt(pi, abs(root)):
+            continue
+        if not (certainly_lt(abs(root), pi) and (certainly_positive(root.cos()) or certainly_positive(-root.cos()))):
+            return False, "a root of h is not separated from |x2| = pi or from cos x2 = 0"
+        points.append(Equilibrium(-g.f(root) / c.k, root, "k H + C0 sin x2 f(x2) = 0"))
+    if len(points) != len(rows):
+        return False, f"{len(points)} equilibria re-derived, {len(rows)} stored"
+    for e, r in zip(points, rows):
+        classify_equilibrium(g, e)
+        if e.case != r.get("case") or e.stability != r.get("stability"):
+            return False, f"equilibrium at x2 = {r.get('x2')}: re-derived {e.case}, {e.stability}"
+    return True, f"{len(points)} equilibria re-derived from the stored pieces, stability re-decided"
 
 
 def _pair(value) -> list[str]:

@@ -56,6 +56,7 @@ from ...core.stored import ball_text, pieces_text
 from ...core.boxes import Box
 from ...core.subdivision import certify_positive, certify_positive_on_box, enclose_max
 from .. import Attempt, Phases
+from .equilibria import equilibria
 from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, direct_margin, vdot_polar, closed_form_constants, cylinder_lower_bound, hypot_ball,
                     mean_value_enclosure)
 from .moments import MOMENTS
@@ -97,6 +98,11 @@ CLAIMS = {
     "v_positive": "V > 0 for |x2| <= x2*, (x1, x2, x3) != 0.",
     "invariant_estimate": "c* = min of V over the boundary of region (17) is enclosed and positive: "
                           "{x in (17): V(x) < c*} is positively invariant and lies in the domain of attraction.",
+    "equilibria": "The equilibria of system (2) with |x2| <= pi are exactly the points listed in the reason (x3 = 0, "
+                  "x1 = -f(x2)/k, and f(x2) = 0, cos x2 = 0 or k H + C0 sin x2 f(x2) = 0; every root isolated on a "
+                  "certified cover of [-pi - 1/64, pi + 1/64]), each with the eigenvalues of its linearisation and its "
+                  "stability (asymptotically stable: every real part < 0; unstable: one > 0), and whether it lies in "
+                  "the estimate {V < c_set} of invariant_estimate.",
     "best_mu": "At mu = mu_best (a decimal in (16) chosen by a search, not proved optimal), Psi1 > 0 and Psi2 > 0 "
                "on the disc of radius R_max, so vdot_nonpositive holds there; and R_sup(mu) <= R_sup_upper_bound for "
                "every mu in (16), where R_sup(mu) is the supremum of the radii for which Psi1, Psi2 > 0 on the disc: "
@@ -300,9 +306,11 @@ def _vdot_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     g, xs = ctx.g, ctx.xs
     est, u0, s0, amin = _direct_search(g)
     if not (math.isfinite(est) and est > 0 and amin > 0):
-        return _claim("vdot_direct", Status.INCONCLUSIVE,
-                      f"the search found no positive radius (inf A/|B| ~ {est:.6g}, min A ~ {amin:.3g}): the direct "
-                      "test gives nothing here (A <= 0 somewhere means Vdot > 0 arbitrarily near x1 = x3 = 0)")
+        claim = _claim("vdot_direct", Status.INCONCLUSIVE,
+                       f"the search found no positive radius (inf A/|B| ~ {est:.6g}, min A ~ {amin:.3g}): the direct "
+                       "test gives nothing here (A <= 0 somewhere means Vdot > 0 arbitrarily near x1 = x3 = 0)")
+        claim.precision_cannot_help = "the float search finds A <= 0: no radius to certify at any precision"
+        return claim
     whole = Box.of(DIRECT_DOMAIN)
     cert, R_text = None, ""
     for m in DIRECT_MARGINS:
@@ -349,6 +357,39 @@ def _vdot_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
                   f"x3 = {_fmt(point[2], 8)} (radius <= {up_text}), so the supremum radius lies in [{R_text}, {up_text}] "
                   f"(relative gap {decimal_bounds(gap, 2)[1]})",
                   R_direct=R_text, R_direct_upper=up_text, boxes=len(cert.leaves))
+
+
+# ------------------------------------------------------------------------------------ equilibria
+
+def _equilibria_claim(ctx: _Ctx, inv: Claim | None, R: arb | None) -> Claim:
+    g, xs = ctx.g, ctx.xs
+    E = equilibria(g)
+    ctx.witnesses["equilibria"] = {"pieces": E.pieces}
+    c_set = _q(_fmpq(Fraction(inv.details["c_set"]))) if inv is not None and "c_set" in inv.details else None
+    rows, texts = [], []
+    for e in E.points:
+        where = "not asked (invariant_estimate not proved)"
+        if c_set is not None and R is not None:
+            if certainly_lt(xs, abs(e.x2)):
+                where = "outside the estimate (|x2| > x2*)"
+            elif certainly_le(abs(e.x2), xs) and certainly_lt(e.x1 * e.x1, R * R) and \
+                    certainly_lt(g.V(e.x1, e.x2, arb(0)), c_set):
+                where = "inside the estimate"
+            elif certainly_lt(R * R, e.x1 * e.x1) or certainly_le(c_set, g.V(e.x1, e.x2, arb(0))):
+                where = "outside the estimate"
+            else:
+                where = "undecided"
+        x2 = e.exact or _fmt(e.x2, 10)
+        rows.append({"x1": _fmt(e.x1, 12), "x2": x2, "case": e.case, "stability": e.stability, "estimate": where,
+                     "eigenvalues": [f"{_fmt(z.real, 8)} + {_fmt(z.imag, 8)} i" for z in e.eigenvalues]})
+        texts.append(f"({_fmt(e.x1, 8)}, {x2}, 0) [{e.case}]: {e.stability}, {where}")
+    undecided = [r for r in rows if r["stability"] == "undecided" or r["estimate"] == "undecided"]
+    if not E.complete or undecided:
+        return _claim("equilibria", Status.INCONCLUSIVE,
+                      (E.reason if not E.complete else f"{len(undecided)} equilibria with undecided stability or "
+                       "membership: raise --maxprec") + "; found: " + "; ".join(texts), equilibria=rows)
+    return _claim("equilibria", Status.PROVED, f"{len(rows)} equilibria with |x2| <= pi: " + "; ".join(texts),
+                  equilibria=rows)
 
 
 # ------------------------------------------------------------------------------------ V > 0
@@ -791,6 +832,10 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
                                  decides=dep.decides if dep.status is Status.INCONCLUSIVE else None))
             if dep.status is Status.REFUTED:
                 claims[-1].precision_cannot_help = f"it rests on {dep.id}, which is refuted"
+    if "equilibria" in wanted:
+        with phase("equilibria"):
+            inv = next((c for c in claims if c.id == "invariant_estimate" and c.status is Status.PROVED), None)
+            claims.append(_equilibria_claim(ctx, inv, R))
     if "best_mu" in wanted:
         with phase("best_mu"):
             claims.append(_best_mu(ctx, quantities))

@@ -17,6 +17,8 @@ wide or non-finite enclosure; callers then subdivide further or report inconclus
 """
 from __future__ import annotations
 
+from fractions import Fraction
+
 from flint import acb, arb
 
 from ...core.balls import current_precision
@@ -72,6 +74,11 @@ class MomentLaw:
         """Optional closed form of f^2 / (2 D G) on a ball x (None: use the generic enclosure)."""
         return None
 
+    def zeros_over_pi(self) -> tuple:
+        """Exact zeros of f with |x| <= pi, as rational multiples r of pi (f(r pi) = 0 exactly); a root the
+        equilibrium search finds elsewhere must be certainly inside or outside |x| <= pi."""
+        return ()
+
 
 class SineMoment(MomentLaw):
     """f = a sin x2 (the paper's example). G = a/(2 C0) ln(A0/D) in closed form and
@@ -83,6 +90,9 @@ class SineMoment(MomentLaw):
 
     def f(self, a, x):
         return a * x.sin()
+
+    def zeros_over_pi(self):
+        return (Fraction(-1), Fraction(0), Fraction(1))
 
     def df(self, a, x):
         return a * x.cos()
@@ -110,6 +120,9 @@ class LinearMoment(MomentLaw):
 
     def f(self, a, x):
         return a * x
+
+    def zeros_over_pi(self):
+        return (Fraction(0),)
 
     def df(self, a, x):
         return a + 0 * x

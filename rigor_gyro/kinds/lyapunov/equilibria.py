@@ -1,0 +1,155 @@
+"""Every equilibrium of system (2) with |x2| <= pi, certified, with its linearisation's stability.
+
+With x3 = 0 (from x2' = x3), x3' = 0 reads cos x2 . x1 . (H - C0 sin x2 . x1) = 0 and x1' = 0 reads
+k x1 + f(x2) = 0. So the equilibria are exactly (x1, x2, 0) with x1 = -f(x2)/k and one of
+
+* (i)   x1 = 0:       f(x2) = 0;
+* (ii)  cos x2 = 0:   x2 = +-pi/2;
+* (iii) H = C0 sin x2 x1:   h(x2) = k H + C0 sin x2 f(x2) = 0 (and cos x2 != 0; otherwise it is (ii)).
+
+The roots of f and of h are isolated on [-P, P], P = pi + 1/64 (so no root sits on an end), by
+interval Newton with bisection (:func:`rigor_gyro.core.roots.isolate_roots`): every piece is certified
+root-free or to hold exactly one root. A root of f whose enclosure contains an exact zero the law
+names (:meth:`MomentLaw.zeros_over_pi`, multiples of pi) certainly inside its piece is that zero (the
+piece holds exactly one root); any other root must lie
+certainly inside or certainly outside |x2| <= pi. The linearisation's Jacobian is computed by
+forward-mode differentiation of (2) (dual numbers over balls) and its eigenvalues by Arb
+(``acb_mat.eig``): *asymptotically stable* when every real part is certainly < 0, *unstable* when one is
+certainly > 0, otherwise *undecided* (a real part not separated from 0 at this precision).
+
+Guarantee: the list is complete on |x2| <= pi exactly when every piece is decided (``complete``);
+each equilibrium is a ball containing the exact point. Fails when: a piece stays undecided (a double
+root of h, a precision too low): the result says so and claims nothing about completeness.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+from flint import acb_mat, arb, fmpq
+
+from ...core.balls import certainly_le, certainly_lt, certainly_negative, certainly_nonzero, certainly_positive
+from ...core.roots import RootStatus, isolate_roots
+from .model import Dual, Gimbal
+
+__all__ = ["Equilibrium", "Equilibria", "equilibria", "classify", "RANGE_PAD", "jacobian"]
+
+#: the search range is [-(pi + RANGE_PAD), pi + RANGE_PAD]
+RANGE_PAD = Fraction(1, 64)
+
+
+@dataclass
+class Equilibrium:
+    x1: arb
+    x2: arb
+    case: str                         # "f(x2) = 0", "cos x2 = 0", "k H + C0 sin x2 f(x2) = 0"
+    exact: str = ""                   # the exact x2 when known ("0", "pi", "pi/2", ...)
+    eigenvalues: list = field(default_factory=list)
+    stability: str = "undecided"      # "asymptotically stable" | "unstable" | "undecided"
+
+
+@dataclass
+class Equilibria:
+    points: list[Equilibrium]
+    complete: bool
+    reason: str
+    #: the isolation pieces of f and h on [-P, P] (exact texts), for the checker
+    pieces: dict = field(default_factory=dict)
+
+
+def _q(r: Fraction) -> arb:
+    return arb(fmpq(r.numerator, r.denominator))
+
+
+def _series(fn):
+    """fn written with ball operations as the series function the root isolation expects."""
+    return lambda s: fn(s)
+
+
+def jacobian(g: Gimbal, x1: arb, x2: arb, x3: arb) -> list[list[arb]]:
+    """The Jacobian of (2) at (x1, x2, x3) by forward-mode differentiation in balls."""
+    cols = []
+    for j in range(3):
+        args = [Dual(v, arb(1) if i == j else arb(0)) for i, v in enumerate((x1, x2, x3))]
+        cols.append([d.d if isinstance(d, Dual) else arb(0) for d in g.rhs(*args)])
+    return [[cols[j][i] for j in range(3)] for i in range(3)]
+
+
+def classify(g: Gimbal, e: Equilibrium) -> None:
+    """Set ``e.eigenvalues`` and ``e.stability`` from the linearisation at ``e``."""
+    J = jacobian(g, e.x1, e.x2, arb(0))
+    try:
+        ev = acb_mat(J).eig(algorithm="rump")
+    except ValueError:
+        e.stability = "undecided"
+        return
+    e.eigenvalues = list(ev)
+    if not all(z.is_finite() for z in ev):
+        e.stability = "undecided"
+    elif all(certainly_negative(z.real) for z in ev):
+        e.stability = "asymptotically stable"
+    elif any(certainly_positive(z.real) for z in ev):
+        e.stability = "unstable"
+    else:
+        e.stability = "undecided"
+
+
+def _pieces_text(iso) -> list[dict]:
+    from ...core.stored import ball_text
+    return [{"lo": ball_text(p.lo), "hi": ball_text(p.hi), "kind": p.status.value,
+             **({"root": ball_text(p.enclosure)} if p.enclosure is not None else {})} for p in iso.pieces]
+
+
+def equilibria(g: Gimbal) -> Equilibria:
+    """Every equilibrium with |x2| <= pi (see the module docstring), at the current precision."""
+    c = g.c
+    pi = arb.pi()
+    P = (pi + arb(fmpq(RANGE_PAD.numerator, RANGE_PAD.denominator))).upper()
+    f = lambda x: g.f(x)                                            # noqa: E731
+    h = lambda x: c.k * c.H + c.C0 * x.sin() * g.f(x)               # noqa: E731
+    iso_f, iso_h = isolate_roots(_series(f), -P, P), isolate_roots(_series(h), -P, P)
+    unknown = iso_f.unknown + iso_h.unknown
+    points: list[Equilibrium] = []
+    problems = []
+    zeros = [r for r in g.law.zeros_over_pi()]
+    for piece in (p for p in iso_f.pieces if p.status is RootStatus.UNIQUE):
+        root = piece.enclosure
+        # f has exactly one root in the piece; an exact zero of the law certainly in the piece is that root
+        named = [r for r in zeros if certainly_le(piece.lo, pi * _q(r)) and certainly_le(pi * _q(r), piece.hi)]
+        if len(named) == 1:
+            r = named[0]
+            x2 = pi * _q(r)
+            if abs(r) <= 1:
+                points.append(Equilibrium(arb(0), x2, "f(x2) = 0", exact=_pi_text(r)))
+        elif certainly_lt(abs(root), pi):
+            points.append(Equilibrium(arb(0), root, "f(x2) = 0"))
+        elif not certainly_lt(pi, abs(root)):
+            problems.append(f"a root of f at {root.str(10)} is not separated from |x2| = pi")
+    for sgn in (1, -1):
+        x2 = sgn * pi / 2
+        points.append(Equilibrium(-g.f(x2) / c.k, x2, "cos x2 = 0", exact=_pi_text(Fraction(sgn, 2))))
+    for root in iso_h.roots:
+        if certainly_lt(pi, abs(root)):
+            continue
+        if not certainly_lt(abs(root), pi):
+            problems.append(f"a root of h at {root.str(10)} is not separated from |x2| = pi")
+            continue
+        if not certainly_nonzero(root.cos()):
+            problems.append(f"a root of h at {root.str(10)} is not separated from cos x2 = 0")
+            continue
+        points.append(Equilibrium(-g.f(root) / c.k, root, "k H + C0 sin x2 f(x2) = 0"))
+    for e in points:
+        classify(g, e)
+    complete = not unknown and not problems
+    reason = ("every piece of [-P, P] decided for f and for h" if complete else
+              "; ".join(problems + [f"{len(unknown)} undecided piece(s): {unknown[0].reason}" if unknown else ""]))
+    return Equilibria(points, complete, reason, {"f": _pieces_text(iso_f), "h": _pieces_text(iso_h)})
+
+
+def _pi_text(r: Fraction) -> str:
+    if r == 0:
+        return "0"
+    num = "pi" if abs(r.numerator) == 1 else f"{abs(r.numerator)} pi"
+    s = num if r.denominator == 1 else f"{num}/{r.denominator}"
+    return ("-" if r < 0 else "") + s
+
