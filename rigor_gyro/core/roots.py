@@ -32,7 +32,7 @@ Example:
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import Enum
 from typing import Callable
 
@@ -135,6 +135,8 @@ class Isolation:
     """The pieces covering a bracket, each UNIQUE, EMPTY or UNKNOWN."""
 
     pieces: list[RootPiece]
+    #: when a search stopped early: (the decided pieces, tiling [lo, x]; the point x) to resume from
+    resume: tuple | None = field(default=None, compare=False)
 
     @property
     def roots(self) -> list[arb]:

@@ -6,7 +6,8 @@ stored outcome of that search, at twice the certificate's precision:
 
 * the exact moment identities e1^T M^j e = 0 (j <= 3), so g = O(theta^5) at 0, and g^(5)/5! > 0 on
   [0, theta_min] (Taylor model): no root in (0, theta_min];
-* the stored pieces tile [theta_min, T] exactly; each "empty" piece holds no root (g excludes 0 on
+* the stored pieces tile [theta_min, T] exactly, for the function the witness names (g, or
+  G = g prod |1 + exp(lambda theta)|^2 over the complex pairs: the same roots, no poles near the axis); each "empty" piece holds no root (g excludes 0 on
   it, or one Newton image misses it), each "unique" piece exactly one (a Newton image inside the
   current box, by its own short Newton loop; a piece merged at ``splits`` is two unique halves whose
   roots coincide: unique on the hull of both enclosures); beyond T, when the whole of (0, oo) is
@@ -27,7 +28,7 @@ from ...check import CheckResult
 from ...core.balls import (ball, certainly_gt, certainly_lt, certainly_negative, certainly_positive, interval)
 from ...core.stored import encloses, fmpq_of, interval as stored_interval, number
 from .claims import TAYLOR_ORDER, RootVerdict
-from .flow import (DegenerateSpectrum, Spectrum, g_coeffs, half_period_jacobian, moment_zero_orders,
+from .flow import (DegenerateSpectrum, Spectrum, g_coeffs, half_period_jacobian, moment_zero_orders, pole_free_coeffs,
                    orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure, x0_at)
 from .paper import orbit_quantities
 
@@ -47,17 +48,20 @@ def _pt(text: str) -> arb:
 
 
 class _G:
-    """g and g' on a ball by the flow's Taylor models (the model's evaluation; no search)."""
+    """The isolated function (g, or the pole-free G = g K with the same roots) and its derivative on a
+    ball by the flow's Taylor models (the model's evaluation; no search)."""
 
-    def __init__(self, sp: Spectrum):
+    def __init__(self, sp: Spectrum, function: str = "g"):
         self.sp = sp
+        self.coeffs = (lambda c, n: pole_free_coeffs(sp, c, n)) if function == "pole_free" else \
+            (lambda c, n: g_coeffs(sp, c, n))
 
     def both(self, X: arb) -> tuple[arb, arb]:
-        g, dg = taylor_enclosure(lambda c, n: g_coeffs(self.sp, c, n), X, TAYLOR_ORDER, (0, 1))
+        g, dg = taylor_enclosure(self.coeffs, X, TAYLOR_ORDER, (0, 1))
         return g, dg
 
     def at(self, t: arb) -> arb:
-        return g_coeffs(self.sp, t, 1)[0]
+        return self.coeffs(t, 1)[0]
 
 
 def _newton(G: _G, X: arb) -> tuple[str, arb | None]:
@@ -87,6 +91,23 @@ def _newton(G: _G, X: arb) -> tuple[str, arb | None]:
             return "unique", n
         x = x.intersection(n)
     return "unknown", None
+
+
+def _strict_sign(x: arb) -> int:
+    return 1 if certainly_positive(x) else -1 if certainly_negative(x) else 0
+
+
+def _monotone_root_free(G: _G, lo: arb, hi: arb) -> bool:
+    """No root of g on [lo, hi] by monotonicity: g'' of one strict sign on the piece (so g' is strictly
+    monotone there), g' of one strict sign at both ends (so g' != 0 on the piece: g strictly monotone),
+    and g of one strict sign at both ends."""
+    if not certainly_lt(lo, hi):
+        return False
+    d2 = taylor_enclosure(G.coeffs, interval(lo, hi), TAYLOR_ORDER, (2,))[0]
+    a, b = G.coeffs(lo, 2), G.coeffs(hi, 2)
+    s1, s2 = _strict_sign(a[1]), _strict_sign(b[1])
+    s0, s3 = _strict_sign(a[0]), _strict_sign(b[0])
+    return _strict_sign(d2) != 0 and s1 != 0 and s1 == s2 and s0 != 0 and s0 == s3
 
 
 def _merged_unique(G: _G, lo: arb, hi: arb, splits: list[arb]) -> tuple[bool, arb | None]:
@@ -208,6 +229,9 @@ def check(model, data: dict) -> list[CheckResult]:
     classes: list[tuple[bool, str]] = []
     half_ok, why = False, "no isolation witness stored"
     if w is not None:
+        if w.get("function", "g") not in ("g", "pole_free"):
+            return [CheckResult("half_period", False, f"unknown isolated function {w.get('function')!r}")]
+        G = _G(sp, w.get("function", "g"))
         mom = moment_zero_orders(model.params)
         t_min, T = _pt(w["theta_min"]), _pt(w["T"])
         steps = [("g = O(theta^5)", all(m == 0 for m in mom[:4]) and mom[4] != 0),
@@ -225,7 +249,9 @@ def check(model, data: dict) -> list[CheckResult]:
         pieces_ok = True
         for pc in pcs:
             lo, hi = _pt(pc["lo"]), _pt(pc["hi"])
-            if pc["kind"] == "empty":
+            if pc["kind"] == "empty" and pc.get("by") == "monotone":
+                pieces_ok = pieces_ok and _monotone_root_free(G, lo, hi)
+            elif pc["kind"] == "empty":
                 st, e = _newton(G, interval(lo, hi))
                 pieces_ok = pieces_ok and st == "empty"
             elif pc["kind"] == "unique":

@@ -38,10 +38,12 @@ Reference: Roitenberg Ya. N. (1947), Avtokolebaniya giroskopicheskikh stabilizat
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
+from fractions import Fraction
 from typing import Any
 
-from flint import acb, acb_mat, arb, arb_series
+from flint import acb, acb_mat, arb, arb_series, fmpq
 
 from ...core.balls import (ball, exact_fraction, series_coefficients, certainly_gt, certainly_le, certainly_lt, certainly_negative,
                            certainly_positive, current_precision, decimal_bounds, decimal_bounds_apart, interval,
@@ -50,11 +52,11 @@ from ...core.errors import ParameterError
 from ...core.audit import check_printed
 from ...core.exact import Exact, option_number, parse_options, parse_parameters, require_rational
 from ...core.outcome import Claim, Status
-from ...core.roots import Isolation, RootPiece, RootStatus, merge_shared_roots, newton_root
+from ...core.roots import Isolation, RootPiece, RootStatus, enclose_f_df, merge_shared_roots, newton_root
 from ...core.subdivision import certify_positive
 from .. import Attempt, Phases
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table, orbit_quantities
-from .flow import (PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, g_coeffs, half_period_jacobian,
+from .flow import (PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, g_coeffs, half_period_jacobian, pole_free_coeffs,
                    moment_zero_orders, orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure,
                    x0_at)
 
@@ -120,6 +122,10 @@ class RelayModel:
     T_max: Exact | None           # None: auto (the certified tail point)
     theta_width: Exact
     paper: dict
+    #: root-search pieces decided by an earlier attempt of the same proof (lower precision), keyed by the
+    #: searched function and range: a later attempt resumes where that one stopped (the pieces are
+    #: theorems about the exact g at any precision; the checker re-verifies them at its own)
+    decided: dict = field(default_factory=dict, compare=False, repr=False)
 
 
 def validate(scene) -> RelayModel:
@@ -326,6 +332,8 @@ class Analysis:
     roots: list[RootVerdict] = field(default_factory=list)
     problem: str = ""
     piece_list: list = field(default_factory=list)
+    #: the function whose roots were isolated: "pole_free" (G = g K) or "g"
+    isolated: str = "g"
     #: the spectrum at the guard precision (current + GUARD_BITS) that the genuine orbits' final
     #: quantities (theta*, x(0), multipliers, D1..D5) were computed with; None if there are none
     sp_fine: Spectrum | None = None
@@ -351,43 +359,156 @@ def _theta_min(sp: Spectrum, start: arb) -> arb | None:
 def _tail_point(sp: Spectrum) -> arb | None:
     """A T with g(theta) > 0 certified for every theta >= T (T from a geometric ladder)."""
     a, b = sp.a, sp.b
-    start = (-b / a).mid() if certainly_negative(b) else arb(0)
-    fastest = max((float(abs(m.lam).mid()) for m in sp.modes))  # float picks a start only
-    start = start.max((arb(1) / arb(int(fastest) + 1)).mid())   # exact dyadic points: re-checkable pieces
+    fastest = max((float(abs(m.lam).mid()) for m in sp.modes))  # floats pick a start only
+    s0 = max(float((-b / a).mid()) if certainly_negative(b) else 0.0, 1.0 / (int(fastest) + 1))
+    # exact dyadic rungs, the same at every precision (a later attempt then searches the same range)
+    start = _dyadic_up(Fraction(s0))
     cap = _slowest_scale(sp) * TAIL_CAP_FACTOR
-    T = start
-    for _ in range(400):
+    for k in range(400):
+        Tq = _dyadic_up(start * Fraction(9, 8) ** k)
+        T = arb(fmpq(Tq.numerator, Tq.denominator))
         if certainly_positive(tail_bound(sp, T).lower()):
             return T
-        T = (T * 9 / 8).mid()
         if certainly_gt(T, cap):
             return None
     return None
 
 
-def _g_series_function(sp: Spectrum):
-    """g as the series function :func:`rigor_gyro.core.roots.isolate_roots` expects: given arb_series([X, 1]) it
-    returns [g(X), g'(X)] (Taylor-model enclosures over the ball X; the chain-rule factor is exactly 1)."""
+def _dyadic_up(x: Fraction, bits: int = 24) -> Fraction:
+    """The smallest dyadic with ``bits`` significant bits that is >= x > 0."""
+    if x <= 0:
+        return Fraction(0)
+    e = x.numerator.bit_length() - x.denominator.bit_length() - bits
+    scale = Fraction(2) ** e
+    return math.ceil(x / scale) * scale
+
+
+def _g_series_function(sp: Spectrum, coeffs=None):
+    """g (or, given ``coeffs``, the function with those Taylor coefficients) as the series function
+    :func:`rigor_gyro.core.roots.isolate_roots` expects: given arb_series([X, 1]) it returns [g(X), g'(X)]
+    (Taylor-model enclosures over the ball X; the chain-rule factor is exactly 1)."""
+    coeffs = coeffs or (lambda ctr, n: g_coeffs(sp, ctr, n))
+
     def f(s: arb_series) -> arb_series:
         c = series_coefficients(s, 2)
         if len(c) < 2 or not (c[1] - 1).is_zero():
             raise ValueError("expects the identity series [x, 1]")
-        g, dg = taylor_enclosure(lambda ctr, n: g_coeffs(sp, ctr, n), c[0], TAYLOR_ORDER, (0, 1))
+        g, dg = taylor_enclosure(coeffs, c[0], TAYLOR_ORDER, (0, 1))
         return arb_series([g, dg], prec=2)
     return f
 
 
-def _isolate(f, lo: arb, hi: arb, *, max_depth: int = 48, max_pieces: int = MAX_PIECES) -> Isolation:
-    """:func:`rigor_gyro.core.roots.isolate_roots` with a fail-fast rule: when a piece is still undecided at
+def isolation_coeffs(sp: Spectrum):
+    """The Taylor coefficients of the function whose roots the search isolates, and its name in the
+    witness: G = g K (:func:`~.flow.pole_free_coeffs`: same roots as g, no poles next to the real axis)."""
+    return (lambda ctr, n: pole_free_coeffs(sp, ctr, n)), "pole_free"
+
+
+def _g_derivatives(coeffs, X: arb, derivs) -> list[arb]:
+    return taylor_enclosure(coeffs, X, TAYLOR_ORDER, derivs)
+
+
+def _dg_series_function(coeffs):
+    """g' as a series function (for interval Newton on g' = 0: [g'(X), g''(X)])."""
+    def f(s: arb_series) -> arb_series:
+        c = series_coefficients(s, 2)
+        if len(c) < 2 or not (c[1] - 1).is_zero():
+            raise ValueError("expects the identity series [x, 1]")
+        d1, d2 = _g_derivatives(coeffs, c[0], (1, 2))
+        return arb_series([d1, d2], prec=2)
+    return f
+
+
+def _sign(x: arb) -> int:
+    return 1 if certainly_positive(x) else -1 if certainly_negative(x) else 0
+
+
+def _monotone(a: arb, b: arb, why: str) -> RootPiece:
+    """A piece on which g is strictly monotone with no sign change: root-free (checker: kind empty, by
+    monotone: g'' of one sign on it, g' of one strict sign at both ends, g of one strict sign at both)."""
+    return RootPiece(a, b, RootStatus.EMPTY, reason="monotone: " + why)
+
+
+def _monotone_side(f, coeffs, a: arb, b: arb) -> list[RootPiece] | None:
+    """[a, b] with g strictly monotone on it (g'' one sign, g'(a), g'(b) one strict sign): no root when
+    g(a), g(b) have one strict sign; else exactly one, bracketed by sign bisection until interval Newton
+    proves it: [a, lo] monotone, [lo, hi] unique, [hi, b] monotone. None if a sign is not certain."""
+    ga, gb = _sign(coeffs(a, 1)[0]), _sign(coeffs(b, 1)[0])
+    if ga == 0 or gb == 0:
+        return None
+    if ga == gb:
+        return [_monotone(a, b, "g' and g of one sign")]
+    lo, hi = a, b
+    for _ in range(200):
+        piece = newton_root(f, lo, hi)
+        if piece.status is RootStatus.UNIQUE:
+            out = [_monotone(a, lo, "before the root")] if certainly_lt(a, lo) else []
+            out.append(piece)
+            if certainly_lt(hi, b):
+                out.append(_monotone(hi, b, "after the root"))
+            return out
+        mid = ((lo + hi) / 2).mid()
+        gm = _sign(coeffs(mid, 1)[0])
+        if gm == 0 or not (certainly_lt(lo, mid) and certainly_lt(mid, hi)):
+            return None
+        lo, hi = (lo, mid) if gm != ga else (mid, hi)
+    return None
+
+
+def _critical_split(f, coeffs, a: arb, b: arb) -> list[RootPiece] | None:
+    """Decide [a, b] where g'' has one sign (g strictly convex or concave: at most one critical point,
+    at most two roots), instead of bisecting towards a close pair of roots or a near-tangency:
+    the critical point c (g' = 0) enclosed by interval Newton on g', the pieces beside it monotone
+    (:func:`_monotone_side`), the one around it root-free by the sign of g there. None when g'' may
+    vanish on [a, b] or a sign is not certain (the caller bisects)."""
+    d2 = _g_derivatives(coeffs, interval(a, b), (2,))[0]
+    if _sign(d2) == 0:
+        return None
+    da, db = _sign(coeffs(a, 2)[1]), _sign(coeffs(b, 2)[1])
+    if da == 0 or db == 0:
+        return None
+    if da == db:
+        return _monotone_side(f, coeffs, a, b)
+    crit = newton_root(_dg_series_function(coeffs), a, b)
+    if crit.status is not RootStatus.UNIQUE or not crit.enclosure.is_finite():
+        return None
+    c_lo, c_hi = crit.enclosure.lower(), crit.enclosure.upper()
+    if not (certainly_lt(a, c_lo) and certainly_lt(c_hi, b)):
+        return None
+    mid = RootPiece(c_lo, c_hi, RootStatus.EMPTY, reason="g excludes 0 around its critical point")
+    if _sign(enclose_f_df(f, interval(c_lo, c_hi))[0]) == 0:
+        return None
+    if _sign(coeffs(c_lo, 2)[1]) != da or _sign(coeffs(c_hi, 2)[1]) != db:
+        return None
+    left, right = _monotone_side(f, coeffs, a, c_lo), _monotone_side(f, coeffs, c_hi, b)
+    if left is None or right is None:
+        return None
+    return left + [mid] + right
+
+
+def _isolate(f, lo: arb, hi: arb, *, coeffs=None, max_depth: int = 48,
+             max_pieces: int = MAX_PIECES, resume: tuple | None = None) -> Isolation:
+    """:func:`rigor_gyro.core.roots.isolate_roots` with two changes. A piece where interval Newton fails
+    and the second derivative has one sign is decided at once by :func:`_critical_split` (given the
+Taylor ``coeffs`` of f) instead of being
+    bisected towards a close pair of roots. And a fail-fast rule: when a piece is still undecided at
     the depth limit or at a width the precision cannot resolve (< 2^(-prec/2) relative), the search
     stops and the rest of the range is reported undecided (the prover then raises the precision)
-    instead of bisecting every piece of a cancellation-dominated stretch to the depth limit."""
-    done: list[RootPiece] = []
-    stack: list[tuple[arb, arb, int]] = [(lo, hi, 0)]
+    instead of bisecting every piece of a cancellation-dominated stretch to the depth limit; the
+    decided pieces before the stop and the stop point are kept in ``Isolation.resume``, and a later
+    call given them as ``resume`` searches only the rest."""
+    done: list[RootPiece] = list(resume[0]) if resume else []
+    stack: list[tuple[arb, arb, int]] = [(resume[1], hi, 1)] if resume else [(lo, hi, 0)]
+    stopped = None
     rel = arb(2) ** (-(current_precision() // 2))
     while stack:
         a, b, depth = stack.pop()
         piece = newton_root(f, a, b)
+        if piece.status is RootStatus.UNKNOWN and coeffs is not None and depth > 0:
+            split = _critical_split(f, coeffs, a, b)
+            if split is not None:
+                done.extend(split)
+                continue
         if piece.status is RootStatus.UNKNOWN:
             small = certainly_lt(b - a, b.abs_upper() * rel)
             if depth < max_depth and not small and len(done) + len(stack) < max_pieces:
@@ -397,13 +518,17 @@ def _isolate(f, lo: arb, hi: arb, *, max_depth: int = 48, max_pieces: int = MAX_
                 continue
             piece.reason += f" (after {depth} bisections; width at the precision limit)" if small else \
                 f" (after {depth} bisections)"
+            decided = sorted(done, key=lambda p: float(p.lo.mid()))
+            stopped = (decided, a)          # depth-first, left first: the decided pieces tile [lo, a]
             done.append(piece)
             done.extend(RootPiece(a2, b2, RootStatus.UNKNOWN, reason="not examined: the search stopped at an "
                                   "undecided piece (raise --maxprec)") for a2, b2, _ in stack)
             break
         done.append(piece)
     done.sort(key=lambda p: float(p.lo.mid()))  # float only orders disjoint pieces
-    return Isolation(merge_shared_roots(f, done, None))
+    iso = Isolation(merge_shared_roots(f, done, None))
+    iso.resume = stopped
+    return iso
 
 
 def analyse(model: RelayModel, spectrum=None, phase: Phases | None = None) -> Analysis:
@@ -436,15 +561,34 @@ def analyse(model: RelayModel, spectrum=None, phase: Phases | None = None) -> An
                       "time scale: set option T_max to search a finite range")
         return an
     fastest = max((float(abs(m.lam).mid()) for m in sp.modes))  # float picks a start only
-    start = (arb(1) / arb(int(fastest) + 1)).mid()
-    start = start.min((an.T_search / 4).mid())
+    # a power of two below 1/(fastest + 1) (and T/4): the same exact point at every precision, so a later
+    # attempt can resume the root search of an earlier one (same theta_min, same range)
+    start = arb(2) ** (-max(1, math.ceil(math.log2(int(fastest) + 1))))
+    while not certainly_lt(4 * start, an.T_search):
+        start = start / 2
     with phase("theta_min (g = O(theta^5))"):
         an.theta_min = _theta_min(sp, start)
     if an.theta_min is None:
         an.problem = "could not certify g^(5) > 0 near theta = 0 (raise precision)"
         return an
     with phase("half_period: root isolation"):
-        iso = _isolate(_g_series_function(sp), an.theta_min, an.T_search)
+        coeffs, an.isolated = isolation_coeffs(sp)
+        key = (an.isolated, exact_fraction(an.theta_min), exact_fraction(an.T_search))
+        cached = model.decided.get(key) if spectrum is None else None
+        if cached is not None and cached[1] is None:        # an earlier attempt isolated every root:
+            pieces = []                                     # keep its pieces, refine each root here
+            f = _g_series_function(sp, coeffs)
+            for pc in cached[0]:
+                if pc.status is RootStatus.UNIQUE and not pc.parts:
+                    again = newton_root(f, pc.lo, pc.hi)
+                    pc = again if again.status is RootStatus.UNIQUE else pc
+                pieces.append(pc)
+            iso = Isolation(pieces)
+        else:
+            iso = _isolate(_g_series_function(sp, coeffs), an.theta_min, an.T_search, coeffs=coeffs, resume=cached)
+        if spectrum is None:
+            model.decided[key] = iso.resume if iso.resume is not None else \
+                ((list(iso.pieces), None) if not iso.unknown else None)
     an.pieces = len(iso.pieces)
     an.piece_list = iso.pieces
     an.unknown = iso.unknown
@@ -670,6 +814,8 @@ def _witnesses(an: Analysis) -> dict[str, Any]:
     pieces = []
     for pc in an.piece_list:
         item = {"lo": _q(pc.lo.lower()), "hi": _q(pc.hi.upper()), "kind": pc.status.value}
+        if pc.reason.startswith("monotone"):
+            item["by"] = "monotone"
         if pc.parts:
             item["splits"] = [_q(s) for s in pc.parts]
         pieces.append(item)
@@ -684,4 +830,4 @@ def _witnesses(an: Analysis) -> dict[str, Any]:
             r["middle"] = [[_q(a.lower()), _q(b.upper())] for a, b in v.middle]
         roots.append(r)
     return {"half_period": {"theta_min": _q(an.theta_min), "T": _q(an.T_search), "covers_all": an.covers_all,
-                            "pieces": pieces, "roots": roots}}
+                            "function": an.isolated, "pieces": pieces, "roots": roots}}

@@ -61,7 +61,7 @@ from ...core.exact import parse_exact
 from ...core.polyroots import isolate_polynomial
 
 __all__ = ["PARAMETER_NAMES", "RelayParams", "DegenerateSpectrum", "Mode", "Spectrum", "system_matrix",
-           "forcing", "nutation_cubic", "g_coeffs", "x0_at", "ExpSum", "orbit_expsums", "state_at",
+           "forcing", "nutation_cubic", "g_coeffs", "pole_free_coeffs", "x0_at", "ExpSum", "orbit_expsums", "state_at",
            "phi_at", "vector_field", "half_period_jacobian", "taylor_enclosure", "tail_bound",
            "taylor5_leading_coefficient", "moment_zero_orders"]
 
@@ -269,6 +269,57 @@ def g_coeffs(sp: Spectrum, center: arb, n: int) -> list[arb]:
     tot[0] -= sp.p0e[0] * center / 2
     if n > 1:
         tot[1] -= sp.p0e[0] / 2
+    return tot
+
+
+def pole_free_coeffs(sp: Spectrum, center: arb, n: int) -> list[arb]:
+    """Taylor coefficients at every point of ``center`` of G(theta) = g(theta) K(theta), where
+    K = prod over the complex pairs lambda, conj(lambda) of (1 + E)(1 + conj E), E = exp(lambda theta).
+
+    Why: g's spectral terms tanh(lambda theta / 2) / lambda have poles where E = -1, at complex theta
+    within (2k + 1) pi |Re lambda| / |lambda|^2 of the real axis: for a lightly damped fast nutation they
+    sit next to theta = (2k + 1) pi / omega, and no Taylor model of g is accurate on a piece wider than
+    that distance, so the root search bisects towards every one of them. K > 0 for real theta > 0
+    (|E| < 1 when Re lambda < 0), so G and g have the same roots, with the same multiplicities; and
+    in G each pair's own term is (E - 1)(1 + conj E) / lambda, pole-free. Same series trap as g_coeffs.
+
+    Requires: a spectrum whose complex modes have Re lambda < 0 (a stable nutation cubic). Where a box
+    spectrum's ``near_zero`` series applies, g comes from it (its spectral terms cancel there) and G's
+    coefficients are the Cauchy product with K's."""
+    pairs = [m for m in sp.modes if m.weight == 2]
+    tot = [arb(0)] * n
+    with series_length(n):
+        s = _series(center, n)
+        E = {id(m): (m.lam * s).exp() for m in pairs}
+        Ec = {id(m): (m.lam.conjugate() * s).exp() for m in pairs}
+        one = acb_series([1], prec=n)
+        K = one
+        for m in pairs:
+            K = K * (1 + E[id(m)]) * (1 + Ec[id(m)])
+        near = getattr(sp, "near_zero", None)
+        g_near = near.coeffs(center, n) if near is not None else None
+        if g_near is not None:      # near 0 (a box spectrum): g from its power series, times K's series
+            k = [x.real for x in series_coefficients(K, n)]
+            return [sum((g_near[i] * k[j - i] for i in range(j + 1)), arb(0)) for j in range(n)]
+        for m in sp.modes:
+            try:
+                if m.weight == 2:
+                    others = one
+                    for o in pairs:
+                        if o is not m:
+                            others = others * (1 + E[id(o)]) * (1 + Ec[id(o)])
+                    term = (E[id(m)] - 1) * (1 + Ec[id(m)]) / m.lam * others
+                else:
+                    term = _half_tanh_over_lam(m.lam, s) * K
+                c = series_coefficients(term * m.pe[0], n)
+            except ValueError:
+                return [arb("nan")] * n
+            for j in range(n):
+                tot[j] -= m.weight * c[j].real
+        # lambda = 0: -p0e[0] theta / 2, times K
+        lin = series_coefficients(acb_series([acb(center), 1], prec=n) * K, n)
+        for j in range(n):
+            tot[j] -= sp.p0e[0] * lin[j].real / 2
     return tot
 
 
