@@ -163,6 +163,8 @@ def _certified_digits(lo: str, hi: str, printed: str, extra: int = 3) -> str:
 
 #: audit classes that are plain agreement (not listed among the discrepancies)
 _PLAIN = ("agrees", "assertion-confirmed")
+#: classes that are numerical differences, not misprints: listed compactly
+_NUMERICAL = ("last-digit", "unexplained")
 
 
 def _audit_section(rows: list[dict]) -> list[str]:
@@ -183,15 +185,25 @@ def _audit_section(rows: list[dict]) -> list[str]:
                                                      sorted(counts.items(), key=lambda kv: (-kv[1], kv[0]))) + ".")
     out.append("")
     odd = [r for r in rows if r.get("class", r["status"]) not in _PLAIN]
-    if odd:
-        out += ["### Rows that are not plain agreement", "",
+    numerical = [r for r in odd if r.get("class") in _NUMERICAL]
+    explained = [r for r in odd if r.get("class") not in _NUMERICAL]
+    if explained:
+        out += ["### Misprints, refuted assertions and corrected formulas", "",
                 "| item | printed | reading | certified (3 digits more than printed) | class | why (the reading that "
                 "reproduces the print) | note |", "|---|---|---|---|---|---|---|"]
-        for r in odd:
+        for r in explained:
             out.append(f"| {_esc(r['id'])} | {_esc(r['printed'])} | {_esc(r['reading'])} | "
                        f"{_certified_digits(r['lo'], r['hi'], r['printed'])} | "
                        f"**{r.get('class', r['status'])}** | {_esc(r.get('class_reading', ''))} | {_esc(r['note'])} |")
         out.append("")
+    for cls, text in (("last-digit", "one unit off in the last printed digit (rounding)"),
+                      ("unexplained", "no single edit explains the print (the paper's own computation differs; "
+                                      "printed -> certified to the printed digits plus three)")):
+        rs = [r for r in numerical if r.get("class") == cls]
+        if rs:
+            out += [f"### {len(rs)} {cls}: {text}", "",
+                    "; ".join(f"{_esc(r['id'])} {_esc(r['printed'])} -> {_certified_digits(r['lo'], r['hi'], r['printed'])}"
+                              for r in rs) + ".", ""]
     plain = [r for r in rows if r.get("class", r["status"]) in _PLAIN]
     if plain:
         out += ["### Rows that agree", "",

@@ -115,3 +115,15 @@ def test_timings_file_breaks_the_proof_down_by_phase_and_counts_pieces(tmp_path)
     assert {"best_mu", "vdot_nonpositive", "paper audit"} <= set(phases)
     assert sum(phases.values()) <= t["total_s"] + 1e-3
     assert t["pieces"]["constants.m_pieces"] >= 1 and t["pieces"]["invariant_estimate.pieces"] >= 1
+
+
+def test_a_report_opens_with_the_answer_and_keeps_the_audit_compact(tmp_path):
+    from rigor_gyro.cli import main
+    assert main(["prove", "roitenberg1947_b2over15", "--out", str(tmp_path), "--quiet"]) == 0
+    md = (tmp_path / "roitenberg1947_b2over15.md").read_text()
+    head = md.split("## Parameters", 1)[0]
+    assert "## Summary" in head and "**Verdict: proved**" in head and "`theta_star`" in head
+    assert "How to read this report" in head
+    audit = md.split("## Audit of the paper", 1)[1]
+    assert audit.index("rows:**") < audit.index("### Misprints") < audit.index("unexplained:")
+    assert len(md) < 45000, len(md)          # 63 KB before the audit was grouped by class

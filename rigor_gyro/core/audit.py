@@ -24,7 +24,7 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from .balls import certainly_gt, certainly_le
+from .balls import certainly_gt, certainly_le, exact_endpoints
 from .errors import SceneError
 from .outcome import AuditStatus
 
@@ -139,12 +139,22 @@ def agreeing_digits(printed: str, value: arb) -> int:
     dec = Decimal(printed.strip())
     total = _sig_digits(printed)
     best = 0
+    if dec == 0 or not value.is_finite():
+        return 0
+    lo, hi = exact_endpoints(value)         # the ball's exact ends, once: each test is integer comparisons
+    ln, ld, hn, hd = lo.numerator, lo.denominator, hi.numerator, hi.denominator
     for d in range(1, total + 1):
-        if dec == 0:
-            break
         shift = dec.adjusted() - d + 1          # exponent of the last kept digit
-        rounded = dec.quantize(Decimal(1).scaleb(shift), rounding=ROUND_HALF_EVEN)
-        half = Fraction(1, 2) * Fraction(10) ** shift
-        if _correct_rounding(Fraction(rounded), half, value) is AuditStatus.AGREES:
+        sign, digs, exp = dec.quantize(Decimal(1).scaleb(shift), rounding=ROUND_HALF_EVEN).as_tuple()
+        r = int("".join(map(str, digs)) or "0") * (-1 if sign else 1)
+        # rounded = r 10^exp, half = 5 10^(exp-1): within half a unit <=> 10 r - 5 <= 10 x / 10^exp <= 10 r + 5
+        e = exp - 1
+        if e >= 0:
+            scale = 10 ** e
+            ok = (10 * r - 5) * scale * ld <= ln and hn <= (10 * r + 5) * scale * hd
+        else:
+            scale = 10 ** (-e)
+            ok = (10 * r - 5) * ld <= ln * scale and hn * scale <= (10 * r + 5) * hd
+        if ok:
             best = d
     return best

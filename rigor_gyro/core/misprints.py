@@ -162,9 +162,13 @@ def _edit_then_agreeing_prefix(text: str, P: Decimal, value: arb) -> list[tuple[
         if d >= MIN_DIGITS_FOR_EDITS:
             out.append(("sign", f"with its sign changed the print, {neg}, agrees with the value to {d} of {n} "
                                 "significant digits (the rest is the paper's own rounding or computation)", d))
+    # the value's own digits at the printed place propose the replacement digit (one candidate per position)
+    T = rounded_at(value, sig.exponent)
+    tdig = list(Decimal(abs(T)).quantize(Decimal(1).scaleb(sig.exponent)).as_tuple().digits) if T is not None else []
+    tdig = [0] * (len(digits) - len(tdig)) + tdig if len(tdig) <= len(digits) else []
     for i in range(lead, len(digits)):
         pos = i - lead                               # 0-based significant position
-        for r in range(10):
+        for r in ([tdig[i]] if tdig else range(10)):
             if r == digits[i] or (r == 0 and i == lead):
                 continue
             ds = digits[:i] + [r] + digits[i + 1:]
@@ -217,7 +221,7 @@ def classify_printed(printed: str, value: arb, propagated: arb | None = None) ->
         fits.append(("propagated", f"{text} is a correct rounding of the value recomputed from the paper's own "
                                    f"printed inputs (the computation, not the print, is off; the certified value "
                                    f"rounds to {T if T is not None else 'an undecided rounding'})"))
-    if T is not None and T != P and abs(T - P) == Decimal(1).scaleb(exp):
+    if T is not None and T != P and P != 0 and abs(T - P) == Decimal(1).scaleb(exp):   # a printed 0 is exact
         fits.append(("last-digit", f"the value rounds to {T} at the printed place: the print is one unit off "
                                    "in its last digit"))
     if T is not None and P != 0:
@@ -225,13 +229,15 @@ def classify_printed(printed: str, value: arb, propagated: arb | None = None) ->
             if cand == -P and cand != 0:
                 fits.append(("sign", f"the value reads {T}: the print has the wrong sign{extra}"))
                 break
-    for k in _SHIFTS:
+    # a decimal shift keeps the significant digits: the value to the print's significant digits, moved
+    vs = _sig_rounded(value, len(_digits(P))) if P != 0 else None
+    k = (P.adjusted() - vs.adjusted()) if vs is not None and vs != 0 else 0
+    if k and abs(k) <= max(map(abs, _SHIFTS)):
         shifted = rounded_at(value * _q(Fraction(10) ** k), exp)
         if shifted is not None and any(c == P for c, _ in _near(shifted, exp, compound)):
             extra = "" if shifted == P else " (and one unit off in the last place)"
             fits.append(("decimal-shift", f"{text} is the value times 10^{k}: the decimal point is {abs(k)} "
                                           f"place(s) {'right' if k > 0 else 'left'} of where it belongs{extra}"))
-            break
     nsig = len(_digits(P))
     edits = nsig >= MIN_DIGITS_FOR_EDITS
     if edits and T is not None:

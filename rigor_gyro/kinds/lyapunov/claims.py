@@ -269,7 +269,7 @@ DIRECT_MARGINS = ("4e-7", "4e-6", "4e-5", "4e-4", "4e-3")
 
 def _direct_search(g: Gimbal) -> tuple[float, float, float, float | None]:
     """A float search for inf over (x2, t) of A/|B| (the supremum radius of the direct test): the
-    smallest value on a 33 x 65 grid of (u, s) (x2 = u x2*, t = pi s), refined by a pattern search.
+    smallest value on a 17 x 33 grid of (u, s) (x2 = u x2*, t = pi s), refined by a pattern search.
     Returns (estimate, u, s, the smallest A seen). A heuristic: it only chooses R_direct and the
     counterexample's direction; both are certified afterwards."""
     xs, pi = g.c.x2_star, arb.pi()
@@ -279,15 +279,15 @@ def _direct_search(g: Gimbal) -> tuple[float, float, float, float | None]:
         a, b = float(A.mid()), float(B.mid())
         return (a / abs(b) if b != 0 else math.inf), a
     best, amin = (math.inf, 0.0, 0.5), math.inf
-    for i in range(33):
-        for j in range(65):
-            u, sv = -1 + 2 * i / 32, j / 64
+    for i in range(17):
+        for j in range(33):
+            u, sv = -1 + 2 * i / 16, j / 32
             r, a = ratio(u, sv)
             amin = min(amin, a)
             if r < best[0]:
                 best = (r, u, sv)
     r0, u, sv = best
-    hu, hs = 2 / 32, 1 / 64
+    hu, hs = 2 / 16, 1 / 32
     for _ in range(90):
         moved = False
         for du, ds in ((hu, 0), (-hu, 0), (0, hs), (0, -hs)):
