@@ -91,7 +91,9 @@ def _max_upper(f, pieces) -> arb:
     up = None
     for p in pieces:
         u = f(_b(p)).upper()
-        up = u if up is None else up.max(u)
+        # the largest of exact points by exact comparison (arb's max of two balls widens)
+        if up is None or not u.is_finite() or (up.is_finite() and certainly_gt(u, up)):
+            up = u
     return up
 
 
@@ -261,9 +263,12 @@ def check(model, data: dict) -> list[CheckResult]:
                 Mu = _b(p)
                 L = arb(0)
                 for x in points:
-                    L = L.max(rho_lower(g, x, Mu))
+                    v = rho_lower(g, x, Mu)
+                    if not v.is_finite() or (L.is_finite() and certainly_gt(v, L)):
+                        L = v           # exact comparison: arb's max of two balls widens
                 u = (1 / L).upper() if certainly_positive(L) else arb("inf")
-                U = u if U is None else U.max(u)
+                # the largest of exact points, by exact comparison (arb's max of two balls widens)
+                U = u if U is None or not u.is_finite() or (U.is_finite() and certainly_gt(u, U)) else U
         if U is not None and U.is_finite():
             upper_bound_holds("R_sup_upper_bound", U)
             upper_bound_holds("R_max_relative_gap", (U - R_max) / R_max)
