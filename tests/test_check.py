@@ -333,14 +333,29 @@ def test_the_direct_vdot_witness_is_re_verified():
     assert bad(origin)
 
 
-def test_a_linear_moment_certificate_is_confirmed():
-    """Found by the campaign (seed 901): the checker bounded m over the stored cover with arb's min of two
-    enclosures, which widens ((x + y - |x - y|)/2), so its m poked out of a correct stored m."""
+#: Lyapunov scenes from the campaign whose certificates the checker once failed to confirm (all right)
+CAMPAIGN_CASES = {
+    # seed 901: the checker bounded m over the stored cover with arb's min of two enclosures, which widens
+    # ((x + y - |x - y|)/2), so its m poked out of a correct stored m
+    "linear moment, m": {"A": "2.37917", "C": "5.77822", "A1": "4.20265", "B1": "0.566959", "C1": "0.881917",
+                         "A2": "3.93439", "H": "1028.77", "k": "0.380781", "a": "794.194", "x2_star": "0.829073",
+                         "mu": "0.0325221", "moment": "linear"},
+    # seed 18, the only check failure in 3500 Lyapunov cases after the m fix, still open: the checker's own
+    # bound of R_sup over (16), from the stored mu pieces and x2 points, exceeds the stored
+    # R_sup_upper_bound by 1.2e-26 (1.4e-24 relative); both are valid upper bounds, the checker's is looser
+    "R_sup_upper_bound": pytest.param({"A": "3.69535", "C": "2.18086", "A1": "0.853547", "B1": "3.00193",
+                                       "C1": "0.938001", "A2": "3.8399", "H": "3059.2", "k": "0.103047",
+                                       "a": "17.6091", "x2_star": "0.775177", "mu": "0.0290153", "moment": "linear"},
+                                      marks=pytest.mark.xfail(strict=True, reason="open: the checker is looser than "
+                                                              "the prover on R_sup_upper_bound")),
+}
+
+
+@pytest.mark.parametrize("params", list(CAMPAIGN_CASES.values()), ids=list(CAMPAIGN_CASES))
+def test_campaign_certificates_are_confirmed(params):
     from rigor_gyro.prover import prove_scene
     from rigor_gyro.scene import Scene
-    p = {"A": "2.37917", "C": "5.77822", "A1": "4.20265", "B1": "0.566959", "C1": "0.881917", "A2": "3.93439",
-         "H": "1028.77", "k": "0.380781", "a": "794.194", "x2_star": "0.829073", "mu": "0.0325221", "moment": "linear"}
-    sc = Scene(name="x", kind="lyapunov", source="", parameters=p, options={"max_pieces": "4000"})
+    sc = Scene(name="x", kind="lyapunov", source="", parameters=params, options={"max_pieces": "4000"})
     data = json.loads(json.dumps(prove_scene(sc, maxprec=512).to_json()))
     report = check_certificate(data)
     assert report.ok, report.first_failure
@@ -361,20 +376,3 @@ def test_the_equilibria_witness_is_re_verified():
     assert bad(lambda d: d["witnesses"]["equilibria"]["pieces"]["f"].pop(1))
     assert bad(lambda d: eq(d)["details"]["equilibria"].pop())
     assert bad(lambda d: eq(d)["details"]["equilibria"][-1].__setitem__("stability", "asymptotically stable"))
-
-
-@pytest.mark.xfail(strict=True, reason="open (campaign lyapunov seed 18): the checker re-derives R_sup_upper_bound "
-                   "1.4e-24 (relative) above the prover's bound; both are valid upper bounds, the checker's is looser "
-                   "and so cannot confirm the stored one: to make the checker at least as tight as the prover")
-def test_a_best_mu_upper_bound_is_confirmed():
-    """Found by the campaign (lyapunov seed 18, the only check failure in 3500 Lyapunov cases after the m fix):
-    the checker's own bound of R_sup over (16), from the stored mu pieces and x2 points, exceeds the stored
-    R_sup_upper_bound by 1.2e-26 (exact max now used in the checker: not the cause)."""
-    from rigor_gyro.prover import prove_scene
-    from rigor_gyro.scene import Scene
-    p = {"A": "3.69535", "C": "2.18086", "A1": "0.853547", "B1": "3.00193", "C1": "0.938001", "A2": "3.8399",
-         "H": "3059.2", "k": "0.103047", "a": "17.6091", "x2_star": "0.775177", "mu": "0.0290153", "moment": "linear"}
-    sc = Scene(name="x", kind="lyapunov", source="", parameters=p, options={"max_pieces": "4000"})
-    data = json.loads(json.dumps(prove_scene(sc, maxprec=512).to_json()))
-    report = check_certificate(data)
-    assert report.ok, report.first_failure
