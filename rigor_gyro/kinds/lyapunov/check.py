@@ -379,17 +379,16 @@ def _decided_roots(fn, pieces, pi: arb):
     for (a, b), (c2, _) in zip(bounds, bounds[1:]):
         if not (a.rad().is_zero() and b.rad().is_zero() and b == c2):
             return None
-    series = lambda x: fn(x)              # noqa: E731
     roots = []
     for (a, b), p in zip(bounds, pieces):
         if p["kind"] == "empty":
-            fx, _ = enclose_f_df(series, a.union(b))
+            fx, _ = enclose_f_df(fn, a.union(b))
             if not (fx.is_finite() and (certainly_positive(fx) or certainly_positive(-fx))):
-                r = newton_root(series, a, b)
+                r = newton_root(fn, a, b)
                 if r.status is not RootStatus.EMPTY:
                     return None
         elif p["kind"] == "unique":
-            r = newton_root(series, a, b)
+            r = newton_root(fn, a, b)
             if r.status is not RootStatus.UNIQUE:
                 return None
             roots.append((a, b, r.enclosure))

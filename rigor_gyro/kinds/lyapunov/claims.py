@@ -328,7 +328,6 @@ def _vdot_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     pi = arb.pi()
     x2p = _q(_fmpq(exact_fraction((xs * arb(u0)).mid())))
     x2p = x2p if certainly_le(abs(x2p), xs) else (xs.lower() if u0 > 0 else -xs.lower())
-    x2p = _q(_fmpq(exact_fraction(x2p.mid()))) if not x2p.rad().is_zero() else x2p
     point, up = None, None
     for m in DIRECT_MARGINS:
         rr = arb(est) * (1 + arb(m))

@@ -61,11 +61,6 @@ def _q(r: Fraction) -> arb:
     return arb(fmpq(r.numerator, r.denominator))
 
 
-def _series(fn):
-    """fn written with ball operations as the series function the root isolation expects."""
-    return lambda s: fn(s)
-
-
 def jacobian(g: Gimbal, x1: arb, x2: arb, x3: arb) -> list[list[arb]]:
     """The Jacobian of (2) at (x1, x2, x3) by forward-mode differentiation in balls."""
     cols = []
@@ -107,7 +102,7 @@ def equilibria(g: Gimbal) -> Equilibria:
     P = (pi + arb(fmpq(RANGE_PAD.numerator, RANGE_PAD.denominator))).upper()
     f = lambda x: g.f(x)                                            # noqa: E731
     h = lambda x: c.k * c.H + c.C0 * x.sin() * g.f(x)               # noqa: E731
-    iso_f, iso_h = isolate_roots(_series(f), -P, P), isolate_roots(_series(h), -P, P)
+    iso_f, iso_h = isolate_roots(f, -P, P), isolate_roots(h, -P, P)     # ball code accepts series too
     unknown = iso_f.unknown + iso_h.unknown
     points: list[Equilibrium] = []
     problems = []
