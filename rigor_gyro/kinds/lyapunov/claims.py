@@ -728,6 +728,10 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     if not (U.is_finite() and certainly_le(_q(R_max), U)):
         return _claim("best_mu", Status.INCONCLUSIVE, f"no finite upper bound of sup R_sup over (16): {U}",
                       decides=U)
+    # stored as its 15-digit decimal rounded up: a re-derivation on the same pieces at another precision
+    # differs in the last bits of arb's radius arithmetic (30-bit radii on wide mu pieces; 1.4e-24 relative
+    # seen), so the exact upper end of U would be a bound only this run can confirm
+    U = _q(_fmpq(Fraction(decimal_bounds(U, 15)[1])))
     quantities["R_sup_upper_bound"] = U
     gap = (U - _q(R_max)) / _q(R_max)
     quantities["R_max_relative_gap"] = gap
