@@ -37,8 +37,8 @@ from .balls import ball, certainly_le, certainly_lt, certainly_positive, interva
 from .outcome import Status
 from .roots import enclose_f_df
 
-__all__ = ["Positivity", "Extremum", "BoxPositivity", "mean_value_form", "certify_positive", "certify_positive_on_box",
-           "enclose_max", "enclose_min"]
+__all__ = ["Positivity", "Extremum", "BoxPositivity", "BoxLowerBound", "mean_value_form", "certify_positive",
+           "certify_positive_on_box", "lower_bound_on_box", "enclose_max", "enclose_min"]
 
 IntervalFunction = Callable[[arb], arb]
 
@@ -236,3 +236,86 @@ def certify_positive_on_box(f: BoxFunction, whole, *, max_pieces: int = 20000) -
                                  reason=f"undecided after {count} boxes (raise max_pieces or the precision)")
         stack.extend(reversed(box.split(whole)))
     return BoxPositivity(Status.PROVED, leaves, reason=f"f > 0 certified on {len(leaves)} boxes")
+
+
+@dataclass
+class BoxLowerBound:
+    """Outcome of :func:`lower_bound_on_box`: ``bound`` (an exact ball) is <= f on every leaf, and the
+    leaves tile the box (the leaves of a bisection tree), so inf f over the box >= ``bound``; ``reached``
+    says whether it reached the target."""
+
+    bound: arb
+    leaves: list
+    reached: bool
+    boxes: int
+
+
+class _SmallestFirst:
+    """Heap key putting the smallest lower end first (floats, exact comparison on ties; the order only
+    chooses which box to refine next: the bound is the minimum over every leaf, whatever the order).
+    ``lo`` is the exact lower end, or None for -inf (nothing known: NaN or unbounded below) and +inf
+    (nothing asked there); ``key`` is its float."""
+
+    __slots__ = ("key", "lo")
+
+    def __init__(self, v: arb) -> None:
+        low = v.lower()
+        key = float(low)            # arb prints every infinite ball as [+/- inf]: the float tells the sign
+        if key != key or key == float("-inf"):
+            self.key, self.lo = float("-inf"), None
+        elif key == float("inf"):
+            self.key, self.lo = float("inf"), None
+        else:
+            self.key, self.lo = key, low
+
+    def __lt__(self, other: "_SmallestFirst") -> bool:
+        if self.key != other.key or self.lo is None or other.lo is None:
+            return self.key < other.key
+        return bool(self.lo < other.lo)
+
+
+def lower_bound_on_box(f: BoxFunction, whole, target: object, *, max_pieces: int = 20000) -> BoxLowerBound:
+    """A certified lower bound of inf f over a box (a :class:`rigor_gyro.core.boxes.Box`), raised by
+    best-first bisection (the box with the smallest lower end is split along its relatively widest edge)
+    until every leaf's lower end is >= ``target`` or ``max_pieces`` boxes were evaluated. ``f`` maps
+    {name: ball} (each ball containing the box's edge) to a ball whose lower end is <= f on the box (it
+    need only be a lower bound; f may be +inf where nothing is asked).
+
+    Guarantee: ``bound`` = the smallest lower end over the returned leaves, which tile ``whole``; so
+    f >= ``bound`` on the whole box, whatever the stopping reason (a budget only leaves the bound lower).
+    It never claims an upper bound of inf f. Precision: the current working precision. A NaN lower end
+    counts as -inf (``bound`` is then -inf: nothing is certified)."""
+    t = ball(target)
+    heap: list = []
+    count = 0
+
+    def push(box) -> None:
+        nonlocal count
+        count += 1
+        heapq.heappush(heap, (_SmallestFirst(f({k: box.ball(k) for k in box.names})), count, box))
+
+    push(whole)
+    reached = False
+    while heap:
+        top = heap[0][0]
+        if top.key == float("inf") or (top.lo is not None and certainly_le(t, top.lo)):
+            reached = True
+            break
+        if count + 2 > max_pieces:
+            break
+        key, _, box = heapq.heappop(heap)
+        try:
+            halves = box.split(whole)
+        except ValueError:              # a box of points: nothing left to split
+            heapq.heappush(heap, (key, count, box))
+            break
+        for half in halves:
+            push(half)
+    bound = arb("inf")
+    for key, _, _ in heap:              # the smallest lower end over the leaves, by exact comparison
+        if key.key == float("-inf"):
+            bound = arb("-inf")
+            break
+        if key.lo is not None and (not bound.is_finite() or certainly_lt(key.lo, bound)):
+            bound = key.lo
+    return BoxLowerBound(bound, [item[2] for item in heap], reached, count)

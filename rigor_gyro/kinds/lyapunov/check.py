@@ -15,6 +15,9 @@ model's enclosures on the stored pieces only, at twice the certificate's precisi
   c* from the faces' closed form and the cylinder bound on the stored cover, the level c_set below it,
   the extents; at mu_best, Psi > 0 on the disc of radius R_max, R_sup(mu_best) on its cover, and the
   upper bound of R_sup over (16) re-derived from the stored mu pieces and x2 points;
+* c_max (the largest sublevel set): the stored (x2, t) boxes tile the domain and the model's lower bound
+  of V over {Vdot >= 0} is >= the stated vdot_level_lower on each; the faces' phi(+-x2*) recomputed; Vdot > 0
+  and V at the stored point re-evaluated; every stated bound compared with its exact decimal;
 * a refuted claim's counterexample (a point where grad V . f > 0 or V <= 0, a violated inequality);
 * every stored quantity contains the checker's recomputed enclosure (bounds: the certified side).
 """
@@ -33,7 +36,7 @@ from ...core.roots import RootStatus, enclose_f_df, newton_root
 from .claims import rho_function, rho_lower
 from .equilibria import Equilibrium, classify as classify_equilibrium
 from .model import (DIRECT_DOMAIN, closed_form_constants, cylinder_lower_bound, direct_margin, mean_value_enclosure,
-                    psi_min_functions)
+                    psi_min_functions, sublevel_lower_bound, vdot_polar)
 
 __all__ = ["check"]
 
@@ -81,6 +84,7 @@ def _within(x: arb, lo: arb, hi: arb) -> bool:
 
 #: per claim, the quantities its statement names: a proved claim without them is not confirmed
 REQUIRED = {"constants": ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R"),
+            "largest_sublevel": ("c_max_lower", "c_max_upper", "vdot_level_lower", "face_level"),
             "invariant_estimate": ("c_star", "c_set"),
             "best_mu": ("mu_best", "R_max", "R_sup_upper_bound", "R_max_relative_gap"),
             "vdot_direct": ("R_direct",)}
@@ -295,6 +299,13 @@ def check(model, data: dict) -> list[CheckResult]:
                     up = arb(fmpq_of(stored_interval(q["R_direct_upper"])[1]))
                     upper_bound_holds("R_direct_relative_gap", (up - Rd) / Rd)
 
+    # ---------------------------------------------------------------- the largest sublevel set
+    sub_ok, sub_msg = False, "no stored boxes"
+    wl = W.get("largest_sublevel")
+    sc = claims.get("largest_sublevel", {})
+    if wl and sc.get("status") == "proved":
+        sub_ok, sub_msg = _check_sublevel(g, xs, wl, sc.get("details", {}), q, verified)
+
     # ---------------------------------------------------------------- equilibria
     eq_ok, eq_msg = False, "no stored pieces"
     we = W.get("equilibria")
@@ -338,6 +349,18 @@ def check(model, data: dict) -> list[CheckResult]:
                 "tile the domain; the point above the radius re-evaluated")
         elif cid == "equilibria":
             say(cid, st == "proved" and eq_ok, eq_msg)
+        elif cid == "largest_sublevel":
+            if st == "proved":
+                say(cid, sub_ok, sub_msg)
+            elif ce.get("where") == "faces":
+                say(cid, certainly_le(_face_level(g, xs), 0), "min phi(+-x2*) <= 0 re-evaluated")
+            else:
+                try:
+                    t = Fraction(ce.get("t_over_pi", ""))
+                except (ValueError, ZeroDivisionError):
+                    t = None
+                A = vdot_polar(g, arb(0), arb.pi() * arb(fmpq_of(t)))[0] if t is not None else arb("nan")
+                say(cid, certainly_lt(A, 0), "A(0, t) < 0 at the stored t re-evaluated (Vdot > 0 arbitrarily near 0)")
         elif cid == "v_positive":
             if st == "proved":
                 say(cid, v_ok, "S, f/x, psi > 0 on every stored piece of [0, x2*], re-evaluated")
@@ -365,6 +388,73 @@ def check(model, data: dict) -> list[CheckResult]:
     say("quantities", not unverified, f"{len(verified)} stored enclosures verified"
         + (f"; not verified: {unverified}" if unverified else ""))
     return res
+
+
+def _face_level(g, xs: arb) -> arb:
+    """min(phi(x2*), phi(-x2*)) as the prover encloses it (the smaller one when certain, else the hull)."""
+    a, b = g.phi(xs), g.phi(-xs)
+    if certainly_le(a.upper(), b.lower()):
+        return a
+    if certainly_le(b.upper(), a.lower()):
+        return b
+    return a.union(b)
+
+
+def _check_sublevel(g, xs: arb, w: dict, details: dict, q: dict, verified: set) -> tuple[bool, str]:
+    """Re-derive the bounds of c_max from the stored (x2, t) boxes (they must tile the domain; the
+    model's lower bound re-evaluated on each), the faces' closed form and the stored point of
+    {Vdot > 0} (Vdot and V re-evaluated). Each stated bound is compared with its exact decimal."""
+    try:
+        lo_t, hi_t, n_lo_t = (Fraction(details[k]) for k in ("c_max_lower", "c_max_upper", "vdot_level_lower"))
+        n_up_t = Fraction(details["vdot_level_upper"]) if details.get("vdot_level_upper") else None
+    except (KeyError, TypeError, ValueError, ZeroDivisionError):
+        return False, "the bounds in the claim's details are missing or not numbers"
+    for name, t in (("c_max_lower", lo_t), ("c_max_upper", hi_t), ("vdot_level_lower", n_lo_t),
+                    ("vdot_level_upper", n_up_t)):
+        if t is None:
+            continue
+        if name not in q or not encloses(stored_interval(q[name]), arb(fmpq_of(t))):
+            return False, f"the stored {name} does not hold its stated decimal {details.get(name)}"
+        verified.add(name)
+    boxes = [Box.from_json(b) for b in w.get("boxes", [])]
+    if not tiles_by_bisection(Box.of(DIRECT_DOMAIN), boxes):
+        return False, "the stored (x2, t) boxes do not tile the domain"
+    lb = sublevel_lower_bound(g)
+    n_lo = fmpq_of(n_lo_t)
+    for b in boxes:
+        v = lb({k: b.ball(k) for k in b.names})
+        low = v.lower()
+        key = float(low)                # +inf: no point of {Vdot >= 0} above the box
+        if not (key == float("inf") or (low.is_finite() and low >= n_lo)):
+            return False, f"on the box {b.to_json()} the lower bound of V over {{Vdot >= 0}} is below {details['vdot_level_lower']}"
+    face = _face_level(g, xs)
+    if "face_level" not in q or not encloses(stored_interval(q["face_level"]), face):
+        return False, "the stored face_level does not contain min phi(+-x2*) re-evaluated"
+    verified.add("face_level")
+    if not (face.is_finite() and lo_t <= n_lo_t and arb(fmpq_of(lo_t)) <= face.lower()):
+        return False, "c_max_lower is not below both parts' lower bounds"
+    upper = face.upper()
+    pt = w.get("point")
+    if pt is not None:
+        x1, x2, x3 = (_b(_pair(pt[k])) for k in ("x1", "x2", "x3"))
+        if not (certainly_le(abs(x2), xs) and certainly_positive(x1 * x1 + x3 * x3)
+                and certainly_positive(g.vdot(x1, x2, x3))):
+            return False, "the stored point is not certainly in {Vdot > 0, x1^2 + x3^2 > 0, |x2| <= x2*}"
+        v = g.V(x1, x2, x3).upper()
+        if n_up_t is None or not (v.is_finite() and v <= arb(fmpq_of(n_up_t))):
+            return False, "V at the stored point exceeds vdot_level_upper"
+        upper = upper if upper <= v else v
+    elif n_up_t is not None:
+        return False, "vdot_level_upper is stated without its point"
+    if not (upper.is_finite() and upper <= arb(fmpq_of(hi_t))):
+        return False, "c_max_upper is below the re-derived upper bound"
+    binds = details.get("binds")
+    if binds == "faces" and not face.upper() <= arb(fmpq_of(n_lo_t)):
+        return False, "the faces are said to bind, but their level is not below vdot_level_lower"
+    if binds == "vdot" and not (n_up_t is not None and arb(fmpq_of(n_up_t)) <= face.lower()):
+        return False, "the set {Vdot >= 0} is said to bind, but its level is not below the faces'"
+    return True, (f"c_max bounds re-derived: {len(boxes)} (x2, t) boxes tile the domain, the lower bound re-evaluated "
+                  "on each; faces in closed form; the point of {Vdot > 0} re-evaluated")
 
 
 def _decided_roots(fn, pieces, pi: arb):

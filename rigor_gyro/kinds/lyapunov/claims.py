@@ -21,6 +21,9 @@ exact parameters:
 * ``invariant_estimate``: c* = min of V over the boundary of region (17) (faces |x2| = x2* in closed form,
   the cylinder x1^2 + x3^2 = R^2 by 2-D branch and bound), so {x in (17): V < c*} is positively
   invariant and (LaSalle, x2 f(x2) > 0) inside the domain of attraction; its certified extents.
+* ``largest_sublevel``: bounds of c_max, the infimum of V over {Vdot >= 0, x != 0, |x2| <= x2*} and the
+  faces |x2| = x2* (:mod:`rigor_gyro.kinds.lyapunov.sublevel`): the largest sublevel set of V that is an
+  estimate without region (17); refuted when c_max <= 0 is certified.
 * ``best_mu``: R_sup(mu) = min over x2 of min_i ci0 / |(ci1, ci3)| is the supremum of the radii for
   which the Psi test of ``vdot_nonpositive`` holds. A search picks mu_best in (16) (not proved
   optimal); R_max is certified at mu_best, and a branch and bound over mu certifies an upper bound of
@@ -57,6 +60,7 @@ from ...core.boxes import Box
 from ...core.subdivision import certify_positive, certify_positive_on_box, enclose_max
 from .. import Attempt, Phases
 from .equilibria import equilibria
+from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
 from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, direct_margin, vdot_polar, closed_form_constants, cylinder_lower_bound, hypot_ball,
                     mean_value_enclosure)
 from .moments import MOMENTS
@@ -77,6 +81,7 @@ MAX_PIECES_LIMIT = 1_000_000
 
 #: the numbers a report's summary opens with (quantity name -> what it is), in this order
 HEADLINE = {"R_used": "radius R of region (17) used", "c_star": "level c* of the invariant estimate {V < c*}",
+            "c_max_lower": "certified lower bound of the largest sublevel level c_max",
             "R_direct": "radius with Vdot < 0 certified directly (scene's mu)",
             "R_direct_upper": "Vdot > 0 at a certified point of this radius",
             "R_max": "certified radius R_max at mu_best (Psi test)", "mu_best": "mu_best (a search result)",
@@ -98,6 +103,14 @@ CLAIMS = {
     "v_positive": "V > 0 for |x2| <= x2*, (x1, x2, x3) != 0.",
     "invariant_estimate": "c* = min of V over the boundary of region (17) is enclosed and positive: "
                           "{x in (17): V(x) < c*} is positively invariant and lies in the domain of attraction.",
+    "largest_sublevel": "c_max, the infimum of V over the set where Vdot >= 0 (x != 0, |x2| <= x2*) and over the "
+                        "faces |x2| = x2*, is positive and lies in [c_max_lower, c_max_upper]: for every c <= c_max_lower the "
+                        "connected component of {V < c} that contains 0 lies in |x2| < x2* and Vdot < 0 on it off "
+                        "the origin (with v_positive: positively invariant, bounded, inside the domain of "
+                        "attraction; no region (17) or radius R is used). Each part is bounded separately: over "
+                        "{Vdot >= 0} in [vdot_level_lower, vdot_level_upper] (branch and bound over (x2, t) in "
+                        "polar form below, V at a certified point where Vdot > 0 above), over the faces by "
+                        "phi(+-x2*) in closed form; the reason says which part binds and compares c_max with c*.",
     "equilibria": "The equilibria of system (2) with |x2| <= pi are exactly the points listed in the reason (x3 = 0, "
                   "x1 = -f(x2)/k, and f(x2) = 0, cos x2 = 0 or k H + C0 sin x2 f(x2) = 0; every root isolated on a "
                   "certified cover of [-pi - 1/64, pi + 1/64]), each with the eigenvalues of its linearisation and its "
@@ -356,6 +369,53 @@ def _vdot_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
                   f"x3 = {_fmt(point[2], 8)} (radius <= {up_text}), so the supremum radius lies in [{R_text}, {up_text}] "
                   f"(relative gap {decimal_bounds(gap, 2)[1]})",
                   R_direct=R_text, R_direct_upper=up_text, boxes=len(cert.leaves))
+
+
+# ------------------------------------------------------------------------------------ c_max
+
+def _largest_sublevel(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
+    r = largest_sublevel(ctx.g, ctx.m.max_pieces)
+    if r.refutation is not None:
+        ref = r.refutation
+        ce = ({"where": "faces", "phi": _fmt(ref["phi"], 20)} if ref["where"] == "faces" else
+              {"where": "origin", "x2": "0", "t_over_pi": str(ref["s"]), "A": _fmt(ref["A"], 20)})
+        claim = _claim("largest_sublevel", Status.REFUTED, r.reason + ": no sublevel set of this V is an estimate", ce)
+        return claim
+    if r.c_lower is None:
+        return _claim("largest_sublevel", Status.INCONCLUSIVE, r.reason + "; try a larger max_pieces or --maxprec")
+    lo, hi = _q(_fmpq(Fraction(r.c_lower))), _q(_fmpq(Fraction(r.c_upper)))
+    quantities["c_max_lower"], quantities["c_max_upper"] = lo, hi
+    quantities["vdot_level_lower"] = _q(_fmpq(Fraction(r.n_lower)))
+    if r.n_upper is not None:
+        quantities["vdot_level_upper"] = _q(_fmpq(Fraction(r.n_upper)))
+    quantities["face_level"] = r.face
+    ctx.witnesses["largest_sublevel"] = {"boxes": [b.to_json() for b in r.leaves]}
+    if r.point is not None:
+        ctx.witnesses["largest_sublevel"]["point"] = {n: ball_text(x) for n, x in zip(("x1", "x2", "x3"), r.point)}
+    vd = (f"over {{Vdot >= 0}}: V >= {r.n_lower} ({r.boxes} boxes of (x2, t), aiming {SUBLEVEL_GAP} below the point's "
+          "value)" + (f", and V = {_fmt(ctx.g.V(*r.point), 10)} <= {r.n_upper} at the point x1 = {_fmt(r.point[0], 8)}, "
+                      f"x2 = {_fmt(r.point[1], 8)}, x3 = {_fmt(r.point[2], 8)} where Vdot = "
+                      f"{_fmt(ctx.g.vdot(*r.point), 4)} > 0" if r.point is not None else
+                      " (no certified point where Vdot > 0 was found: no upper bound of that part)"))
+    bind = {"faces": "the faces |x2| = x2* bind (c_max = min phi(+-x2*): the range of x2 where V > 0 is certified "
+                     "limits the estimate, not the sign of Vdot)",
+            "vdot": "the set {Vdot >= 0} binds (c_max is decided by the sign of Vdot, below the faces' level)",
+            "undecided": "which part binds is not decided at this gap"}[r.binding]
+    cmp = ""
+    if "c_star" in quantities and quantities["c_star"].is_finite():
+        cs = quantities["c_star"]
+        if certainly_lt(cs.upper(), lo):
+            cmp = (f"; c_max_lower exceeds c* = {_fmt(cs, 10)} of invariant_estimate by a factor {_fmt(lo / cs, 4)}: "
+                   "a larger certified estimate than the region-bounded construction gives")
+        elif cs.overlaps(lo.union(hi)):
+            cmp = (f"; c* = {_fmt(cs, 10)} of invariant_estimate agrees with c_max to the digits certified: the "
+                   "region-bounded estimate is already the largest sublevel set of this V with |x2| <= x2*")
+        else:
+            cmp = f"; c* = {_fmt(cs, 10)} of invariant_estimate"
+    return _claim("largest_sublevel", Status.PROVED,
+                  f"c_max in [{r.c_lower}, {r.c_upper}]; faces: min phi(+-x2*) = {_fmt(r.face, 12)}; {vd}; {bind}{cmp}",
+                  c_max_lower=r.c_lower, c_max_upper=r.c_upper, vdot_level_lower=r.n_lower,
+                  vdot_level_upper=r.n_upper, binds=r.binding, boxes=r.boxes)
 
 
 # ------------------------------------------------------------------------------------ equilibria
@@ -835,6 +895,9 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
                                  decides=dep.decides if dep.status is Status.INCONCLUSIVE else None))
             if dep.status is Status.REFUTED:
                 claims[-1].precision_cannot_help = f"it rests on {dep.id}, which is refuted"
+    if "largest_sublevel" in wanted:
+        with phase("largest_sublevel"):
+            claims.append(_largest_sublevel(ctx, quantities))
     if "equilibria" in wanted:
         with phase("equilibria"):
             inv = next((c for c in claims if c.id == "invariant_estimate" and c.status is Status.PROVED), None)

@@ -51,7 +51,7 @@ from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
            "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound",
-           "DIRECT_DOMAIN", "vdot_polar", "direct_margin"]
+           "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "v_polar", "sublevel_lower_bound", "face_minimum"]
 
 
 class Dual:
@@ -606,3 +606,66 @@ def direct_margin(g: Gimbal, R: arb):
             return direct
         return direct.intersection(mv) if direct.overlaps(mv) else mv
     return f
+
+
+# --------------------------------------------------------------------------- the largest sublevel set
+
+def v_polar(g: Gimbal, x2, t):
+    """(alpha, beta, gamma) with V(r cos t, x2, r sin t) = alpha + beta r + gamma r^2 for every real r,
+    exactly: alpha = mu F, beta = f3 sin t, gamma = ((h cos t + mu sin t)^2 + S sin^2 t) / 2 with
+    h = H cos x2 / B0 (a sum of squares where S > 0: V is a convex quadratic in r)."""
+    c = g.c
+    ct, st = t.cos(), t.sin()
+    h = c.H * x2.cos() / c.B0
+    return (c.mu * g.F(x2), g.f3(x2) * st, ((h * ct + c.mu * st) ** 2 + g.S(x2) * st * st) / 2)
+
+
+def sublevel_lower_bound(g: Gimbal):
+    """The box function {u, s} -> a ball whose lower end is <= V(r cos t, x2, r sin t) for every x2 = u x2*,
+    t = pi s in the box and every real r != 0 with Vdot >= 0 there (Vdot = -r^2 (A + r B), see
+    :func:`vdot_polar`, so those r are the half-line r B <= -A), i.e. a lower bound of V over the part of
+    {Vdot >= 0, x != 0} above the box (+inf where that part is empty).
+
+    How: where A > 0 certainly, |r| >= A/|B| (its lower end over the box) and, when B has one sign, the
+    sign of r is known; V = alpha + beta r + gamma r^2 is then bounded below over that half-line by its
+    lower-end quadratic (gamma's lower end must be > 0: S > 0 and cos x2 > 0). Where A may be <= 0 the
+    whole line r != 0 is admitted (the global minimum of the quadratic). Valid for t in [0, pi] with r of
+    either sign, which covers every direction of (x1, x3).
+
+    Guarantee: a lower bound over the box, never an enclosure (a point's value is not V's minimum)."""
+    xs, pi = g.c.x2_star, arb.pi()
+
+    def f(box: dict) -> arb:
+        X, T = xs * box["u"], pi * box["s"]
+        A, B = vdot_polar(g, X, T)
+        alpha, beta, gamma = v_polar(g, X, T)
+        glo = gamma.lower()
+        if not (glo.is_finite() and certainly_positive(glo) and alpha.is_finite() and beta.is_finite()):
+            return arb("-inf")
+        if certainly_positive(A):
+            bhi = abs(B).upper()
+            if not bhi.is_finite():
+                return arb("-inf")
+            if certainly_le(bhi, 0):
+                return arb("inf")           # A + r B = A > 0 for every r: Vdot < 0 off r = 0
+            rho = (A.lower() / bhi).lower()
+            if certainly_positive(B):
+                b = (-beta).lower()         # r = -s, s >= rho
+            elif certainly_negative(B):
+                b = beta.lower()            # r = s, s >= rho
+            else:
+                b = -(abs(beta).upper())
+        else:
+            rho, b = arb(0), -(abs(beta).upper())
+        a = alpha.lower()
+        # the minimum over s >= rho of a + b s + glo s^2 (valid below alpha + beta' s + gamma s^2 for s >= 0)
+        if certainly_le(-b / (2 * glo), rho):
+            return a + b * rho + glo * rho * rho
+        return a - b * b / (4 * glo)
+    return f
+
+
+def face_minimum(g: Gimbal, x2) -> arb:
+    """min over (x1, x3) of V at a fixed x2 (phi = mu F - f3^2 / (2 S), attained at
+    :meth:`Gimbal.phi_minimiser`): an enclosure."""
+    return g.phi(x2)

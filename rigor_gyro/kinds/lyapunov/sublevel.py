@@ -1,0 +1,215 @@
+"""The largest sublevel set of V (7) on which Vdot <= 0: certified bounds of c_max.
+
+c_max is the infimum of V over the set N = {Vdot >= 0, x != 0, |x2| <= x2*} together with the faces
+|x2| = x2* (the edge of the range where V > 0 is certified). For every c <= c_max the connected
+component of {V < c} that contains the origin lies in |x2| < x2* and Vdot < 0 on it except at the
+origin: with V > 0 off the origin (claim ``v_positive``) it is positively invariant, bounded (V grows
+like r^2 in x1, x3, see :func:`rigor_gyro.kinds.lyapunov.model.v_polar`) and lies in the domain of
+attraction. This is the classic estimate for a given V; it needs no region (17) and no radius R.
+
+How:
+
+* lower bound: in polar form x1 = r cos t, x3 = r sin t (t in [0, pi], r of either sign),
+  Vdot = -r^2 (A + r B) and V = alpha + beta r + gamma r^2. Over a box of (x2, t) the part of N above
+  it is the half-line r B <= -A, and V's minimum there is bounded below in closed form
+  (:func:`rigor_gyro.kinds.lyapunov.model.sublevel_lower_bound`); a best-first bisection of the (x2, t)
+  domain (:func:`rigor_gyro.core.subdivision.lower_bound_on_box`) raises the smallest bound towards
+  the search's value. The faces add phi(+-x2*) = min of V there.
+* upper bound: V at a certified point of N (Vdot > 0 certainly, evaluated by automatic
+  differentiation, not through the polar form), found by a float-free search on point values, or
+  phi(x2*) at the face's minimiser, whichever is smaller. It bounds c_max as defined; it is not a
+  proof that a larger sublevel set fails to be an estimate (that depends on which component).
+
+Precision: the current working precision. The bounds are exact decimals (the lower rounded down, the
+upper rounded up); their relative gap is a search setting (``GAP``, ``BOX_BUDGET``), never a width claimed.
+Fails when: the box budget runs out before the gap is reached: the lower bound is still certified,
+only further from the upper one; no lower bound > 0 at all leaves the claim undecided.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+from flint import arb, fmpq
+
+from ...core.balls import certainly_le, certainly_positive, decimal_bounds, exact_fraction
+from ...core.boxes import Box
+from ...core.subdivision import lower_bound_on_box
+from .model import DIRECT_DOMAIN, Gimbal, face_minimum, sublevel_lower_bound, v_polar, vdot_polar
+
+__all__ = ["Sublevel", "largest_sublevel", "GAP", "BOX_BUDGET"]
+
+#: the relative gap below the point's value the lower bound aims at, and the box budget it may use (a search
+#: setting: with the budget spent the lower bound is still certified, only further below)
+GAP = "1e-3"
+BOX_BUDGET = 3000
+
+
+@dataclass
+class Sublevel:
+    """Certified c_lower <= c_max <= c_upper (exact decimals) with their witnesses, and the two parts
+    c_max is the smaller of: the infimum of V over N (n_lower <= it <= n_upper) and over the faces
+    (``face``, an enclosure of min(phi(x2*), phi(-x2*)))."""
+
+    c_lower: str | None = None
+    c_upper: str | None = None
+    n_lower: str | None = None
+    n_upper: str | None = None
+    face: arb | None = None
+    leaves: list = field(default_factory=list)
+    boxes: int = 0
+    #: the point of N (exact balls) whose V gives n_upper
+    point: tuple | None = None
+    estimate: float = math.nan
+    at: tuple = (math.nan, math.nan)
+    reason: str = ""
+    #: a certified reason why c_max <= 0 (no estimate at all): {"where": "faces", "phi": ball} or
+    #: {"where": "origin", "s": Fraction, "A": ball} (A(0, pi s) < 0: Vdot > 0 arbitrarily near 0)
+    refutation: dict | None = None
+
+    @property
+    def binding(self) -> str:
+        """Which part decides c_max: "faces", "vdot" or "undecided" (certified comparison)."""
+        if self.n_lower is None or self.face is None or not self.face.is_finite():
+            return "undecided"
+        if certainly_le(self.face.upper(), _q(Fraction(self.n_lower))):
+            return "faces"
+        if self.n_upper is not None and certainly_le(_q(Fraction(self.n_upper)), self.face.lower()):
+            return "vdot"
+        return "undecided"
+
+
+def _q(fr: Fraction) -> arb:
+    return arb(fmpq(fr.numerator, fr.denominator))
+
+
+def _value_on_half_line(A: float, B: float, al: float, be: float, ga: float) -> tuple[float, float]:
+    """(min of al + be r + ga r^2 over r != 0 with A + r B <= 0, the r attaining it) in floats: the
+    vertex clamped into the half-line (a search helper; nothing is decided by it)."""
+    rv = -be / (2 * ga)
+    if B == 0:
+        return ((al - be * be / (4 * ga)), rv) if A <= 0 else (math.inf, math.nan)
+    r0 = -A / B
+    r = max(rv, r0) if B < 0 else min(rv, r0)
+    return al + be * r + ga * r * r, r
+
+
+def _search(g: Gimbal, grid: tuple[int, int] = (33, 65)) -> tuple[float, float, float, float]:
+    """A search on point values (ball midpoints) for the minimum of V over N: a grid of (u, s)
+    (x2 = u x2*, t = pi s), refined by a pattern search. Returns (value, u, s, r). A heuristic: it only
+    chooses where the upper bound's point is sought and which target the lower bound aims at."""
+    xs, pi = g.c.x2_star, arb.pi()
+
+    def val(u: float, s: float) -> tuple[float, float]:
+        X, T = xs * arb(u), pi * arb(s)
+        A, B = vdot_polar(g, X, T)
+        al, be, ga = v_polar(g, X, T)
+        fl = [float(v.mid()) for v in (A, B, al, be, ga)]
+        if not all(math.isfinite(v) for v in fl) or fl[4] <= 0:
+            return math.inf, math.nan
+        return _value_on_half_line(*fl)
+    best = (math.inf, 0.0, 0.5, math.nan)
+    nu, ns = grid
+    for i in range(nu):
+        for j in range(ns):
+            u, s = -1 + 2 * i / (nu - 1), j / (ns - 1)
+            v, r = val(u, s)
+            if v < best[0]:
+                best = (v, u, s, r)
+    v0, u, s, r0 = best
+    hu, hs = 2 / (nu - 1), 1 / (ns - 1)
+    for _ in range(80):
+        moved = False
+        for du, ds in ((hu, 0), (-hu, 0), (0, hs), (0, -hs)):
+            a, b = u + du, s + ds
+            if -1 <= a <= 1 and 0 <= b <= 1:
+                v, r = val(a, b)
+                if v < v0:
+                    v0, u, s, r0, moved = v, a, b, r, True
+        if not moved:
+            hu, hs = hu / 2, hs / 2
+    return v0, u, s, r0
+
+
+def _point_of_n(g: Gimbal, u: float, s: float, r: float) -> tuple[tuple[arb, arb, arb], arb] | None:
+    """A certified point of N near the search's (u, s, r): exact rationals x1, x2, x3 with |x2| <= x2*
+    and Vdot > 0 certainly (automatic differentiation along (2)); with V's enclosure there. Moves r
+    outwards by growing relative steps until Vdot > 0 is certain."""
+    xs, pi = g.c.x2_star, arb.pi()
+    x2 = _q(exact_fraction((xs * arb(u)).mid()))
+    if not certainly_le(abs(x2), xs):
+        x2 = xs.lower() if u > 0 else -xs.lower()
+    t = pi * arb(s)
+    for step in ("1e-9", "1e-7", "1e-5", "1e-3", "1e-2"):
+        rr = arb(r) * (1 + arb(step))
+        x1 = _q(exact_fraction((rr * t.cos()).mid()))
+        x3 = _q(exact_fraction((rr * t.sin()).mid()))
+        if (x1 != 0 or x3 != 0) and certainly_le(abs(x2), xs) and certainly_positive(g.vdot(x1, x2, x3)):
+            return (x1, x2, x3), g.V(x1, x2, x3)
+    return None
+
+
+def _origin_counterexample(g: Gimbal, n: int = 64) -> tuple[Fraction, arb] | None:
+    """An exact t = pi s (s = j/n) with A(0, t) < 0 certainly, if the grid has one: then Vdot > 0 at
+    (r cos t, 0, r sin t) for every small r > 0, where V = gamma r^2 -> 0, so inf V over N = 0."""
+    pi = arb.pi()
+    for j in range(n + 1):
+        s = Fraction(j, n)
+        A, _ = vdot_polar(g, arb(0), pi * _q(s))
+        if A.is_finite() and certainly_le(A, 0) and not A.contains(0):
+            return s, A
+    return None
+
+
+def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
+    """Certified bounds c_lower <= c_max <= c_upper (see the module docstring), at the current
+    precision, on at most min(``max_pieces``, BOX_BUDGET) boxes of (x2, t)."""
+    xs = g.c.x2_star
+    out = Sublevel()
+    face = face_minimum(g, xs)
+    other = face_minimum(g, -xs)
+    face = face if certainly_le(face.upper(), other.lower()) else (
+        other if certainly_le(other.upper(), face.lower()) else face.union(other))
+    out.face = face
+    if face.is_finite() and certainly_le(face, 0):
+        out.refutation = {"where": "faces", "phi": face}
+        out.reason = f"min of V on the faces |x2| = x2* is {face.str(8)} <= 0 (certified): c_max <= 0"
+        return out
+    origin = _origin_counterexample(g)
+    if origin is not None:
+        out.refutation = {"where": "origin", "s": origin[0], "A": origin[1]}
+        out.reason = (f"at x2 = 0, t = pi * {origin[0]}: A = {origin[1].str(8)} < 0 (certified), so Vdot = -r^2 (A + r B) "
+                      "> 0 for all small r > 0 there while V -> 0: c_max = 0")
+        return out
+    if not (face.is_finite() and certainly_positive(face)):
+        out.reason = f"the minimum of V on the faces |x2| = x2* is not certainly positive ({face.str(6)})"
+        return out
+    est, u, s, r = _search(g)
+    out.estimate, out.at = est, (u, s)
+    n_up = None
+    if math.isfinite(est) and math.isfinite(r) and r != 0:
+        found = _point_of_n(g, u, s, r)
+        if found is not None and found[1].is_finite():
+            out.point, n_up = found[0], found[1].upper()
+            out.n_upper = decimal_bounds(n_up, 12)[1]
+    lb = sublevel_lower_bound(g)
+    whole = Box.of(DIRECT_DOMAIN)
+    # aim at the point's value (or, without a point, at the faces' minimum: N then only has to stay above)
+    top = _q(Fraction(out.n_upper)) if out.n_upper is not None else face.lower()
+    best = lower_bound_on_box(lb, whole, top * (1 - arb(GAP)), max_pieces=min(max_pieces, BOX_BUDGET))
+    if not (best.bound.is_finite() and certainly_positive(best.bound)):
+        out.reason = ("no positive lower bound of V over {Vdot >= 0, x != 0, |x2| <= x2*} was certified "
+                      f"(best {best.bound.str(6)} on {best.boxes} boxes)")
+        return out
+    out.n_lower = decimal_bounds(best.bound, 12)[0]
+    if not certainly_positive(_q(Fraction(out.n_lower))):
+        out.n_lower = decimal_bounds(best.bound, 30)[0]
+    out.leaves, out.boxes = best.leaves, best.boxes
+    n_lo = _q(Fraction(out.n_lower))
+    out.c_lower = out.n_lower if certainly_le(n_lo, face.lower()) else decimal_bounds(face.lower(), 12)[0]
+    if n_up is None or certainly_le(face.upper(), n_up):
+        out.c_upper = decimal_bounds(face.upper(), 12)[1]
+    else:
+        out.c_upper = out.n_upper
+    return out
