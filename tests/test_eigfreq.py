@@ -109,3 +109,41 @@ def test_a_root_straddling_its_branch_end_is_not_on_the_branch():
     assert c.status is Status.INCONCLUSIVE
     omegas[0] = arb("0.5")
     assert _branch_claim(omegas, nus, True).status is Status.PROVED
+
+
+def test_nus_are_compared_exactly_in_every_case():
+    """nus_exactly_equal decides when two nus (rationals or roots of the quadratics (4)) are one number:
+    each branch, with an equal and an unequal case (mutation testing found these branches untested)."""
+    from flint import fmpq, fmpq_poly
+    from rigor_gyro.kinds.eigenfrequencies.model import _root_index, nus_exactly_equal
+    q = fmpq_poly([2, -3, 1])           # (w - 1)(w - 2)
+    p = fmpq_poly([6, -5, 1])           # (w - 2)(w - 3): shares the root 2 (q's larger, p's smaller)
+    assert _root_index(q, fmpq(1)) == 0 and _root_index(q, fmpq(2)) == 1 and _root_index(q, fmpq(3)) is None
+    assert _root_index(fmpq_poly([-6, 1, 1]), fmpq(2)) == 1        # (w - 2)(w + 3): 2 is the larger
+    assert _root_index(fmpq_poly([-6, -1, 1]), fmpq(-2)) == 0      # (w + 2)(w - 3): -2 is the smaller
+    r = lambda x: ("rational", fmpq(x))                               # noqa: E731
+    assert nus_exactly_equal(r(2), r(2)) and not nus_exactly_equal(r(2), r(3))
+    assert nus_exactly_equal(r(2), ("root", q, 1)) and nus_exactly_equal(("root", q, 1), r(2))
+    assert not nus_exactly_equal(r(2), ("root", q, 0)) and not nus_exactly_equal(("root", q, 0), r(5))
+    assert nus_exactly_equal(("root", q, 0), ("root", q, 0)) and not nus_exactly_equal(("root", q, 0), ("root", q, 1))
+    assert nus_exactly_equal(("root", q, 1), ("root", 3 * q, 1))      # the same quadratic up to a factor
+    assert not nus_exactly_equal(("root", q, 1), ("root", 3 * q, 0))
+    assert nus_exactly_equal(("root", q, 1), ("root", p, 0))          # the shared root, at its indices
+    assert not nus_exactly_equal(("root", q, 0), ("root", p, 0))
+    assert not nus_exactly_equal(("root", q, 1), ("root", p, 1))
+    assert not nus_exactly_equal(("root", q, 0), ("root", fmpq_poly([-5, 0, 1]), 1))  # coprime
+
+
+def test_an_approximation_without_a_real_value_is_never_proved():
+    """eps = 90 > b = 10: the radicand of (13) for omega_3, omega_4 is negative, so those approximations have
+    no real value; the claim stays inconclusive (it must not be proved with two errors missing), and the
+    brackets whose radicands are negative are refuted with the radicand as the reason."""
+    import dataclasses
+    from rigor_gyro import load_scene, prove_scene
+    sc = load_scene("rudenko1976")
+    sc = dataclasses.replace(sc, name="v", parameters=dict(sc.parameters, a="20", b="10", eps="90", Omega2="1.111"))
+    claims = {c.id: c for c in prove_scene(sc).claims}
+    ap = claims["approximations"]
+    assert ap.status.value == "inconclusive" and "omega_3: approximation not real" in ap.reason
+    assert "omega_4: approximation not real" in ap.reason and "omega_2:" in ap.reason
+    assert claims["bracket_3"].status.value == "refuted" and claims["bracket_3"].counterexample["not_real"]
