@@ -147,3 +147,17 @@ def test_an_approximation_without_a_real_value_is_never_proved():
     assert ap.status.value == "inconclusive" and "omega_3: approximation not real" in ap.reason
     assert "omega_4: approximation not real" in ap.reason and "omega_2:" in ap.reason
     assert claims["bracket_3"].status.value == "refuted" and claims["bracket_3"].counterexample["not_real"]
+
+
+def test_hz_values_are_judged_at_the_paper_s_own_scale_interval():
+    """The paper's four 'exact' Hz values need different scales sqrt(K3/A3)/(2 pi) (their ranges do not meet);
+    a printed Hz value is `propagated` (the paper's computation) when some scale in the hull of those ranges
+    reproduces it, and stays unexplained when none does."""
+    data = prove_scene(load_scene("rudenko1976")).to_json()
+    rows = {r["id"]: r for r in data["paper"]}
+    assert rows["(9) lambda_3- (Hz)"]["class"] == "propagated"           # 513.4: hz_scale 617.56
+    assert "hz_scale = 617.5" in rows["(9) lambda_3- (Hz)"]["class_reading"]
+    assert rows["'exact' lambda_2 (Hz)"]["class"] == "propagated"        # 121.5: hz_scale 616.98
+    assert rows["(8) lambda_2- (Hz)"]["class"] == "unexplained"          # 119.5 against 108.6: no scale near
+    assert rows["(10) lambda_4+ (Hz)"]["class"] == "unexplained"         # 950.8 needs 618.3, outside
+    assert rows["'exact' values share one Hz scale"]["class"] == "assertion-refuted"

@@ -61,10 +61,17 @@ def section(proofs: Path = ROOT / "proofs") -> str:
             out += [f"| {_cell(r['id'], 50)} | {_cell(r['printed'], 30)} | {r['class']} | {_cell(r['class_reading'])} |"
                     for r in edits]
             out.append("")
-        rest = counts.get("unexplained", 0) + counts.get("last-digit", 0)
-        if rest:
-            out += [f"Besides: {counts.get('last-digit', 0)} numbers one unit off in the last digit (rounding) and "
-                    f"{counts.get('unexplained', 0)} that no single edit explains (listed in the report).", ""]
+        prop = [r for r in rows if r["class"] == "propagated"]
+        if prop:
+            out += [f"{len(prop)} printed numbers are the paper's own computation, not misprints: each is a correct "
+                    "rounding of the value recomputed from the paper's inputs (" + "; ".join(
+                        f"{_cell(r['id'], 40)} {_cell(r['printed'], 20)}" for r in prop[:8])
+                    + (", ..." if len(prop) > 8 else "") + "); the report gives the inputs each needs.", ""]
+        parts = [f"{counts[k]} {what}" for k, what in (("last-digit", "numbers one unit off in the last digit (rounding)"),
+                                                       ("unexplained", "numbers that no single edit explains (listed in the report)"))
+                 if counts.get(k)]
+        if parts:
+            out += ["Besides: " + " and ".join(parts) + ".", ""]
     out.append(END)
     return "\n".join(out)
 

@@ -201,7 +201,8 @@ def _near(rounded: Decimal, exponent: int, compound: bool = True) -> list[tuple[
             (rounded - u, " (and one unit off in the last place)")]
 
 
-def classify_printed(printed: str, value: arb, propagated: arb | None = None) -> Classification:
+def classify_printed(printed: str, value: arb, propagated: arb | None = None,
+                     propagated_from: str | None = None) -> Classification:
     """Classify the printed decimal ``printed`` against the certified ball ``value`` (and, when the kind
     has one, ``propagated``: a ball containing the value recomputed from the paper's own printed inputs).
     See the module docstring for the classes, their order and the guarantee. An edit (sign, shift,
@@ -218,8 +219,9 @@ def classify_printed(printed: str, value: arb, propagated: arb | None = None) ->
     T = rounded_at(value, exp)
     compound = len(_digits(P)) >= MIN_DIGITS_FOR_COMPOUND
     if propagated is not None and audit_printed(text, propagated)[0] is AuditStatus.AGREES:
-        fits.append(("propagated", f"{text} is a correct rounding of the value recomputed from the paper's own "
-                                   f"printed inputs (the computation, not the print, is off; the certified value "
+        source = propagated_from or "the paper's own printed inputs"
+        fits.append(("propagated", f"{text} is a correct rounding of the value recomputed from {source} (the "
+                                   f"computation, not the print, is off; the certified value "
                                    f"rounds to {T if T is not None else 'an undecided rounding'})"))
     if T is not None and T != P and P != 0 and abs(T - P) == Decimal(1).scaleb(exp):   # a printed 0 is exact
         fits.append(("last-digit", f"the value rounds to {T} at the printed place: the print is one unit off "
@@ -315,7 +317,8 @@ def classify_row(row: AuditRow) -> Classification:
         return Classification("assertion-refuted", "the assertion is certified false", ["assertion-refuted"])
     printed = row.printed.strip()
     if row.value is not None and PRINTED_NUMBER.match(printed) and row.value.is_finite():
-        return classify_printed(printed, row.value, getattr(row, "propagated", None))
+        return classify_printed(printed, row.value, getattr(row, "propagated", None),
+                                getattr(row, "propagated_from", None))
     if row.status is AuditStatus.MISPRINT:
         return Classification("misprint-reading", f"reproduced by the reading {row.reading!r}", ["misprint-reading"])
     return Classification("not-a-number", "not one printed number against one value", ["not-a-number"])

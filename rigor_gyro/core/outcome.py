@@ -101,6 +101,8 @@ class AuditRow:
     #: a ball containing the value recomputed from the paper's own printed inputs, when the kind has one
     #: (the classifier then tells the paper's computation from a misprint: class ``propagated``)
     propagated: Any = field(default=None, compare=False, repr=False)
+    #: what ``propagated`` was recomputed from, for the reading (default: "the paper's own printed inputs")
+    propagated_from: str | None = field(default=None, compare=False, repr=False)
 
     def to_json(self) -> dict[str, Any]:
         q = quantity(self.value) if self.value is not None else {"lo": "", "hi": ""}

@@ -14,7 +14,7 @@ from typing import Callable
 from flint import arb, fmpq
 
 from ...core.audit import NUMBER, audit_printed, half_unit, numbers
-from ...core.balls import ball, certainly_gt, certainly_le, certainly_positive, decimal_bounds
+from ...core.balls import ball, certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds
 from ...core.outcome import AuditRow, AuditStatus
 from ...core.polyroots import isolate_polynomial
 from .model import APPROX_TEXT, BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic
@@ -116,8 +116,31 @@ def _scale_range(printed: str, w: arb) -> arb:
     return ((x - hq) / w.sqrt()).union((x + hq) / w.sqrt())
 
 
+def _at_paper_scale(row: AuditRow, printed: str, w: arb | None, hull: arb | None) -> AuditRow:
+    """Mark ``row`` ``propagated`` when the print is a correct rounding of hz_scale * sqrt(w) for some
+    scale inside ``hull``, the interval of scales the paper's own 'exact' values imply (the paper never
+    prints its scale sqrt(K3/A3)/(2 pi), and its four 'exact' values need different ones): the value at
+    an exact scale in both intervals is the row's ``propagated`` ball; the note gives the scale."""
+    if hull is None or w is None or not certainly_positive(w):
+        return row
+    own = _scale_range(printed, w)
+    lo = own.lower() if certainly_le(hull.lower(), own.lower()) else hull.lower()
+    hi = own.upper() if certainly_le(own.upper(), hull.upper()) else hull.upper()
+    if not certainly_lt(lo, hi):
+        return row
+    mid = ((lo + hi) / 2).mid()
+    val = mid * w.sqrt()
+    if audit_printed(printed, val)[0] is not AuditStatus.AGREES:
+        return row
+    row.propagated = val
+    row.propagated_from = (f"hz_scale = {mid.str(7, radius=False)}, inside the interval {_fmt(hull)} of scales the "
+                           "paper's own 'exact' values imply")
+    row.note += f"; at the paper's scales: a correct rounding for hz_scale in [{lo.str(7, radius=False)}, {hi.str(7, radius=False)}]"
+    return row
+
+
 def _number_row(rid: str, printed: str, s: arb, w_printed: arb, w_read: arb | None,
-                printed_text: str, read_text: str) -> AuditRow:
+                printed_text: str, read_text: str, hull: arb | None = None) -> AuditRow:
     """Audit a printed Hz number against the printed formula and (if different) the reading."""
     hz_p = _hz(s, w_printed)
     st_p, note_p = (audit_printed(printed, hz_p) if hz_p is not None
@@ -126,7 +149,7 @@ def _number_row(rid: str, printed: str, s: arb, w_printed: arb, w_read: arb | No
     if hz_p is not None:
         note += f"; reproduced for scales in {_fmt(_scale_range(printed, w_printed))}"
     if w_read is None:
-        return AuditRow(rid, printed, printed_text, hz_p, st_p, note)
+        return _at_paper_scale(AuditRow(rid, printed, printed_text, hz_p, st_p, note), printed, w_printed, hull)
     hz_r = _hz(s, w_read)
     st_r, note_r = (audit_printed(printed, hz_r) if hz_r is not None else (AuditStatus.DISAGREES, "<= 0"))
     note += f"; reading: {_fmt(hz_r)} Hz, {note_r}, reproduced for scales in {_fmt(_scale_range(printed, w_read))}" if hz_r is not None else "; reading <= 0"
@@ -138,7 +161,8 @@ def _number_row(rid: str, printed: str, s: arb, w_printed: arb, w_read: arb | No
         status = AuditStatus.UNDECIDED
     else:
         status = AuditStatus.DISAGREES
-    return AuditRow(rid, printed, read_text, hz_r, status, note)
+    row = AuditRow(rid, printed, read_text, hz_r, status, note)
+    return _at_paper_scale(row, printed, w_read, hull)
 
 
 def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[AuditRow]:
@@ -165,14 +189,19 @@ def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[A
         rows.append(AuditRow("Hz values", "", "", None, AuditStatus.UNDECIDED,
                              "no hz_scale in the scene: printed Hz values not audited"))
         return rows
+    hull = None
     if exact:
-        ranges = []
+        ranges = [_scale_range(x, omegas[j - 1]) for j, x in enumerate(exact, start=1)]
+        hull = ranges[0]
+        for r in ranges[1:]:
+            hull = hull.union(r)
         for j, x in enumerate(exact, start=1):
             st, note = audit_printed(x, s * omegas[j - 1].sqrt())
-            rng = _scale_range(x, omegas[j - 1])
-            ranges.append(rng)
-            rows.append(AuditRow(f"'exact' lambda_{j} (Hz)", x, f"hz_scale * sqrt(omega_{j})",
-                                 s * omegas[j - 1].sqrt(), st, f"{note}; correct rounding for scales in {_fmt(rng)}"))
+            rng = ranges[j - 1]
+            rows.append(_at_paper_scale(AuditRow(f"'exact' lambda_{j} (Hz)", x, f"hz_scale * sqrt(omega_{j})",
+                                                 s * omegas[j - 1].sqrt(), st,
+                                                 f"{note}; correct rounding for scales in {_fmt(rng)}"),
+                                        x, omegas[j - 1], hull))
         lo_max = max(ranges, key=lambda r: float(r.lower().mid()))  # float picks; balls decide below
         hi_min = min(ranges, key=lambda r: float(r.upper().mid()))
         disjoint = certainly_gt(lo_max.lower(), hi_min.upper())
@@ -191,11 +220,11 @@ def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[A
             rows.append(_number_row(f"{br.eq} lambda_{j}{'-' if kind == 'lower' else '+'} (Hz)", x, s,
                                     _value(pf, p), _value(rf, p),
                                     br.lo_printed if kind == "lower" else br.hi_printed,
-                                    (br.lo_reading if kind == "lower" else br.hi_reading) or "as printed"))
+                                    (br.lo_reading if kind == "lower" else br.hi_reading) or "as printed", hull))
     for j, x in enumerate(paper.get("hz_approx", []), start=1):
         rows.append(_number_row(f"{'(12)' if j == 1 else '(13)'} lambda_{j}~ (Hz)", x, s,
                                 _value(lambda q: approximation(j, q), p), None,
-                                APPROX_TEXT[j], "as printed"))
+                                APPROX_TEXT[j], "as printed", hull))
     bound = paper.get("error_bound")
     if bound is not None:
         rows.extend(_five_percent_rows(bound, p, omegas))
