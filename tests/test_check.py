@@ -64,7 +64,7 @@ def test_any_edit_without_the_digest_is_rejected(rudenko):
 
 
 #: quantities that are certified upper bounds (a number the proof computed), not enclosures of one value
-UPPER_BOUNDS = {"R_sup_upper_bound", "R_max_relative_gap", "bound_x1", "bound_x3", "R_direct_upper",
+UPPER_BOUNDS = {"R_sup_upper_bound", "R_max_relative_gap", "R_direct_upper",
                 "R_direct_relative_gap"}
 #: parameters no claim depends on (the lyapunov model uses C only through H = C r0, given as H)
 UNUSED = {("lyapunov", "C")}

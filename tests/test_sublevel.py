@@ -177,3 +177,67 @@ def test_a_tampered_c_max_witness_is_rejected(example):
     assert rejected(move_point)
     assert rejected(lambda d: det(d).__setitem__("binds", "vdot"))
     assert rejected(lambda d: w(d).pop("point"))
+
+
+# ------------------------------------------------------------------ the extents of {V < c_set}
+
+def test_the_extents_enclose_the_sampled_maxima_of_the_set(example):
+    """extent_x1, extent_x2, extent_x3 enclose max |x_i| over {x in (17): V < c_set}: mpmath samples of the
+    set never exceed the upper ends, and sampled points come within 1% of the
+    lower ends within 1% (the set's sup is approached); both lie beyond the axis segments."""
+    q = example["quantities"]
+    inv = next(c for c in example["claims"] if c["id"] == "invariant_estimate")
+    c = float(Fraction(inv["details"]["c_set"]))
+    R = float(Fraction(q["R_used"]["hi"]))
+    mpmath.mp.dps = 30
+    g = MpGimbal(load_scene("agafonov2013").parameters)
+    xs = float(g.xs)
+    hi = {k: float(Fraction(q[f"extent_{k}"]["hi"])) for k in ("x1", "x2", "x3")}
+    lo = {k: float(Fraction(q[f"extent_{k}"]["lo"])) for k in ("x1", "x2", "x3")}
+    assert lo["x3"] > float(Fraction(q["extent_x3_axis"]["hi"])) * 1.4      # the old box capped x3 at R
+    assert lo["x2"] > float(Fraction(q["extent_x2_axis"]["hi"]))
+    rng = random.Random(5)
+    best = {"x1": 0.0, "x2": 0.0, "x3": 0.0}
+    for _ in range(3000):
+        x2 = (2 * rng.random() - 1) * xs
+        S = g.f2(x2) + g.mu * (g.f1(x2) - g.mu)
+        h = g.H * mpmath.cos(x2) / g.B0
+        f3 = g.f3(x2)
+        # a point of the slice's ellipse (centre z0, P^-1 as in model.slice_extent), scaled inside
+        z1, z3 = g.mu * f3 / (h * S), -f3 / S
+        d = c - (g.mu * g.F(x2) - f3 ** 2 / (2 * S))
+        if d <= 0:
+            continue
+        t, s = rng.random() * 2 * mpmath.pi, rng.random() ** 0.1
+        # the ellipse 1/2 (z - z0)' P (z - z0) = d: z - z0 = sqrt(2 d) L u with L L' = P^-1, |u| = s
+        p11, p13, p33 = (S + g.mu ** 2) / (h * h * S), -g.mu / (h * S), 1 / S
+        l11 = mpmath.sqrt(p11)
+        l31 = p13 / l11
+        l33 = mpmath.sqrt(p33 - l31 ** 2)
+        u1, u3 = s * mpmath.cos(t), s * mpmath.sin(t)
+        x1 = z1 + mpmath.sqrt(2 * d) * l11 * u1
+        x3 = z3 + mpmath.sqrt(2 * d) * (l31 * u1 + l33 * u3)
+        if g.V(x1, x2, x3) < c and x1 ** 2 + x3 ** 2 < R ** 2:
+            for k, v in (("x1", x1), ("x2", x2), ("x3", x3)):
+                best[k] = max(best[k], abs(float(v)))
+    for k in best:
+        assert best[k] <= hi[k], k
+    assert best["x3"] >= lo["x3"] * (1 - 1e-2) and best["x1"] >= lo["x1"] * (1 - 1e-2)
+
+
+def test_a_tampered_extent_witness_is_rejected(example):
+    def rejected(mutate):
+        d = copy.deepcopy(example)
+        mutate(d)
+        return not check_certificate(_refix(d)).ok
+    w = lambda d: d["witnesses"]["invariant_estimate"]                       # noqa: E731
+
+    def shrink(d, k):
+        v = d["quantities"][k]
+        v["hi"] = v["lo"]
+    assert rejected(lambda d: w(d)["extent_x3"]["cover"].pop(0))
+    assert rejected(lambda d: w(d)["extent_x2"]["beyond"].pop(-1))
+    assert rejected(lambda d: shrink(d, "extent_x3"))
+    assert rejected(lambda d: shrink(d, "extent_x2"))
+    # a point below the stored lower end: the stored enclosure then claims more than the witness shows
+    assert rejected(lambda d: w(d)["extent_x2"].__setitem__("point", ["1/2", "1/2"]))

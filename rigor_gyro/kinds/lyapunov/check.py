@@ -36,7 +36,7 @@ from ...core.roots import RootStatus, enclose_f_df, newton_root
 from .claims import rho_function, rho_lower
 from .equilibria import Equilibrium, classify as classify_equilibrium
 from .model import (DIRECT_DOMAIN, closed_form_constants, cylinder_lower_bound, direct_margin, mean_value_enclosure,
-                    psi_min_functions, sublevel_lower_bound, vdot_polar)
+                    psi_min_functions, slice_extent, slice_in_region, sublevel_lower_bound, vdot_polar)
 
 __all__ = ["check"]
 
@@ -215,8 +215,10 @@ def check(model, data: dict) -> list[CheckResult]:
                 cl = arb(fmpq_of(Fraction(c_text)))
                 contains("c_set", cl)
                 hx = c.H / c.B0
-                contains("extent_x1_axis", ((2 * cl).sqrt() / hx).min(R))
-                contains("extent_x3_axis", ((2 * cl) / (g.f2(arb(0)) + c.mu * g.f1(arb(0)))).sqrt().min(R))
+                axes = {"x1": ((2 * cl).sqrt() / hx).min(R),
+                        "x3": ((2 * cl) / (g.f2(arb(0)) + c.mu * g.f1(arb(0)))).sqrt().min(R)}
+                contains("extent_x1_axis", axes["x1"])
+                contains("extent_x3_axis", axes["x3"])
                 if "extent_x2_axis" in q:
                     e_lo, e_hi = stored_interval(q["extent_x2_axis"])
                     lo_b, hi_b = arb(fmpq_of(e_lo)), arb(fmpq_of(e_hi))
@@ -225,18 +227,31 @@ def check(model, data: dict) -> list[CheckResult]:
                         (certainly_gt(c.mu * g.F(hi_b.min(xs)), cl) or encloses((e_lo, e_hi), xs))
                     if capped or root_in:
                         verified.add("extent_x2_axis")
-                mu = c.mu
-
-                def x1_bound(x2):
-                    S = g.S(x2)
-                    return ((2 * cl * (S + mu ** 2) / S).sqrt() + mu * abs(g.f3(x2)) / S) / (c.H * x2.cos() / c.B0)
-
-                def x3_bound(x2):
-                    S = g.S(x2)
-                    return (2 * cl / S).sqrt() + abs(g.f3(x2)) / S
-                for name, fn in (("bound_x1", x1_bound), ("bound_x3", x3_bound)):
-                    if _covers(wi[name], arb(0), xs):
-                        upper_bound_holds(name, _max_upper(fn, wi[name]).min(R))
+                # the extents: the stored covers re-bounded above, the stored points re-checked to be slices
+                # of the set (their value bounds below)
+                for axis in ("x1", "x3"):
+                    we_ = wi.get(f"extent_{axis}") or {}
+                    fn = slice_extent(g, cl, axis)
+                    if we_ and _covers(we_.get("cover", []), arb(0), xs):
+                        up = _max_upper(fn, we_["cover"])
+                        up = up if certainly_le(up, R.upper()) else R.upper()
+                        pt = _b(we_["point"])
+                        low = (fn(pt).lower() if _within(abs(pt), arb(0), xs) and slice_in_region(g, cl, R, pt)
+                               else axes[axis].lower())     # the axis segment lies in the set
+                        contains(f"extent_{axis}", low.union(up))
+                w2 = wi.get("extent_x2") or {}
+                if w2:
+                    pt = _b(w2["point"])
+                    low = (pt.lower() if _within(abs(pt), arb(0), xs) and slice_in_region(g, cl, R, pt) else
+                           arb(fmpq_of(stored_interval(q["extent_x2_axis"])[0])) if "extent_x2_axis" in verified
+                           else arb(0))
+                    beyond = w2.get("beyond") or []
+                    up = xs.upper()
+                    if beyond:
+                        start = arb(fmpq_of(min(number(p_[0]) for p_ in beyond)))
+                        if _covers(beyond, start, xs) and _all_positive(lambda x: g.phi(x) - cl, beyond):
+                            up = start                  # phi > c_set from there to x2*: no slice beyond it
+                    contains("extent_x2", low.union(up))
                 inv_ok = (cstar_lo_ok and cstar_hi_ok and certainly_positive(cl)
                           and certainly_le(cl, lower))
 

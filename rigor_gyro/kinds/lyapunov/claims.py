@@ -62,7 +62,7 @@ from .. import Attempt, Phases
 from .equilibria import equilibria
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
 from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, direct_margin, vdot_polar, closed_form_constants, cylinder_lower_bound, hypot_ball,
-                    mean_value_enclosure)
+                    mean_value_enclosure, slice_extent, slice_in_region)
 from .moments import MOMENTS
 from .paper import PAPER_SCHEMA, audit as audit_paper
 
@@ -557,31 +557,50 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
             else:
                 break
         ext["x2_axis"] = lo.union(hi)
-    # outer bounding box: |x1| <= [sqrt(2c(S+mu^2)/S) + mu|f3|/S]/h, |x3| <= sqrt(2c/S) + |f3|/S
-    cu = cl
-    mu = g.c.mu
-
-    def x1_bound(x2):
-        S = g.S(x2)
-        return ((2 * cu * (S + mu ** 2) / S).sqrt() + mu * abs(g.f3(x2)) / S) / (g.c.H * x2.cos() / g.c.B0)
-
-    def x3_bound(x2):
-        S = g.S(x2)
-        return (2 * cu / S).sqrt() + abs(g.f3(x2)) / S
-    # to the scene's rel_width (or the precision's resolution): no width fixed by a constant
-    e1 = enclose_max(x1_bound, 0, xs, abs_tol=ctx.tol(R), max_pieces=ctx.m.max_pieces)
-    e3 = enclose_max(x3_bound, 0, xs, abs_tol=ctx.tol(R), max_pieces=ctx.m.max_pieces)
-    ob1, ob3 = e1.ball.min(R), e3.ball.min(R)
-    ctx.witnesses["invariant_estimate"].update(bound_x1=pieces_text(e1.cover), bound_x3=pieces_text(e3.cover))
+    # the extents: enclosures of max |x1|, |x2|, |x3| over the set, from its x2 slices (ellipses, see
+    # model.slice_extent); to the scene's rel_width (or the precision's resolution)
+    tight = {}
+    for axis in ("x1", "x3"):
+        fn = slice_extent(g, cl, axis)
+        # to the scene's rel_width on at most 2000 pieces (a valid enclosure, only wider, if the budget runs
+        # out: the slice's half-width grows like sqrt(c - phi) where the slices vanish)
+        e = enclose_max(fn, 0, xs, abs_tol=ctx.tol(R), max_pieces=min(ctx.m.max_pieces, 2000))
+        p = e.argpoint
+        # the lower end is a slice's exact maximum only where that slice certainly belongs to the set
+        low = fn(p).lower() if slice_in_region(g, cl, R, p) else ext[f"{axis}_axis"].lower()
+        up = e.ball.upper().min(R.upper())
+        tight[axis] = low.union(up)
+        ctx.witnesses["invariant_estimate"][f"extent_{axis}"] = {"cover": pieces_text(e.cover), "point": ball_text(p)}
+    # along x2: the last x2 where the slice is non-empty, c_set = phi(x2), by bisection (phi(x2*) >= c* > c_set),
+    # with phi > c_set certified on [hi, x2*] (then no slice beyond hi)
+    lo, hi = arb(0), xs
+    for _ in range(ctx.prec + 8):
+        mid = ((lo + hi) / 2).mid()
+        d = cl - g.phi(mid)
+        if certainly_positive(d):
+            lo = mid
+        elif certainly_lt(d, 0):
+            hi = mid
+        else:
+            break
+    beyond: list = []
+    r = certify_positive(lambda x: g.phi(x) - cl, hi, xs, max_pieces=ctx.m.max_pieces, record=beyond)
+    x2_up = hi if r.status is Status.PROVED else xs
+    x2_lo = lo if slice_in_region(g, cl, R, lo) else ext["x2_axis"].lower()
+    tight["x2"] = x2_lo.union(x2_up.upper())
+    ctx.witnesses["invariant_estimate"]["extent_x2"] = {"point": ball_text(lo), "beyond": pieces_text(beyond)
+                                                        if r.status is Status.PROVED else []}
     for k, v in ext.items():
         quantities[f"extent_{k}"] = v
-    quantities["bound_x1"], quantities["bound_x3"] = ob1, ob3
+    for k, v in tight.items():
+        quantities[f"extent_{k}"] = v
     return _claim("invariant_estimate", Status.PROVED,
                   f"c* = {_fmt(cstar)} ({where}; cylinder x1^2 + x3^2 = R^2: V >= {_fmt(cyl_lb, 8)} on {cyl.pieces} "
                   "x2 pieces). "
                   f"The set {{V < c_set = {c_text}}} within (17) contains the axis segments "
-                  f"|x1| < {_fmt(ext['x1_axis'], 6)}, |x2| < {_fmt(ext['x2_axis'], 6)}, |x3| < {_fmt(ext['x3_axis'], 6)} "
-                  f"and lies in |x1| <= {decimal_bounds(ob1, 6)[1]}, |x3| <= {decimal_bounds(ob3, 6)[1]}, |x2| <= x2*",
+                  f"|x1| < {_fmt(ext['x1_axis'], 6)}, |x2| < {_fmt(ext['x2_axis'], 6)}, |x3| < {_fmt(ext['x3_axis'], 6)}; "
+                  f"its extents (the maxima of |x1|, |x2|, |x3| over it, enclosed from its x2 slices, which are ellipses) "
+                  f"are {_fmt(tight['x1'], 6)}, {_fmt(tight['x2'], 6)}, {_fmt(tight['x3'], 6)}",
                   c_set=c_text,
                   pieces=cyl.pieces)
 

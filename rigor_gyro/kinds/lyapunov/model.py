@@ -41,7 +41,7 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from ...core.balls import (certainly_le, certainly_negative, certainly_positive, current_precision, decimal_bounds,
+from ...core.balls import (certainly_le, certainly_lt, certainly_negative, certainly_positive, current_precision, decimal_bounds,
                            exact_fraction, sqrt_of_nonnegative)
 from ...core.exact import Exact
 from ...core.outcome import Status
@@ -51,7 +51,8 @@ from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
            "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound",
-           "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "v_polar", "sublevel_lower_bound", "face_minimum"]
+           "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "v_polar", "sublevel_lower_bound", "face_minimum",
+           "slice_extent", "slice_in_region"]
 
 
 class Dual:
@@ -104,6 +105,10 @@ class Dual:
 
     def cos(self):
         return Dual(self.v.cos(), -self.v.sin() * self.d)
+
+    def sqrt(self):
+        r = self.v.sqrt()
+        return Dual(r, self.d / (2 * r))
 
 
 def mean_value_enclosure(fn):
@@ -669,3 +674,57 @@ def face_minimum(g: Gimbal, x2) -> arb:
     """min over (x1, x3) of V at a fixed x2 (phi = mu F - f3^2 / (2 S), attained at
     :meth:`Gimbal.phi_minimiser`): an enclosure."""
     return g.phi(x2)
+
+
+# --------------------------------------------------------------------------- extents of {V < c}
+
+def slice_extent(g: Gimbal, c: arb, axis: str):
+    """x2 (a ball) -> an upper bound of max |x_axis| over the slice {(x1, x3): V(x1, x2, x3) < c} (axis
+    "x1" or "x3"), exact where the slice is certainly non-empty. At fixed x2, V is a convex quadratic in
+    (x1, x3) with minimum phi(x2) at z0 = (mu f3/(h S), -f3/S) (h = H cos x2 / B0), so the slice is the
+    ellipse 1/2 (z - z0)' P (z - z0) < c - phi, P^-1 = [[S + mu^2, -mu h], [-mu h, h^2]] / (h^2 S):
+
+        max |x1| = (mu |f3| / S + sqrt(2 (c - phi) (S + mu^2) / S)) / h,  max |x3| = |f3| / S + sqrt(2 (c - phi) / S).
+
+    Where c - phi < 0 certainly the slice is empty and 0 is returned (the set's maximum is >= 0: it
+    contains the origin); where c - phi may be either sign, [0, its upper end] replaces it (an upper bound).
+    Guarantee: an upper bound everywhere; the exact maximum (a ball containing it) where c > phi certainly."""
+    mu = g.c.mu
+
+    def smooth(x2):             # where c > phi and f3 > 0: no case split, so it takes Dual numbers
+        S = g.S(x2)
+        d, f3 = c - g.phi(x2), g.f3(x2)
+        if axis == "x1":
+            return (mu * f3 / S + (2 * d * (S + mu * mu) / S).sqrt()) / (g.c.H * x2.cos() / g.c.B0)
+        return f3 / S + (2 * d / S).sqrt()
+    centred = mean_value_enclosure(smooth)
+
+    def e(x2):
+        if not x2.rad().is_zero() and certainly_positive(c - g.phi(x2)) and certainly_positive(g.f3(x2)):
+            # the mean-value form: at a flat maximum its overestimation is quadratic in the piece width
+            v = centred(x2)
+            if v.is_finite():
+                return v
+        S = g.S(x2)
+        d = c - g.phi(x2)
+        if certainly_lt(d, 0):
+            return arb(0)
+        if not certainly_positive(d):
+            d = arb(0).union(d.upper())
+        f3 = abs(g.f3(x2))
+        # d is >= 0 here (d itself, or the hull of 0 and its upper end): its ball may reach below 0
+        if axis == "x1":
+            return (mu * f3 / S + sqrt_of_nonnegative(2 * d * (S + mu * mu) / S)) / (g.c.H * x2.cos() / g.c.B0)
+        return f3 / S + sqrt_of_nonnegative(2 * d / S)
+    return e
+
+
+def slice_in_region(g: Gimbal, c: arb, R: arb, x2) -> bool:
+    """Certainly: the slice {V(., x2, .) < c} is non-empty (c > phi(x2)) and its centre z0 lies inside
+    the disc x1^2 + x3^2 < R^2. With V >= c on the cylinder of radius R (c <= c*), the whole slice then
+    lies in the disc (it is convex and cannot cross the circle), so it is a slice of {x in (17): V < c}."""
+    S = g.S(x2)
+    f3 = g.f3(x2)
+    h = g.c.H * x2.cos() / g.c.B0
+    z1, z3 = g.c.mu * f3 / (h * S), -f3 / S
+    return certainly_positive(c - g.phi(x2)) and certainly_lt(z1 * z1 + z3 * z3, R * R)
