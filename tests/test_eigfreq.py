@@ -161,3 +161,26 @@ def test_hz_values_are_judged_at_the_paper_s_own_scale_interval():
     assert rows["(8) lambda_2- (Hz)"]["class"] == "unexplained"          # 119.5 against 108.6: no scale near
     assert rows["(10) lambda_4+ (Hz)"]["class"] == "unexplained"         # 950.8 needs 618.3, outside
     assert rows["'exact' values share one Hz scale"]["class"] == "assertion-refuted"
+
+
+@pytest.mark.parametrize("a, b, eps", [("15.08", "6.154", "0.1076"), ("3.5", "1.25", "1.7"), ("40", "19", "0.01")])
+def test_the_nu_bounds_are_the_printed_formulas_5(a, b, eps):
+    """Each bound of (5) against the printed formula evaluated in mpmath at 40 digits (a mutated formula
+    that still brackets its nu would pass the claim; it does not pass this), and the bracket holds."""
+    import mpmath
+    from flint import fmpq
+    from rigor_gyro.kinds.eigenfrequencies.model import Params, nu_bounds
+    from fractions import Fraction
+    mpmath.mp.dps = 40
+    A, B, E = (mpmath.mpf(Fraction(x).numerator) / Fraction(x).denominator for x in (a, b, eps))
+    ref = {1: (E / (A - B + E * (A - 1)), E / (A - B)),
+           2: (E * A / (B * (A - B) + E * (A - 1)), E * A / (B * (A - B))),
+           4: ((1 + E) / (B - 1), (1 + E) / (B - 1) + E ** 2 * (A - 1) / ((A - B) * (A - B + E * (A - 1)))),
+           6: ((B * B + E) / (B * (B - 1)),
+               (B * B + E) / (B * (B - 1)) + E ** 2 * A * (A - 1) / (B * (A - B) * ((A - B) * B + E * (A - 1))))}
+    q = lambda x: arb(fmpq(Fraction(x).numerator, Fraction(x).denominator))     # noqa: E731
+    with working_precision(128):
+        got = nu_bounds(Params(q(a), q(b), q(eps), arb(1)))
+        for k, (lo, hi) in ref.items():
+            for ball_, r in zip(got[k], (lo, hi)):
+                assert certainly_lt(abs(ball_ - arb(mpmath.nstr(r, 38))), arb("1e-30") * (1 + abs(ball_))), (k, r)
