@@ -164,7 +164,7 @@ def _certified_digits(lo: str, hi: str, printed: str, extra: int = 3) -> str:
 #: audit classes that are plain agreement (not listed among the discrepancies)
 _PLAIN = ("agrees", "assertion-confirmed")
 #: classes that are numerical differences, not misprints: listed compactly
-_NUMERICAL = ("last-digit", "unexplained")
+_NUMERICAL = ("propagated", "last-digit", "unexplained")
 
 
 def _audit_section(rows: list[dict]) -> list[str]:
@@ -196,7 +196,10 @@ def _audit_section(rows: list[dict]) -> list[str]:
                        f"{_certified_digits(r['lo'], r['hi'], r['printed'])} | "
                        f"**{r.get('class', r['status'])}** | {_esc(r.get('class_reading', ''))} | {_esc(r['note'])} |")
         out.append("")
-    for cls, text in (("last-digit", "one unit off in the last printed digit (rounding)"),
+    for cls, text in (("propagated", "the paper's own computation, not a misprint: a correct rounding of the value "
+                                     "recomputed from the paper's printed inputs (each within its printed rounding; "
+                                     "the inputs each row needs are in the JSON's class_reading); printed -> certified"),
+                      ("last-digit", "one unit off in the last printed digit (rounding)"),
                       ("unexplained", "no single edit explains the print (the paper's own computation differs; "
                                       "printed -> certified to the printed digits plus three)")):
         rs = [r for r in numerical if r.get("class") == cls]

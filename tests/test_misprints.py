@@ -82,3 +82,29 @@ def test_a_planted_edit_is_never_read_as_agreement(n, i, edit):
     assert c.cls != "agrees"
     assert c.cls in expect or set(c.readings) & expect, (printed, c)
     assert Decimal(printed) != true
+
+
+def test_propagated_needs_some_value_of_the_recomputation_to_round_to_the_print():
+    """`propagated` means: some value the paper's own inputs allow (a ball) rounds to the print. A ball
+    meeting the print's rounding interval [P - h, P + h] qualifies even when it is wider than it; a ball
+    beside the interval does not."""
+    from rigor_gyro.core.misprints import classify_printed
+    value = arb("1.23464")                        # the certified value: 1.234394 is not a rounding of it
+    wide = arb("1.2343").union(arb("1.2345"))     # holds 1.234394 +- 5e-7
+    beside = arb("1.2340").union(arb("1.2343"))   # ends below 1.2343935
+    assert classify_printed("1.234394", value, wide).cls == "propagated"
+    assert classify_printed("1.234394", value, beside).cls != "propagated"
+    assert classify_printed("1.234394", value, None).cls != "propagated"
+
+
+def test_the_relay_tables_are_judged_against_the_paper_s_own_closed_form():
+    """Table 2 and the coefficients of form (7) are recomputed from the paper's own printed coefficients,
+    exponents, a_ij and D (each within its printed rounding): at t = 0, alpha = -0.00164586 is the sum of its
+    printed coefficients (the paper's arithmetic), while i sin = 0.202595 is still a sign misprint (the
+    paper's own a41 D1 + a42 D2 is negative)."""
+    from rigor_gyro import load_scene, prove_scene
+    rows = {r["id"]: r for r in prove_scene(load_scene("roitenberg1947_b2over15")).to_json()["paper"]}
+    assert rows["Table 2 t=0 alpha"]["class"] == "propagated"
+    assert rows["beta_dot sin"]["class"] == "propagated"
+    assert rows["i sin"]["class"] == "sign"
+    assert rows["beta sin"]["class"] == "unexplained"

@@ -24,9 +24,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from flint import acb, arb, arb_mat
+from flint import acb, arb, arb_mat, fmpq
 
-from ...core.audit import NUMBER, TEXT, agreeing_digits, audit_printed, keys, numbers
+from ...core.audit import NUMBER, TEXT, agreeing_digits, audit_printed, half_unit, keys, numbers
 from ...core.balls import ball, certainly_negative, certainly_positive, decimal_bounds
 from ...core.outcome import AuditRow, AuditStatus
 from .flow import (ExpSum, Spectrum, half_period_jacobian, nutation_cubic, orbit_expsums, phi_at,
@@ -317,6 +317,70 @@ def _row(rid: str, printed: str, value: arb | None, reading: str = "certified va
     return AuditRow(rid, printed, reading, value, st, note)
 
 
+def _within_rounding(txt: str) -> arb:
+    """Every number a printed decimal may stand for: [x - h, x + h], h half a unit in its last place."""
+    h = half_unit(txt)
+    return ball(txt) + arb(fmpq(-h.numerator, h.denominator)).union(arb(fmpq(h.numerator, h.denominator)))
+
+
+def _printed_form7(paper: dict) -> dict[tuple[str, str], tuple[arb, str]]:
+    """(component, basis label) -> (ball, text): the coefficient of form (7) as the paper builds it from its
+    own printed a_ij and D1..D5 (D1..D3 as beta's row prints them; each read within its printed rounding): sin = a_G1 D1 + a_G2 D2,
+    cos = a_G3 D1 + a_G4 D2, e^-mu2t = a_G5 D3, e^-t/sigma = a_G6 D5 for beta_dot, Omega, i (G = 2, 3, 4),
+    and e^-t/sigma = a16 D5 for beta. Empty when the scene does not print them."""
+    a, D = paper.get("a", {}), list(paper.get("D", []))
+    if len(D) != 5:
+        return {}
+    # beta's own row prints D1, D2, D3 (its sin, cos, e^-mu2t coefficients) again: where the two prints
+    # differ (D1 0.0447756 against 0.0417756 in the 1947 example), the beta row is what the later numbers use
+    beta = paper.get("orbit", {}).get("beta", [])
+    for k, idx in ((0, 0), (1, 1), (2, 2)):
+        if len(beta) > idx and beta[idx]:
+            D[k] = beta[idx]
+    d = [_within_rounding(x) for x in D]
+    out: dict[tuple[str, str], tuple[arb, str]] = {}
+
+    def coef(G: int, j: int) -> arb | None:
+        txt = a.get(f"a{G}{j}")
+        return _within_rounding(txt) if txt else None
+    for comp, G in (("beta_dot", 2), ("Omega", 3), ("i", 4)):
+        parts = {"sin": ((1, 0), (2, 1)), "cos": ((3, 0), (4, 1)), "e^-mu2t": ((5, 2),), "e^-t/sigma": ((6, 4),)}
+        for lab, terms in parts.items():
+            cs = [coef(G, j) for j, _ in terms]
+            if all(c is not None for c in cs):
+                val = sum((c * d[k] for c, (_, k) in zip(cs, terms)), arb(0))
+                text = " + ".join(f"a{G}{j} D{k + 1}" for j, k in terms)
+                out[(comp, lab)] = (val, f"the paper's own printed a_ij and D ({text}, each within its printed rounding)")
+    if coef(1, 6) is not None:
+        out[("beta", "e^-t/sigma")] = (coef(1, 6) * d[4], "the paper's own printed a16 D5 (each within its printed rounding)")
+    return out
+
+
+def _printed_closed_form(paper: dict):
+    """(component, t) -> the paper's closed form (7) evaluated from its own printed numbers (coefficients
+    of [e^-mu1t sin wt, e^-mu1t cos wt, e^-mu2t, e^-t/sigma, t, const], and mu1, omega, mu2, 1/sigma), each
+    printed decimal read as every number it may round from: a ball holding every value the paper's Table 2
+    could show if its arithmetic were exact. None when the scene does not print them all. Table 2's beta'
+    is the printed beta_dot."""
+    orbit = paper.get("orbit", {})
+    if not orbit or not all(k in paper for k in ("mu1", "omega", "mu2", "inv_sigma")):
+        return None
+    mu1, w, mu2, isg = (_within_rounding(paper[k]) for k in ("mu1", "omega", "mu2", "inv_sigma"))
+
+    def at(comp: str, t: arb) -> arb | None:
+        cf = orbit.get("beta_dot" if comp == "beta'" else comp)
+        if cf is None:
+            return None
+        basis = [(-mu1 * t).exp() * (w * t).sin(), (-mu1 * t).exp() * (w * t).cos(), (-mu2 * t).exp(),
+                 (-isg * t).exp(), t, arb(1)]
+        total = arb(0)
+        for c, b in zip(cf, basis):
+            if c:
+                total += _within_rounding(c) * b
+        return total
+    return at
+
+
 def audit(model, sp: Spectrum, orbit) -> list[AuditRow]:
     """Every printed number of the example (from the scene's [paper] table) against the certified orbit."""
     paper = model.paper
@@ -370,6 +434,7 @@ def audit(model, sp: Spectrum, orbit) -> list[AuditRow]:
         rows.append(_row(f"D{j}", txt, D[j - 1], "(9) at theta*"))
     names = {"beta": 0, "beta_dot": 1, "Omega": 2, "i": 3, "I": 4}
     labels = ["sin", "cos", "e^-mu2t", "e^-t/sigma", "t", "const"]
+    from_printed = _printed_form7(paper)
     for comp, vals in paper.get("orbit", {}).items():
         if comp == "alpha":
             cf, _ = _alpha(comps[2], md, orbit.theta)
@@ -377,10 +442,15 @@ def audit(model, sp: Spectrum, orbit) -> list[AuditRow]:
             cf = _form7(comps[names[comp]], md)
         for lab, v, txt in zip(labels, cf, vals):
             if txt:
-                rows.append(_row(f"{comp} {lab}" if not (comp == "i" and lab == "sin") else "i sin", txt, v,
-                                 "closed form (7), certified"))
+                row = _row(f"{comp} {lab}" if not (comp == "i" and lab == "sin") else "i sin", txt, v,
+                           "closed form (7), certified")
+                prop = from_printed.get((comp, lab))
+                if prop is not None:
+                    row.propagated, row.propagated_from = prop
+                rows.append(row)
     # Table 2
     t2 = paper.get("table2", {})
+    printed_at = _printed_closed_form(paper)
     if t2:
         _, alpha_f = _alpha(comps[2], md, orbit.theta)
         order = [("alpha", alpha_f), ("beta", comps[0]), ("Omega", comps[2]), ("beta'", comps[1]),
@@ -390,7 +460,14 @@ def audit(model, sp: Spectrum, orbit) -> list[AuditRow]:
             for (nm, f), txt in zip(order, vals):
                 if txt is None or txt == "":
                     continue
-                rows.append(_row(f"Table 2 t={t} {nm}", txt, f(tt), "x(t) on the certified orbit"))
+                row = _row(f"Table 2 t={t} {nm}", txt, f(tt), "x(t) on the certified orbit")
+                if printed_at is not None and t != "theta":
+                    # the paper's own computation: its printed closed form (7) at t, from its printed
+                    # coefficients and exponents (the classifier then tells its arithmetic from a misprint)
+                    row.propagated = printed_at(nm, ball(t))
+                    row.propagated_from = ("the paper's printed closed form (7) at this t (its printed coefficients, "
+                                           "mu1, omega, mu2, 1/sigma)")
+                rows.append(row)
     tabs = _tables(sp, pc, orbit)
     for key, txt in paper.get("table3", {}).items():
         G, j = key[1:].split("_")
