@@ -87,3 +87,33 @@ def test_the_formulas_above_are_the_librarys(law):
                     want = float(sym[i][j].subs(subs).evalf(30))
                     got = float(lib[i][j].mid())
                     assert abs(got - want) <= 1e-12 * max(1.0, abs(want)), (i, j, got, want)
+
+
+def test_section_2_first_approximation_identities():
+    """Exact (sympy, with x2 a symbol and f = a x2 + O(x2^3), F = int f3): the Jacobian of (2) at 0 is the
+    printed (4); the second-order part of (7) is (5) with the x2 x3 coefficient a H/(A0 B0) (printed with a
+    spurious 1/2); its derivative along (4) is -(H^2/(A0 B0^2))(k - A0 mu) x1^2 - (H/(A0 B0))(mu H - a) x3^2
+    (printed without the 1/B0^2); with the printed (5) a cross term in x1 x2 remains. These are the readings
+    the audit rows of rigor_gyro.kinds.lyapunov.paper.linear_section_rows report."""
+    a, x2, t = symbols("a x2 t")
+    Cc = symbols("Cc", positive=True)                  # C0 in this test (C0 is taken above)
+    D = A0 - Cc * sympy.sin(x2) ** 2
+    fx = a * sympy.sin(x2)                             # f'(0) = a; any odd law gives the same second order
+    f3 = H * sympy.cos(x2) * fx / (D * B0)
+    F = sympy.integrate(sympy.series(f3, x2, 0, 4).removeO(), x2)
+    V = mu * F + x3 * f3 + H ** 2 * sympy.cos(x2) ** 2 / (D * B0) * x3 ** 2 / 2 + mu * k / D * x3 ** 2 / 2 \
+        + mu * H / B0 * sympy.cos(x2) * x1 * x3 + H ** 2 / (2 * B0 ** 2) * sympy.cos(x2) ** 2 * x1 ** 2
+    rhs = [(Cc * sympy.sin(2 * x2) * x1 * x3 - H * sympy.cos(x2) * x3 - k * x1 - fx) / D, x3,
+           (-Cc * sympy.sin(2 * x2) * x1 ** 2 / 2 + H * sympy.cos(x2) * x1) / B0]
+    X = [x1, x2, x3]
+    J = sympy.Matrix([[sympy.diff(r, v).subs({x1: 0, x2: 0, x3: 0}) for v in X] for r in rhs])
+    assert sympy.simplify(J - sympy.Matrix([[-k / A0, -a / A0, -H / A0], [0, 0, 1], [H / B0, 0, 0]])) == sympy.zeros(3)
+    quad = sympy.expand(sympy.series(V.subs({x1: t * x1, x2: t * x2, x3: t * x3}), t, 0, 3).removeO().coeff(t, 2))
+    assert sympy.simplify(quad.coeff(x2, 1).coeff(x3, 1) - a * H / (A0 * B0)) == 0
+    Vlin = quad
+    vdot = sympy.expand(sum(sympy.diff(Vlin, v) * r for v, r in zip(X, (J * sympy.Matrix(X)))))
+    expected = -(H ** 2 / (A0 * B0 ** 2)) * (k - A0 * mu) * x1 ** 2 - (H / (A0 * B0)) * (mu * H - a) * x3 ** 2
+    assert sympy.simplify(vdot - expected) == 0
+    printed5 = Vlin - (a * H / (2 * A0 * B0)) * x2 * x3
+    vdot5 = sympy.expand(sum(sympy.diff(printed5, v) * r for v, r in zip(X, (J * sympy.Matrix(X)))))
+    assert sympy.simplify(vdot5.coeff(x1, 1).coeff(x2, 1)) != 0

@@ -7,7 +7,8 @@ statement ("R = R1", the final region) is ``confirmed`` or ``refuted`` by a cert
 (a refutation carries its witness). Audit rows never change a claim.
 
 Which printed numbers exist is data: the scene's ``[paper]`` table (keys below); rows about the
-printed formulas (8) and the definition of m are always produced.
+printed formulas (8) and the definition of m, and section 2's first-approximation statements ((4), (5),
+its derivative, and the linear-setting sentence about p and M), are always produced.
 """
 from __future__ import annotations
 
@@ -18,7 +19,9 @@ from flint import arb, fmpq
 from ...core.audit import NUMBER, TEXT, audit_printed
 from ...core.balls import certainly_gt, certainly_nonzero, decimal_bounds
 from ...core.outcome import AuditRow, AuditStatus, Status
-from .model import certify_vdot_nonpositive
+from ...core.subdivision import enclose_max
+from .model import Dual, Gimbal, certify_vdot_nonpositive
+from .moments import MOMENTS
 
 __all__ = ["audit", "formula_table", "PAPER_KEYS", "PAPER_SCHEMA", "vdot_formula_audit"]
 
@@ -140,7 +143,87 @@ def audit(ctx, quantities: dict[str, arb]) -> tuple[list[AuditRow], list[dict[st
             rows.append(_row("R = R1", f"R = R1 = {printed}", "R = min(R1, R2) (17)", quantities["R"], st, note))
     if "R" in paper:
         rows += _region_rows(ctx, str(paper["R"]))
+    rows += linear_section_rows(g, ctx.xs, ctx.m.max_pieces)
     return rows, formula_table(), notes
+
+
+def linear_section_rows(g: Gimbal, xs: arb, max_pieces: int) -> list[AuditRow]:
+    """Section 2's first-approximation statements, each checked at the scene's parameters (f'(0) plays
+    the paper's a): the linearised system (4) against the Jacobian of (2) at the origin (automatic
+    differentiation); the quadratic form (5) against the second-order part of V (7); the derivative of
+    (5) along (4) (the matrix J' Q + Q J, in balls) against the printed Vdot; and the sentence 'in the
+    linear setting (18) coincides with (6), since p = M = A0 m = a' against M certified for f = a x2 in
+    system (2). A printed entry is wrong only when its ball certainly differs from the certified one;
+    "agrees" means within the enclosures at these parameters (the identities themselves are checked
+    symbolically in tests/test_lyapunov_identity.py)."""
+    c = g.c
+    H, A0, B0, k, mu = c.H, c.A0, c.B0, c.k, c.mu
+    a = g.df(arb(0))
+    rows: list[AuditRow] = []
+    # (4): the Jacobian of (2) at the origin, column by column
+    zero = arb(0)
+    J = [[None] * 3 for _ in range(3)]
+    for j in range(3):
+        args = [Dual(zero, arb(1) if i == j else arb(0)) for i in range(3)]
+        for i, comp in enumerate(g.rhs(*args)):
+            J[i][j] = comp.d if isinstance(comp, Dual) else arb(0)
+    printed4 = [[-k / A0, -a / A0, -H / A0], [zero, zero, arb(1)], [H / B0, zero, zero]]
+    names = [f"d x{i + 1}'/d x{j + 1}" for i in range(3) for j in range(3)]
+    wrong = [n for n, x, y in zip(names, (x for r in J for x in r), (y for r in printed4 for y in r))
+             if certainly_nonzero(x - y)]
+    rows.append(_row("(4) linearised system", "x1' = -H/A0 x3 - k/A0 x1 - a/A0 x2, x2' = x3, x3' = H/B0 x1",
+                     "the Jacobian of (2) at 0 (automatic differentiation; a = f'(0))", None,
+                     AuditStatus.DISAGREES if wrong else AuditStatus.CONFIRMED,
+                     ("entries that certainly differ: " + ", ".join(wrong)) if wrong else
+                     "every entry agrees with the Jacobian of (2) at the origin within the enclosures (the identity "
+                     "is proved symbolically in tests/test_lyapunov_identity.py)"))
+    # (5): the second-order part of V (7) at 0, Q (symmetric, V = x' Q x)
+    q22_7 = mu * a * H / (2 * A0 * B0)
+    q23_7 = a * H / (A0 * B0)                   # the coefficient of x2 x3 (f3'(0) = H f'(0)/(A0 B0))
+    q33 = (H * H / (A0 * B0) + mu * k / A0) / 2
+    q13, q11 = mu * H / B0, H * H / (2 * B0 * B0)
+    q23_5 = a * H / (2 * A0 * B0)
+    if certainly_nonzero(q23_5 - q23_7):
+        rows.append(_row("(5) coefficient of x2 x3", "a H / (2 A0 B0)", "a H / (A0 B0)", q23_7, AuditStatus.MISPRINT,
+                         f"the x2 x3 term of (7) at second order is x3 f3(x2) ~ (a H/(A0 B0)) x2 x3 = {_fmt(q23_7, 8)}, "
+                         f"not {_fmt(q23_5, 8)}; with the printed coefficient the derivative along (4) has a cross "
+                         f"term {_fmt(-H * H * a / (2 * A0 * B0 * B0), 6)} x1 x2 and is not the printed Vdot, with "
+                         "the reading it is (see the next row)"))
+
+    def vdot_matrix(q23):
+        Q = [[q11, zero, q13 / 2], [zero, q22_7, q23 / 2], [q13 / 2, q23 / 2, q33]]
+        return [[sum((J[r][i] * Q[r][j] + Q[i][r] * J[r][j] for r in range(3)), arb(0)) for j in range(3)]
+                for i in range(3)]
+    Mv = vdot_matrix(q23_7)
+    v11_printed = -(H * H / A0) * (k - A0 * mu)
+    v11_read = -(H * H / (A0 * B0 * B0)) * (k - A0 * mu)
+    v33_printed = -(H / (A0 * B0)) * (mu * H - a)
+    cross = [n for n, x in (("x1 x2", Mv[0][1]), ("x1 x3", Mv[0][2]), ("x2 x3", Mv[1][2]), ("x2^2", Mv[1][1]))
+             if certainly_nonzero(x)]
+    x33_ok = not certainly_nonzero(Mv[2][2] - v33_printed)
+    x11_printed_wrong = certainly_nonzero(Mv[0][0] - v11_printed)
+    x11_read_ok = not certainly_nonzero(Mv[0][0] - v11_read)
+    status = (AuditStatus.MISPRINT if x11_printed_wrong and x11_read_ok and x33_ok and not cross else
+              AuditStatus.AGREES if not x11_printed_wrong and x33_ok and not cross else AuditStatus.DISAGREES)
+    rows.append(_row("Vdot of (5) along (4)", "-(H^2/A0)(k - A0 mu) x1^2 - (H/(A0 B0))(mu H - a) x3^2",
+                     "-(H^2/(A0 B0^2))(k - A0 mu) x1^2 - (H/(A0 B0))(mu H - a) x3^2", Mv[0][0], status,
+                     f"J' Q + Q J from (4) and (5) (with the x2 x3 coefficient of (7)), in balls: x1^2 coefficient "
+                     f"{_fmt(Mv[0][0], 8)} (printed formula {_fmt(v11_printed, 8)}, reading {_fmt(v11_read, 8)}), x3^2 "
+                     f"coefficient {_fmt(Mv[2][2], 8)} (printed {_fmt(v33_printed, 8)}); "
+                     + ("the other entries vanish within the enclosures" if not cross else
+                        "nonzero entries: " + ", ".join(cross))))
+    # 'in the linear setting (18) coincides with (6), since p = M = A0 m = a': M for f = a x2 in (2)
+    lin = Gimbal(g.A0, g.B0, g.C0, g.H, g.k, g.a, g.mu, g.x2_star, MOMENTS["linear"])
+    M_lin = enclose_max(lin.q, 0, xs, abs_tol=arb(2) ** -40, max_pieces=max_pieces).ball
+    lin_a = lin.c.a
+    st = (AuditStatus.REFUTED if certainly_gt(M_lin, lin_a) or certainly_gt(lin_a, M_lin) else AuditStatus.UNDECIDED)
+    rows.append(_row("linear setting: p = M = A0 m = a", "(18) coincides with (6), since p = M = A0 m = a",
+                     "M = max q over |x2| <= x2* for f = a x2 in system (2)", M_lin, st,
+                     f"for f = a x2 in (2), M = {_fmt(M_lin, 10)} (certified maximum) against a = {_fmt(lin_a, 10)}: "
+                     "q = f^2/(2 D G) is not a when D = A0 - C0 sin^2 x2 and cos x2 are kept, so p > a and (18) is "
+                     "stricter than (6); the sentence holds for the linearised system (4) only (D = A0, cos x2 = 1)"
+                     if st is AuditStatus.REFUTED else "not decided at this precision"))
+    return rows
 
 
 def _region_rows(ctx, printed_R: str) -> list[AuditRow]:
