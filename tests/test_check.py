@@ -344,6 +344,12 @@ CAMPAIGN_CASES = {
     # R_sup over (16), re-derived at twice the precision on the same mu pieces and x2 points, came out
     # 1.4e-24 (relative) above the exact bound the prover stored (arb's 30-bit radii on wide mu pieces
     # round differently at another precision); the bound is now stored as a 15-digit decimal rounded up
+    # a 12-case campaign (seed 777) right after the tight extents landed: at twice the precision the checker's
+    # interval bound of the x1 extent on the piece [0, 3e-11] came out 9e-16 looser than the prover's; the
+    # checker now keeps the tighter of its two precisions' enclosures on each piece
+    "extent_x1 at another precision": {"A": "0.944313", "C": "4.76164", "A1": "1.89197", "B1": "1.52827",
+                                       "C1": "1.47915", "A2": "5.39655", "H": "410653", "k": "3.08006",
+                                       "a": "308.3", "x2_star": "pi/6", "mu": "0.116003", "moment": "sine"},
     "R_sup_upper_bound": {"A": "3.69535", "C": "2.18086", "A1": "0.853547", "B1": "3.00193", "C1": "0.938001",
                           "A2": "3.8399", "H": "3059.2", "k": "0.103047", "a": "17.6091", "x2_star": "0.775177",
                           "mu": "0.0290153", "moment": "linear"},

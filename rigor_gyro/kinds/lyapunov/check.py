@@ -2,7 +2,9 @@
 
 The prover runs branch-and-bound searches (maxima m and M, the cylinder bound of c*, the radius over
 mu) and bisections (Psi > 0, S, f/x, psi > 0). This checker does not search: it re-evaluates the
-model's enclosures on the stored pieces only, at twice the certificate's precision, and checks
+model's enclosures on the stored pieces only, at twice the certificate's precision (for the extents also
+at the certificate's own, keeping the tighter enclosure of each piece: interval widths are not monotone
+in the precision), and checks
 
 * that the stored pieces cover their range (exact endpoints; overlaps allowed, gaps not);
 * m, M: the largest upper bound over the stored cover, and the value at the stored point, give the
@@ -29,7 +31,7 @@ from fractions import Fraction
 from flint import arb, fmpq
 
 from ...check import CheckResult
-from ...core.balls import certainly_gt, certainly_le, certainly_lt, certainly_positive, exact_endpoints
+from ...core.balls import certainly_gt, certainly_le, certainly_lt, certainly_positive, exact_endpoints, working_precision
 from ...core.stored import encloses, fmpq_of, interval as stored_interval, number
 from ...core.boxes import Box, tiles_by_bisection
 from ...core.roots import RootStatus, enclose_f_df, newton_root
@@ -101,6 +103,19 @@ def _max_upper(f, pieces) -> arb:
     return up
 
 
+def _tighter(f, X: arb, prec: int) -> arb:
+    """f over X at the current precision and at ``prec`` (the certificate's), intersected: both balls
+    contain f(X), so their intersection does (a NaN or infinite one is dropped)."""
+    hi = f(X)
+    with working_precision(prec):
+        lo = f(X)
+    if not lo.is_finite():
+        return hi
+    if not hi.is_finite():
+        return lo
+    return hi.intersection(lo) if hi.overlaps(lo) else hi
+
+
 def _all_positive(f, pieces) -> bool:
     return all(certainly_positive(f(_b(p))) for p in pieces)
 
@@ -110,6 +125,7 @@ def check(model, data: dict) -> list[CheckResult]:
     res: list[CheckResult] = []
     say = lambda item, ok, msg: res.append(CheckResult(item, ok, msg))  # noqa: E731
     q, W = data["quantities"], data.get("witnesses") or {}
+    cert_prec = data["precision_bits"]
     claims = {c["id"]: c for c in data["claims"]}
     verified: set[str] = set()
     g = model.gimbal
@@ -229,14 +245,18 @@ def check(model, data: dict) -> list[CheckResult]:
                         verified.add("extent_x2_axis")
                 # the extents: the stored covers re-bounded above, the stored points re-checked to be slices
                 # of the set (their value bounds below)
+                # each piece re-evaluated at the certificate's precision and at the checker's, keeping the
+                # tighter bound (both are valid; interval widths are not monotone in the precision, and a
+                # bound the prover got at its precision must not look unconfirmed at another)
                 for axis in ("x1", "x3"):
                     we_ = wi.get(f"extent_{axis}") or {}
                     fn = slice_extent(g, cl, axis)
                     if we_ and _covers(we_.get("cover", []), arb(0), xs):
-                        up = _max_upper(fn, we_["cover"])
+                        up = _max_upper(lambda X: _tighter(fn, X, cert_prec), we_["cover"])
                         up = up if certainly_le(up, R.upper()) else R.upper()
                         pt = _b(we_["point"])
-                        low = (fn(pt).lower() if _within(abs(pt), arb(0), xs) and slice_in_region(g, cl, R, pt)
+                        low = (_tighter(fn, pt, cert_prec).lower()
+                               if _within(abs(pt), arb(0), xs) and slice_in_region(g, cl, R, pt)
                                else axes[axis].lower())     # the axis segment lies in the set
                         contains(f"extent_{axis}", low.union(up))
                 w2 = wi.get("extent_x2") or {}
@@ -249,7 +269,8 @@ def check(model, data: dict) -> list[CheckResult]:
                     up = xs.upper()
                     if beyond:
                         start = arb(fmpq_of(min(number(p_[0]) for p_ in beyond)))
-                        if _covers(beyond, start, xs) and _all_positive(lambda x: g.phi(x) - cl, beyond):
+                        if _covers(beyond, start, xs) and _all_positive(lambda x: _tighter(
+                                lambda y: g.phi(y) - cl, x, cert_prec), beyond):
                             up = start                  # phi > c_set from there to x2*: no slice beyond it
                     contains("extent_x2", low.union(up))
                 inv_ok = (cstar_lo_ok and cstar_hi_ok and certainly_positive(cl)
