@@ -470,3 +470,32 @@ def test_margin_and_check_on_the_command_line(tmp_path):
     data["claims"][0]["boxes"][0]["status"] = "refuted"
     (tmp_path / "bad.json").write_text(json.dumps(data))
     assert main(["check", "--quiet", str(tmp_path / "bad.json")]) == 1
+
+
+@given(st.integers(min_value=0, max_value=10 ** 6))
+def test_the_quartic_family_encloses_every_member_at_a_point(seed):
+    """The centred (mean-value) form of the quartic over a parameter box contains the value of members
+    drawn inside the box, at exact points omega (a mutated gradient term would leave some member out)."""
+    from rigor_gyro.kinds.eigenfrequencies.boxes import _quartic_family
+    from rigor_gyro.kinds.eigenfrequencies.model import Params, characteristic_quartic
+    rng = random.Random(seed)
+    q = lambda x: fmpq(x.numerator, x.denominator)                              # noqa: E731
+    b = Fraction(rng.randint(1100, 9000), 1000)
+    a = b + Fraction(rng.randint(50, 20000), 1000)
+    e = Fraction(rng.randint(1, 2000), 1000)
+    W = Fraction(rng.randint(1, 10000), 1000)
+    # relative half-widths from 1e-7 (where the centred form is sharp: a wrong gradient shows) to 1e-2
+    rel = Fraction(1, 10 ** rng.randint(2, 7))
+    hb = rel * (b - 1)
+    edges = [(a - rel * (a - b - hb), a + rel * a), (b - hb, b + hb), (e * (1 - rel), e * (1 + rel)),
+             (W * (1 - rel), W * (1 + rel))]
+    with working_precision(64):
+        p = Params(*(arb(q(lo)).union(arb(q(hi))) for lo, hi in edges))
+        fam, _ = _quartic_family(p)
+        for _ in range(6):
+            pt = [lo + (hi - lo) * Fraction(rng.choice((0, 1, 1000, 999, rng.randint(0, 1000))), 1000)
+                  for lo, hi in edges]
+            om = Fraction(rng.randint(1, 4096), 1024)          # dyadic: an exact ball, as Newton evaluates
+            exact = characteristic_quartic(*(q(x) for x in pt))(q(om))
+            val, _ = fam(arb(q(om)))
+            assert val.contains(arb(exact)), (pt, om)

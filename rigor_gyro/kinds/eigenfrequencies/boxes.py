@@ -95,9 +95,33 @@ def _quartic_family(p: Params):
     p2 = (l * (b - 1) + 1) * (l * l * ((a - b) * (b - 1)) + l * (e * (a - 1) + a - b) + e)
     d1, d2 = p1.derivative(), p2.derivative()
 
+    # the centred form in the parameters: at the box's midpoint p0 (exact) plus the parameter gradient
+    # over the box times (P - p0); second order in the box width where the direct form is first order
+    mids = [arb(t.mid()) for t in (a, b, e, W)]
+    offsets = [t - m for t, m in zip((a, b, e, W), mids)]
+    am, bm, em, Wm = mids
+    p1m = (l * (bm - 1) + bm) * (l * l * ((am - bm) * (bm - 1)) + l * (em * (am - 1) + bm * (am - bm)) + em * am)
+    p2m = (l * (bm - 1) + 1) * (l * l * ((am - bm) * (bm - 1)) + l * (em * (am - 1) + am - bm) + em)
+    q1 = l * l * ((a - b) * (b - 1)) + l * (e * (a - 1) + b * (a - b)) + e * a
+    q2 = l * l * ((a - b) * (b - 1)) + l * (e * (a - 1) + a - b) + e
+    u1, u2 = l * (b - 1) + b, l * (b - 1) + 1
+    grads = [   # d/da, d/db, d/deps of P1 and P2 over the box, and d/dOmega2 of the value (P2)
+        (u1 * (l * l * (b - 1) + l * (e + b) + e), u2 * (l * l * (b - 1) + l * (e + 1))),
+        ((l + 1) * q1 + u1 * (l * l * (a - 2 * b + 1) + l * (a - 2 * b)), l * q2 + u2 * (l * l * (a - 2 * b + 1) - l)),
+        (u1 * (l * (a - 1) + a), u2 * (l * (a - 1) + 1)),
+    ]
+    centred = any(not o.rad().is_zero() for o in offsets)
+
     def family(x: arb) -> tuple[arb, arb]:
         lam = -x                               # lambda^2 = -omega
         value = lam * p1(lam) + W * p2(lam)
+        if centred and x.rad().is_zero():
+            mv = lam * p1m(lam) + Wm * p2m(lam) + p2(lam) * offsets[3]
+            for (g1, g2), o in zip(grads, offsets[:3]):
+                if not o.rad().is_zero():
+                    mv += (lam * g1(lam) + W * g2(lam)) * o
+            if mv.is_finite():
+                value = value.intersection(mv) if value.overlaps(mv) else mv
         deriv = -(p1(lam) + lam * d1(lam)) - W * d2(lam)
         return value, deriv
     return family, (b - 1) * (b - 1) * (a - b)
