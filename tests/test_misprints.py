@@ -108,3 +108,6 @@ def test_the_relay_tables_are_judged_against_the_paper_s_own_closed_form():
     assert rows["beta_dot sin"]["class"] == "propagated"
     assert rows["i sin"]["class"] == "sign"
     assert rows["beta sin"]["class"] == "unexplained"
+    # a symbol the transcription garbled is a row, never only a silent correction in the scene's data
+    tr = rows["transcription: Table 2 t=0.10 Omega"]
+    assert tr["printed"] == "0.028f524" and tr["reading"] == rows["Table 2 t=0.10 Omega"]["printed"] == "0.0286524"

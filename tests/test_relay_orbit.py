@@ -161,7 +161,7 @@ def test_every_printed_number_is_audited(certs):
     expected = (len(p["cubic"]) + 1 + 3 + len(p["a"]) + 1 + len(p["g_table_g"]) + 1 + len(p["D"])
                 + sum(1 for v in p["orbit"].values() for x in v if x) + sum(len(v) for v in p["table2"].values())
                 + len(p["table3"]) + 4 + 4 + len(p["table4"]["h"]) + len(p["table4"]["c"]) + len(p["table4"]["k"])
-                + len(p["quartic"]) + len(p["lambda"]) + 1)
+                + len(p["quartic"]) + len(p["lambda"]) + 1 + len(p.get("as_transcribed", {})))
     assert len(printed) == expected
 
 

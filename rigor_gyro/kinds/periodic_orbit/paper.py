@@ -51,6 +51,8 @@ PAPER_SCHEMA = {
     "table4": {"x_star": numbers(4), "z": numbers(4), "h": keys(_H_KEYS, NUMBER), "c": keys(_C_KEYS, NUMBER),
                "k": keys(_K_KEYS, NUMBER)},
     "lambda": {k: NUMBER for k in ("lambda1", "lambda3", "re_complex", "im_complex", "modulus")},
+    # where the transcription garbles a symbol, the text as transcribed (the number used above is the reading)
+    "as_transcribed": keys(r"[A-Za-z0-9 =.,'*_()-]{1,60}", TEXT),
 }
 
 
@@ -511,4 +513,10 @@ def audit(model, sp: Spectrum, orbit) -> list[AuditRow]:
                                  AuditStatus.CONFIRMED if orbit.stable else
                                  AuditStatus.REFUTED if orbit.stable is False else AuditStatus.UNDECIDED,
                                  f"max modulus {_fmt(orbit.moduli[0], 10)}"))
+    by_id = {r.id: r for r in rows}
+    for rid, txt in paper.get("as_transcribed", {}).items():
+        used = by_id[rid].printed if rid in by_id else "(no such row)"
+        rows.append(AuditRow(f"transcription: {rid}", str(txt), used, None, AuditStatus.MISPRINT,
+                             "a symbol garbled by the transcription, read as the digit its neighbours and the certified "
+                             f"value imply (a reading of the print, not a result); the row {rid!r} judges the reading"))
     return rows
