@@ -48,7 +48,13 @@ def section(proofs: Path = ROOT / "proofs") -> str:
             out += [f"- **{_cell(r['id'], 80)}**: printed \"{_cell(r['printed'], 100)}\"; {_cell(r['note'], 220)}"
                     for r in wrong]
             out.append("")
-        formulas = [r for r in rows if r["class"] == "misprint-reading"]
+        garbled = [r for r in rows if r["id"].startswith("transcription: ")]
+        if garbled:
+            out += ["Symbols the transcription garbled, as read:", ""]
+            out += [f"- **{_cell(r['id'][len('transcription: '):], 80)}**: transcribed `{_cell(r['printed'], 40)}`, "
+                    f"read as `{_cell(r['reading'], 40)}`" for r in garbled]
+            out.append("")
+        formulas = [r for r in rows if r["class"] == "misprint-reading" and r not in garbled]
         if formulas:
             out += ["Printed formulas that do not give the paper's own numbers, and the reading that does:", ""]
             out += [f"- **{_cell(r['id'], 80)}**: printed `{_cell(r['printed'], 90)}`, read as `{_cell(r['reading'], 90)}`"
