@@ -602,8 +602,10 @@ def direct_margin(g: Gimbal, R: arb):
             sgn = -1
         else:
             return direct
-        Au, Bu = at(Dual(U, arb(1)), Dual(S, arb(0)))
-        As, Bs = at(Dual(U, arb(0)), Dual(S, arb(1)))
+        # one direction at a time, the other argument a plain ball (no zero-derivative dual arithmetic:
+        # the t-derivative needs psi_coefficients only as balls)
+        Au, Bu = at(Dual(U, arb(1)), S)
+        As, Bs = at(U, Dual(S, arb(1)))
         um, sm = arb(U.mid()), arb(S.mid())
         Am, Bm = at(um, sm)
         mv = (Am - R * abs(Bm) + (Au.d - R * sgn * Bu.d) * (U - um) + (As.d - R * sgn * Bs.d) * (S - sm))
