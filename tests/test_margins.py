@@ -499,3 +499,27 @@ def test_the_quartic_family_encloses_every_member_at_a_point(seed):
             exact = characteristic_quartic(*(q(x) for x in pt))(q(om))
             val, _ = fam(arb(q(om)))
             assert val.contains(arb(exact)), (pt, om)
+
+
+@given(st.integers(min_value=0, max_value=10 ** 6))
+def test_the_nu_quadratic_families_enclose_every_member_at_a_point(seed):
+    """The centred form of the quadratics (4) over narrow boxes contains every sampled member's value."""
+    from rigor_gyro.kinds.eigenfrequencies.boxes import _nu_family
+    from rigor_gyro.kinds.eigenfrequencies.model import Params, nu_quadratics
+    rng = random.Random(seed)
+    q = lambda x: fmpq(x.numerator, x.denominator)                              # noqa: E731
+    b = Fraction(rng.randint(1100, 9000), 1000)
+    a = b + Fraction(rng.randint(50, 20000), 1000)
+    e = Fraction(rng.randint(1, 2000), 1000)
+    rel = Fraction(1, 10 ** rng.randint(2, 7))
+    hb = rel * (b - 1)
+    edges = [(a - rel * (a - b - hb), a + rel * a), (b - hb, b + hb), (e * (1 - rel), e * (1 + rel))]
+    with working_precision(64):
+        p = Params(*(arb(q(lo)).union(arb(q(hi))) for lo, hi in edges), arb(1))
+        for which, idx in (("14", 0), ("26", 1)):
+            fam, _ = _nu_family(p, which)
+            for _ in range(4):
+                pt = [lo + (hi - lo) * Fraction(rng.choice((0, 1000, rng.randint(0, 1000))), 1000) for lo, hi in edges]
+                x = Fraction(rng.randint(1, 4096), 2048)
+                exact = nu_quadratics(*(q(v) for v in pt))[idx](q(x))
+                assert fam(arb(q(x)))[0].contains(arb(exact)), (which, pt, x)

@@ -6,7 +6,9 @@ coefficients are then balls containing the coefficients of every member of the f
 :func:`rigor_gyro.core.family_roots.family_real_roots` encloses its four roots by one interval Newton
 proof for all members at once (the midpoint's exact roots are only the starting guesses). The nus of
 (4) are enclosed the same way from the two quadratics; nu3, nu5, the bounds (5) and the brackets are
-the model's formulas evaluated on the balls.
+the model's formulas evaluated on the balls. At Newton's exact points the quartic's and the quadratics'
+values are also enclosed in a centred (mean-value) form in the parameters, second order in the box
+width, intersected with the direct enclosure.
 
 Guarantee: ``proved`` for a claim means the claim holds for every parameter value in the box;
 ``refuted`` means it fails for every value in the box (a certified strict violation over the whole
@@ -127,6 +129,40 @@ def _quartic_family(p: Params):
     return family, (b - 1) * (b - 1) * (a - b)
 
 
+def _nu_family(p: Params, which: str):
+    """The quadratic of (4) whose roots are nu1, nu4 (``which`` = "14") or nu2, nu6 ("26") over the box,
+    as a family (value, derivative) whose value at an exact point is also enclosed in a centred form in
+    (a, b, eps) (second order in the box width), intersected with the direct one."""
+    a, b, e, _ = p
+    mids = [arb(t.mid()) for t in (a, b, e)]
+    offs = [t - m for t, m in zip((a, b, e), mids)]
+
+    def coefs(a, b, e):
+        c2 = (a - b) * (b - 1)
+        if which == "14":
+            return [e, -(e * (a - 1) + a - b), c2]
+        return [e * a, -(e * (a - 1) + b * (a - b)), c2]
+
+    def grads(x):          # d/da, d/db, d/deps of the value at x, over the box
+        if which == "14":
+            return [-(e + 1) * x + (b - 1) * x * x, x + (a - 2 * b + 1) * x * x, 1 - (a - 1) * x]
+        return [e - (e + b) * x + (b - 1) * x * x, -(a - 2 * b) * x + (a - 2 * b + 1) * x * x, a - (a - 1) * x]
+    c = coefs(a, b, e)
+    cm = coefs(*mids)
+    P, Pm = arb_poly(c), arb_poly(cm)
+    dP = P.derivative()
+    centred = any(not o.rad().is_zero() for o in offs)
+
+    def family(x: arb) -> tuple[arb, arb]:
+        value = P(x)
+        if centred and x.rad().is_zero():
+            mv = Pm(x) + sum((g * o for g, o in zip(grads(x), offs) if not o.rad().is_zero()), arb(0))
+            if mv.is_finite():
+                value = value.intersection(mv) if value.overlaps(mv) else mv
+        return value, dP(x)
+    return family, c[2]
+
+
 def _guesses(poly) -> list[arb] | None:
     pr = isolate_polynomial(poly)
     return pr.real if pr.verified and not pr.nonreal else None
@@ -151,13 +187,11 @@ def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str
     roots_ok = omegas is not None
     # the nus
     q14, q26 = nu_quadratics(a, b, e)
-    c2 = (p.a - p.b) * (p.b - 1)
-    fam14 = [p.eps, -(p.eps * (p.a - 1) + p.a - p.b), c2]
-    fam26 = [p.eps * p.a, -(p.eps * (p.a - 1) + p.b * (p.a - p.b)), c2]
     need_nus = any(c in ("nu_ordering", "branches", "nu_bounds") for c in claims)
     g14, g26 = (_guesses(q14), _guesses(q26)) if need_nus else (None, None)
-    r14 = family_real_roots(fam14, g14) if g14 is not None and len(g14) == 2 else None
-    r26 = family_real_roots(fam26, g26) if g26 is not None and len(g26) == 2 else None
+    (f14, l14), (f26, l26) = _nu_family(p, "14"), _nu_family(p, "26")
+    r14 = family_real_roots(f14, g14, leading=l14) if g14 is not None and len(g14) == 2 else None
+    r26 = family_real_roots(f26, g26, leading=l26) if g26 is not None and len(g26) == 2 else None
     nus = None
     if r14 is not None and r26 is not None:
         nus = {1: r14[0], 2: r26[0], 3: 1 / (p.b - 1), 4: r14[1], 5: p.b / (p.b - 1), 6: r26[1]}
