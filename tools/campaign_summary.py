@@ -25,6 +25,8 @@ def _timed_out(results):
 def rows(paths):
     files = []
     for p in map(Path, paths):
+        if not p.exists():
+            raise SystemExit(f"campaign_summary: {p} does not exist (give result folders or campaign_KIND_SEED.json files)")
         files += sorted(p.glob("campaign_*.json")) if p.is_dir() else [p]
     per_kind: dict[str, list] = {}
     out = ["| kind | seed(s) | cases | proved | refuted | inconclusive | crashes | containment failures | "
