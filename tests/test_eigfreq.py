@@ -184,3 +184,29 @@ def test_the_nu_bounds_are_the_printed_formulas_5(a, b, eps):
         for k, (lo, hi) in ref.items():
             for ball_, r in zip(got[k], (lo, hi)):
                 assert certainly_lt(abs(ball_ - arb(mpmath.nstr(r, 38))), arb("1e-30") * (1 + abs(ball_))), (k, r)
+
+
+def test_the_branch_claim_decides_each_side_of_each_branch():
+    """_branch_claim on synthetic enclosures (mutation testing found these cases untested): a root on
+    either wrong side of its own branch, a root inside a neighbouring branch, an empty branch (nu4 = nu5
+    exactly), missing roots; each decided only from certain comparisons."""
+    from rigor_gyro.kinds.eigenfrequencies.claims import _branch_claim
+    nus = {1: arb("0.1"), 2: arb("0.2"), 3: arb("0.3"), 4: arb("0.4"), 5: arb("0.5"), 6: arb("0.6")}
+    good = [arb("0.05"), arb("0.25"), arb("0.45"), arb("0.7")]
+    assert _branch_claim(good, nus, True).status is Status.PROVED
+
+    def outside(omegas, nus=nus, equal=frozenset()):
+        c = _branch_claim(omegas, nus, True, equal)
+        return c.status, sorted(x["root"] for x in (c.counterexample or {}).get("outside", []))
+    assert outside([arb("0.05"), arb("0.15"), arb("0.45"), arb("0.7")]) == (Status.REFUTED, ["omega_2"])   # below nu2
+    assert outside([arb("0.05"), arb("0.35"), arb("0.45"), arb("0.7")]) == (Status.REFUTED, ["omega_2"])   # in (nu3, nu4)
+    assert outside([arb("0.05"), arb("0.25"), arb("0.55"), arb("0.7")]) == (Status.REFUTED, ["omega_3"])   # in (nu5, nu6)
+    assert outside([arb("0.15"), arb("0.25"), arb("0.45"), arb("0.7")]) == (Status.REFUTED, ["omega_1"])   # above nu1
+    assert outside([arb("0.05"), arb("0.25"), arb("0.45"), arb("0.55")]) == (Status.REFUTED, ["omega_4"])  # below nu6
+    # nu4 = nu5 exactly: (nu4, nu5) is empty, so omega_3 is outside it whatever its ball; omega_4 is not touched
+    flat = {**nus, 4: arb("0.45"), 5: arb("0.45")}
+    touching = [arb("0.05"), arb("0.25"), arb("0.45") + arb(0).union(arb("1e-20")), arb("0.7")]
+    assert outside(touching, flat, {("nu4", "nu5")}) == (Status.REFUTED, ["omega_3"])
+    assert _branch_claim(touching, flat, True).status is Status.INCONCLUSIVE          # not known equal: undecided
+    assert _branch_claim([], nus, True).status is Status.INCONCLUSIVE
+    assert _branch_claim(good, {1: nus[1]}, True).status is Status.INCONCLUSIVE
