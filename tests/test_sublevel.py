@@ -241,3 +241,67 @@ def test_a_tampered_extent_witness_is_rejected(example):
     assert rejected(lambda d: shrink(d, "extent_x2"))
     # a point below the stored lower end: the stored enclosure then claims more than the witness shows
     assert rejected(lambda d: w(d)["extent_x2"].__setitem__("point", ["1/2", "1/2"]))
+
+
+def test_slice_in_region_needs_a_non_empty_slice_inside_the_disc(example):
+    """slice_in_region: the slice {V(., x2, .) < c} certainly non-empty with its centre inside the disc
+    (true at x2 = 0 for c = c_set; false at x2 = x2*, where phi = c* > c_set, and for a tiny disc)."""
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    from rigor_gyro.kinds.lyapunov.model import slice_in_region
+    inv = next(c for c in example["claims"] if c["id"] == "invariant_estimate")
+    c = Fraction(inv["details"]["c_set"])
+    R = Fraction(example["quantities"]["R_used"]["lo"])
+    g = validate(load_scene("agafonov2013")).gimbal
+    with working_precision(64):
+        cb, Rb = arb(c.numerator) / c.denominator, arb(R.numerator) / R.denominator
+        assert slice_in_region(g, cb, Rb, arb(0))
+        assert slice_in_region(g, cb, Rb, g.c.x2_star * arb("0.9"))
+        assert not slice_in_region(g, cb, Rb, g.c.x2_star)
+        assert not slice_in_region(g, cb, Rb * arb("1e-9"), g.c.x2_star * arb("0.9"))   # centre outside
+
+
+def _exact_min_on_half_line(g, x2, t):
+    """min of V(r cos t, x2, r sin t) over r != 0 with A + r B <= 0 at an exact point, in closed form (the
+    vertex of the quadratic clamped into the half-line r B <= -A), as a ball; None where undecided."""
+    from rigor_gyro.kinds.lyapunov.model import v_polar, vdot_polar
+    A, B = vdot_polar(g, x2, t)
+    al, be, ga = v_polar(g, x2, t)
+    if not (A > 0) or B.contains(0):
+        return None
+    r0, rv = -A / B, -be / (2 * ga)
+    if B < 0:                   # r >= r0 > 0
+        r = rv if rv > r0 else r0 if rv < r0 else None
+    else:                       # r <= r0 < 0
+        r = rv if rv < r0 else r0 if rv > r0 else None
+    return None if r is None else al + be * r + ga * r * r
+
+
+def test_the_sublevel_bound_is_below_the_exact_minimum_at_points_of_each_box():
+    """On random boxes of (x2, t), the lower bound of V over {Vdot >= 0} is below the exact minimum over the
+    half-line at points of the box (computed in closed form, not through the bound's code): a bound taken
+    on the wrong side of r = 0 or from the wrong vertex would exceed it somewhere."""
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    from rigor_gyro.kinds.lyapunov.model import sublevel_lower_bound
+    g = validate(load_scene("agafonov2013")).gimbal
+    rng = random.Random(11)
+    checked = 0
+    with working_precision(64):
+        lb = sublevel_lower_bound(g)
+        xs, pi = g.c.x2_star, arb.pi()
+        for _ in range(300):
+            w = Fraction(1, 2 ** rng.randint(3, 9))
+            u0 = Fraction(rng.randint(-2 ** 9, 2 ** 9), 2 ** 9) * (1 - w)
+            s0 = Fraction(rng.randint(0, 2 ** 9), 2 ** 9) * (1 - w)
+            box = Box.of({"u": (u0, u0 + w), "s": (s0, s0 + w)})
+            bound = lb({k: box.ball(k) for k in box.names}).lower()
+            if not bound.is_finite():
+                continue
+            for _ in range(3):
+                u = u0 + w * Fraction(rng.randint(0, 64), 64)
+                s = s0 + w * Fraction(rng.randint(0, 64), 64)
+                v = _exact_min_on_half_line(g, xs * (arb(u.numerator) / u.denominator),
+                                            pi * (arb(s.numerator) / s.denominator))
+                if v is not None:
+                    checked += 1
+                    assert not (bound > v), (u, s, bound, v)
+    assert checked > 100
