@@ -210,3 +210,17 @@ def test_the_branch_claim_decides_each_side_of_each_branch():
     assert _branch_claim(touching, flat, True).status is Status.INCONCLUSIVE          # not known equal: undecided
     assert _branch_claim([], nus, True).status is Status.INCONCLUSIVE
     assert _branch_claim(good, {1: nus[1]}, True).status is Status.INCONCLUSIVE
+
+
+def test_a_misprinted_exact_hz_value_neither_hides_itself_nor_stretches_the_scales():
+    """An 'exact' Hz value 10 times off is judged against the scales the *other* 'exact' values imply (its
+    own range is left out), so it stays a decimal shift, and the interval used for the other rows stays
+    the consistent one (a hostile review found the hull including each row's own range)."""
+    import dataclasses
+    sc = load_scene("rudenko1976")
+    paper = dict(sc.paper, hz_exact=["41.4", "121.5", "521.5", "9357"])
+    rows = {r["id"]: r for r in prove_scene(dataclasses.replace(sc, name="v", paper=paper)).to_json()["paper"]}
+    assert rows["'exact' lambda_4 (Hz)"]["class"] == "decimal-shift"
+    assert rows["'exact' lambda_3 (Hz)"]["class"] in ("agrees", "propagated")
+    assert rows["(9) lambda_3- (Hz)"]["class"] == "propagated"           # still at a consistent scale
+    assert "616.2" in rows["(9) lambda_3- (Hz)"]["class_reading"]

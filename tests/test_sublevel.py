@@ -178,6 +178,26 @@ def test_a_tampered_c_max_witness_is_rejected(example):
     assert rejected(lambda d: det(d).__setitem__("binds", "vdot"))
     assert rejected(lambda d: w(d).pop("point"))
 
+    # a hostile review: a non-positive c_max_lower, a stored bound wider than its decimal
+    def nonpositive(d):
+        for k in ("c_max_lower", "vdot_level_lower"):
+            det(d)[k] = "-1"
+            d["quantities"][k] = {"lo": "-1", "hi": "-1", "mid": "-1", "rad": "0"}
+        det(d)["binds"] = "undecided"
+
+    def wide(d):
+        d["quantities"]["c_max_lower"]["hi"] = "234"
+    assert rejected(nonpositive)
+    assert rejected(wide)
+
+
+def test_an_axis_segment_outside_the_range_is_rejected(example):
+    """extent_x2_axis is the root of mu F(x2) = c_set in [0, x2*]; a stored segment beyond x2* (where the sine
+    law's F decreases again) must not be confirmed."""
+    d = copy.deepcopy(example)
+    d["quantities"]["extent_x2_axis"] = {"lo": "3", "hi": "3.1", "mid": "3.05", "rad": "0.05"}
+    assert not check_certificate(_refix(d)).ok
+
 
 # ------------------------------------------------------------------ the extents of {V < c_set}
 

@@ -116,6 +116,19 @@ def _scale_range(printed: str, w: arb) -> arb:
     return ((x - hq) / w.sqrt()).union((x + hq) / w.sqrt())
 
 
+def _hull(balls: list) -> arb | None:
+    """The union of the balls (None for none)."""
+    out = None
+    for b in balls:
+        out = b if out is None else out.union(b)
+    return out
+
+
+def _meets(x: arb, y: arb) -> bool:
+    """Certainly a common point: the exact hulls intersect."""
+    return certainly_le(x.lower(), y.upper()) and certainly_le(y.lower(), x.upper())
+
+
 def _at_paper_scale(row: AuditRow, printed: str, w: arb | None, hull: arb | None) -> AuditRow:
     """Mark ``row`` ``propagated`` when the print is a correct rounding of hz_scale * sqrt(w) for some
     scale inside ``hull``, the interval of scales the paper's own 'exact' values imply (the paper never
@@ -192,16 +205,20 @@ def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[A
     hull = None
     if exact:
         ranges = [_scale_range(x, omegas[j - 1]) for j, x in enumerate(exact, start=1)]
-        hull = ranges[0]
-        for r in ranges[1:]:
-            hull = hull.union(r)
+        # the scales the paper's 'exact' values imply: each value's range, kept when it meets the hull of
+        # the others' (a misprinted value, say 100 times off, would otherwise stretch the interval for all)
+        others = [_hull([r for i, r in enumerate(ranges) if i != j]) for j in range(len(ranges))]
+        consistent = [r for r, o in zip(ranges, others) if o is not None and _meets(r, o)]
+        hull = _hull(consistent)
         for j, x in enumerate(exact, start=1):
             st, note = audit_printed(x, s * omegas[j - 1].sqrt())
             rng = ranges[j - 1]
+            # an 'exact' value is judged against the scales the *other* consistent values imply
+            own_hull = _hull([r for i, r in enumerate(ranges) if i != j - 1 and r in consistent])
             rows.append(_at_paper_scale(AuditRow(f"'exact' lambda_{j} (Hz)", x, f"hz_scale * sqrt(omega_{j})",
                                                  s * omegas[j - 1].sqrt(), st,
                                                  f"{note}; correct rounding for scales in {_fmt(rng)}"),
-                                        x, omegas[j - 1], hull))
+                                        x, omegas[j - 1], own_hull))
         lo_max = max(ranges, key=lambda r: float(r.lower().mid()))  # float picks; balls decide below
         hi_min = min(ranges, key=lambda r: float(r.upper().mid()))
         disjoint = certainly_gt(lo_max.lower(), hi_min.upper())

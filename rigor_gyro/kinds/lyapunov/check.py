@@ -239,7 +239,9 @@ def check(model, data: dict) -> list[CheckResult]:
                     e_lo, e_hi = stored_interval(q["extent_x2_axis"])
                     lo_b, hi_b = arb(fmpq_of(e_lo)), arb(fmpq_of(e_hi))
                     capped = certainly_lt(c.mu * g.F(xs), cl) and encloses((e_lo, e_hi), xs)
-                    root_in = (certainly_lt(c.mu * g.F(lo_b), cl) or not certainly_positive(lo_b)) and \
+                    # the segment must lie in the range (mu F is increasing only there: the sine law's G is not)
+                    root_in = certainly_le(lo_b, xs) and \
+                        (certainly_lt(c.mu * g.F(lo_b), cl) or not certainly_positive(lo_b)) and \
                         (certainly_gt(c.mu * g.F(hi_b.min(xs)), cl) or encloses((e_lo, e_hi), xs))
                     if capped or root_in:
                         verified.add("extent_x2_axis")
@@ -449,9 +451,13 @@ def _check_sublevel(g, xs: arb, w: dict, details: dict, q: dict, verified: set) 
                     ("vdot_level_upper", n_up_t)):
         if t is None:
             continue
-        if name not in q or not encloses(stored_interval(q[name]), arb(fmpq_of(t))):
-            return False, f"the stored {name} does not hold its stated decimal {details.get(name)}"
+        # a bound is one exact decimal: its stored ball must hold it and be no wider than a rounding of it
+        iv = stored_interval(q[name]) if name in q else None
+        if iv is None or not encloses(iv, arb(fmpq_of(t))) or (iv[1] - iv[0]) > abs(t) * Fraction(1, 2 ** 40):
+            return False, f"the stored {name} is not the stated decimal {details.get(name)}"
         verified.add(name)
+    if not lo_t > 0:
+        return False, f"c_max_lower = {details['c_max_lower']} is not positive: the statement says c_max > 0"
     boxes = [Box.from_json(b) for b in w.get("boxes", [])]
     if not tiles_by_bisection(Box.of(DIRECT_DOMAIN), boxes):
         return False, "the stored (x2, t) boxes do not tile the domain"

@@ -21,7 +21,7 @@ exact parameters:
 * ``invariant_estimate``: c* = min of V over the boundary of region (17) (faces |x2| = x2* in closed form,
   the cylinder x1^2 + x3^2 = R^2 by 2-D branch and bound), so {x in (17): V < c*} is positively
   invariant and (LaSalle, x2 f(x2) > 0) inside the domain of attraction; its certified extents.
-* ``largest_sublevel``: bounds of c_max, the infimum of V over {Vdot >= 0, x != 0, |x2| <= x2*} and the
+* ``largest_sublevel``: bounds of c_max, the infimum of V over {Vdot >= 0, (x1, x3) != 0, |x2| <= x2*} and the
   faces |x2| = x2* (:mod:`rigor_gyro.kinds.lyapunov.sublevel`): the largest sublevel set of V that is an
   estimate without region (17); refuted when c_max <= 0 is certified.
 * ``best_mu``: R_sup(mu) = min over x2 of min_i ci0 / |(ci1, ci3)| is the supremum of the radii for
@@ -103,14 +103,15 @@ CLAIMS = {
     "v_positive": "V > 0 for |x2| <= x2*, (x1, x2, x3) != 0.",
     "invariant_estimate": "c* = min of V over the boundary of region (17) is enclosed and positive: "
                           "{x in (17): V(x) < c*} is positively invariant and lies in the domain of attraction.",
-    "largest_sublevel": "c_max, the infimum of V over the set where Vdot >= 0 (x != 0, |x2| <= x2*) and over the "
-                        "faces |x2| = x2*, is positive and lies in [c_max_lower, c_max_upper]: for every c <= c_max_lower the "
-                        "connected component of {V < c} that contains 0 lies in |x2| < x2* and Vdot < 0 on it off "
-                        "the origin (with v_positive: positively invariant, bounded, inside the domain of "
-                        "attraction; no region (17) or radius R is used). Each part is bounded separately: over "
-                        "{Vdot >= 0} in [vdot_level_lower, vdot_level_upper] (branch and bound over (x2, t) in "
-                        "polar form below, V at a certified point where Vdot > 0 above), over the faces by "
-                        "phi(+-x2*) in closed form; the reason says which part binds and compares c_max with c*.",
+    "largest_sublevel": "c_max, the infimum of V over the set where Vdot >= 0 with (x1, x3) != (0, 0) and |x2| <= x2*, "
+                        "and over the faces |x2| = x2*, is positive and lies in [c_max_lower, c_max_upper]: for every "
+                        "c <= c_max_lower the connected component of {V < c} that contains 0 lies in |x2| < x2*, and "
+                        "Vdot <= 0 on it with equality only where x1 = x3 = 0 (with v_positive and x2 f(x2) > 0, "
+                        "LaSalle: positively invariant, bounded, inside the domain of attraction; no region (17) or "
+                        "radius R is used). Each part is bounded separately: over {Vdot >= 0, (x1, x3) != 0} in "
+                        "[vdot_level_lower, vdot_level_upper] (branch and bound over (x2, t) in polar form below, V at "
+                        "a certified point where Vdot > 0 above), over the faces by phi(+-x2*) in closed form; the "
+                        "reason says which part binds and compares c_max with c*.",
     "equilibria": "The equilibria of system (2) with |x2| <= pi are exactly the points listed in the reason (x3 = 0, "
                   "x1 = -f(x2)/k, and f(x2) = 0, cos x2 = 0 or k H + C0 sin x2 f(x2) = 0; every root isolated on a "
                   "certified cover of [-pi - 1/64, pi + 1/64]), each with the eigenvalues of its linearisation and its "
@@ -379,7 +380,9 @@ def _largest_sublevel(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
         ref = r.refutation
         ce = ({"where": "faces", "phi": _fmt(ref["phi"], 20)} if ref["where"] == "faces" else
               {"where": "origin", "x2": "0", "t_over_pi": str(ref["s"]), "A": _fmt(ref["A"], 20)})
-        claim = _claim("largest_sublevel", Status.REFUTED, r.reason + ": no sublevel set of this V is an estimate", ce)
+        tail = ("; so no sublevel set of V around the origin is an estimate" if ref["where"] == "origin" else
+                "; so no sublevel set of V reaching the faces at this x2* is an estimate (a smaller x2* may still give one)")
+        claim = _claim("largest_sublevel", Status.REFUTED, r.reason + tail, ce)
         return claim
     if r.c_lower is None:
         return _claim("largest_sublevel", Status.INCONCLUSIVE, r.reason + "; try a larger max_pieces or --maxprec")

@@ -631,7 +631,7 @@ def sublevel_lower_bound(g: Gimbal):
     """The box function {u, s} -> a ball whose lower end is <= V(r cos t, x2, r sin t) for every x2 = u x2*,
     t = pi s in the box and every real r != 0 with Vdot >= 0 there (Vdot = -r^2 (A + r B), see
     :func:`vdot_polar`, so those r are the half-line r B <= -A), i.e. a lower bound of V over the part of
-    {Vdot >= 0, x != 0} above the box (+inf where that part is empty).
+    {Vdot >= 0, (x1, x3) != 0} above the box (+inf where that part is empty).
 
     How: where A > 0 certainly, |r| >= A/|B| (its lower end over the box) and, when B has one sign, the
     sign of r is known; V = alpha + beta r + gamma r^2 is then bounded below over that half-line by its

@@ -1,11 +1,14 @@
 """The largest sublevel set of V (7) on which Vdot <= 0: certified bounds of c_max.
 
-c_max is the infimum of V over the set N = {Vdot >= 0, x != 0, |x2| <= x2*} together with the faces
-|x2| = x2* (the edge of the range where V > 0 is certified). For every c <= c_max the connected
-component of {V < c} that contains the origin lies in |x2| < x2* and Vdot < 0 on it except at the
-origin: with V > 0 off the origin (claim ``v_positive``) it is positively invariant, bounded (V grows
-like r^2 in x1, x3, see :func:`rigor_gyro.kinds.lyapunov.model.v_polar`) and lies in the domain of
-attraction. This is the classic estimate for a given V; it needs no region (17) and no radius R.
+c_max is the infimum of V over the set N = {Vdot >= 0, (x1, x3) != (0, 0), |x2| <= x2*} together with the
+faces |x2| = x2* (the edge of the range where V > 0 is certified). (On the x2 axis x1 = x3 = 0, Vdot = 0
+exactly while V = mu F(x2) -> 0: those points are left out of N; there x1' = -f(x2)/D != 0, so no
+trajectory stays on the axis off the origin.) For every c <= c_max the connected component of {V < c}
+that contains the origin lies in |x2| < x2*, and Vdot <= 0 on it with equality only on the axis: with
+V > 0 off the origin (claim ``v_positive``) and x2 f(x2) > 0 it is positively invariant, bounded (V grows
+like r^2 in x1, x3, see :func:`rigor_gyro.kinds.lyapunov.model.v_polar`) and, by LaSalle's principle,
+inside the domain of attraction. This is the classic estimate for a given V; it needs no region (17)
+and no radius R.
 
 How:
 
@@ -174,13 +177,13 @@ def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
     out.face = face
     if face.is_finite() and certainly_le(face, 0):
         out.refutation = {"where": "faces", "phi": face}
-        out.reason = f"min of V on the faces |x2| = x2* is {face.str(8)} <= 0 (certified): c_max <= 0"
+        out.reason = f"min of V on the faces |x2| = x2* is {face.str(8)} <= 0 (certified): c_max <= 0 at this x2*"
         return out
     origin = _origin_counterexample(g)
     if origin is not None:
         out.refutation = {"where": "origin", "s": origin[0], "A": origin[1]}
         out.reason = (f"at x2 = 0, t = pi * {origin[0]}: A = {origin[1].str(8)} < 0 (certified), so Vdot = -r^2 (A + r B) "
-                      "> 0 for all small r > 0 there while V -> 0: c_max = 0")
+                      "> 0 for all small r > 0 there while V -> 0: c_max <= 0")
         return out
     if not (face.is_finite() and certainly_positive(face)):
         out.reason = f"the minimum of V on the faces |x2| = x2* is not certainly positive ({face.str(6)})"
@@ -199,7 +202,7 @@ def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
     top = _q(Fraction(out.n_upper)) if out.n_upper is not None else face.lower()
     best = lower_bound_on_box(lb, whole, top * (1 - arb(GAP)), max_pieces=min(max_pieces, BOX_BUDGET))
     if not (best.bound.is_finite() and certainly_positive(best.bound)):
-        out.reason = ("no positive lower bound of V over {Vdot >= 0, x != 0, |x2| <= x2*} was certified "
+        out.reason = ("no positive lower bound of V over {Vdot >= 0, (x1, x3) != 0, |x2| <= x2*} was certified "
                       f"(best {best.bound.str(6)} on {best.boxes} boxes)")
         return out
     out.n_lower = decimal_bounds(best.bound, 12)[0]

@@ -360,14 +360,17 @@ def _printed_form7(paper: dict) -> dict[tuple[str, str], tuple[arb, str]]:
 
 def _printed_closed_form(paper: dict):
     """(component, t) -> the paper's closed form (7) evaluated from its own printed numbers (coefficients
-    of [e^-mu1t sin wt, e^-mu1t cos wt, e^-mu2t, e^-t/sigma, t, const], and mu1, omega, mu2, 1/sigma), each
-    printed decimal read as every number it may round from: a ball holding every value the paper's Table 2
-    could show if its arithmetic were exact. None when the scene does not print them all. Table 2's beta'
+    of [e^-mu1t sin wt, e^-mu1t cos wt, e^-mu2t, e^-t/sigma, t, const], each read as every number it may
+    round from, and mu1, omega, mu2, 1/sigma as printed): a ball holding the values the paper's Table 2
+    could show if its arithmetic were exact (each coefficient enters once, so the ball is that set, up to
+    the basis values' rounding). None when the scene does not print them all. Table 2's beta'
     is the printed beta_dot."""
     orbit = paper.get("orbit", {})
     if not orbit or not all(k in paper for k in ("mu1", "omega", "mu2", "inv_sigma")):
         return None
-    mu1, w, mu2, isg = (_within_rounding(paper[k]) for k in ("mu1", "omega", "mu2", "inv_sigma"))
+    # the exponents as printed (each appears in several terms: read within its rounding, a ball would
+    # overestimate the set of values the inputs allow); the coefficients, each in one term, within theirs
+    mu1, w, mu2, isg = (ball(paper[k]) for k in ("mu1", "omega", "mu2", "inv_sigma"))
 
     def at(comp: str, t: arb) -> arb | None:
         cf = orbit.get("beta_dot" if comp == "beta'" else comp)
