@@ -325,3 +325,11 @@ def test_the_sublevel_bound_is_below_the_exact_minimum_at_points_of_each_box():
                     checked += 1
                     assert not (bound > v), (u, s, bound, v)
     assert checked > 100
+
+
+def test_lower_bound_on_box_stops_on_a_box_of_points():
+    """A degenerate box cannot be split: the search stops there with the bound so far (no crash)."""
+    whole = Box.of({"x": (Fraction(1, 3), Fraction(1, 3)), "y": (Fraction(0), Fraction(0))})
+    with working_precision(64):
+        r = lower_bound_on_box(lambda b: b["x"] - 1, whole, "0", max_pieces=50)
+    assert not r.reached and r.bound < 0 and len(r.leaves) == 1

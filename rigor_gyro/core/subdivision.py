@@ -303,11 +303,11 @@ def lower_bound_on_box(f: BoxFunction, whole, target: object, *, max_pieces: int
             break
         if count + 2 > max_pieces:
             break
-        key, _, box = heapq.heappop(heap)
+        key, n, box = heapq.heappop(heap)
         try:
             halves = box.split(whole)
         except ValueError:              # a box of points: nothing left to split
-            heapq.heappush(heap, (key, count, box))
+            heapq.heappush(heap, (key, n, box))     # its own tie-breaker back (Boxes do not compare)
             break
         for half in halves:
             push(half)
