@@ -120,6 +120,7 @@ def test_nus_are_compared_exactly_in_every_case():
     p = fmpq_poly([6, -5, 1])           # (w - 2)(w - 3): shares the root 2 (q's larger, p's smaller)
     assert _root_index(q, fmpq(1)) == 0 and _root_index(q, fmpq(2)) == 1 and _root_index(q, fmpq(3)) is None
     assert _root_index(fmpq_poly([-6, 1, 1]), fmpq(2)) == 1        # (w - 2)(w + 3): 2 is the larger
+    assert _root_index(3 * q, fmpq(1)) == 0 and _root_index(3 * q, fmpq(2)) == 1    # not monic
     assert _root_index(fmpq_poly([-6, -1, 1]), fmpq(-2)) == 0      # (w + 2)(w - 3): -2 is the smaller
     r = lambda x: ("rational", fmpq(x))                               # noqa: E731
     assert nus_exactly_equal(r(2), r(2)) and not nus_exactly_equal(r(2), r(3))
@@ -224,3 +225,23 @@ def test_a_misprinted_exact_hz_value_neither_hides_itself_nor_stretches_the_scal
     assert rows["'exact' lambda_3 (Hz)"]["class"] in ("agrees", "propagated")
     assert rows["(9) lambda_3- (Hz)"]["class"] == "propagated"           # still at a consistent scale
     assert "616.2" in rows["(9) lambda_3- (Hz)"]["class_reading"]
+
+
+def test_the_approximations_are_the_printed_formulas_12_13():
+    """approximation(j) against (12) and (13) evaluated in mpmath at the example (a swapped label or formula
+    would pass the claim, which only encloses errors; it does not pass this)."""
+    import mpmath
+    from fractions import Fraction
+    from rigor_gyro.kinds.eigenfrequencies.model import Params, approximation
+    mpmath.mp.dps = 40
+    a, b, e, W = (mpmath.mpf(Fraction(x).numerator) / Fraction(x).denominator for x in ("15.08", "6.154", "0.1076", "0.629"))
+    r3 = (e / (b * (b - 1)) + (b - 1) * W / b) / 2
+    root = mpmath.sqrt(r3 ** 2 + (b - 1) * W * (b - e) / b ** 2)
+    ref = {1: e * W / (W * (a - b) + e * a * b), 2: (e * (b - 1) * a + W * (a - b)) / ((a - b) * (b - 1) * (b + W)),
+           3: b / (b - 1) + r3 - root, 4: b / (b - 1) + r3 + root}
+    q = lambda x: arb(fmpq(Fraction(x).numerator, Fraction(x).denominator))     # noqa: E731
+    with working_precision(128):
+        p = Params(q("15.08"), q("6.154"), q("0.1076"), q("0.629"))
+        for j, r in ref.items():
+            v = approximation(j, p)
+            assert certainly_lt(abs(v - arb(mpmath.nstr(r, 38))), arb("1e-30") * (1 + abs(v))), j
