@@ -60,6 +60,7 @@ from ...core.boxes import Box
 from ...core.subdivision import certify_positive, certify_positive_on_box, enclose_max
 from .. import Attempt, Phases
 from .equilibria import equilibria
+from .search import grid_then_compass
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
 from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, direct_margin, vdot_polar, closed_form_constants, cylinder_lower_bound, hypot_ball,
                     mean_value_enclosure, slice_extent, slice_in_region)
@@ -288,31 +289,15 @@ def _direct_search(g: Gimbal) -> tuple[float, float, float, float | None]:
     counterexample's direction; both are certified afterwards."""
     xs, pi = g.c.x2_star, arb.pi()
 
+    amin = math.inf
+
     def ratio(u: float, sv: float) -> tuple[float, float]:
+        nonlocal amin
         A, B = vdot_polar(g, xs * arb(u), pi * arb(sv))
         a, b = float(A.mid()), float(B.mid())
+        amin = min(amin, a)
         return (a / abs(b) if b != 0 else math.inf), a
-    best, amin = (math.inf, 0.0, 0.5), math.inf
-    for i in range(17):
-        for j in range(33):
-            u, sv = -1 + 2 * i / 16, j / 32
-            r, a = ratio(u, sv)
-            amin = min(amin, a)
-            if r < best[0]:
-                best = (r, u, sv)
-    r0, u, sv = best
-    hu, hs = 2 / 16, 1 / 32
-    for _ in range(90):
-        moved = False
-        for du, ds in ((hu, 0), (-hu, 0), (0, hs), (0, -hs)):
-            nu, ns = u + du, sv + ds
-            if -1 <= nu <= 1 and 0 <= ns <= 1:
-                r, a = ratio(nu, ns)
-                amin = min(amin, a)
-                if r < r0:
-                    r0, u, sv, moved = r, nu, ns, True
-        if not moved:
-            hu, hs = hu / 2, hs / 2
+    r0, u, sv, _ = grid_then_compass(ratio, (17, 33), 90)
     return r0, u, sv, amin
 
 

@@ -40,6 +40,7 @@ from ...core.balls import certainly_le, certainly_positive, decimal_bounds, exac
 from ...core.boxes import Box
 from ...core.subdivision import lower_bound_on_box
 from .model import DIRECT_DOMAIN, Gimbal, face_minimum, sublevel_lower_bound, v_polar, vdot_polar
+from .search import grid_then_compass
 
 __all__ = ["Sublevel", "largest_sublevel", "GAP", "BOX_BUDGET"]
 
@@ -112,27 +113,7 @@ def _search(g: Gimbal, grid: tuple[int, int] = (33, 65)) -> tuple[float, float, 
         if not all(math.isfinite(v) for v in fl) or fl[4] <= 0:
             return math.inf, math.nan
         return _value_on_half_line(*fl)
-    best = (math.inf, 0.0, 0.5, math.nan)
-    nu, ns = grid
-    for i in range(nu):
-        for j in range(ns):
-            u, s = -1 + 2 * i / (nu - 1), j / (ns - 1)
-            v, r = val(u, s)
-            if v < best[0]:
-                best = (v, u, s, r)
-    v0, u, s, r0 = best
-    hu, hs = 2 / (nu - 1), 1 / (ns - 1)
-    for _ in range(80):
-        moved = False
-        for du, ds in ((hu, 0), (-hu, 0), (0, hs), (0, -hs)):
-            a, b = u + du, s + ds
-            if -1 <= a <= 1 and 0 <= b <= 1:
-                v, r = val(a, b)
-                if v < v0:
-                    v0, u, s, r0, moved = v, a, b, r, True
-        if not moved:
-            hu, hs = hu / 2, hs / 2
-    return v0, u, s, r0
+    return grid_then_compass(val, grid, 80, extra=math.nan)
 
 
 def _point_of_n(g: Gimbal, u: float, s: float, r: float) -> tuple[tuple[arb, arb, arb], arb] | None:

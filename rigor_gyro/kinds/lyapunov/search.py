@@ -1,0 +1,41 @@
+"""Searches on point values over the (x2, t) rectangle of the polar form: they only *choose* (a radius to
+certify, a direction for a counterexample, a target for a lower bound); nothing they return is trusted.
+
+Coordinates: x2 = u x2*, t = pi s, (u, s) in [-1, 1] x [0, 1], as in
+:data:`rigor_gyro.kinds.lyapunov.model.DIRECT_DOMAIN`.
+"""
+from __future__ import annotations
+
+import math
+from typing import Any, Callable
+
+__all__ = ["grid_then_compass"]
+
+
+def grid_then_compass(value: Callable[[float, float], tuple[float, Any]], grid: tuple[int, int], steps: int,
+                      extra: Any = None) -> tuple[float, float, float, Any]:
+    """The smallest ``value(u, s)[0]`` on an nu x ns grid of the rectangle (ends included), then refined by a
+    compass search (the four axis moves; the step halves when none improves) for ``steps`` rounds. Returns
+    (value, u, s, the second item ``value`` returned there; ``extra`` if no finite value was seen). A
+    heuristic: no guarantee of a global minimum."""
+    nu, ns = grid
+    best = (math.inf, 0.0, 0.5, extra)
+    for i in range(nu):
+        for j in range(ns):
+            u, s = -1 + 2 * i / (nu - 1), j / (ns - 1)
+            v, x = value(u, s)
+            if v < best[0]:
+                best = (v, u, s, x)
+    v0, u, s, x0 = best
+    hu, hs = 2 / (nu - 1), 1 / (ns - 1)
+    for _ in range(steps):
+        moved = False
+        for du, ds in ((hu, 0), (-hu, 0), (0, hs), (0, -hs)):
+            a, b = u + du, s + ds
+            if -1 <= a <= 1 and 0 <= b <= 1:
+                v, x = value(a, b)
+                if v < v0:
+                    v0, u, s, x0, moved = v, a, b, x, True
+        if not moved:
+            hu, hs = hu / 2, hs / 2
+    return v0, u, s, x0
