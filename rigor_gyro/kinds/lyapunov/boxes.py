@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from flint import arb, fmpq
+from flint import fmpq
 
 from ...core.boxes import Box
 from ...core.errors import ParameterError

@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
-from flint import arb, fmpq
+from flint import arb
 
 from ...check import CheckResult
 from ...core.balls import certainly_gt, certainly_le, certainly_lt, certainly_positive, exact_endpoints, working_precision

@@ -51,7 +51,7 @@ from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
            "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound",
-           "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "v_polar", "sublevel_lower_bound", "face_minimum",
+           "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "v_polar", "sublevel_lower_bound",
            "slice_extent", "slice_in_region"]
 
 
@@ -670,12 +670,6 @@ def sublevel_lower_bound(g: Gimbal):
             return a + b * rho + glo * rho * rho
         return a - b * b / (4 * glo)
     return f
-
-
-def face_minimum(g: Gimbal, x2) -> arb:
-    """min over (x1, x3) of V at a fixed x2 (phi = mu F - f3^2 / (2 S), attained at
-    :meth:`Gimbal.phi_minimiser`): an enclosure."""
-    return g.phi(x2)
 
 
 # --------------------------------------------------------------------------- extents of {V < c}

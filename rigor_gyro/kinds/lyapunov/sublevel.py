@@ -39,7 +39,7 @@ from flint import arb, fmpq
 from ...core.balls import certainly_le, certainly_positive, decimal_bounds, exact_fraction
 from ...core.boxes import Box
 from ...core.subdivision import lower_bound_on_box
-from .model import DIRECT_DOMAIN, Gimbal, face_minimum, sublevel_lower_bound, v_polar, vdot_polar
+from .model import DIRECT_DOMAIN, Gimbal, sublevel_lower_bound, v_polar, vdot_polar
 from .search import grid_then_compass
 
 __all__ = ["Sublevel", "largest_sublevel", "GAP", "BOX_BUDGET"]
@@ -151,8 +151,8 @@ def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
     precision, on at most min(``max_pieces``, BOX_BUDGET) boxes of (x2, t)."""
     xs = g.c.x2_star
     out = Sublevel()
-    face = face_minimum(g, xs)
-    other = face_minimum(g, -xs)
+    face = g.phi(xs)                # phi = min over (x1, x3) of V at fixed x2 (Gimbal.phi)
+    other = g.phi(-xs)
     face = face if certainly_le(face.upper(), other.lower()) else (
         other if certainly_le(other.upper(), face.lower()) else face.union(other))
     out.face = face
