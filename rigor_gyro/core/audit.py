@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import difflib
 import re
-from decimal import ROUND_HALF_EVEN, Decimal
+from decimal import Decimal
 from fractions import Fraction
 
 from flint import arb, fmpq
@@ -135,20 +135,28 @@ def _sig_digits(printed: str) -> int:
 
 def agreeing_digits(printed: str, value: arb) -> int:
     """Largest d <= printed significant digits such that printed, rounded to d significant digits, is
-    certainly a correct rounding of ``value`` at that many digits (0 if none)."""
-    dec = Decimal(printed.strip())
-    total = _sig_digits(printed)
-    best = 0
-    if dec == 0 or not value.is_finite():
+    certainly a correct rounding of ``value`` at that many digits (0 if none). Exact integer arithmetic."""
+    sign, digs, exp = Decimal(printed.strip()).as_tuple()
+    total = len(digs)
+    M = int("".join(map(str, digs)) or "0")
+    if M == 0 or not value.is_finite():
         return 0
-    lo, hi = exact_endpoints(value)         # the ball's exact ends, once: each test is integer comparisons
-    ln, ld, hn, hd = lo.numerator, lo.denominator, hi.numerator, hi.denominator
+    ln, ld, hn, hd = _endpoint_integers(value)   # the ball's exact ends: each test is integer comparisons
+    adjusted = exp + total - 1
+    best = 0
     for d in range(1, total + 1):
-        shift = dec.adjusted() - d + 1          # exponent of the last kept digit
-        sign, digs, exp = dec.quantize(Decimal(1).scaleb(shift), rounding=ROUND_HALF_EVEN).as_tuple()
-        r = int("".join(map(str, digs)) or "0") * (-1 if sign else 1)
-        # rounded = r 10^exp, half = 5 10^(exp-1): within half a unit <=> 10 r - 5 <= 10 x / 10^exp <= 10 r + 5
-        e = exp - 1
+        k = total - d                               # digits dropped: the last kept digit is at 10^(exp + k)
+        if k:
+            p10 = 10 ** k
+            r, rem = divmod(M, p10)
+            twice = 2 * rem
+            if twice > p10 or (twice == p10 and r % 2):
+                r += 1                              # ROUND_HALF_EVEN, as Decimal.quantize
+        else:
+            r = M
+        r = -r if sign else r
+        # rounded = r 10^shift, half = 5 10^(shift-1): within half a unit <=> 10 r - 5 <= 10 x / 10^shift <= 10 r + 5
+        e = adjusted - d                            # shift - 1
         if e >= 0:
             scale = 10 ** e
             ok = (10 * r - 5) * scale * ld <= ln and hn <= (10 * r + 5) * scale * hd
@@ -158,3 +166,19 @@ def agreeing_digits(printed: str, value: arb) -> int:
         if ok:
             best = d
     return best
+
+
+_ENDS: dict = {}
+
+
+def _endpoint_integers(value: arb) -> tuple[int, int, int, int]:
+    """(ln, ld, hn, hd) with the exact ends of a finite ball lo = ln/ld, hi = hn/hd, memoised by the
+    ball's exact midpoint and radius (the classifier asks the same value about many readings)."""
+    key = (value.mid().man_exp(), value.rad().man_exp())
+    hit = _ENDS.get(key)
+    if hit is None:
+        if len(_ENDS) > 4096:
+            _ENDS.clear()
+        lo, hi = exact_endpoints(value)
+        hit = _ENDS[key] = (lo.numerator, lo.denominator, hi.numerator, hi.denominator)
+    return hit

@@ -34,7 +34,6 @@ Example:
 from __future__ import annotations
 
 import contextlib
-import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Callable, Generic, Iterator, TypeVar
@@ -243,29 +242,44 @@ def exact_fraction(x: arb) -> Fraction:
 
 
 def _exponent10(q: Fraction) -> int:
-    """floor(log10(|q|)) for q != 0, in exact arithmetic."""
-    q = abs(q)
-    e = int((q.numerator.bit_length() - q.denominator.bit_length()) * 0.30102999566398120)
-    while Fraction(10) ** e > q:
+    """floor(log10(|q|)) for q != 0, in exact (integer) arithmetic."""
+    return _exponent10_int(abs(q.numerator), q.denominator)
+
+
+def _exponent10_int(n: int, d: int) -> int:
+    """floor(log10(n / d)) for integers n, d > 0, exactly."""
+    e = int((n.bit_length() - d.bit_length()) * 0.30102999566398120)
+    # 10^e <= n/d < 10^(e+1), compared as integers
+    while (d * 10 ** e > n) if e >= 0 else (d > n * 10 ** -e):
         e -= 1
-    while Fraction(10) ** (e + 1) <= q:
+    while (d * 10 ** (e + 1) <= n) if e + 1 >= 0 else (d <= n * 10 ** -(e + 1)):
         e += 1
     return e
 
 
 def _round_decimal(q: Fraction, digits: int, mode: str) -> str:
-    """q rounded to ``digits`` significant decimal digits: mode 'down', 'up' or 'nearest'."""
-    if q == 0:
+    """q rounded to ``digits`` significant decimal digits: mode 'down', 'up' or 'nearest' (ties to
+    even). Exact integer arithmetic (no Fraction products: the certificate writes thousands)."""
+    num, den = q.numerator, q.denominator
+    if num == 0:
         return "0"
-    e = _exponent10(q)
+    e = _exponent10_int(abs(num), den)
     scale = digits - 1 - e
-    scaled = q * Fraction(10) ** scale
-    if mode == "down":
-        n = math.floor(scaled)
-    elif mode == "up":
-        n = math.ceil(scaled)
+    # n = round(num * 10^scale / den) in the mode asked, by one integer division
+    if scale >= 0:
+        top, bottom = num * 10 ** scale, den
     else:
-        n = round(scaled)
+        top, bottom = num, den * 10 ** -scale
+    n, r = divmod(top, bottom)              # floor; 0 <= r < bottom
+    if r:
+        if mode == "up":
+            n += 1
+        elif mode == "nearest":
+            twice = 2 * r
+            if twice > bottom or (twice == bottom and n % 2):
+                n += 1
+        elif mode != "down":
+            raise ValueError(f"unknown rounding mode {mode!r}")
     return _format_scaled(n, scale)
 
 

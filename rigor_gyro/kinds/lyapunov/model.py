@@ -56,20 +56,25 @@ __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ba
 
 
 class Dual:
-    """A first-order dual number v + d eps over ``arb``: forward-mode differentiation in balls."""
+    """A first-order dual number v + d eps over ``arb``: forward-mode differentiation in balls.
+
+    An operand that is not a Dual is a constant (derivative 0) and is used as it is: no zero
+    derivative is carried through the arithmetic (each rule is the exact derivative rule, evaluated in
+    ball arithmetic, so v and d enclose the value and the derivative)."""
 
     __slots__ = ("v", "d")
 
     def __init__(self, v, d=0):
-        self.v, self.d = arb(v) if not isinstance(v, arb) else v, d
+        self.v, self.d = (v if type(v) is arb else arb(v)), d
 
     @staticmethod
     def lift(x) -> "Dual":
         return x if isinstance(x, Dual) else Dual(x, 0)
 
     def __add__(self, o):
-        o = Dual.lift(o)
-        return Dual(self.v + o.v, self.d + o.d)
+        if type(o) is Dual:
+            return Dual(self.v + o.v, self.d + o.d)
+        return Dual(self.v + o, self.d)
 
     __radd__ = __add__
 
@@ -77,34 +82,42 @@ class Dual:
         return Dual(-self.v, -self.d)
 
     def __sub__(self, o):
-        return self + (-Dual.lift(o))
+        if type(o) is Dual:
+            return Dual(self.v - o.v, self.d - o.d)
+        return Dual(self.v - o, self.d)
 
     def __rsub__(self, o):
-        return Dual.lift(o) - self
+        return Dual(o - self.v, -self.d)
 
     def __mul__(self, o):
-        o = Dual.lift(o)
-        return Dual(self.v * o.v, self.d * o.v + self.v * o.d)
+        if type(o) is Dual:
+            return Dual(self.v * o.v, self.d * o.v + self.v * o.d)
+        return Dual(self.v * o, self.d * o)
 
     __rmul__ = __mul__
 
     def __truediv__(self, o):
-        o = Dual.lift(o)
-        return Dual(self.v / o.v, (self.d * o.v - self.v * o.d) / (o.v * o.v))
+        if type(o) is Dual:
+            return Dual(self.v / o.v, (self.d * o.v - self.v * o.d) / (o.v * o.v))
+        return Dual(self.v / o, self.d / o)
 
     def __rtruediv__(self, o):
-        return Dual.lift(o) / self
+        v = self.v
+        return Dual(o / v, -(o * self.d) / (v * v))
 
     def __pow__(self, n: int):
         if n != 2:
             raise ValueError("Dual supports only squares")
-        return self * self
+        v = self.v
+        return Dual(v * v, 2 * v * self.d)
 
     def sin(self):
-        return Dual(self.v.sin(), self.v.cos() * self.d)
+        s, c = self.v.sin_cos()
+        return Dual(s, c * self.d)
 
     def cos(self):
-        return Dual(self.v.cos(), -self.v.sin() * self.d)
+        s, c = self.v.sin_cos()
+        return Dual(c, -s * self.d)
 
     def sqrt(self):
         r = self.v.sqrt()
@@ -144,6 +157,33 @@ def hypot_ball(a: arb, b: arb) -> arb:
     return lo.union(hi)
 
 
+#: entries of one Gimbal's per-ball memo before it is cleared (bounds its memory)
+MEMO_LIMIT = 200_000
+
+
+def _per_ball(method):
+    """Memoise a Gimbal method of one ball ``x2`` (at the scene's mu), keyed by the precision and the
+    ball's exact midpoint and radius. Arb arithmetic is deterministic given those, so a memoised
+    value is the very ball the method would return: certificates are unchanged, only repeated work
+    goes (a 2-D branch and bound in (x2, t) meets each x2 piece many times). Dual numbers, extra
+    arguments (a mu ball) and non-finite balls are computed, never memoised."""
+    name = method.__name__
+
+    def wrapper(self, x2, *args, **kwargs):
+        if args or kwargs or type(x2) is not arb or not x2.is_finite():
+            return method(self, x2, *args, **kwargs)
+        key = (name, current_precision(), x2.mid().man_exp(), x2.rad().man_exp())
+        memo = self._memo
+        hit = memo.get(key)
+        if hit is None:
+            if len(memo) >= MEMO_LIMIT:
+                memo.clear()
+            hit = memo[key] = method(self, x2)
+        return hit
+    wrapper.__name__, wrapper.__doc__, wrapper.__wrapped__ = name, method.__doc__, method
+    return wrapper
+
+
 @dataclass
 class ParameterBalls:
     A0: arb
@@ -172,6 +212,7 @@ class Gimbal:
 
     def __post_init__(self):
         self._cache: dict[int, ParameterBalls] = {}
+        self._memo: dict = {}
 
     def with_mu(self, mu: fmpq) -> "Gimbal":
         return Gimbal(self.A0, self.B0, self.C0, self.H, self.k, self.a, mu, self.x2_star, self.law)
@@ -186,6 +227,7 @@ class Gimbal:
         return self._cache[p]
 
     # --------------------------------------------------------------------- the model's functions
+    @_per_ball
     def D(self, x2):
         c = self.c
         return c.A0 - c.C0 * x2.sin() ** 2
@@ -196,17 +238,21 @@ class Gimbal:
     def df(self, x2):
         return self.law.df(self.c.a, x2)
 
+    @_per_ball
     def f1(self, x2):
         return self.c.k / self.D(x2)
 
+    @_per_ball
     def f2(self, x2):
         c = self.c
         return c.H ** 2 * x2.cos() ** 2 / (self.D(x2) * c.B0)
 
+    @_per_ball
     def f3(self, x2):
         c = self.c
         return c.H * x2.cos() * self.f(x2) / (self.D(x2) * c.B0)
 
+    @_per_ball
     def G(self, x2: arb) -> arb:
         """int_0^x2 cos f / D: closed form or quadrature on thin balls; on wide balls G is even and
         increasing in |x2| (integrand > 0 on (0, x2*], certified by the v_positive claim), so it is
@@ -223,6 +269,7 @@ class Gimbal:
                 return direct.intersection(hull)
         return hull
 
+    @_per_ball
     def F(self, x2):
         """F = (H/B0) G; on a Dual its derivative is f3 (the definition of F)."""
         c = self.c
@@ -252,6 +299,7 @@ class Gimbal:
         return self.V(Dual(x1, d1), Dual(x2, d2), Dual(x3, d3)).d
 
     # --------------------------------------------------------------------- the Psi form
+    @_per_ball
     def psi_coefficients(self, x2: arb, mu: arb | None = None) -> tuple[tuple[arb, arb, arb], tuple[arb, arb, arb]]:
         """((c10, c11, c13), (c20, c21, c23)) of Vdot = -Psi1 x1^2 - Psi2 x3^2, Psi_i = ci0 + ci1 x1 + ci3 x3,
         as Vdot actually is (derived from (7) and (2)); for every mu in the ball ``mu`` when given (the
@@ -348,6 +396,7 @@ class Gimbal:
             G = self.G(x2)
         return self.f(x2) ** 2 / (2 * self.D(x2) * G)
 
+    @_per_ball
     def S(self, x2):
         return self.f2(x2) + self.c.mu * (self.f1(x2) - self.c.mu)
 
@@ -357,6 +406,7 @@ class Gimbal:
         c = self.c
         return c.H * x2.cos() ** 2 / (self.D(x2) * c.B0) * (c.mu * c.H - self.q(x2)) + c.mu ** 2 * (self.f1(x2) - c.mu)
 
+    @_per_ball
     def phi(self, x2: arb) -> arb:
         """phi = min over (x1, x3) of V at fixed x2 = mu F - f3^2/(2 S)."""
         return self.c.mu * self.F(x2) - self.f3(x2) ** 2 / (2 * self.S(x2))
