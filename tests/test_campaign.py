@@ -76,3 +76,49 @@ def test_a_timeout_inside_a_c_callback_is_a_timeout_not_a_crash(monkeypatch):
     import random
     r = run_case("eigenfrequencies", draw(random.Random(2)), None, timeout=30)
     assert r["timed_out"] and r["verdict"] == "inconclusive" and not r["error"]
+
+
+def test_the_lyapunov_references_catch_an_inflated_radius_or_level():
+    """The sampled decisions of vdot_direct and largest_sublevel (grad V . f and V in floats, confirmed
+    in mpmath) report a certificate whose R_direct or c_max_lower is too large."""
+    from flint import arb
+
+    from rigor_gyro import load_scene, prove_scene
+    from rigor_gyro.campaign import CaseResult
+    from rigor_gyro.kinds.lyapunov.campaign import compare
+    scene = load_scene("agafonov2013")
+    params = dict(scene.parameters)
+    cert = prove_scene(scene)
+    res = CaseResult(params=params)
+    compare(params, cert, res)
+    assert res.verdict_disagreements == []
+    for name, factor in (("R_direct", 3), ("c_max_lower", 2)):
+        bad = prove_scene(scene)
+        bad.quantities[name] = bad.quantities[name] * arb(factor)
+        res = CaseResult(params=params)
+        compare(params, bad, res)
+        assert any(name.split("_")[0] in d or "sublevel" in d or "direct" in d for d in res.verdict_disagreements), name
+
+
+def test_the_ray_samples_catch_a_level_above_the_vdot_bound():
+    """x2* = 1.3: {Vdot >= 0} binds (c_max in [63.5, 77.3]), not the faces; a level 1.5 x too high is
+    caught by V along the rays where grad V . f turns >= 0."""
+    import dataclasses
+
+    from flint import arb
+
+    from rigor_gyro import load_scene, prove_scene
+    from rigor_gyro.campaign import CaseResult
+    from rigor_gyro.kinds.lyapunov.campaign import compare
+    base = load_scene("agafonov2013")
+    scene = dataclasses.replace(base, name="x2s", parameters=dict(base.parameters, x2_star="1.3"))
+    params = dict(scene.parameters)
+    cert = prove_scene(scene)
+    assert cert.claim("largest_sublevel").details.get("binds") == "vdot"
+    res = CaseResult(params=params)
+    compare(params, cert, res)
+    assert res.verdict_disagreements == []
+    cert.quantities["c_max_lower"] = cert.quantities["c_max_lower"] * arb("1.5")
+    res = CaseResult(params=params)
+    compare(params, cert, res)
+    assert any(d.startswith("largest_sublevel proved") for d in res.verdict_disagreements)

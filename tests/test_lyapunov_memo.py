@@ -72,3 +72,18 @@ def _check_dual(X: arb, C: arb) -> None:
     want = (2 * X * s - (X * X + C) * co) / (s * s) - C + co / (2 * X.sqrt()) - X.sqrt() * s + 1 / (X * X) - 1
     assert d.overlaps(want) and d.rad() < 1e-12 * (1 + abs(want).upper())
     assert h(Dual(X, arb(1))).v.overlaps(h(X))
+
+
+@given(st.integers(-500, 500), st.integers(3, 30))
+def test_a_memoised_dual_is_the_fresh_dual(num, radexp):
+    with working_precision(64):
+        X = arb(fmpq(num, 1000)) + arb(0, 2.0 ** -radexp)
+        for name in ("psi_coefficients", "F", "f3", "S", "D", "f1", "f2"):
+            method = getattr(Gimbal, name)
+            fresh = list(_flat(method.__wrapped__(G, Dual(X, arb(1)))))
+            for _ in range(2):
+                memo = list(_flat(method(G, Dual(X, arb(1)))))
+                assert all(_same(a.v, b.v) and _same(a.d, b.d) for a, b in zip(fresh, memo)), name
+            seeded = list(_flat(method(G, Dual(X, arb(2)))))     # another seed: another key
+            assert all(_same(2 * a.d, b.d) or (2 * a.d).overlaps(b.d) for a, b in zip(fresh, seeded))
+            assert not all(_same(a.d, b.d) for a, b in zip(fresh, seeded) if not a.d.is_zero())

@@ -629,6 +629,10 @@ def _r_sup_search(g: Gimbal, xs: arb, grid: int = 16, steps: int = 24) -> tuple[
     t1, t2 = hi - invphi * (hi - lo), lo + invphi * (hi - lo)
     f1, f2 = val(t1), val(t2)
     best, at = max((vals[j], pts[j]), (f1, t1), (f2, t2))
+    if j in (0, grid) and ((f1 < f2 < vals[j]) if j == grid else (f2 < f1 < vals[j])):
+        # rising towards the end of the range on both probes: the golden steps would keep the end
+        # (the common case: the faces x2 = +-x2* bind), so skip them
+        return (1 / vals[j] if vals[j] > 0 else 0.0), point(pts[j])
     for _ in range(steps):
         if f1 > f2:
             hi, t2, f2 = t2, t1, f1

@@ -165,14 +165,21 @@ def _per_ball(method):
     """Memoise a Gimbal method of one ball ``x2`` (at the scene's mu), keyed by the precision and the
     ball's exact midpoint and radius. Arb arithmetic is deterministic given those, so a memoised
     value is the very ball the method would return: certificates are unchanged, only repeated work
-    goes (a 2-D branch and bound in (x2, t) meets each x2 piece many times). Dual numbers, extra
-    arguments (a mu ball) and non-finite balls are computed, never memoised."""
+    goes (a 2-D branch and bound in (x2, t) meets each x2 piece many times). A Dual number with an exact
+    seed d (the mean-value forms' X + 1 eps) is keyed by its ball and seed the same way (its value is a
+    tuple of Duals, never changed in place: Dual arithmetic makes new numbers). Extra arguments (a mu
+    ball) and non-finite balls are computed, never memoised."""
     name = method.__name__
 
     def wrapper(self, x2, *args, **kwargs):
-        if args or kwargs or type(x2) is not arb or not x2.is_finite():
+        if args or kwargs:
             return method(self, x2, *args, **kwargs)
-        key = (name, current_precision(), x2.mid().man_exp(), x2.rad().man_exp())
+        if type(x2) is arb and x2.is_finite():
+            key = (name, current_precision(), x2.mid().man_exp(), x2.rad().man_exp())
+        elif type(x2) is Dual and type(x2.d) is arb and x2.v.is_finite() and x2.d.is_exact() and x2.d.is_finite():
+            key = (name, current_precision(), x2.v.mid().man_exp(), x2.v.rad().man_exp(), x2.d.man_exp())
+        else:
+            return method(self, x2)
         memo = self._memo
         hit = memo.get(key)
         if hit is None:
