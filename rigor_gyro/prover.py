@@ -5,13 +5,16 @@ returning a :class:`rigor_gyro.kinds.Attempt`).
 
 Guarantee: :func:`prove_scene` returns the first attempt in which every requested claim is decided
 (proved or refuted), every requested width is met and every audit row is decided, trying
-prec, 2 prec, ... <= maxprec; otherwise the attempt at the highest precision, whose undecided claims
+p0, 2 p0, ... <= maxprec, where p0 is prec doubled while it is below what the scene's ``rel_width``
+needs (log2(1 / rel_width) + 8 bits: an attempt that cannot meet the width is not run); otherwise the attempt at the highest precision, whose undecided claims
 say ``inconclusive`` with the hint to raise ``--maxprec``. Each claim records the lowest precision at
 which it already had its final status.
 """
 from __future__ import annotations
 
+import math
 import time
+from fractions import Fraction
 
 from flint import arb
 
@@ -105,6 +108,27 @@ def _piece_counts(claims) -> dict[str, int]:
     return out
 
 
+#: bits beyond log2(1 / rel_width) that an attempt needs before it can meet the width (the roundings of
+#: a few dozen operations); below that an attempt is certain to be thrown away
+WIDTH_GUARD_BITS = 8
+
+
+def starting_precision(model, prec: int, maxprec: int) -> int:
+    """``prec`` doubled (up to ``maxprec``) while it is below log2(1 / rel_width) + WIDTH_GUARD_BITS, for a
+    model with a ``rel_width`` option; ``prec`` otherwise. The schedule stays prec * 2^j."""
+    rel = getattr(model, "rel_width", None)
+    if rel is None:
+        return prec
+    q = rel.rational if hasattr(rel, "rational") else Fraction(int(rel.p), int(rel.q))
+    if q <= 0:
+        return prec
+    need = math.ceil(math.log2(q.denominator) - math.log2(q.numerator)) + WIDTH_GUARD_BITS
+    p = prec
+    while p < need and 2 * p <= maxprec:
+        p *= 2
+    return p
+
+
 def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAULT_MAXPREC) -> Certificate:
     """Prove ``scene``; see the module docstring. Bad input raises before any computation:
     :class:`SceneError` (not a Scene, unknown kind or claim) or :class:`ParameterError` (parameters,
@@ -146,7 +170,7 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
             return True
         return False
 
-    esc = escalate(run, done, prec=prec, maxprec=maxprec)
+    esc = escalate(run, done, prec=starting_precision(model, prec, maxprec), maxprec=maxprec)
     elapsed = time.perf_counter() - t0
     final = esc.result
     for claim in final.claims:

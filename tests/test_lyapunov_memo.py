@@ -31,7 +31,7 @@ def _flat(v):
 def test_a_memoised_value_is_the_fresh_ball(num, radexp, prec):
     with working_precision(prec):
         x2 = arb(fmpq(num, 1000)) + (arb(0, 2.0 ** -radexp) if radexp < 40 else 0)
-        for name in ("psi_coefficients", "F", "f3", "S", "phi", "G", "D", "f1", "f2"):
+        for name in ("psi_coefficients", "F", "f3", "S", "phi"):
             method = getattr(Gimbal, name)
             fresh = list(_flat(method.__wrapped__(G, x2)))
             for _ in range(2):                      # the first call fills the memo, the second reads it
@@ -78,7 +78,7 @@ def _check_dual(X: arb, C: arb) -> None:
 def test_a_memoised_dual_is_the_fresh_dual(num, radexp):
     with working_precision(64):
         X = arb(fmpq(num, 1000)) + arb(0, 2.0 ** -radexp)
-        for name in ("psi_coefficients", "F", "f3", "S", "D", "f1", "f2"):
+        for name in ("psi_coefficients", "F", "f3", "S"):
             method = getattr(Gimbal, name)
             fresh = list(_flat(method.__wrapped__(G, Dual(X, arb(1)))))
             for _ in range(2):

@@ -35,3 +35,21 @@ def test_enclose_min_encloses_the_minimum_and_reports_its_point():
         assert loose.ball.contains(1) and loose.ball.rad() > m.ball.rad()
         tight_rel = enclose_min(lambda x: (x - arb("0.3")) ** 2 + 1, "-1", "2", abs_tol="0", rel_tol="1e-9")
         assert tight_rel.ball.rad() < loose.ball.rad()
+
+
+def test_a_box_is_refuted_only_where_its_midpoint_is_certainly_not_positive():
+    """f(u) = u^2 + e, with e known only to lie in [0, 2e-40]: f > 0 cannot be proved near u = 0, and
+    it cannot be refuted either (f(0) may be > 0): the outcome is inconclusive, never refuted."""
+    from flint import arb
+
+    from rigor_gyro.core.boxes import Box
+    from rigor_gyro.core.outcome import Status
+    from rigor_gyro.core.subdivision import certify_positive_on_box
+    from fractions import Fraction
+    e = arb("1e-40", "1e-40")
+    out = certify_positive_on_box(lambda b: b["u"] * b["u"] + e, Box.of({"u": (Fraction(-1), Fraction(1))}),
+                                  max_pieces=200)
+    assert out.status is Status.INCONCLUSIVE
+    out = certify_positive_on_box(lambda b: b["u"] * b["u"] - arb("1e-40"),
+                                  Box.of({"u": (Fraction(-1), Fraction(1))}), max_pieces=200)
+    assert out.status is Status.REFUTED and out.witness == {"u": Fraction(0)}

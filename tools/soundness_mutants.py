@@ -1,6 +1,6 @@
 """Named soundness mutants: each weakens one step a proof rests on; the default tests must kill all.
 
-    python tools/soundness_mutants.py [--only NAME ...] [--list] [--out proofs/mutation.md]
+    python tools/soundness_mutants.py [--only NAME ...] [--tests FILE ...] [--list] [--out proofs/mutation.md]
 
 Each mutant is one textual substitution in one file. It is applied to a fresh copy of the package and
 the tests (in a temporary folder), and the README's test command runs there (``python -m pytest -x``,
@@ -107,10 +107,33 @@ MUTANTS = [
     ("refutation_without_counterexample", "rigor_gyro/kinds/periodic_orbit/claims.py",
      "    exhaustive = complete and an.covers_all", "    exhaustive = complete",
      "a search restricted by T_max allowed to refute"),
+    # the speed work of issue 12
+    ("envelope_qi_term_dropped", "rigor_gyro/kinds/periodic_orbit/flow.py",
+     "         - 16 * rho * qi2 / ((4 * _positive_product(a_s, a_s) + 16 * qi2).sqrt() + 2 * a_s))",
+     "         - 0 * rho * qi2 / ((4 * _positive_product(a_s, a_s) + 16 * qi2).sqrt() + 2 * a_s))",
+     "the relay envelope bound forgets the oscillation's sine amplitude (a root-free piece that is not)"),
+    ("envelope_sign_ignored", "rigor_gyro/kinds/periodic_orbit/flow.py",
+     "    elif certainly_positive(-slow):\n        sigma = -1", "    elif certainly_positive(-slow):\n        sigma = 1",
+     "the envelope bound taken with the wrong sign of the slow part"),
+    ("envelope_checker_accepts", "rigor_gyro/kinds/periodic_orbit/check.py",
+     "    if getattr(sp, \"near_zero\", None) is not None or not (certainly_positive(lo) and certainly_lt(lo, hi)):\n        return False",
+     "    return True",
+     "the checker accepts any piece said to be root-free by the envelope"),
+    ("memo_key_without_precision", "rigor_gyro/kinds/lyapunov/model.py",
+     "            key = (name, current_precision(), x2.mid().man_exp(), x2.rad().man_exp())",
+     "            key = (name, x2.mid().man_exp(), x2.rad().man_exp())",
+     "a memoised ball handed back at another precision"),
+    ("dual_quotient_rule_sign", "rigor_gyro/kinds/lyapunov/model.py",
+     "(self.d * o.v - self.v * o.d) / (o.v * o.v)", "(self.d * o.v + self.v * o.d) / (o.v * o.v)",
+     "a wrong derivative in the mean-value forms (the quotient rule)"),
+    ("midpoint_refutation_unchecked", "rigor_gyro/core/subdivision.py",
+     "            if certainly_le(vm, 0):\n                return BoxPositivity(Status.REFUTED",
+     "            if not certainly_positive(vm):\n                return BoxPositivity(Status.REFUTED",
+     "a box refuted where f is only possibly <= 0 at its midpoint"),
 ]
 
 
-def run(names: list[str] | None, out: str | None) -> int:
+def run(names: list[str] | None, out: str | None, tests: list[str] | None = None) -> int:
     rows, survivors = [], []
     # one snapshot of the tree, taken now: edits made while the mutants run do not leak into them
     snapshot = Path(tempfile.mkdtemp(prefix="mutants-snapshot-"))
@@ -132,7 +155,7 @@ def run(names: list[str] | None, out: str | None) -> int:
             (Path(tmp) / path).write_text(text.replace(old, new))
             env = dict(os.environ, PYTHONPATH=tmp, HYPOTHESIS_PROFILE="ci")
             t0 = time.time()
-            r = subprocess.run([sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider"], cwd=tmp,
+            r = subprocess.run([sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", *(tests or [])], cwd=tmp,
                                env=env, capture_output=True, text=True)
             secs = time.time() - t0
         killed = r.returncode != 0
@@ -159,12 +182,14 @@ def main() -> int:
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--list", action="store_true")
     ap.add_argument("--out")
+    ap.add_argument("--tests", nargs="*", help="run only these test files (a quick targeted run; the default "
+                                                "is the README's whole test command)")
     args = ap.parse_args()
     if args.list:
         for name, path, *_rest, what in MUTANTS:
             print(f"{name:36s} {path}: {what}")
         return 0
-    return run(args.only, args.out)
+    return run(args.only, args.out, args.tests)
 
 
 if __name__ == "__main__":

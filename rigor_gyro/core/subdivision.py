@@ -226,12 +226,17 @@ def certify_positive_on_box(f: BoxFunction, whole, *, max_pieces: int = 20000) -
         if certainly_positive(v):
             leaves.append(box)
             continue
-        mid = box.midpoint()
-        vm = f({k: arb(fmpq(q.numerator, q.denominator)) for k, q in mid.items()})
-        if certainly_le(vm, 0):
-            return BoxPositivity(Status.REFUTED, leaves, witness=mid, witness_value=vm,
-                                 reason="f <= 0 at a point (certified)")
-        if count + len(stack) >= max_pieces:
+        last = count + len(stack) >= max_pieces
+        # the midpoint is tried as a counterexample where the box's enclosure is centred at <= 0, or
+        # the search is about to stop (a box centred above 0 is most often positive: its point
+        # evaluation would be wasted; its children are tried in turn)
+        if last or not v.mid() > 0:
+            mid = box.midpoint()
+            vm = f({k: arb(fmpq(q.numerator, q.denominator)) for k, q in mid.items()})
+            if certainly_le(vm, 0):
+                return BoxPositivity(Status.REFUTED, leaves, witness=mid, witness_value=vm,
+                                     reason="f <= 0 at a point (certified)")
+        if last:
             return BoxPositivity(Status.INCONCLUSIVE, leaves, stuck=box,
                                  reason=f"undecided after {count} boxes (raise max_pieces or the precision)")
         stack.extend(reversed(box.split(whole)))

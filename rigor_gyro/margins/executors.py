@@ -67,7 +67,9 @@ class Executor:
         tasks = list(tasks)
         if not tasks:
             return []
-        if self._pool is None and self._client is None:
+        if self._pool is None and self._client is None or len(tasks) < self.workers:
+            # fewer tasks than workers (the first levels of a paving): nothing to gain from the pool or
+            # the scheduler but their round trip; the results are the same wherever a task runs
             return [fn(*t) for t in tasks]
         # small batches balance uneven tasks (a hard box takes 100 times an easy one); batches of
         # many cheap tasks keep the per-task overhead of the pool or the scheduler low

@@ -60,10 +60,12 @@ import numpy as np
 
 from ...core.errors import ParameterError
 from ...core.exact import parse_exact
+from .search import grid_then_compass
 
 __all__ = ["AGAFONOV2013", "PARAMETER_NAMES", "FLOAT_MOMENTS", "FloatGimbal", "MpGimbal", "mp_constants",
            "float_constants", "time_scales", "trajectories", "TrajectoryOutcome", "edge_points", "EdgePoints",
-           "V_MONOTONE_REL_TOL", "DEFAULT_METHOD", "DEFAULT_RTOL", "BENCH_NAMES", "bench_float", "bench_mpmath"]
+           "V_MONOTONE_REL_TOL", "DEFAULT_METHOD", "DEFAULT_RTOL", "BENCH_NAMES", "bench_float", "bench_mpmath",
+           "mp_polar_estimates"]
 
 #: the paper's example (section 3), exactly as in rigor_gyro/scenes/agafonov2013.toml
 AGAFONOV2013 = {"A": "2", "C": "3.3", "A1": "2.2", "B1": "2.2", "C1": "2.8", "A2": "8.5", "H": "1e4",
@@ -1040,3 +1042,48 @@ def bench_mpmath(params: dict, dps: int = 30, hint=None) -> dict:
     """The same by :func:`mp_constants` at ``dps`` digits (non-rigorous)."""
     mp = mp_constants(params, dps=dps, with_best_mu=False)
     return {k: mp[k] for k in BENCH_NAMES if mp.get(k) is not None}
+
+
+def mp_polar_estimates(params: dict, dps: int = 30) -> dict:
+    """mpmath estimates (no guarantee) of the two quantities of the polar form that the claims
+    ``vdot_direct`` and ``largest_sublevel`` certify: R_direct ~ inf over (x2, t) of A / |B| where
+    Vdot(r cos t, x2, r sin t) = -r^2 (A + r B), and c_max ~ the smallest V where Vdot turns >= 0
+    along a ray (at the threshold r = -A/B and at V's minimum beyond it) or on the faces |x2| = x2*.
+    Both by the prover's own search pattern (:func:`~.search.grid_then_compass` on a 17 x 33 grid,
+    then 90 compass rounds) on mpmath values of the analytic grad V . f and V: the non-rigorous
+    equivalent of those two claims (for the speed benchmark: the same work, without enclosures)."""
+    with mpmath.workdps(dps):
+        g = MpGimbal(params)
+        xs = g.xs
+
+        def ray(u: float, s: float):
+            x2, t = xs * u, mpmath.pi * s
+            c, sn = mpmath.cos(t), mpmath.sin(t)
+            v1 = g.grad_V_dot_f(c, x2, sn)
+            v2 = g.grad_V_dot_f(2 * c, x2, 2 * sn)
+            B = -v2 / 4 + v1
+            return x2, c, sn, -v1 - B, B
+
+        def ratio(u: float, s: float):
+            _, _, _, A, B = ray(u, s)
+            return (float(A / abs(B)) if B != 0 and A > 0 else math.inf), None
+
+        def level(u: float, s: float):
+            x2, c, sn, A, B = ray(u, s)
+            if B == 0:
+                return math.inf, None
+            r0 = -A / B
+            v0 = g.V(0, x2, 0)
+            vp, vm = g.V(c, x2, sn), g.V(-c, x2, -sn)
+            beta, gamma = (vp - vm) / 2, (vp + vm) / 2 - v0
+            best = g.V(r0 * c, x2, r0 * sn)
+            if gamma > 0:
+                rv = -beta / (2 * gamma)
+                if A + rv * B <= 0:
+                    best = min(best, v0 + beta * rv + gamma * rv * rv)
+            return float(best), None
+        r_direct = grid_then_compass(ratio, (17, 33), 90)[0]
+        c_rays = grid_then_compass(level, (17, 33), 90)[0]
+        f3, S = g.f3(xs), g.S(xs)
+        face = float(g.mu * g.F(xs) - f3 * f3 / (2 * S))
+        return {"R_direct": r_direct, "c_max": min(c_rays, face), "c_max_rays": c_rays, "c_max_face": face}

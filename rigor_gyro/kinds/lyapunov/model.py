@@ -234,7 +234,6 @@ class Gimbal:
         return self._cache[p]
 
     # --------------------------------------------------------------------- the model's functions
-    @_per_ball
     def D(self, x2):
         c = self.c
         return c.A0 - c.C0 * x2.sin() ** 2
@@ -245,11 +244,9 @@ class Gimbal:
     def df(self, x2):
         return self.law.df(self.c.a, x2)
 
-    @_per_ball
     def f1(self, x2):
         return self.c.k / self.D(x2)
 
-    @_per_ball
     def f2(self, x2):
         c = self.c
         return c.H ** 2 * x2.cos() ** 2 / (self.D(x2) * c.B0)
@@ -259,7 +256,6 @@ class Gimbal:
         c = self.c
         return c.H * x2.cos() * self.f(x2) / (self.D(x2) * c.B0)
 
-    @_per_ball
     def G(self, x2: arb) -> arb:
         """int_0^x2 cos f / D: closed form or quadrature on thin balls; on wide balls G is even and
         increasing in |x2| (integrand > 0 on (0, x2*], certified by the v_positive claim), so it is

@@ -8,7 +8,8 @@ stored outcome of that search, at twice the certificate's precision:
   [0, theta_min] (Taylor model): no root in (0, theta_min];
 * the stored pieces tile [theta_min, T] exactly, for the function the witness names (g, or
   G = g prod |1 + exp(lambda theta)|^2 over the complex pairs: the same roots, no poles near the axis); each "empty" piece holds no root (g excludes 0 on
-  it, or one Newton image misses it), each "unique" piece exactly one (a Newton image inside the
+  it, or one Newton image misses it, or the envelope bound: G = A + B cos + C sin of the nutation
+  phase with slowly varying A, B, C and |A| > hypot(B, C)), each "unique" piece exactly one (a Newton image inside the
   current box, by its own short Newton loop; a piece merged at ``splits`` is two unique halves whose
   roots coincide: unique on the hull of both enclosures); beyond T, when the whole of (0, oo) is
   claimed, the tail bound a T + b - B(T) > 0;
@@ -108,6 +109,45 @@ def _monotone_root_free(G: _G, lo: arb, hi: arb) -> bool:
     s1, s2 = _strict_sign(a[1]), _strict_sign(b[1])
     s0, s3 = _strict_sign(a[0]), _strict_sign(b[0])
     return _strict_sign(d2) != 0 and s1 != 0 and s1 == s2 and s0 != 0 and s0 == s3
+
+
+def _envelope_root_free(sp: Spectrum, lo: arb, hi: arb) -> bool:
+    """No root of g on [lo, hi] (0 < lo < hi) by the envelope bound, re-derived here: with the one
+    complex pair lambda (Re lambda < 0) and rho = |E|, E = exp(lambda theta), the pole-free G equals
+    A + B cos(Im lambda theta) + C sin(Im lambda theta) with A = s (1 + rho^2) + 2 Re q (1 - rho^2),
+    B = 2 s rho, C = 4 Im q rho (q = pe_0 / lambda, s the real modes' and the linear term of g), so
+    sign(s) G >= sign(s) A - hypot(B, C), evaluated without cancellation (1 - rho by expm1)."""
+    if getattr(sp, "near_zero", None) is not None or not (certainly_positive(lo) and certainly_lt(lo, hi)):
+        return False
+    pairs = [m for m in sp.modes if m.weight == 2]
+    if len(pairs) != 1:
+        return False
+    lam = pairs[0].lam
+    X = interval(lo, hi)
+    re = lam.real
+    if not certainly_negative(re):
+        return False
+    q = pairs[0].pe[0] * lam.conjugate() / (lam.real ** 2 + lam.imag ** 2)
+    s = -(sp.p0e[0] / 2) * X
+    for m in sp.modes:
+        if m.weight == 1:
+            s = s - (m.pe[0] / m.lam * (m.lam * acb(X) / 2).tanh()).real
+    sign = _strict_sign(s)
+    if sign == 0:
+        return False
+    u = sign * s                                    # |s| > 0 on X
+    one_minus = -(re * X).expm1()                   # 1 - rho
+    one_minus_sq = -(2 * re * X).expm1()            # 1 - rho^2
+    rho = (re * X).exp()
+    if not (certainly_positive(u) and certainly_positive(one_minus)):
+        return False
+
+    def square(x: arb) -> arb:                      # x > 0: from its ends (a wide ball squared may reach < 0)
+        return (x.lower() ** 2).lower().union((x.upper() ** 2).upper())
+    qi2 = square(abs(q.imag)) if certainly_positive(abs(q.imag).lower()) else q.imag ** 2
+    lower = ((u.lower() * square(one_minus).lower()).lower() + 2 * sign * q.real * one_minus_sq
+             - 16 * rho * qi2 / (2 * u + (4 * square(u) + 16 * qi2).sqrt()))
+    return certainly_positive(lower)
 
 
 def _merged_unique(G: _G, lo: arb, hi: arb, splits: list[arb]) -> tuple[bool, arb | None]:
@@ -251,6 +291,8 @@ def check(model, data: dict) -> list[CheckResult]:
             lo, hi = _pt(pc["lo"]), _pt(pc["hi"])
             if pc["kind"] == "empty" and pc.get("by") == "monotone":
                 pieces_ok = pieces_ok and _monotone_root_free(G, lo, hi)
+            elif pc["kind"] == "empty" and pc.get("by") == "envelope":
+                pieces_ok = pieces_ok and _envelope_root_free(sp, lo, hi)
             elif pc["kind"] == "empty":
                 st, e = _newton(G, interval(lo, hi))
                 pieces_ok = pieces_ok and st == "empty"

@@ -56,7 +56,7 @@ from ...core.roots import Isolation, RootPiece, RootStatus, enclose_f_df, merge_
 from ...core.subdivision import certify_positive
 from .. import Attempt, Phases
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table, orbit_quantities
-from .flow import (PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, g_coeffs, half_period_jacobian, pole_free_coeffs,
+from .flow import (PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, envelope_margin, g_coeffs, half_period_jacobian, pole_free_coeffs,
                    moment_zero_orders, orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure,
                    x0_at)
 
@@ -439,6 +439,9 @@ def _monotone_side(f, coeffs, a: arb, b: arb) -> list[RootPiece] | None:
     if ga == gb:
         return [_monotone(a, b, "g' and g of one sign")]
     lo, hi = a, b
+    near = _newton_bracket(coeffs, a, b, ga)
+    if near is not None:                    # usually one interval Newton step away from a unique root
+        lo, hi = near
     for _ in range(200):
         piece = newton_root(f, lo, hi)
         if piece.status is RootStatus.UNIQUE:
@@ -452,6 +455,37 @@ def _monotone_side(f, coeffs, a: arb, b: arb) -> list[RootPiece] | None:
         if gm == 0 or not (certainly_lt(lo, mid) and certainly_lt(mid, hi)):
             return None
         lo, hi = (lo, mid) if gm != ga else (mid, hi)
+    return None
+
+
+def _newton_bracket(coeffs, a: arb, b: arb, ga: int) -> tuple[arb, arb] | None:
+    """A narrow bracket [lo, hi] inside [a, b] around the one root of a monotone g with sign ga at a
+    and -ga at b: Newton's method on point values proposes the root (a search: nothing is assumed of
+    it), then the signs at lo and hi are certified (g(lo) has sign ga, g(hi) sign -ga), so the root
+    is in [lo, hi]. None when no certified bracket is found (the caller bisects)."""
+    x = ((a + b) / 2).mid()
+    step = b - a
+    prec = current_precision()
+    for _ in range(64):
+        c = coeffs(x, 2)
+        if not (c[0].is_finite() and c[1].is_finite()) or certainly_le(abs(c[1]), 0):
+            return None
+        step = (c[0].mid() / c[1].mid()).mid()
+        xn = (x - step).mid()
+        if not (certainly_lt(a, xn) and certainly_lt(xn, b)):      # stay inside: halve towards that end
+            end = a if certainly_lt(xn, (a + b) / 2) else b
+            xn = ((x + end) / 2).mid()
+        x = xn
+        if certainly_le(abs(step), abs(x) * arb(2) ** (8 - prec)):
+            break
+    d = abs(step) * 4 + abs(x) * arb(2) ** (-(prec // 2))
+    for _ in range(8):
+        lo = (x - d).mid()
+        hi = (x + d).mid()
+        if certainly_lt(a, lo) and certainly_lt(hi, b) and _sign(coeffs(lo, 1)[0]) == ga \
+                and _sign(coeffs(hi, 1)[0]) == -ga:
+            return arb(lo), arb(hi)
+        d = d * 16
     return None
 
 
@@ -486,8 +520,27 @@ def _critical_split(f, coeffs, a: arb, b: arb) -> list[RootPiece] | None:
     return left + [mid] + right
 
 
+#: the reason of a piece decided by :func:`envelope_test` (its witness says ``"by": "envelope"``)
+ENVELOPE_REASON = "envelope: sigma G >= |s|(1-rho)^2 + 2 sigma q_r (1-rho^2) - 16 rho q_i^2/(...) > 0 over every phase"
+
+
+def envelope_test(sp: Spectrum):
+    """(a, b) -> whether g certainly has no root on [a, b] by the envelope bound of
+    :func:`~.flow.envelope_margin` (sigma G >= M > 0 over every nutation phase), or None when that bound
+    does not apply to this spectrum. It decides, in one step, a piece spanning many nutation periods
+    where the slow part of G dominates its oscillation, which a Taylor model resolves only period by
+    period (the relay's fast nutation: pieces grew like H)."""
+    if getattr(sp, "near_zero", None) is not None or sum(m.weight == 2 for m in sp.modes) != 1:
+        return None
+
+    def root_free(a: arb, b: arb) -> bool:
+        r = envelope_margin(sp, interval(a, b))
+        return r is not None and certainly_positive(r[1])
+    return root_free
+
+
 def _isolate(f, lo: arb, hi: arb, *, coeffs=None, max_depth: int = 48,
-             max_pieces: int = MAX_PIECES, resume: tuple | None = None) -> Isolation:
+             max_pieces: int = MAX_PIECES, resume: tuple | None = None, root_free=None) -> Isolation:
     """:func:`rigor_gyro.core.roots.isolate_roots` with two changes. A piece where interval Newton fails
     and the second derivative has one sign is decided at once by :func:`_critical_split` (given the
 Taylor ``coeffs`` of f) instead of being
@@ -496,13 +549,17 @@ Taylor ``coeffs`` of f) instead of being
     stops and the rest of the range is reported undecided (the prover then raises the precision)
     instead of bisecting every piece of a cancellation-dominated stretch to the depth limit; the
     decided pieces before the stop and the stop point are kept in ``Isolation.resume``, and a later
-    call given them as ``resume`` searches only the rest."""
+    call given them as ``resume`` searches only the rest. ``root_free(a, b)``, when given, is tried on
+    each piece first: True means certainly no root there (:func:`envelope_test`), an empty piece."""
     done: list[RootPiece] = list(resume[0]) if resume else []
     stack: list[tuple[arb, arb, int]] = [(resume[1], hi, 1)] if resume else [(lo, hi, 0)]
     stopped = None
     rel = arb(2) ** (-(current_precision() // 2))
     while stack:
         a, b, depth = stack.pop()
+        if root_free is not None and root_free(a, b):
+            done.append(RootPiece(a, b, RootStatus.EMPTY, reason=ENVELOPE_REASON))
+            continue
         piece = newton_root(f, a, b)
         if piece.status is RootStatus.UNKNOWN and coeffs is not None and depth > 0:
             split = _critical_split(f, coeffs, a, b)
@@ -585,7 +642,8 @@ def analyse(model: RelayModel, spectrum=None, phase: Phases | None = None) -> An
                 pieces.append(pc)
             iso = Isolation(pieces)
         else:
-            iso = _isolate(_g_series_function(sp, coeffs), an.theta_min, an.T_search, coeffs=coeffs, resume=cached)
+            iso = _isolate(_g_series_function(sp, coeffs), an.theta_min, an.T_search, coeffs=coeffs, resume=cached,
+                           root_free=envelope_test(sp))
         if spectrum is None:
             model.decided[key] = iso.resume if iso.resume is not None else \
                 ((list(iso.pieces), None) if not iso.unknown else None)
@@ -816,6 +874,8 @@ def _witnesses(an: Analysis) -> dict[str, Any]:
         item = {"lo": _q(pc.lo.lower()), "hi": _q(pc.hi.upper()), "kind": pc.status.value}
         if pc.reason.startswith("monotone"):
             item["by"] = "monotone"
+        elif pc.reason == ENVELOPE_REASON:
+            item["by"] = "envelope"
         if pc.parts:
             item["splits"] = [_q(s) for s in pc.parts]
         pieces.append(item)

@@ -60,7 +60,7 @@ from ...core.balls import ball, certainly_positive, series_coefficients, series_
 from ...core.exact import parse_exact
 from ...core.polyroots import isolate_polynomial
 
-__all__ = ["PARAMETER_NAMES", "RelayParams", "DegenerateSpectrum", "Mode", "Spectrum", "system_matrix",
+__all__ = ["PARAMETER_NAMES", "RelayParams", "DegenerateSpectrum", "Mode", "Spectrum", "envelope_margin", "system_matrix",
            "forcing", "nutation_cubic", "g_coeffs", "pole_free_coeffs", "x0_at", "ExpSum", "orbit_expsums", "state_at",
            "phi_at", "vector_field", "half_period_jacobian", "taylor_enclosure", "tail_bound",
            "taylor5_leading_coefficient", "moment_zero_orders"]
@@ -321,6 +321,70 @@ def pole_free_coeffs(sp: Spectrum, center: arb, n: int) -> list[arb]:
         for j in range(n):
             tot[j] -= sp.p0e[0] * lin[j].real / 2
     return tot
+
+
+def envelope_margin(sp: Spectrum, X: arb) -> tuple[int, arb] | None:
+    """(sigma, M) with sigma G(theta) >= M for every theta in the ball X (X > 0), or None when the
+    bound does not apply (a spectrum without exactly one complex pair, a ``near_zero`` box spectrum, or
+    s of no certain sign on X). No root of g on X when M > 0 certainly.
+
+    Why: with one complex pair lambda = d + i omega (d < 0), E = exp(lambda theta) = rho e^(i phi), the
+    pole-free G of :func:`pole_free_coeffs` is exactly
+
+        G = a + b cos phi + c sin phi,  a = s (1 + rho^2) + 2 q_r (1 - rho^2),  b = 2 s rho,  c = 4 q_i rho,
+
+    where q = pe_0 / lambda and s(theta) = g's slow part (the real modes and the linear term). a, b, c
+    vary slowly (no omega in them), so over a piece spanning many nutation periods sigma G >=
+    sigma a - sqrt(b^2 + c^2), sigma = sign s, which is
+
+        M = |s| (1 - rho)^2 + 2 sigma q_r (1 - rho^2) - 16 rho q_i^2 / (sqrt(4 s^2 + 16 q_i^2) + 2 |s|),
+
+    written so that no term cancels (1 - rho and 1 - rho^2 by expm1): for a lightly damped fast nutation
+    a and sqrt(b^2 + c^2) agree to ~(d theta)^2 and their difference would be lost. Each ball below
+    contains its quantity at every theta in X, so M's ball contains M(theta). Precision: the current
+    one; M is a lower bound, not an enclosure of G's minimum."""
+    if getattr(sp, "near_zero", None) is not None:
+        return None
+    pairs = [m for m in sp.modes if m.weight == 2]
+    if len(pairs) != 1 or any(m.weight != 1 for m in sp.modes if m is not pairs[0]):
+        return None
+    pair = pairs[0]
+    d = pair.lam.real
+    if not (certainly_positive(-d) and certainly_positive(X.lower())):
+        return None
+    q = pair.pe[0] / pair.lam
+    qr, qi = q.real, q.imag
+    Xc = acb(X)
+    slow = -sp.p0e[0] * X / 2
+    for m in sp.modes:
+        if m is not pair:
+            slow -= (m.pe[0] * (m.lam * Xc / 2).tanh() / m.lam).real
+    if certainly_positive(slow):
+        sigma = 1
+    elif certainly_positive(-slow):
+        sigma = -1
+    else:
+        return None
+    a_s = sigma * slow                  # |s| > 0 on X
+    rho = (d * X).exp()
+    one_m_rho = -(d * X).expm1()
+    one_m_rho2 = -(2 * d * X).expm1()
+    # products of positive balls by their ends: a wide ball times itself in midpoint-radius arithmetic
+    # reaches below 0 (and the square root of 4 s^2 + 16 q_i^2 would be NaN)
+    qi2 = _positive_product(abs(qi), abs(qi)) if certainly_positive(abs(qi).lower()) else qi * qi
+    M = (_positive_product(a_s, one_m_rho, one_m_rho) + 2 * sigma * qr * one_m_rho2
+         - 16 * rho * qi2 / ((4 * _positive_product(a_s, a_s) + 16 * qi2).sqrt() + 2 * a_s))
+    return sigma, M
+
+
+def _positive_product(*xs: arb) -> arb:
+    """A ball containing the product of balls that are all certainly > 0, from their ends (tight for
+    wide balls, unlike midpoint-radius multiplication)."""
+    lo, hi = arb(1), arb(1)
+    for x in xs:
+        lo = (lo * x.lower()).lower()
+        hi = (hi * x.upper()).upper()
+    return lo.union(hi)
 
 
 class NearZeroSeries:
