@@ -167,6 +167,19 @@ _PLAIN = ("agrees", "assertion-confirmed")
 _NUMERICAL = ("propagated", "last-digit", "unexplained")
 
 
+def _edits_brief(r: dict) -> str:
+    """" (single edits of the printed formula: ...)" for a row that has the search (core.formula_edits)."""
+    fe = r.get("formula_edits")
+    if not fe:
+        return ""
+    hits = fe["reproducing"]
+    if not hits:
+        return f" (none of {fe['tried']} single edits of {_esc(fe['formula'])} reproduces it)"
+    shown = "; ".join(_esc(h) for h in hits[:3]) + ("; ..." if len(hits) > 3 else "")
+    return (f" ({'one' if len(hits) == 1 else len(hits)} of {fe['tried']} single edits of {_esc(fe['formula'])} "
+            f"reproduce{'s' if len(hits) == 1 else ''} it: {shown})")
+
+
 def _audit_section(rows: list[dict]) -> list[str]:
     """The audit: counts by discrepancy class first, the rows that are not plain agreement next (with
     the reading that reproduces each print), the full table last."""
@@ -200,13 +213,15 @@ def _audit_section(rows: list[dict]) -> list[str]:
                                      "recomputed from the paper's printed inputs (each within its printed rounding; "
                                      "the inputs each row needs are in the JSON's class_reading); printed -> certified"),
                       ("last-digit", "one unit off in the last printed digit (rounding)"),
-                      ("unexplained", "no single edit explains the print (the paper's own computation differs; "
-                                      "printed -> certified to the printed digits plus three)")):
+                      ("unexplained", "no edit of the digits, sign or decimal point explains the print (the paper's "
+                                      "own computation differs; printed -> certified to the printed digits plus three; "
+                                      "in parentheses, where searched, the single edits of the printed formula that "
+                                      "reproduce the print)")):
         rs = [r for r in numerical if r.get("class") == cls]
         if rs:
             out += [f"### {len(rs)} {cls}: {text}", "",
                     "; ".join(f"{_esc(r['id'])} {_esc(r['printed'])} -> {_certified_digits(r['lo'], r['hi'], r['printed'])}"
-                              for r in rs) + ".", ""]
+                              f"{_edits_brief(r)}" for r in rs) + ".", ""]
     plain = [r for r in rows if r.get("class", r["status"]) in _PLAIN]
     if plain:
         out += ["### Rows that agree", "",

@@ -67,6 +67,18 @@ def section(proofs: Path = ROOT / "proofs") -> str:
             out += [f"| {_cell(r['id'], 50)} | {_cell(r['printed'], 30)} | {r['class']} | {_cell(r['class_reading'])} |"
                     for r in edits]
             out.append("")
+        fe = [r for r in rows if r.get("formula_edits")]
+        if fe:
+            out += ["Printed numbers that neither the formula nor its reading gives, against the single edits of "
+                    "the printed formula (core.formula_edits, each evaluated in balls):", ""]
+            for r in fe:
+                f = r["formula_edits"]
+                hits = f["reproducing"]
+                what = (f"none of {f['tried']} reproduces it" if not hits else
+                        f"{'one' if len(hits) == 1 else len(hits)} of {f['tried']} reproduce{'s' if len(hits) == 1 else ''} "
+                        f"it: " + "; ".join(_cell(h, 70) for h in hits[:4]) + ("; ..." if len(hits) > 4 else ""))
+                out.append(f"- **{_cell(r['id'], 50)}** printed `{_cell(r['printed'], 20)}`, {f['formula']}: {what}")
+            out.append("")
         prop = [r for r in rows if r["class"] == "propagated"]
         if prop:
             out += [f"{len(prop)} printed numbers are the paper's own computation, not misprints: each is a correct "
@@ -74,7 +86,7 @@ def section(proofs: Path = ROOT / "proofs") -> str:
                         f"{_cell(r['id'], 40)} {_cell(r['printed'], 20)}" for r in prop[:8])
                     + (", ..." if len(prop) > 8 else "") + "); the report gives the inputs each needs.", ""]
         parts = [f"{counts[k]} {what}" for k, what in (("last-digit", "numbers one unit off in the last digit (rounding)"),
-                                                       ("unexplained", "numbers that no single edit explains (listed in the report)"))
+                                                       ("unexplained", "numbers that no edit of their digits explains (listed in the report)"))
                  if counts.get(k)]
         if parts:
             out += ["Besides: " + " and ".join(parts) + ".", ""]

@@ -103,8 +103,14 @@ class AuditRow:
     propagated: Any = field(default=None, compare=False, repr=False)
     #: what ``propagated`` was recomputed from, for the reading (default: "the paper's own printed inputs")
     propagated_from: str | None = field(default=None, compare=False, repr=False)
+    #: the single-edit search of the printed formula (core.formula_edits), when the kind ran one:
+    #: {"formula", "tried", "reproducing" (descriptions), "summary"}
+    formula_edits: dict | None = field(default=None, compare=False, repr=False)
 
     def to_json(self) -> dict[str, Any]:
         q = quantity(self.value) if self.value is not None else {"lo": "", "hi": ""}
-        return {"id": self.id, "printed": self.printed, "reading": self.reading, "lo": q["lo"],
-                "hi": q["hi"], "status": self.status.value, "note": self.note}
+        out = {"id": self.id, "printed": self.printed, "reading": self.reading, "lo": q["lo"],
+               "hi": q["hi"], "status": self.status.value, "note": self.note}
+        if self.formula_edits is not None:
+            out["formula_edits"] = self.formula_edits
+        return out

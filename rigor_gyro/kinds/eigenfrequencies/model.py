@@ -254,6 +254,30 @@ BRACKETS: dict[int, Bracket] = {
 }
 
 
+#: each printed bound and approximation as formula text (Python syntax over a, b, eps, W = Omega2), with
+#: its named sub-formulas, for the single-edit search of the audit (:mod:`rigor_gyro.core.formula_edits`);
+#: as printed, so that an edit is a misprint of the print (tests: each text evaluates to its function)
+EDIT_FORMULAS: dict[tuple[str, int], tuple[str, dict[str, str]]] = {
+    ("lower", 1): ("eps*W/((a-b)*W + eps*((a-1)*W + a*b))", {}),
+    ("upper", 1): ("R - sqrt(R**2 - eps*W/((a-b)*L*b**2))",
+                   {"L": "(b*(b-1) + eps)/(b*(b-1))", "R": "(eps*a/(b*(a-b) - (a-1)*eps) + W/(L*b**2))/2"}),
+    ("lower", 2): ("1/(b-1) + (D+R1)/2 - sqrt(((D+R1)/2)**2 + R1*(1/(b-1) + eps*a/(b*(a-b))))",
+                   {"D": "eps/(b*(b-1))", "R1": "a*b**2/((a-b)*(b-1)*W)"}),
+    ("upper", 2): ("(eps*a*(b-1) + W*(1+eps)*(a-b))/((a-b)*(b-1)*(b + W*(1+eps)))", {}),
+    ("lower", 3): ("b/(b-1) + (D+R2)/2 - sqrt((D+R2)**2/4 + R2*(1 + eps/b))",
+                   {"D": "eps/(b*(b-1))", "R2": "W*(b-1)/b*(b/(b-1) - eps/(a-b))/(b/(b-1) - eps*a/(b*(a-b)))"}),
+    ("upper", 3): ("(1+eps)/(b-1) + eps*(a-1)/((a-b)*(a-b+eps*(a-1))) + (b-eps)/(b + sqrt(W*(b-1)*b))", {}),
+    ("lower", 4): ("b/(b-1) + (D+R2)/2 + sqrt((D+R2)/4 + R2*(1 + eps/b))",
+                   {"D": "eps/(b*(b-1))", "R2": "W*(b-1)/b*(b/(b-1) - eps/(a-b))/(b/(b-1) - eps*a/(b*(a-b)))"}),
+    ("upper", 4): ("b/(b-1) + R3 + sqrt(R3**2 + W)",
+                   {"R3": "(eps/(b*(b-1)) + eps**2*a*(a-1)/(b*(a-b)*((a-b)*b + eps*(a-1))) + W)/2"}),
+    ("approx", 1): ("eps*W/(W*(a-b) + eps*a*b)", {}),
+    ("approx", 2): ("(eps*(b-1)*a + W*(a-b))/((a-b)*(b-1)*(b+W))", {}),
+    ("approx", 3): ("b/(b-1) + R3 - sqrt(R3**2 + (b-1)*W*(b-eps)/b**2)", {"R3": "(eps/(b*(b-1)) + (b-1)*W/b)/2"}),
+    ("approx", 4): ("b/(b-1) + R3 + sqrt(R3**2 + (b-1)*W*(b-eps)/b**2)", {"R3": "(eps/(b*(b-1)) + (b-1)*W/b)/2"}),
+}
+
+
 def bracket(j: int, p: Params, reading: str = "intended") -> tuple[arb, arb]:
     """(lower, upper) bound of bracket j: reading 'intended' (used by claims) or 'printed'."""
     br = BRACKETS[j]

@@ -14,10 +14,12 @@ from typing import Callable
 from flint import arb, fmpq
 
 from ...core.audit import NUMBER, audit_printed, half_unit, numbers
+from ...core.formula_edits import search_single_edits
 from ...core.balls import ball, certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds
 from ...core.outcome import AuditRow, AuditStatus
 from ...core.polyroots import isolate_polynomial
-from .model import APPROX_TEXT, BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic
+from .model import (APPROX_TEXT, BRACKETS, EDIT_FORMULAS, NotReal, Params, approximation, bracket,
+                    characteristic_quartic)
 
 __all__ = ["PAPER_SCHEMA", "formula_table", "audit", "dimensional_14"]
 
@@ -152,6 +154,29 @@ def _at_paper_scale(row: AuditRow, printed: str, w: arb | None, hull: arb | None
     return row
 
 
+def _with_edits(row: AuditRow, key: tuple[str, int], eq: str, printed: str, p: Params, s: arb,
+                hull: arb | None) -> AuditRow:
+    """For a print that neither the formula as printed, nor its reading, nor the paper's own scales
+    explain: which single edits of the printed formula (``EDIT_FORMULAS``) reproduce it, in Hz at a
+    scale the paper's 'exact' values allow (at the scene's hz_scale when there is no such interval)."""
+    if row.status in (AuditStatus.AGREES, AuditStatus.MISPRINT) or row.propagated is not None:
+        return row
+    text, defs = EDIT_FORMULAS[key]
+    a, b, e, W = (ball(x) for x in p)
+
+    def reproduces(w: arb) -> bool | None:
+        if not certainly_positive(w):
+            return False
+        if hull is not None:
+            return _meets(_scale_range(printed, w), hull)
+        st = audit_printed(printed, s * w.sqrt())[0]
+        return True if st is AuditStatus.AGREES else None if st is AuditStatus.UNDECIDED else False
+    res = search_single_edits(text, {"a": a, "b": b, "eps": e, "W": W}, printed, defs, reproduces)
+    row.formula_edits = res.to_json(f"{eq} as printed")
+    row.note += "; " + res.summary(f"{eq} as printed")
+    return row
+
+
 def _number_row(rid: str, printed: str, s: arb, w_printed: arb, w_read: arb | None,
                 printed_text: str, read_text: str, hull: arb | None = None) -> AuditRow:
     """Audit a printed Hz number against the printed formula and (if different) the reading."""
@@ -234,14 +259,16 @@ def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[A
             br = BRACKETS[j]
             pf = br.lo if kind == "lower" else br.hi
             rf = br.lo_read if kind == "lower" else br.hi_read
-            rows.append(_number_row(f"{br.eq} lambda_{j}{'-' if kind == 'lower' else '+'} (Hz)", x, s,
-                                    _value(pf, p), _value(rf, p),
-                                    br.lo_printed if kind == "lower" else br.hi_printed,
-                                    (br.lo_reading if kind == "lower" else br.hi_reading) or "as printed", hull))
+            rows.append(_with_edits(_number_row(f"{br.eq} lambda_{j}{'-' if kind == 'lower' else '+'} (Hz)", x, s,
+                                                _value(pf, p), _value(rf, p),
+                                                br.lo_printed if kind == "lower" else br.hi_printed,
+                                                (br.lo_reading if kind == "lower" else br.hi_reading) or "as printed",
+                                                hull), (kind, j), br.eq, x, p, s, hull))
     for j, x in enumerate(paper.get("hz_approx", []), start=1):
-        rows.append(_number_row(f"{'(12)' if j == 1 else '(13)'} lambda_{j}~ (Hz)", x, s,
-                                _value(lambda q: approximation(j, q), p), None,
-                                APPROX_TEXT[j], "as printed", hull))
+        eq = "(12)" if j == 1 else "(13)"
+        rows.append(_with_edits(_number_row(f"{eq} lambda_{j}~ (Hz)", x, s,
+                                            _value(lambda q: approximation(j, q), p), None,
+                                            APPROX_TEXT[j], "as printed", hull), ("approx", j), eq, x, p, s, hull))
     bound = paper.get("error_bound")
     if bound is not None:
         rows.extend(_five_percent_rows(bound, p, omegas))

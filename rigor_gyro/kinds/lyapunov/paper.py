@@ -18,6 +18,7 @@ from flint import arb, fmpq
 
 from ...core.audit import NUMBER, TEXT, audit_printed
 from ...core.balls import certainly_gt, certainly_nonzero, decimal_bounds
+from ...core.formula_edits import search_single_edits
 from ...core.outcome import AuditRow, AuditStatus, Status
 from ...core.subdivision import enclose_max
 from .model import Dual, Gimbal, certify_vdot_nonpositive
@@ -43,6 +44,23 @@ TERM_NAMES = {("x1^2", 0): "Psi1 constant term (x1^2)", ("x1^3", 0): "Psi1 x1-te
 def _fmt(x: arb, d: int = 10) -> str:
     lo, hi = decimal_bounds(x, d)
     return lo if lo == hi else f"[{lo}, {hi}]"
+
+
+#: R1 (13) and R2 (14) as printed (section 2), for the single-edit search when a printed value disagrees
+EDIT_FORMULAS = {
+    "R1": ("(13)", "sqrt(D1/D2)",
+           {"D1": "108*A0*(A0 - C0)*H**4*cos(x)**4*(k/A0 - mu)**2",
+            "D2": "16*mu**2*A0*(A0 - C0)*H**2*C0**2 + 27*(mu*k*B0*C0 + (A0 - C0)*H**2)**2"}),
+    "R2": ("(14)", "sqrt(E1/E2)",
+           {"E1": "4*H**2*(mu*H*cos(x)**2 - m*A0)**2*(A0 - C0*sin(x)**2)**4",
+            "E2": "A0**2*(4*mu**2*H**2*(A0 - C0 - C0*cos(x)**2)**2*(A0 - C0*sin(x)**2)**2*sin(x)**2"
+                  " + (mu*k*B0*C0 - (A0 - C0)*H**2)**2)"}),
+}
+
+
+def _edit_inputs(g: Gimbal, m: arb) -> dict[str, arb]:
+    c = g.c
+    return {"A0": c.A0, "B0": c.B0, "C0": c.C0, "H": c.H, "k": c.k, "mu": c.mu, "m": m, "x": c.x2_star}
 
 
 def vdot_formula_audit(g, xs: arb) -> tuple[list[str], list[str], list[str]]:
@@ -122,7 +140,13 @@ def audit(ctx, quantities: dict[str, arb]) -> tuple[list[AuditRow], list[dict[st
     for key, (qname, what) in PAPER_KEYS.items():
         if key in paper and qname in quantities:
             status, note = audit_printed(str(paper[key]), quantities[qname])
-            rows.append(_row(key, str(paper[key]), what, quantities[qname], status, note))
+            row = _row(key, str(paper[key]), what, quantities[qname], status, note)
+            if key in EDIT_FORMULAS and status is not AuditStatus.AGREES and "m" in quantities:
+                eq, text, defs = EDIT_FORMULAS[key]
+                res = search_single_edits(text, _edit_inputs(g, quantities["m"]), str(paper[key]), defs)
+                row.formula_edits = res.to_json(f"{eq} as printed")
+                row.note += "; " + res.summary(f"{eq} as printed")
+            rows.append(row)
     if "limit" in paper:
         # lim f / sqrt(int_0^x f) = sqrt(2 f'(0)) for an odd law; the paper prints (2a)^(1/2)
         d0 = g.df(arb(0))

@@ -1,0 +1,114 @@
+"""Single edits of a printed formula (core.formula_edits) and their use by the audits."""
+import ast
+
+import pytest
+from flint import arb, fmpq
+from hypothesis import given
+from hypothesis import strategies as st
+
+from rigor_gyro import load_scene, prove_scene
+from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.formula_edits import evaluate, search_single_edits, single_edits
+
+
+def _val(text, env):
+    return evaluate(ast.parse(text, mode="eval"), env)
+
+
+def test_every_kind_of_edit_is_made_once_per_site():
+    kinds = {}
+    for e in single_edits("a * b ** 2 / sqrt(c) - sin(a)"):
+        kinds.setdefault(e.kind, []).append(e.formula)
+    assert "a * b ** 2 / sqrt(c) + sin(a)" in kinds["sign"]
+    assert {"a * b ** 1 / sqrt(c) - sin(a)", "a * b ** 3 / sqrt(c) - sin(a)"} <= set(kinds["exponent"])
+    assert "a * b ** 2 * sqrt(c) - sin(a)" in kinds["moved"]              # the denominator moved up
+    assert "b ** 2 / a / sqrt(c) - sin(a)" in kinds["moved"]              # a moved down
+    assert "1 * b ** 2 / sqrt(c) - sin(a)" in kinds["factor-dropped"]
+    assert "a * b ** 2 / sqrt(c) - cos(a)" in kinds["label-swap"]
+    assert "b * a ** 2 / sqrt(c) - sin(b)" in kinds["label-swap"]         # a and b exchanged everywhere
+    assert "(a * b ** 2 / sqrt(c) - sin(a)) / 2" in kinds["factor-added"]
+    assert any("_id(c)" in f for f in kinds["exponent"])                  # the square root removed
+    descriptions = [e.description for e in single_edits("a * b + a * b")]
+    assert len(descriptions) == len(set(descriptions))                   # two sites, two names (occurrences)
+
+
+@given(st.integers(1, 50), st.integers(2, 50), st.integers(1, 50))
+def test_a_planted_edit_is_found(a, b, c):
+    env = {"a": arb(a), "b": arb(b), "c": arb(c)}
+    with working_precision(128):
+        planted = _val("a * b ** 3 / (c + 1)", env)                      # the misprint: b^3 for b^2
+        printed = f"{float(planted.mid()):.6g}"
+        r = search_single_edits("a * b ** 2 / (c + 1)", env, printed)
+    if "e" in printed:
+        return
+    found = any(e.description == "b ** 2 -> b ** 3" for e in r.reproducing)
+    assert found or r.undecided
+    assert all(e.value is not None for e in r.reproducing)
+
+
+def test_a_print_on_a_rounding_boundary_is_undecided_not_reproduced():
+    # sqrt(2) * 0 + x with x = 0.125 +- 1e-30: '0.12' and '0.13' are both possible roundings
+    env = {"x": arb("0.125", "1e-30")}
+    r = search_single_edits("x * 2", env, "0.13")
+    assert all(e.description != "the whole divided by 2" for e in r.reproducing)
+    assert r.undecided >= 1
+
+
+def test_definitions_carry_an_edit_to_every_use():
+    env = {"a": arb(3)}
+    # D = a^2 - 3 = 6, D + D = 12; the print 24 is D = a^2 + 3 = 12 in both uses (one edit, in D)
+    r = search_single_edits("D + D", env, "24", {"D": "a ** 2 - 3"})
+    assert r.tried == len(single_edits("D + D")) + len(single_edits("a ** 2 - 3"))
+    hits = {e.description for e in r.reproducing}
+    assert "in D: a ** 2 - 3 with + for -" in hits
+    assert "the whole times 2" in hits                                   # several edits: all reported
+    for e in r.reproducing:
+        assert e.value.overlaps(arb(24))
+
+
+def test_the_audit_formula_texts_are_the_model_functions():
+    from rigor_gyro.kinds.eigenfrequencies.claims import validate
+    from rigor_gyro.kinds.eigenfrequencies.model import BRACKETS, EDIT_FORMULAS, approximation
+    m = validate(load_scene("rudenko1976"))
+    with working_precision(128):
+        p = tuple(arb(m.q(k)) for k in ("a", "b", "eps", "Omega2"))
+        env = dict(zip(("a", "b", "eps", "W"), p))
+        for (kind, j), (text, defs) in EDIT_FORMULAS.items():
+            scope = dict(env)
+            for name, body in defs.items():
+                scope[name] = _val(body, scope)
+            v = _val(text, scope)
+            ref = (BRACKETS[j].lo(p) if kind == "lower" else BRACKETS[j].hi(p) if kind == "upper"
+                   else approximation(j, p))
+            assert v.overlaps(ref) and v.rad() < 1e-30 * (1 + abs(ref).upper()), (kind, j)
+
+
+def test_the_lyapunov_formula_texts_are_r1_and_r2():
+    from rigor_gyro.kinds.lyapunov.paper import EDIT_FORMULAS, _edit_inputs
+    cert = prove_scene(load_scene("agafonov2013"))
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    g = validate(load_scene("agafonov2013")).gimbal
+    with working_precision(128):
+        env = _edit_inputs(g, arb(fmpq(1000, 127)))                      # m = a / A0 for the sine law
+        for key in ("R1", "R2"):
+            _, text, defs = EDIT_FORMULAS[key]
+            scope = dict(env)
+            for name, body in defs.items():
+                scope[name] = _val(body, scope)
+            assert _val(text, scope).overlaps(cert.quantities[key]), key
+
+
+@pytest.mark.parametrize("scene,row,expect", [
+    ("agafonov2013", "R2", None),                                          # no single edit of (14) gives 0.0124
+    ("rudenko1976", "(10) lambda_4+ (Hz)", "exponent: in R3: eps ** 2 -> eps ** 1"),
+])
+def test_the_audits_report_the_search(scene, row, expect):
+    cert = prove_scene(load_scene(scene))
+    r = next(x for x in cert.paper if x.id == row)
+    fe = r.formula_edits
+    assert fe is not None and fe["tried"] > 40
+    if expect is None:
+        assert fe["reproducing"] == [] and "none reproduces" in fe["summary"]
+    else:
+        assert expect in fe["reproducing"]
+    assert fe["summary"] in r.note
