@@ -1,6 +1,4 @@
 """Single edits of a printed formula (core.formula_edits) and their use by the audits."""
-import ast
-
 import pytest
 from flint import arb, fmpq
 from hypothesis import given
@@ -12,7 +10,7 @@ from rigor_gyro.core.formula_edits import evaluate, search_single_edits, single_
 
 
 def _val(text, env):
-    return evaluate(ast.parse(text, mode="eval"), env)
+    return evaluate(text, env)
 
 
 def test_every_kind_of_edit_is_made_once_per_site():
@@ -112,3 +110,18 @@ def test_the_audits_report_the_search(scene, row, expect):
     else:
         assert expect in fe["reproducing"]
     assert fe["summary"] in r.note
+
+
+def test_the_printer_reads_back_to_the_same_formula():
+    import ast
+
+    from rigor_gyro.core.formula_edits import parse_formula, show
+    from rigor_gyro.kinds.eigenfrequencies.model import EDIT_FORMULAS
+    from rigor_gyro.kinds.lyapunov.paper import EDIT_FORMULAS as LYAP
+    texts = [t for t, d in EDIT_FORMULAS.values()] + [x for t, d in EDIT_FORMULAS.values() for x in d.values()]
+    texts += [x for _, t, d in LYAP.values() for x in [t, *d.values()]]
+    texts += ["-(a + b) ** 2", "(-a) ** 2", "a - (b - c)", "a / (b / c)", "a - -b", "-a * b"]
+    for t in texts:
+        tree = parse_formula(t)
+        assert show(tree) == ast.unparse(ast.parse(t, mode="eval")), t
+        assert parse_formula(show(tree)) == tree, t

@@ -33,7 +33,6 @@ Example:
 from __future__ import annotations
 
 import ast
-import copy
 import itertools
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -44,13 +43,17 @@ from flint import arb, fmpq
 from .audit import audit_printed
 from .outcome import AuditStatus
 
-__all__ = ["FormulaEdit", "EditSearch", "single_edits", "evaluate", "search_single_edits"]
+__all__ = ["FormulaEdit", "EditSearch", "single_edits", "parse_formula", "evaluate", "show", "search_single_edits"]
 
 #: the order reproducing edits are listed in: the commonest misprints of a typeset formula first
 KIND_ORDER = ("sign", "exponent", "label-swap", "moved", "factor-dropped", "factor-added")
 
 FUNCTIONS = {"sqrt": lambda x: x.sqrt(), "sin": lambda x: x.sin(), "cos": lambda x: x.cos(),
              "tan": lambda x: x.tan(), "exp": lambda x: x.exp(), "log": lambda x: x.log()}
+
+#: a formula is an immutable tree of tuples: ("+" | "-" | "*" | "/", left, right), ("**", base, n),
+#: ("neg", x), ("call", name, x), ("sym", name), ("num", Fraction, text); an edit copies one path only
+Tree = tuple
 
 
 @dataclass
@@ -59,6 +62,7 @@ class FormulaEdit:
     description: str
     formula: str
     value: arb | None = None
+    tree: Tree | None = field(default=None, repr=False, compare=False)
 
 
 @dataclass
@@ -89,43 +93,34 @@ class EditSearch:
         return f"{head}; {count} the print {self.printed}: {shown}{more}{tail}"
 
 
-def evaluate(tree: ast.AST, env: dict[str, arb]) -> arb:
-    """The formula's ball at the current precision, every symbol from ``env`` (KeyError if missing).
-    Raises ValueError for syntax outside the module's grammar."""
-    if isinstance(tree, ast.Expression):
-        return evaluate(tree.body, env)
-    if isinstance(tree, ast.BinOp):
-        a, b = evaluate(tree.left, env), evaluate(tree.right, env)
-        op = type(tree.op)
-        if op is ast.Add:
-            return a + b
-        if op is ast.Sub:
-            return a - b
-        if op is ast.Mult:
-            return a * b
-        if op is ast.Div:
-            return a / b
-        if op is ast.Pow:
-            n = _int_constant(tree.right)
-            if n is None:
+_BINARY = {ast.Add: "+", ast.Sub: "-", ast.Mult: "*", ast.Div: "/"}
+
+
+def parse_formula(text: str) -> Tree:
+    """The tree of a formula text; ValueError for syntax outside the grammar of the module docstring."""
+    def conv(n: ast.AST) -> Tree:
+        if isinstance(n, ast.Expression):
+            return conv(n.body)
+        if isinstance(n, ast.BinOp) and type(n.op) in _BINARY:
+            return (_BINARY[type(n.op)], conv(n.left), conv(n.right))
+        if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow):
+            k = _int_constant(n.right)
+            if k is None:
                 raise ValueError("only integer powers")
-            out = arb(1)
-            for _ in range(abs(n)):
-                out = out * a
-            return out if n >= 0 else 1 / out
-        raise ValueError(f"operator {op.__name__} not supported")
-    if isinstance(tree, ast.UnaryOp) and isinstance(tree.op, (ast.USub, ast.UAdd)):
-        v = evaluate(tree.operand, env)
-        return -v if isinstance(tree.op, ast.USub) else v
-    if isinstance(tree, ast.Call) and isinstance(tree.func, ast.Name) and tree.func.id in FUNCTIONS \
-            and len(tree.args) == 1:
-        return FUNCTIONS[tree.func.id](evaluate(tree.args[0], env))
-    if isinstance(tree, ast.Name):
-        return env[tree.id]
-    if isinstance(tree, ast.Constant) and isinstance(tree.value, (int, float)) and not isinstance(tree.value, bool):
-        q = Fraction(repr(tree.value)) if isinstance(tree.value, float) else Fraction(tree.value)
-        return arb(fmpq(q.numerator, q.denominator))
-    raise ValueError(f"{ast.dump(tree)[:60]} is outside the formula grammar")
+            return ("**", conv(n.left), k)
+        if isinstance(n, ast.UnaryOp) and isinstance(n.op, ast.USub):
+            return ("neg", conv(n.operand))
+        if isinstance(n, ast.UnaryOp) and isinstance(n.op, ast.UAdd):
+            return conv(n.operand)
+        if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id in FUNCTIONS and len(n.args) == 1:
+            return ("call", n.func.id, conv(n.args[0]))
+        if isinstance(n, ast.Name):
+            return ("sym", n.id)
+        if isinstance(n, ast.Constant) and isinstance(n.value, (int, float)) and not isinstance(n.value, bool):
+            q = Fraction(repr(n.value)) if isinstance(n.value, float) else Fraction(n.value)
+            return ("num", q, repr(n.value))
+        raise ValueError(f"{ast.dump(n)[:60]} is outside the formula grammar")
+    return conv(ast.parse(text, mode="eval"))
 
 
 def _int_constant(node: ast.AST) -> int | None:
@@ -137,90 +132,152 @@ def _int_constant(node: ast.AST) -> int | None:
     return None
 
 
-def _edited(tree: ast.Expression, index: int, change) -> ast.Expression:
-    """A copy of ``tree`` with ``change`` applied to its index-th node (ast.walk order)."""
-    t = copy.deepcopy(tree)
-    node = list(ast.walk(t))[index]
-    change(node)
-    return t
+def evaluate(tree: Tree | str, env: dict[str, arb]) -> arb:
+    """The formula's ball at the current precision, every symbol from ``env`` (KeyError if missing)."""
+    t = parse_formula(tree) if isinstance(tree, str) else tree
+    op = t[0]
+    if op == "+":
+        return evaluate(t[1], env) + evaluate(t[2], env)
+    if op == "-":
+        return evaluate(t[1], env) - evaluate(t[2], env)
+    if op == "*":
+        return evaluate(t[1], env) * evaluate(t[2], env)
+    if op == "/":
+        return evaluate(t[1], env) / evaluate(t[2], env)
+    if op == "**":
+        a, n = evaluate(t[1], env), t[2]
+        out = arb(1)
+        for _ in range(abs(n)):
+            out = out * a
+        return out if n >= 0 else 1 / out
+    if op == "neg":
+        return -evaluate(t[1], env)
+    if op == "call":
+        return FUNCTIONS[t[1]](evaluate(t[2], env))
+    if op == "id":                       # a removed square root
+        return evaluate(t[1], env)
+    if op == "sym":
+        return env[t[1]]
+    if op == "num":
+        return arb(fmpq(t[1].numerator, t[1].denominator))
+    raise ValueError(f"unknown node {op!r}")
+
+
+_LEVEL = {"+": 1, "-": 1, "*": 2, "/": 2, "neg": 3, "**": 4}
+
+
+def _level(t: Tree) -> int:
+    return _LEVEL.get(t[0], 5)
+
+
+def show(t: Tree) -> str:
+    """The formula as text (Python syntax, the parentheses the precedence needs)."""
+    op = t[0]
+    if op in ("+", "-", "*", "/"):
+        p = _LEVEL[op]
+        left = show(t[1]) if _level(t[1]) >= p else f"({show(t[1])})"
+        right = show(t[2]) if _level(t[2]) > p else f"({show(t[2])})"
+        return f"{left} {op} {right}"
+    if op == "**":
+        base = show(t[1]) if _level(t[1]) > 4 else f"({show(t[1])})"
+        return f"{base} ** {t[2]}"
+    if op == "neg":
+        inner = show(t[1]) if _level(t[1]) >= 3 else f"({show(t[1])})"
+        return f"-{inner}"
+    if op == "call":
+        return f"{t[1]}({show(t[2])})"
+    if op == "id":
+        return f"_id({show(t[1])})"
+    if op == "sym":
+        return t[1]
+    return t[2]
+
+
+def _sites(t: Tree, path: tuple = ()):
+    """(path, subtree) for every node, breadth first (child indices: 1, 2 of binary nodes, 1 of neg/**,
+    2 of call)."""
+    queue = [(path, t)]
+    while queue:
+        path, node = queue.pop(0)
+        yield path, node
+        op = node[0]
+        if op in ("+", "-", "*", "/"):
+            queue += [(path + (1,), node[1]), (path + (2,), node[2])]
+        elif op in ("**", "neg", "id"):
+            queue.append((path + (1,), node[1]))
+        elif op == "call":
+            queue.append((path + (2,), node[2]))
+
+
+def _replace(t: Tree, path: tuple, new: Tree) -> Tree:
+    if not path:
+        return new
+    i = path[0]
+    return t[:i] + (_replace(t[i], path[1:], new),) + t[i + 1:]
+
+
+def _rename(t: Tree, a: str, b: str) -> Tree:
+    if t[0] == "sym":
+        return ("sym", b if t[1] == a else a if t[1] == b else t[1])
+    if t[0] in ("num",):
+        return t
+    return tuple(_rename(x, a, b) if isinstance(x, tuple) else x for x in t)
 
 
 def single_edits(text: str) -> list[FormulaEdit]:
     """Every single edit of the formula ``text`` (see the module docstring), as edited formulas."""
-    tree = ast.parse(text, mode="eval")
-    nodes = list(ast.walk(tree))
+    tree = parse_formula(text)
     out: list[FormulaEdit] = []
 
-    def add(kind: str, what: str, t: ast.Expression) -> None:
-        out.append(FormulaEdit(kind, what, ast.unparse(t)))
+    def add(kind: str, what: str, t: Tree) -> None:
+        out.append(FormulaEdit(kind, what, show(t), tree=t))
 
-    for i, n in enumerate(nodes):
-        src = ast.unparse(n)
-        if isinstance(n, ast.BinOp) and isinstance(n.op, (ast.Add, ast.Sub)):
-            flip = ast.Sub if isinstance(n.op, ast.Add) else ast.Add
-            add("sign", f"{src} with {'-' if flip is ast.Sub else '+'} for {'+' if flip is ast.Sub else '-'}",
-                _edited(tree, i, lambda m, f=flip: setattr(m, "op", f())))
-        if isinstance(n, ast.UnaryOp) and isinstance(n.op, ast.USub):
-            where = next(((j, fld, k) for j, p in enumerate(nodes) for fld, val in ast.iter_fields(p)
-                          for k, v in (enumerate(val) if isinstance(val, list) else [(None, val)]) if v is n), None)
-            if where is not None:
-                j, fld, k = where
-
-                def drop_minus(p, fld=fld, k=k):
-                    if k is None:
-                        setattr(p, fld, getattr(p, fld).operand)
-                    else:
-                        getattr(p, fld)[k] = getattr(p, fld)[k].operand
-                add("sign", f"{src} without its minus", _edited(tree, j, drop_minus))
-        if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Pow):
-            k = _int_constant(n.right)
-            if k is not None:
-                base = ast.unparse(n.left)
-                for e in (k - 1, k + 1):
-                    if e >= 1:
-                        add("exponent", f"{src} -> {base} ** {e}",
-                            _edited(tree, i, lambda m, e=e: setattr(m, "right", ast.Constant(e))))
-        if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id == "sqrt":
-            add("exponent", f"{src} without the square root",
-                _edited(tree, i, lambda m: (setattr(m.func, "id", "_id"),)))
-        if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and n.func.id in ("sin", "cos"):
-            other = "cos" if n.func.id == "sin" else "sin"
-            add("label-swap", f"{src} read as {other}",
-                _edited(tree, i, lambda m, o=other: setattr(m.func, "id", o)))
-        if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Mult):
-            for side, other in (("left", "right"), ("right", "left")):
-                moved = ast.unparse(getattr(n, side))
-
-                def move(m, side=side, other=other):
-                    num, den = getattr(m, other), getattr(m, side)
-                    m.op, m.left, m.right = ast.Div(), num, den
-                add("moved", f"{moved} moved to the denominator", _edited(tree, i, move))
-                add("factor-dropped", f"the factor {moved} left out",
-                    _edited(tree, i, lambda m, side=side: setattr(m, side, ast.Constant(1))))
-        if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Div):
-            add("moved", f"the denominator {ast.unparse(n.right)} moved up",
-                _edited(tree, i, lambda m: setattr(m, "op", ast.Mult())))
+    parents = {}
+    for path, node in _sites(tree):
+        for child_index in ((1, 2) if node[0] in ("+", "-", "*", "/") else (1,) if node[0] in ("**", "neg") else
+                            (2,) if node[0] == "call" else ()):
+            parents[path + (child_index,)] = path
+    for path, n in _sites(tree):
+        op, src = n[0], show(n)
+        if op in ("+", "-"):
+            flip = "-" if op == "+" else "+"
+            add("sign", f"{src} with {flip} for {op}", _replace(tree, path, (flip, n[1], n[2])))
+        if op == "neg":
+            add("sign", f"{src} without its minus", _replace(tree, path, n[1]))
+        if op == "**":
+            base = show(n[1]) if _level(n[1]) > 4 else f"({show(n[1])})"
+            for e in (n[2] - 1, n[2] + 1):
+                if e >= 1:
+                    add("exponent", f"{src} -> {base} ** {e}", _replace(tree, path, ("**", n[1], e)))
+        if op == "call" and n[1] == "sqrt":
+            add("exponent", f"{src} without the square root", _replace(tree, path, ("id", n[2])))
+        if op == "call" and n[1] in ("sin", "cos"):
+            other = "cos" if n[1] == "sin" else "sin"
+            add("label-swap", f"{src} read as {other}", _replace(tree, path, ("call", other, n[2])))
+        if op == "*":
+            for side, other in ((1, 2), (2, 1)):
+                moved = show(n[side])
+                add("moved", f"{moved} moved to the denominator", _replace(tree, path, ("/", n[other], n[side])))
+                kept = (n[0], ("num", Fraction(1), "1"), n[2]) if side == 1 else (n[0], n[1], ("num", Fraction(1), "1"))
+                add("factor-dropped", f"the factor {moved} left out", _replace(tree, path, kept))
+        if op == "/":
+            add("moved", f"the denominator {show(n[2])} moved up", _replace(tree, path, ("*", n[1], n[2])))
     seen: dict[str, int] = {}
     for e in out:                       # the same words for two sites: number the occurrences
         seen[e.description] = seen.get(e.description, 0) + 1
-    dup = {d for d, n in seen.items() if n > 1}
+    dup = {d for d, c in seen.items() if c > 1}
     count: dict[str, int] = {}
     for e in out:
         if e.description in dup:
             count[e.description] = count.get(e.description, 0) + 1
             e.description += f" (occurrence {count[e.description]})"
-    names = sorted({n.id for n in nodes if isinstance(n, ast.Name) and n.id not in FUNCTIONS and n.id != "_id"})
+    names = sorted({n[1] for _, n in _sites(tree) if n[0] == "sym"})
     for a, b in itertools.combinations(names, 2):
-        t = copy.deepcopy(tree)
-        for x in ast.walk(t):
-            if isinstance(x, ast.Name) and x.id in (a, b):
-                x.id = b if x.id == a else a
-        add("label-swap", f"{a} and {b} exchanged", t)
+        add("label-swap", f"{a} and {b} exchanged", _rename(tree, a, b))
     for name in names + ["2"]:
-        for op, word in ((ast.Mult, "times"), (ast.Div, "divided by")):
-            factor = ast.Constant(2) if name == "2" else ast.Name(name, ast.Load())
-            add("factor-added", f"the whole {word} {name}",
-                ast.Expression(ast.BinOp(copy.deepcopy(tree.body), op(), factor)))
+        factor = ("num", Fraction(2), "2") if name == "2" else ("sym", name)
+        add("factor-added", f"the whole times {name}", ("*", tree, factor))
+        add("factor-added", f"the whole divided by {name}", ("/", tree, factor))
     return out
 
 
@@ -232,7 +289,8 @@ def search_single_edits(text: str, env: dict[str, arb], printed: str, defs: dict
     earlier ones): an edit is made in the text or in one definition (a misprint in a definition
     changes every use of it). ``reproduces(value)``: True when the value certainly gives the print,
     None when undecided (default: the value is certainly a correct rounding of ``printed``)."""
-    defs = dict(defs or {})
+    defs = {k: parse_formula(v) for k, v in (defs or {}).items()}
+    main = parse_formula(text)
     res = EditSearch(printed.strip(), 0)
 
     def decide(v: arb) -> bool | None:
@@ -241,25 +299,27 @@ def search_single_edits(text: str, env: dict[str, arb], printed: str, defs: dict
         status, _ = audit_printed(res.printed, v)
         return True if status is AuditStatus.AGREES else None if status is AuditStatus.UNDECIDED else False
 
-    def value(main: str, parts: dict[str, str]) -> arb:
-        scope = dict(env)
-        for name, body in parts.items():
-            scope[name] = evaluate(_strip_identity(ast.parse(body, mode="eval")), scope)
-        return evaluate(_strip_identity(ast.parse(main, mode="eval")), scope)
+    base = dict(env)                    # the unedited definitions, for edits made elsewhere
+    order = list(defs)
+    for name in order:
+        base[name] = evaluate(defs[name], base)
 
-    sites = [(None, text)] + list(defs.items())
+    def value(where: str | None, edited: Tree) -> arb:
+        if where is None:
+            return evaluate(edited, base)
+        scope = dict(env)
+        for name in order:
+            scope[name] = evaluate(edited if name == where else defs[name], scope)
+        return evaluate(main, scope)
+
+    sites = [(None, text)] + [(k, show(v)) for k, v in defs.items()]
     for where, body in sites:
         for e in single_edits(body):
             res.tried += 1
-            parts = dict(defs)
-            main = text
-            if where is None:
-                main = e.formula
-            else:
-                parts[where] = e.formula
+            if where is not None:
                 e.description = f"in {where}: {e.description}"
             try:
-                v = value(main, parts)
+                v = value(where, e.tree)
             except (ValueError, ZeroDivisionError, KeyError):
                 res.not_evaluated += 1
                 continue
@@ -275,13 +335,3 @@ def search_single_edits(text: str, env: dict[str, arb], printed: str, defs: dict
     res.reproducing.sort(key=lambda e: KIND_ORDER.index(e.kind))   # stable: in formula order within a kind
     return res
 
-
-def _strip_identity(tree: ast.AST) -> ast.AST:
-    """Replace the calls ``_id(x)`` (a removed square root) by x."""
-    class _Strip(ast.NodeTransformer):
-        def visit_Call(self, node):
-            self.generic_visit(node)
-            if isinstance(node.func, ast.Name) and node.func.id == "_id":
-                return node.args[0]
-            return node
-    return _Strip().visit(tree)
