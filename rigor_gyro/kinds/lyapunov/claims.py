@@ -380,8 +380,9 @@ def _largest_sublevel(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     ctx.witnesses["largest_sublevel"] = {"boxes": [b.to_json() for b in r.leaves]}
     if r.point is not None:
         ctx.witnesses["largest_sublevel"]["point"] = {n: ball_text(x) for n, x in zip(("x1", "x2", "x3"), r.point)}
-    vd = (f"over {{Vdot >= 0}}: V >= {r.n_lower} ({r.boxes} boxes of (x2, t), aiming {SUBLEVEL_GAP} below the point's "
-          "value)" + (f", and V = {_fmt(ctx.g.V(*r.point), 10)} <= {r.n_upper} at the point x1 = {_fmt(r.point[0], 8)}, "
+    aim = (f"aiming {r.gap} below the point's value" + (" (the faces bind by a factor > 2: the level of {Vdot >= 0} "
+                                                       "only has to be shown above them)" if r.gap != SUBLEVEL_GAP else ""))
+    vd = (f"over {{Vdot >= 0}}: V >= {r.n_lower} ({r.boxes} boxes of (x2, t), {aim})" + (f", and V = {_fmt(ctx.g.V(*r.point), 10)} <= {r.n_upper} at the point x1 = {_fmt(r.point[0], 8)}, "
                       f"x2 = {_fmt(r.point[1], 8)}, x3 = {_fmt(r.point[2], 8)} where Vdot = "
                       f"{_fmt(ctx.g.vdot(*r.point), 4)} > 0" if r.point is not None else
                       " (no certified point where Vdot > 0 was found: no upper bound of that part)"))
