@@ -116,6 +116,28 @@ def _tighter(f, X: arb, prec: int) -> arb:
     return hi.intersection(lo) if hi.overlaps(lo) else hi
 
 
+def _box_lower_ends(make, boxes, prec: int) -> list[arb]:
+    """For each box, the larger of the lower ends of the box function ``make()`` at the current precision
+    and at ``prec`` (the certificate's): both are valid lower bounds, and arb's 30-bit radii on wide balls
+    round differently at two precisions (2e-9 relative seen on a c_max box), so neither one alone can
+    confirm a bound stored from the other. ``make`` builds the function (it captures balls at the
+    precision it is built at)."""
+    f_here = make()
+    here = [f_here({k: b.ball(k) for k in b.names}).lower() for b in boxes]
+    with working_precision(prec):
+        f_cert = make()
+        there = [f_cert({k: b.ball(k) for k in b.names}).lower() for b in boxes]
+    out = []
+    for a, c in zip(here, there):       # exact ends (or +-inf, nan): compared exactly
+        out.append(a if c.is_nan() else c if a.is_nan() else a if a >= c else c)
+    return out
+
+
+def _positive_end(low: arb) -> bool:
+    """A lower end certainly > 0 (+inf counts: nothing to bound there)."""
+    return float(low) == float("inf") or (low.is_finite() and certainly_positive(low))
+
+
 def _all_positive(f, pieces) -> bool:
     return all(certainly_positive(f(_b(p))) for p in pieces)
 
@@ -324,9 +346,8 @@ def check(model, data: dict) -> list[CheckResult]:
         contains("R_direct", Rd)
         boxes = [Box.from_json(b) for b in wd.get("boxes", [])]
         whole = Box.of(DIRECT_DOMAIN)
-        G = direct_margin(g, Rd)
         direct_ok = (certainly_positive(Rd) and tiles_by_bisection(whole, boxes)
-                     and all(certainly_positive(G({k: b.ball(k) for k in b.names})) for b in boxes))
+                     and all(_positive_end(lo) for lo in _box_lower_ends(lambda: direct_margin(g, Rd), boxes, cert_prec)))
         pt = wd.get("point")
         if pt and direct_ok:
             x1, x2, x3 = (_b(_pair(pt[k])) for k in ("x1", "x2", "x3"))
@@ -342,7 +363,7 @@ def check(model, data: dict) -> list[CheckResult]:
     wl = W.get("largest_sublevel")
     sc = claims.get("largest_sublevel", {})
     if wl and sc.get("status") == "proved":
-        sub_ok, sub_msg = _check_sublevel(g, xs, wl, sc.get("details", {}), q, verified)
+        sub_ok, sub_msg = _check_sublevel(g, xs, wl, sc.get("details", {}), q, verified, cert_prec)
 
     # ---------------------------------------------------------------- equilibria
     eq_ok, eq_msg = False, "no stored pieces"
@@ -438,7 +459,7 @@ def _face_level(g, xs: arb) -> arb:
     return a.union(b)
 
 
-def _check_sublevel(g, xs: arb, w: dict, details: dict, q: dict, verified: set) -> tuple[bool, str]:
+def _check_sublevel(g, xs: arb, w: dict, details: dict, q: dict, verified: set, cert_prec: int) -> tuple[bool, str]:
     """Re-derive the bounds of c_max from the stored (x2, t) boxes (they must tile the domain; the
     model's lower bound re-evaluated on each), the faces' closed form and the stored point of
     {Vdot > 0} (Vdot and V re-evaluated). Each stated bound is compared with its exact decimal."""
@@ -461,11 +482,8 @@ def _check_sublevel(g, xs: arb, w: dict, details: dict, q: dict, verified: set) 
     boxes = [Box.from_json(b) for b in w.get("boxes", [])]
     if not tiles_by_bisection(Box.of(DIRECT_DOMAIN), boxes):
         return False, "the stored (x2, t) boxes do not tile the domain"
-    lb = sublevel_lower_bound(g)
     n_lo = fmpq_of(n_lo_t)
-    for b in boxes:
-        v = lb({k: b.ball(k) for k in b.names})
-        low = v.lower()
+    for b, low in zip(boxes, _box_lower_ends(lambda: sublevel_lower_bound(g), boxes, cert_prec)):
         key = float(low)                # +inf: no point of {Vdot >= 0} above the box
         if not (key == float("inf") or (low.is_finite() and low >= n_lo)):
             return False, f"on the box {b.to_json()} the lower bound of V over {{Vdot >= 0}} is below {details['vdot_level_lower']}"
