@@ -6,9 +6,10 @@ returning a :class:`rigor_gyro.kinds.Attempt`).
 Guarantee: :func:`prove_scene` returns the first attempt in which every requested claim is decided
 (proved or refuted), every requested width is met and every audit row is decided, trying
 p0, 2 p0, ... <= maxprec, where p0 is prec doubled while it is below what the scene's ``rel_width``
-needs (log2(1 / rel_width) + 8 bits: an attempt that cannot meet the width is not run); otherwise the attempt at the highest precision, whose undecided claims
-say ``inconclusive`` with the hint to raise ``--maxprec``. Each claim records the lowest precision at
-which it already had its final status.
+needs (log2(1 / rel_width) + 8 bits: an attempt that cannot meet the width is not run); otherwise
+the attempt at the highest precision, whose undecided claims say ``inconclusive`` with the hint to
+raise ``--maxprec``. Each claim records the lowest precision, among those tried, at which it already
+had its final status.
 """
 from __future__ import annotations
 

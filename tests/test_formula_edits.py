@@ -58,7 +58,7 @@ def test_definitions_carry_an_edit_to_every_use():
     r = search_single_edits("D + D", env, "24", {"D": "a ** 2 - 3"})
     assert r.tried == len(single_edits("D + D")) + len(single_edits("a ** 2 - 3"))
     hits = {e.description for e in r.reproducing}
-    assert "in D: a ** 2 - 3 with + for -" in hits
+    assert "in D: a ** 2 - 3 -> a ** 2 + 3" in hits
     assert "the whole times 2" in hits                                   # several edits: all reported
     for e in r.reproducing:
         assert e.value.overlaps(arb(24))
@@ -125,3 +125,34 @@ def test_the_printer_reads_back_to_the_same_formula():
         tree = parse_formula(t)
         assert show(tree) == ast.unparse(ast.parse(t, mode="eval")), t
         assert parse_formula(show(tree)) == tree, t
+
+
+def test_the_json_names_each_reproducing_edit_by_its_formula():
+    r = search_single_edits("D + D", {"a": arb(3)}, "24", {"D": "a ** 2 - 3"})
+    out = r.to_json("(x)", "as a test")
+    assert len(out["reproducing_formulas"]) == len(out["reproducing"])
+    assert "D = a ** 2 + 3" in out["reproducing_formulas"]
+    assert "(reproducing: as a test)" in out["summary"]
+
+
+def test_an_hz_edit_reproduces_only_at_a_scale_certainly_inside_the_papers_interval():
+    """The eigenfrequency rows: an edit counts only with an exact scale certainly inside the (inner)
+    interval of the paper's implied scales at which the edited value is a correct rounding."""
+    from rigor_gyro.kinds.eigenfrequencies import paper as P
+    from rigor_gyro.core.outcome import AuditRow, AuditStatus
+    with working_precision(128):
+        w = arb(2)
+        lo, hi = P._scale_inner("100", w)              # scales s with s sqrt(2) in [99.95, 100.05]
+        assert lo < hi
+        hull = lo.union(hi)
+        row = AuditRow("r", "100", "", None, AuditStatus.DISAGREES, "")
+        # a formula that is exactly 2: reproduces at the scales of the interval
+        out = P._with_edits(row, ("approx", 1), "(t)", "100", (fmpq(1), fmpq(1), fmpq(1), fmpq(1)),
+                            arb(1), hull, (lo, hi))
+        assert out.formula_edits is not None
+        # an interval pushed just outside: never a reproduction
+        far = (hi + 1, hi + 2)
+        row2 = AuditRow("r", "100", "", None, AuditStatus.DISAGREES, "")
+        out2 = P._with_edits(row2, ("approx", 1), "(t)", "100", (fmpq(1), fmpq(1), fmpq(1), fmpq(1)),
+                             arb(1), far[0].union(far[1]), far)
+        assert out2.formula_edits["reproducing"] == []

@@ -104,3 +104,20 @@ def test_the_checker_re_derives_each_envelope_piece():
     bad["integrity"] = {"sha256": digest(bad)}
     report = check_certificate(bad)
     assert not report.ok and report.first_failure.item == "half_period"
+
+
+def test_no_envelope_where_one_minus_rho_is_not_certainly_positive():
+    """expm1 over a wide piece reaching down near 0 may dip below 0: no bound is given there (the
+    products of positive balls by their ends would then be wrong)."""
+    with working_precision(64):
+        sp = _spectrum("stress_relay_H_1e4")
+        X = interval(arb("1e-7"), arb(1))
+        pair = next(m for m in sp.modes if m.weight == 2)
+        assert not certainly_positive(-(pair.lam.real * X).expm1())   # arb's expm1 dips below 0 here
+        assert envelope_margin(sp, X) is None
+        # the same piece with a slow part of one certain sign (a linear term made large): still no bound
+        import copy
+        sp2 = copy.copy(sp)
+        sp2.p0e = [arb(-1000000)] + list(sp.p0e[1:])
+        assert envelope_margin(sp2, X) is None
+        assert envelope_margin(sp2, interval(arb("0.1"), arb(1))) is not None   # where 1 - rho > 0: a bound

@@ -53,3 +53,25 @@ def test_a_box_is_refuted_only_where_its_midpoint_is_certainly_not_positive():
     out = certify_positive_on_box(lambda b: b["u"] * b["u"] - arb("1e-40"),
                                   Box.of({"u": (Fraction(-1), Fraction(1))}), max_pieces=200)
     assert out.status is Status.REFUTED and out.witness == {"u": Fraction(0)}
+
+
+def test_a_coarse_refutation_is_found_on_the_first_box():
+    """f = (x - 1/2)^2 - 1/100 with an exact-hull enclosure (centred above 0 on [0, 1]): its midpoint
+    is a certified counterexample, found at once (the first boxes always try their midpoint)."""
+    from fractions import Fraction
+
+    from flint import arb
+
+    from rigor_gyro.core.boxes import Box
+    from rigor_gyro.core.outcome import Status
+    from rigor_gyro.core.subdivision import certify_positive_on_box
+
+    def f(b):
+        x = b["x"]
+        lo, hi = x.lower(), x.upper()
+        m = arb(1) / 2
+        d_lo = arb(0) if (lo <= m and m <= hi) else min(abs(lo - m), abs(hi - m), key=lambda v: float(v.mid()))
+        d_hi = max(abs(lo - m), abs(hi - m), key=lambda v: float(v.mid()))
+        return (d_lo * d_lo).union(d_hi * d_hi) - arb(1) / 100
+    out = certify_positive_on_box(f, Box.of({"x": (Fraction(0), Fraction(1))}), max_pieces=2)
+    assert out.status is Status.REFUTED and out.witness == {"x": Fraction(1, 2)}

@@ -10,8 +10,8 @@ and the functions ``sqrt``, ``sin``, ``cos``, ``tan``, ``exp``, ``log``. The edi
 
 * ``sign``: one binary ``+`` turned into ``-`` or back, or one unary minus removed;
 * ``exponent``: one integer power n turned into n - 1 (when >= 1) or n + 1, or one ``sqrt`` removed;
-* ``moved``: one factor of a product moved to the other side of a fraction (a * b -> a / b, b / a),
-  or a whole denominator moved up (a / b -> a * b);
+* ``moved``: one factor of a product made a divisor (a * b -> a / b, b / a), or one divisor made a
+  factor (a / b -> a * b): a factor moved across a fraction bar;
 * ``factor-dropped``: one factor of a product left out;
 * ``factor-added``: the whole formula times or divided by one of its symbols, or by 2;
 * ``label-swap``: two symbols exchanged everywhere, or one ``sin`` read as ``cos`` (or back).
@@ -28,7 +28,7 @@ Example:
     >>> from flint import arb
     >>> r = search_single_edits("a - b", {"a": arb(5), "b": arb(3)}, "8")
     >>> [e.description for e in r.reproducing], r.tried
-    (['a - b with + for -'], 8)
+    (['a - b -> a + b'], 8)
 """
 from __future__ import annotations
 
@@ -76,13 +76,14 @@ class EditSearch:
     undecided: int = 0
     not_evaluated: int = 0
 
-    def to_json(self, formula: str) -> dict:
+    def to_json(self, formula: str, how: str = "") -> dict:
         return {"formula": formula, "tried": self.tried,
                 "reproducing": [f"{e.kind}: {e.description}" for e in self.reproducing],
-                "summary": self.summary(formula)}
+                "reproducing_formulas": [e.formula for e in self.reproducing],
+                "summary": self.summary(formula, how)}
 
-    def summary(self, name: str = "the formula") -> str:
-        head = f"single edits of {name} tried: {self.tried}"
+    def summary(self, name: str = "the formula", how: str = "") -> str:
+        head = f"single edits of {name} tried: {self.tried}" + (f" (reproducing: {how})" if how else "")
         tail = "" if not (self.undecided or self.not_evaluated) else \
             f" ({self.undecided} undecided at this precision, {self.not_evaluated} not evaluable)"
         if not self.reproducing:
@@ -241,7 +242,7 @@ def single_edits(text: str) -> list[FormulaEdit]:
         op, src = n[0], show(n)
         if op in ("+", "-"):
             flip = "-" if op == "+" else "+"
-            add("sign", f"{src} with {flip} for {op}", _replace(tree, path, (flip, n[1], n[2])))
+            add("sign", f"{src} -> {show((flip, n[1], n[2]))}", _replace(tree, path, (flip, n[1], n[2])))
         if op == "neg":
             add("sign", f"{src} without its minus", _replace(tree, path, n[1]))
         if op == "**":
@@ -257,11 +258,11 @@ def single_edits(text: str) -> list[FormulaEdit]:
         if op == "*":
             for side, other in ((1, 2), (2, 1)):
                 moved = show(n[side])
-                add("moved", f"{moved} moved to the denominator", _replace(tree, path, ("/", n[other], n[side])))
+                add("moved", f"the factor {moved} divides instead of multiplying", _replace(tree, path, ("/", n[other], n[side])))
                 kept = (n[0], ("num", Fraction(1), "1"), n[2]) if side == 1 else (n[0], n[1], ("num", Fraction(1), "1"))
                 add("factor-dropped", f"the factor {moved} left out", _replace(tree, path, kept))
         if op == "/":
-            add("moved", f"the denominator {show(n[2])} moved up", _replace(tree, path, ("*", n[1], n[2])))
+            add("moved", f"the divisor {show(n[2])} multiplies instead of dividing", _replace(tree, path, ("*", n[1], n[2])))
     seen: dict[str, int] = {}
     for e in out:                       # the same words for two sites: number the occurrences
         seen[e.description] = seen.get(e.description, 0) + 1
@@ -318,6 +319,7 @@ def search_single_edits(text: str, env: dict[str, arb], printed: str, defs: dict
             res.tried += 1
             if where is not None:
                 e.description = f"in {where}: {e.description}"
+                e.formula = f"{where} = {e.formula}"
             try:
                 v = value(where, e.tree)
             except (ValueError, ZeroDivisionError, KeyError):

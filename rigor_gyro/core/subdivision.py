@@ -207,6 +207,11 @@ class BoxPositivity:
     reason: str = ""
 
 
+#: boxes of certify_positive_on_box whose midpoint is always tried as a counterexample (a coarse
+#: refutation stays as early as it was, whatever the box's enclosure is centred at)
+EARLY_MIDPOINTS = 64
+
+
 def certify_positive_on_box(f: BoxFunction, whole, *, max_pieces: int = 20000) -> BoxPositivity:
     """Decide f > 0 on a box (a :class:`rigor_gyro.core.boxes.Box`) by bisection along its relatively
     widest edge (:meth:`Box.split`). ``f`` maps {name: ball} (each ball containing the box's edge) to a
@@ -227,10 +232,10 @@ def certify_positive_on_box(f: BoxFunction, whole, *, max_pieces: int = 20000) -
             leaves.append(box)
             continue
         last = count + len(stack) >= max_pieces
-        # the midpoint is tried as a counterexample where the box's enclosure is centred at <= 0, or
-        # the search is about to stop (a box centred above 0 is most often positive: its point
-        # evaluation would be wasted; its children are tried in turn)
-        if last or not v.mid() > 0:
+        # the midpoint is tried as a counterexample on the first boxes, where the box's enclosure is
+        # centred at <= 0, and when the search is about to stop (deeper, a box centred above 0 is most
+        # often positive: its point evaluation would be wasted; its children are tried in turn)
+        if last or count <= EARLY_MIDPOINTS or not v.mid() > 0:
             mid = box.midpoint()
             vm = f({k: arb(fmpq(q.numerator, q.denominator)) for k, q in mid.items()})
             if certainly_le(vm, 0):

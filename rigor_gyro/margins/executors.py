@@ -14,7 +14,6 @@ naming the extra (exit 2).
 from __future__ import annotations
 
 import os
-from concurrent.futures import ProcessPoolExecutor
 from typing import Any, Callable, Sequence
 
 from ..core.errors import ParameterError
@@ -61,6 +60,7 @@ class Executor:
             else:
                 self._client = Client(scheduler)
         elif self.workers > 1:
+            from concurrent.futures import ProcessPoolExecutor   # only when used: 20 ms of every start-up
             self._pool = ProcessPoolExecutor(max_workers=self.workers)
 
     @property

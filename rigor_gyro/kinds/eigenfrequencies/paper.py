@@ -155,10 +155,12 @@ def _at_paper_scale(row: AuditRow, printed: str, w: arb | None, hull: arb | None
 
 
 def _with_edits(row: AuditRow, key: tuple[str, int], eq: str, printed: str, p: Params, s: arb,
-                hull: arb | None) -> AuditRow:
+                hull: arb | None, inner: tuple[arb, arb] | None) -> AuditRow:
     """For a print that neither the formula as printed, nor its reading, nor the paper's own scales
     explain: which single edits of the printed formula (``EDIT_FORMULAS``) reproduce it, in Hz at a
-    scale the paper's 'exact' values allow (at the scene's hz_scale when there is no such interval)."""
+    scale the paper's 'exact' values allow (at the scene's hz_scale when there is no such interval).
+    ``hull``: that interval as an outer ball; ``inner``: exact ends of an interval inside it (an edit
+    reproduces only at an exact scale certainly inside; where that is not certain it is undecided)."""
     if row.status in (AuditStatus.AGREES, AuditStatus.MISPRINT) or row.propagated is not None:
         return row
     text, defs = EDIT_FORMULAS[key]
@@ -167,14 +169,36 @@ def _with_edits(row: AuditRow, key: tuple[str, int], eq: str, printed: str, p: P
     def reproduces(w: arb) -> bool | None:
         if not certainly_positive(w):
             return False
-        if hull is not None:
-            return _meets(_scale_range(printed, w), hull)
-        st = audit_printed(printed, s * w.sqrt())[0]
-        return True if st is AuditStatus.AGREES else None if st is AuditStatus.UNDECIDED else False
+        if inner is None:
+            st = audit_printed(printed, s * w.sqrt())[0]
+            return True if st is AuditStatus.AGREES else None if st is AuditStatus.UNDECIDED else False
+        own = _scale_range(printed, w)
+        if not _meets(own, hull):
+            return False                # no scale of the (outer) interval gives the print: certainly not
+        # certainly: an exact scale inside the interval the paper's values imply at which the edited
+        # value is a correct rounding of the print
+        lo = own.lower() if certainly_le(inner[0], own.lower()) else inner[0]
+        hi = own.upper() if certainly_le(own.upper(), inner[1]) else inner[1]
+        if not certainly_lt(lo, hi):
+            return None
+        m = ((lo + hi) / 2).mid()
+        inside = certainly_le(inner[0], m) and certainly_le(m, inner[1])
+        return True if inside and audit_printed(printed, m * w.sqrt())[0] is AuditStatus.AGREES else None
     res = search_single_edits(text, {"a": a, "b": b, "eps": e, "W": W}, printed, defs, reproduces)
-    row.formula_edits = res.to_json(f"{eq} as printed")
-    row.note += "; " + res.summary(f"{eq} as printed")
+    how = ("in Hz at an exact scale inside the interval the paper's own 'exact' values imply" if inner is not None
+           else "in Hz at the scene's hz_scale")
+    row.formula_edits = res.to_json(f"{eq} as printed", how)
+    row.note += "; " + res.summary(f"{eq} as printed", how)
     return row
+
+
+def _scale_inner(printed: str, w: arb) -> tuple[arb, arb]:
+    """Exact ends (lo, hi) of an interval of scales s for which s*sqrt(w) certainly rounds to
+    ``printed`` for every value in the ball w: inside the true range (the inner ends of its bounds)."""
+    h = half_unit(printed)
+    x = _q(printed)
+    hq = arb(fmpq(h.numerator, h.denominator))
+    return ((x - hq) / w.sqrt()).upper(), ((x + hq) / w.sqrt()).lower()
 
 
 def _number_row(rid: str, printed: str, s: arb, w_printed: arb, w_read: arb | None,
@@ -227,7 +251,7 @@ def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[A
         rows.append(AuditRow("Hz values", "", "", None, AuditStatus.UNDECIDED,
                              "no hz_scale in the scene: printed Hz values not audited"))
         return rows
-    hull = None
+    hull, inner = None, None
     if exact:
         ranges = [_scale_range(x, omegas[j - 1]) for j, x in enumerate(exact, start=1)]
         # the scales the paper's 'exact' values imply: each value's range, kept when it meets the hull of
@@ -235,6 +259,12 @@ def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[A
         others = [_hull([r for i, r in enumerate(ranges) if i != j]) for j in range(len(ranges))]
         consistent = [r for r, o in zip(ranges, others) if o is not None and _meets(r, o)]
         hull = _hull(consistent)
+        ends = [_scale_inner(x, omegas[j - 1]) for j, x in enumerate(exact, start=1) if ranges[j - 1] in consistent]
+        if ends:
+            lo_in = min((lo for lo, _ in ends), key=lambda v: float(v.mid()))   # float picks; exact below
+            hi_in = max((hi for _, hi in ends), key=lambda v: float(v.mid()))
+            if all(certainly_le(lo_in, lo) for lo, _ in ends) and all(certainly_le(hi, hi_in) for _, hi in ends):
+                inner = (lo_in, hi_in)
         for j, x in enumerate(exact, start=1):
             st, note = audit_printed(x, s * omegas[j - 1].sqrt())
             rng = ranges[j - 1]
@@ -263,12 +293,12 @@ def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[A
                                                 _value(pf, p), _value(rf, p),
                                                 br.lo_printed if kind == "lower" else br.hi_printed,
                                                 (br.lo_reading if kind == "lower" else br.hi_reading) or "as printed",
-                                                hull), (kind, j), br.eq, x, p, s, hull))
+                                                hull), (kind, j), br.eq, x, p, s, hull, inner))
     for j, x in enumerate(paper.get("hz_approx", []), start=1):
         eq = "(12)" if j == 1 else "(13)"
         rows.append(_with_edits(_number_row(f"{eq} lambda_{j}~ (Hz)", x, s,
                                             _value(lambda q: approximation(j, q), p), None,
-                                            APPROX_TEXT[j], "as printed", hull), ("approx", j), eq, x, p, s, hull))
+                                            APPROX_TEXT[j], "as printed", hull), ("approx", j), eq, x, p, s, hull, inner))
     bound = paper.get("error_bound")
     if bound is not None:
         rows.extend(_five_percent_rows(bound, p, omegas))

@@ -369,6 +369,8 @@ def envelope_margin(sp: Spectrum, X: arb) -> tuple[int, arb] | None:
     rho = (d * X).exp()
     one_m_rho = -(d * X).expm1()
     one_m_rho2 = -(2 * d * X).expm1()
+    if not (certainly_positive(one_m_rho) and certainly_positive(one_m_rho2)):
+        return None                     # expm1 on a wide piece near 0 may reach below 0: no bound here
     # products of positive balls by their ends: a wide ball times itself in midpoint-radius arithmetic
     # reaches below 0 (and the square root of 4 s^2 + 16 q_i^2 would be NaN)
     qi2 = _positive_product(abs(qi), abs(qi)) if certainly_positive(abs(qi).lower()) else qi * qi
