@@ -121,3 +121,32 @@ def test_no_envelope_where_one_minus_rho_is_not_certainly_positive():
         sp2.p0e = [arb(-1000000)] + list(sp.p0e[1:])
         assert envelope_margin(sp2, X) is None
         assert envelope_margin(sp2, interval(arb("0.1"), arb(1))) is not None   # where 1 - rho > 0: a bound
+
+
+def test_the_checkers_envelope_refuses_what_it_cannot_bound():
+    """The checker's own envelope bound says "root-free" only where its premises hold: exactly one
+    complex pair with Re lambda < 0, 0 < lo < hi, a slow part of one certain sign, and a margin
+    certainly > 0. Each premise is broken on a piece that the bound would otherwise be asked about."""
+    import dataclasses
+
+    from rigor_gyro.kinds.periodic_orbit.check import _envelope_root_free
+    with working_precision(128):
+        sp = _spectrum("stress_relay_H_1e4")
+        assert _envelope_root_free(sp, arb("0.3"), arb("0.7"))             # a genuine wide piece
+        assert not _envelope_root_free(sp, arb("0.7"), arb("0.3"))         # lo > hi
+        assert not _envelope_root_free(sp, arb("-0.1"), arb("0.7"))        # lo <= 0
+        assert not _envelope_root_free(sp, arb("0.2"), arb("0.3"))         # s changes sign on the piece
+        assert not _envelope_root_free(sp, arb("0.01"), arb("0.1"))        # the roots are there: M <= 0
+        base = load_scene("roitenberg1947")
+        slow_rotor = dataclasses.replace(base, parameters=dict(base.parameters, H="0.1"))
+        sp0 = Spectrum(validate(slow_rotor).params)                        # four real modes, no pair
+        assert all(m.weight == 1 for m in sp0.modes)
+        assert not _envelope_root_free(sp0, arb("0.3"), arb("0.7"))
+        import copy
+        sp_up = copy.copy(sp)                                              # the pair made unstable
+        sp_up.modes = [dataclasses.replace(m, lam=acb(-m.lam.real, m.lam.imag)) if m.weight == 2 else m
+                       for m in sp.modes]
+        assert not _envelope_root_free(sp_up, arb("0.3"), arb("0.7"))
+        sp_box = copy.copy(sp)
+        sp_box.near_zero = object()
+        assert not _envelope_root_free(sp_box, arb("0.3"), arb("0.7"))
