@@ -150,3 +150,46 @@ def test_the_checkers_envelope_refuses_what_it_cannot_bound():
         sp_box = copy.copy(sp)
         sp_box.near_zero = object()
         assert not _envelope_root_free(sp_box, arb("0.3"), arb("0.7"))
+
+
+@settings(max_examples=40)
+@given(st.sampled_from(SCENES), st.integers(1, 7000))
+def test_the_checkers_bound_is_the_margin(name, k):
+    """The checker's own formula gives the same number as the definition: on a piece of width 2^-200
+    its bound is sign(s) a - hypot(b, c) computed naively at 512 bits, to ~45 digits (a mutated term is not)."""
+    from rigor_gyro.kinds.periodic_orbit.check import _envelope_lower
+    with working_precision(256):
+        sp = _spectrum(name)
+        t = arb(k) / 10000
+        low = _envelope_lower(sp, t, t + arb(2) ** -200)
+    if low is None:
+        return
+    with working_precision(512):
+        sp = _spectrum(name)
+        sig, naive, *_ = _naive_margin(sp, arb(k) / 10000)
+        # a lower bound (its first term is taken at its lower end), and the same number to ~45 digits
+        assert low.lower() <= naive.upper(), (name, k)
+        assert abs(low - naive).upper() < abs(naive).upper() * arb(2) ** -150 + arb(2) ** -190, (name, k)
+
+
+def test_the_prover_gives_no_envelope_without_its_premises():
+    import copy
+    import dataclasses
+    with working_precision(64):
+        base = load_scene("roitenberg1947")
+        sp0 = Spectrum(validate(dataclasses.replace(base, parameters=dict(base.parameters, H="0.1"))).params)
+        assert envelope_margin(sp0, interval(arb("0.3"), arb("0.7"))) is None      # no complex pair
+        sp = _spectrum("stress_relay_H_1e4")
+        assert envelope_margin(sp, interval(arb("0.3"), arb("0.7"))) is not None
+        sp_up = copy.copy(sp)
+        sp_up.modes = [dataclasses.replace(m, lam=acb(-m.lam.real, m.lam.imag)) if m.weight == 2 else m
+                       for m in sp.modes]
+        assert envelope_margin(sp_up, interval(arb("0.3"), arb("0.7"))) is None    # Re lambda > 0
+
+
+def test_a_product_of_positive_balls_from_their_ends():
+    from rigor_gyro.kinds.periodic_orbit.flow import _positive_product
+    p = _positive_product(interval(arb(1), arb(2)), interval(arb(3), arb(4)))
+    assert p.contains(3) and p.contains(8) and p.lower() >= 3 - arb("1e-7") and p.upper() <= 8 + arb("1e-7")
+    w = interval(arb("0.001"), arb(1))
+    assert _positive_product(w, w).lower() > 0                     # midpoint-radius w * w would reach < 0

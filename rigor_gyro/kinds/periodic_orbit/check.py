@@ -112,21 +112,28 @@ def _monotone_root_free(G: _G, lo: arb, hi: arb) -> bool:
 
 
 def _envelope_root_free(sp: Spectrum, lo: arb, hi: arb) -> bool:
-    """No root of g on [lo, hi] (0 < lo < hi) by the envelope bound, re-derived here: with the one
+    """See :func:`_envelope_lower`: its bound certainly > 0."""
+    low = _envelope_lower(sp, lo, hi)
+    return low is not None and certainly_positive(low)
+
+
+def _envelope_lower(sp: Spectrum, lo: arb, hi: arb) -> arb | None:
+    """A lower bound of sign(s) G over [lo, hi] (0 < lo < hi), None where the premises fail; no root of
+    g there when it is > 0. The envelope bound, re-derived here: with the one
     complex pair lambda (Re lambda < 0) and rho = |E|, E = exp(lambda theta), the pole-free G equals
     A + B cos(Im lambda theta) + C sin(Im lambda theta) with A = s (1 + rho^2) + 2 Re q (1 - rho^2),
     B = 2 s rho, C = 4 Im q rho (q = pe_0 / lambda, s the real modes' and the linear term of g), so
     sign(s) G >= sign(s) A - hypot(B, C), evaluated without cancellation (1 - rho by expm1)."""
     if getattr(sp, "near_zero", None) is not None or not (certainly_positive(lo) and certainly_lt(lo, hi)):
-        return False
+        return None
     pairs = [m for m in sp.modes if m.weight == 2]
     if len(pairs) != 1:
-        return False
+        return None
     lam = pairs[0].lam
     X = interval(lo, hi)
     re = lam.real
     if not certainly_negative(re):
-        return False
+        return None
     q = pairs[0].pe[0] * lam.conjugate() / (lam.real ** 2 + lam.imag ** 2)
     s = -(sp.p0e[0] / 2) * X
     for m in sp.modes:
@@ -134,20 +141,20 @@ def _envelope_root_free(sp: Spectrum, lo: arb, hi: arb) -> bool:
             s = s - (m.pe[0] / m.lam * (m.lam * acb(X) / 2).tanh()).real
     sign = _strict_sign(s)
     if sign == 0:
-        return False
+        return None
     u = sign * s                                    # |s| > 0 on X
     one_minus = -(re * X).expm1()                   # 1 - rho
     one_minus_sq = -(2 * re * X).expm1()            # 1 - rho^2
     rho = (re * X).exp()
     if not (certainly_positive(u) and certainly_positive(one_minus)):
-        return False
+        return None
 
     def square(x: arb) -> arb:                      # x > 0: from its ends (a wide ball squared may reach < 0)
         return (x.lower() ** 2).lower().union((x.upper() ** 2).upper())
     qi2 = square(abs(q.imag)) if certainly_positive(abs(q.imag).lower()) else q.imag ** 2
     lower = ((u.lower() * square(one_minus).lower()).lower() + 2 * sign * q.real * one_minus_sq
              - 16 * rho * qi2 / (2 * u + (4 * square(u) + 16 * qi2).sqrt()))
-    return certainly_positive(lower)
+    return lower
 
 
 def _merged_unique(G: _G, lo: arb, hi: arb, splits: list[arb]) -> tuple[bool, arb | None]:
