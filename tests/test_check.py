@@ -356,6 +356,15 @@ CAMPAIGN_CASES = {
     # seed 5 (4 of 500 cases): on a wide (x2, t) box the lower bound of V over {Vdot >= 0} came out 2e-9
     # (relative) lower at twice the precision than at the certificate's (30-bit radii again), below the
     # 12-digit decimal stored; the checker now takes the larger of its two precisions' lower ends per box
+    # seed 6 (2 of 500): the 128-bit upper bound of m on the stored cover came out 4e-23 above the 19-digit
+    # decimal of the 64-bit one; and R_sup_upper_bound again (a mu piece's bound above the stored one): the
+    # checker now re-bounds such a piece on its halves (up to 10 bisections) before it compares
+    "m at another precision": {"A": "1.7427", "C": "1.03797", "A1": "7.52756", "B1": "1.96196", "C1": "1.03155",
+                               "A2": "2.35429", "H": "690160", "k": "1.47473", "a": "7.42003", "x2_star": "pi/6",
+                               "mu": "0.0978825", "moment": "linear"},
+    "R_sup_upper_bound on a mu piece": {"A": "4.36018", "C": "0.667714", "A1": "1.44835", "B1": "1.71022",
+                                        "C1": "2.12755", "A2": "5.3281", "H": "88250.3", "k": "0.850763",
+                                        "a": "2599.34", "x2_star": "pi/6", "mu": "0.0365268", "moment": "sine"},
     "c_max lower bound at another precision": {"A": "1.43697", "C": "0.862692", "A1": "0.729713", "B1": "1.09796",
                                                "C1": "5.31534", "A2": "6.58903", "H": "217418", "k": "0.171742",
                                                "a": "1116.1", "x2_star": "pi/4", "mu": "0.0118892", "moment": "sine"},

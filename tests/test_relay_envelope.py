@@ -121,6 +121,9 @@ def test_no_envelope_where_one_minus_rho_is_not_certainly_positive():
         sp2.p0e = [arb(-1000000)] + list(sp.p0e[1:])
         assert envelope_margin(sp2, X) is None
         assert envelope_margin(sp2, interval(arb("0.1"), arb(1))) is not None   # where 1 - rho > 0: a bound
+        from rigor_gyro.kinds.periodic_orbit.check import _envelope_lower
+        assert _envelope_lower(sp2, arb("1e-7"), arb(1)) is None                 # nor the checker's
+        assert _envelope_lower(sp2, arb("0.1"), arb(1)) is not None
 
 
 def test_the_checkers_envelope_refuses_what_it_cannot_bound():

@@ -92,15 +92,43 @@ REQUIRED = {"constants": ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "m
             "vdot_direct": ("R_direct",)}
 
 
-def _max_upper(f, pieces) -> arb:
-    """The largest upper bound of f over the pieces (a certified bound of its maximum there)."""
+def _max_upper(f, pieces, target=None) -> arb:
+    """The largest upper bound of f over the pieces (a certified bound of its maximum there); a piece
+    whose bound exceeds ``target`` (an exact point, or None) is re-bounded by bisection (:func:`_refined_upper`)."""
     up = None
     for p in pieces:
-        u = f(_b(p)).upper()
+        u = _refined_upper(f, _b(p), target)
         # the largest of exact points by exact comparison (arb's max of two balls widens)
         if up is None or not u.is_finite() or (up.is_finite() and certainly_gt(u, up)):
             up = u
     return up
+
+
+#: bisection levels the checker may add below a stored piece whose bound exceeds the stored value by at
+#: most REFINE_HAIR (relative; the discrepancies seen are 1e-22 .. 2e-9: arb's radius bits)
+REFINE_LEVELS = 10
+REFINE_HAIR = arb("1e-6")
+
+
+def _refined_upper(f, X: arb, target, levels: int = REFINE_LEVELS) -> arb:
+    """An upper bound of f over the ball X: f(X).upper(), and where that exceeds ``target`` (an exact
+    point, or None: never), the larger of the two halves' bounds, bisecting down ``levels`` times. Each
+    level is again an upper bound over X (the halves cover it); it only gets tighter. The checker uses it
+    where its own enclosure of a maximum pokes above the stored one by arb's last radius bits, so that
+    it re-derives the bound more tightly instead of rejecting a right certificate."""
+    u = f(X).upper()
+    if target is None or levels <= 0 or not u.is_finite() or certainly_le(u, target) or X.rad().is_zero():
+        return u
+    if not certainly_le(u, target * (1 + REFINE_HAIR)):
+        return u        # more than radius bits above: a wrong stored value, rejected at once (no search)
+    lo, hi = X.lower(), X.upper()
+    mid = ((lo + hi) / 2).mid()
+    if not (certainly_lt(lo, mid) and certainly_lt(mid, hi)):
+        return u
+    a = _refined_upper(f, lo.union(mid), target, levels - 1)
+    b = _refined_upper(f, mid.union(hi), target, levels - 1)
+    best = a if (not a.is_finite() or (b.is_finite() and certainly_le(b, a))) else b
+    return best if best.is_finite() and certainly_lt(best, u) else u
 
 
 def _tighter(f, X: arb, prec: int) -> arb:
@@ -175,6 +203,13 @@ def check(model, data: dict) -> list[CheckResult]:
             say(name, False, "the stored bound is below the bound the checker re-derives")
         return ok
 
+    def _stored_hi(name: str):
+        """The stored interval's exact upper end as a ball (None if absent or unreadable)."""
+        try:
+            return arb(fmpq_of(stored_interval(q[name])[1]))
+        except (KeyError, TypeError, ValueError):
+            return None
+
     # ---------------------------------------------------------------- the maxima m and M
     K = None
     wc = W.get("constants")
@@ -188,8 +223,11 @@ def check(model, data: dict) -> list[CheckResult]:
         if ok:
             pt = _b(wc["m"]["point"])       # m >= its value at the point: the tighter of the two forms there
             m_at = g.m_quotient(pt).lower().max(abs(g.m_signed(pt)).lower())
-            m = m_at.union(_max_upper(m_fn, wc["m"]["cover"]))
-            M = g.q(_b(wc["M"]["point"])).lower().union(_max_upper(g.q, wc["M"]["cover"]))
+            # each piece at this precision and at the certificate's, intersected (a 128-bit bound of m once
+            # came out 1e-18 above the 64-bit one: arb's 30-bit radii round differently)
+            m = m_at.union(_max_upper(lambda X: _tighter(m_fn, X, cert_prec), wc["m"]["cover"], _stored_hi("m")))
+            M = g.q(_b(wc["M"]["point"])).lower().union(_max_upper(lambda X: _tighter(g.q, X, cert_prec),
+                                                                   wc["M"]["cover"], _stored_hi("M")))
             if m.is_finite() and M.is_finite():
                 K = closed_form_constants(g, m, M)
                 for name in ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R"):
@@ -319,18 +357,28 @@ def check(model, data: dict) -> list[CheckResult]:
             point = _b(wb["r_sup_point"])
             low = rho(point).lower() if _within(abs(point), arb(0), xs) else arb(0)
             contains("R_sup_at_mu_best", (1 / top).union(1 / low) if certainly_positive(low) else arb("nan"))
-        points = [_b(p) for p in wb["x2_points"]]
-        points = [x for x in points if _within(abs(x), arb(0), xs)]      # outside the range: proves nothing
         U = None
+        def piece_upper(Mu: arb) -> arb:
+            """An upper bound of R_sup over the mu ball Mu: 1 / the largest rho_lower at the points."""
+            L = arb(0)
+            for x in (_b(t) for t in wb["x2_points"]):
+                if not _within(abs(x), arb(0), xs):
+                    continue            # outside the range: proves nothing
+                v = rho_lower(g, x, Mu)
+                if not v.is_finite() or (L.is_finite() and certainly_gt(v, L)):
+                    L = v               # exact comparison: arb's max of two balls widens
+            return (1 / L).upper() if certainly_positive(L) else arb("inf")
         if _covers(wb["mu_pieces"], K["mu_min"].lower(), K["mu_max"].upper()):
+            stored_U = _stored_hi("R_sup_upper_bound")
+
+            def both(Mu: arb) -> arb:       # both are upper bounds: keep the smaller (30-bit radii)
+                u = piece_upper(Mu)
+                with working_precision(cert_prec):
+                    u_cert = piece_upper(Mu)
+                return u_cert if u_cert.is_finite() and (not u.is_finite() or certainly_lt(u_cert, u)) else u
             for p in wb["mu_pieces"]:
-                Mu = _b(p)
-                L = arb(0)
-                for x in points:
-                    v = rho_lower(g, x, Mu)
-                    if not v.is_finite() or (L.is_finite() and certainly_gt(v, L)):
-                        L = v           # exact comparison: arb's max of two balls widens
-                u = (1 / L).upper() if certainly_positive(L) else arb("inf")
+                # a piece whose bound exceeds the stored one by arb's last bits: re-bounded on its halves
+                u = _refined_upper(both, _b(p), stored_U)
                 # the largest of exact points, by exact comparison (arb's max of two balls widens)
                 U = u if U is None or not u.is_finite() or (U.is_finite() and certainly_gt(u, U)) else U
         if U is not None and U.is_finite():
