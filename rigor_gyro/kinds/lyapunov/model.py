@@ -67,10 +67,6 @@ class Dual:
     def __init__(self, v, d=0):
         self.v, self.d = (v if type(v) is arb else arb(v)), d
 
-    @staticmethod
-    def lift(x) -> "Dual":
-        return x if isinstance(x, Dual) else Dual(x, 0)
-
     def __add__(self, o):
         if type(o) is Dual:
             return Dual(self.v + o.v, self.d + o.d)
