@@ -156,3 +156,27 @@ def test_an_hz_edit_reproduces_only_at_a_scale_certainly_inside_the_papers_inter
         out2 = P._with_edits(row2, ("approx", 1), "(t)", "100", (fmpq(1), fmpq(1), fmpq(1), fmpq(1)),
                              arb(1), far[0].union(far[1]), far)
         assert out2.formula_edits["reproducing"] == []
+
+
+def test_a_propagated_hz_value_needs_a_scale_certainly_inside_the_inner_interval():
+    """`_at_paper_scale` (the `propagated` class) and the edit search share `_scale_reproduces`: the
+    scale must be exact, certainly inside the inner interval, and give a correct rounding; an outer
+    hull that merely touches the print's scales proves nothing."""
+    from rigor_gyro.kinds.eigenfrequencies import paper as P
+    from rigor_gyro.core.outcome import AuditRow, AuditStatus
+    with working_precision(128):
+        w = arb(2)
+        lo, hi = P._scale_inner("100", w)
+        m, a, b = P._scale_reproduces("100", w, (lo, hi))
+        assert lo <= m <= hi and a <= m <= b
+        assert P._scale_reproduces("100", w, (hi + 1, hi + 2)) is None
+        assert P._scale_reproduces("100", arb(-1), (lo, hi)) is None
+        row = AuditRow("r", "100", "", None, AuditStatus.DISAGREES, "")
+        out = P._at_paper_scale(row, "100", w, (lo, hi), lo.union(hi))
+        assert out.propagated is not None and "hz_scale =" in out.propagated_from
+        # the outer hull reaches the print's scales, the inner interval does not: not propagated
+        row2 = AuditRow("r", "100", "", None, AuditStatus.DISAGREES, "")
+        out2 = P._at_paper_scale(row2, "100", w, (hi + 1, hi + 2), lo.union(hi + 2))
+        assert out2.propagated is None
+        assert P._inner_of([]) is None
+        assert P._inner_of([(arb(1), arb(2)), (arb(3), arb(5))]) == (arb(1), arb(5))

@@ -131,24 +131,55 @@ def _meets(x: arb, y: arb) -> bool:
     return certainly_le(x.lower(), y.upper()) and certainly_le(y.lower(), x.upper())
 
 
-def _at_paper_scale(row: AuditRow, printed: str, w: arb | None, hull: arb | None) -> AuditRow:
-    """Mark ``row`` ``propagated`` when the print is a correct rounding of hz_scale * sqrt(w) for some
-    scale inside ``hull``, the interval of scales the paper's own 'exact' values imply (the paper never
-    prints its scale sqrt(K3/A3)/(2 pi), and its four 'exact' values need different ones): the value at
-    an exact scale in both intervals is the row's ``propagated`` ball; the note gives the scale."""
-    if hull is None or w is None or not certainly_positive(w):
-        return row
+def _scale_reproduces(printed: str, w: arb, inner: tuple[arb, arb]) -> tuple[arb, arb, arb] | None:
+    """An exact scale m certainly inside ``inner`` (exact ends of an interval inside the scales the
+    paper's own 'exact' values imply) at which ``printed`` is certainly a correct rounding of
+    m * sqrt(w), with the ends (lo, hi) of the scales near it that it was chosen from; None when no
+    such scale is certain (undecided: the outer range of ``w`` only proposes m, the two final tests
+    decide)."""
+    if not certainly_positive(w):
+        return None
     own = _scale_range(printed, w)
-    lo = own.lower() if certainly_le(hull.lower(), own.lower()) else hull.lower()
-    hi = own.upper() if certainly_le(own.upper(), hull.upper()) else hull.upper()
+    lo = own.lower() if certainly_le(inner[0], own.lower()) else inner[0]
+    hi = own.upper() if certainly_le(own.upper(), inner[1]) else inner[1]
     if not certainly_lt(lo, hi):
+        return None
+    m = ((lo + hi) / 2).mid()
+    if not (certainly_le(inner[0], m) and certainly_le(m, inner[1])):
+        return None
+    if audit_printed(printed, m * w.sqrt())[0] is not AuditStatus.AGREES:
+        return None
+    return m, lo, hi
+
+
+def _inner_of(ends: list[tuple[arb, arb]]) -> tuple[arb, arb] | None:
+    """Exact ends of an interval certainly inside the hull of the scale ranges whose inner ends are
+    ``ends`` (None when there are none or the order of the ends is not certain)."""
+    if not ends:
+        return None
+    lo_in = min((lo for lo, _ in ends), key=lambda v: float(v.mid()))   # float picks; exact below
+    hi_in = max((hi for _, hi in ends), key=lambda v: float(v.mid()))
+    if all(certainly_le(lo_in, lo) for lo, _ in ends) and all(certainly_le(hi, hi_in) for _, hi in ends):
+        return lo_in, hi_in
+    return None
+
+
+def _at_paper_scale(row: AuditRow, printed: str, w: arb | None, inner: tuple[arb, arb] | None,
+                    hull: arb | None) -> AuditRow:
+    """Mark ``row`` ``propagated`` when the print is certainly a correct rounding of hz_scale * sqrt(w)
+    at an exact scale certainly inside ``inner``, an interval inside the scales the paper's own 'exact'
+    values imply (the paper never prints its scale sqrt(K3/A3)/(2 pi), and its four 'exact' values need
+    different ones; ``hull``, that interval's outer ball, is only printed). The value at that scale is
+    the row's ``propagated`` ball; the note gives the scale."""
+    if inner is None or w is None:
         return row
-    mid = ((lo + hi) / 2).mid()
-    val = mid * w.sqrt()
-    if audit_printed(printed, val)[0] is not AuditStatus.AGREES:
+    found = _scale_reproduces(printed, w, inner)
+    if found is None:
         return row
+    m, lo, hi = found
+    val = m * w.sqrt()
     row.propagated = val
-    row.propagated_from = (f"hz_scale = {mid.str(7, radius=False)}, inside the interval {_fmt(hull)} of scales the "
+    row.propagated_from = (f"hz_scale = {m.str(7, radius=False)}, inside the interval {_fmt(hull)} of scales the "
                            "paper's own 'exact' values imply")
     row.note += f"; at the paper's scales: a correct rounding for hz_scale in [{lo.str(7, radius=False)}, {hi.str(7, radius=False)}]"
     return row
@@ -172,18 +203,9 @@ def _with_edits(row: AuditRow, key: tuple[str, int], eq: str, printed: str, p: P
         if inner is None:
             st = audit_printed(printed, s * w.sqrt())[0]
             return True if st is AuditStatus.AGREES else None if st is AuditStatus.UNDECIDED else False
-        own = _scale_range(printed, w)
-        if not _meets(own, hull):
+        if not _meets(_scale_range(printed, w), hull):
             return False                # no scale of the (outer) interval gives the print: certainly not
-        # certainly: an exact scale inside the interval the paper's values imply at which the edited
-        # value is a correct rounding of the print
-        lo = own.lower() if certainly_le(inner[0], own.lower()) else inner[0]
-        hi = own.upper() if certainly_le(own.upper(), inner[1]) else inner[1]
-        if not certainly_lt(lo, hi):
-            return None
-        m = ((lo + hi) / 2).mid()
-        inside = certainly_le(inner[0], m) and certainly_le(m, inner[1])
-        return True if inside and audit_printed(printed, m * w.sqrt())[0] is AuditStatus.AGREES else None
+        return True if _scale_reproduces(printed, w, inner) is not None else None
     res = search_single_edits(text, {"a": a, "b": b, "eps": e, "W": W}, printed, defs, reproduces)
     how = ("in Hz at an exact scale inside the interval the paper's own 'exact' values imply" if inner is not None
            else "in Hz at the scene's hz_scale")
@@ -202,7 +224,8 @@ def _scale_inner(printed: str, w: arb) -> tuple[arb, arb]:
 
 
 def _number_row(rid: str, printed: str, s: arb, w_printed: arb, w_read: arb | None,
-                printed_text: str, read_text: str, hull: arb | None = None) -> AuditRow:
+                printed_text: str, read_text: str, hull: arb | None = None,
+                inner: tuple[arb, arb] | None = None) -> AuditRow:
     """Audit a printed Hz number against the printed formula and (if different) the reading."""
     hz_p = _hz(s, w_printed)
     st_p, note_p = (audit_printed(printed, hz_p) if hz_p is not None
@@ -211,7 +234,7 @@ def _number_row(rid: str, printed: str, s: arb, w_printed: arb, w_read: arb | No
     if hz_p is not None:
         note += f"; reproduced for scales in {_fmt(_scale_range(printed, w_printed))}"
     if w_read is None:
-        return _at_paper_scale(AuditRow(rid, printed, printed_text, hz_p, st_p, note), printed, w_printed, hull)
+        return _at_paper_scale(AuditRow(rid, printed, printed_text, hz_p, st_p, note), printed, w_printed, inner, hull)
     hz_r = _hz(s, w_read)
     st_r, note_r = (audit_printed(printed, hz_r) if hz_r is not None else (AuditStatus.DISAGREES, "<= 0"))
     note += f"; reading: {_fmt(hz_r)} Hz, {note_r}, reproduced for scales in {_fmt(_scale_range(printed, w_read))}" if hz_r is not None else "; reading <= 0"
@@ -224,7 +247,7 @@ def _number_row(rid: str, printed: str, s: arb, w_printed: arb, w_read: arb | No
     else:
         status = AuditStatus.DISAGREES
     row = AuditRow(rid, printed, read_text, hz_r, status, note)
-    return _at_paper_scale(row, printed, w_read, hull)
+    return _at_paper_scale(row, printed, w_read, inner, hull)
 
 
 def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[AuditRow]:
@@ -259,21 +282,19 @@ def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[A
         others = [_hull([r for i, r in enumerate(ranges) if i != j]) for j in range(len(ranges))]
         consistent = [r for r, o in zip(ranges, others) if o is not None and _meets(r, o)]
         hull = _hull(consistent)
-        ends = [_scale_inner(x, omegas[j - 1]) for j, x in enumerate(exact, start=1) if ranges[j - 1] in consistent]
-        if ends:
-            lo_in = min((lo for lo, _ in ends), key=lambda v: float(v.mid()))   # float picks; exact below
-            hi_in = max((hi for _, hi in ends), key=lambda v: float(v.mid()))
-            if all(certainly_le(lo_in, lo) for lo, _ in ends) and all(certainly_le(hi, hi_in) for _, hi in ends):
-                inner = (lo_in, hi_in)
+        inner_ends = [_scale_inner(x, omegas[j - 1]) for j, x in enumerate(exact, start=1)]
+        inner = _inner_of([e for e, r in zip(inner_ends, ranges) if r in consistent])
         for j, x in enumerate(exact, start=1):
             st, note = audit_printed(x, s * omegas[j - 1].sqrt())
             rng = ranges[j - 1]
             # an 'exact' value is judged against the scales the *other* consistent values imply
             own_hull = _hull([r for i, r in enumerate(ranges) if i != j - 1 and r in consistent])
+            own_inner = _inner_of([e for i, (e, r) in enumerate(zip(inner_ends, ranges))
+                                   if i != j - 1 and r in consistent])
             rows.append(_at_paper_scale(AuditRow(f"'exact' lambda_{j} (Hz)", x, f"hz_scale * sqrt(omega_{j})",
                                                  s * omegas[j - 1].sqrt(), st,
                                                  f"{note}; correct rounding for scales in {_fmt(rng)}"),
-                                        x, omegas[j - 1], own_hull))
+                                        x, omegas[j - 1], own_inner, own_hull))
         lo_max = max(ranges, key=lambda r: float(r.lower().mid()))  # float picks; balls decide below
         hi_min = min(ranges, key=lambda r: float(r.upper().mid()))
         disjoint = certainly_gt(lo_max.lower(), hi_min.upper())
@@ -293,12 +314,12 @@ def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[A
                                                 _value(pf, p), _value(rf, p),
                                                 br.lo_printed if kind == "lower" else br.hi_printed,
                                                 (br.lo_reading if kind == "lower" else br.hi_reading) or "as printed",
-                                                hull), (kind, j), br.eq, x, p, s, hull, inner))
+                                                hull, inner), (kind, j), br.eq, x, p, s, hull, inner))
     for j, x in enumerate(paper.get("hz_approx", []), start=1):
         eq = "(12)" if j == 1 else "(13)"
         rows.append(_with_edits(_number_row(f"{eq} lambda_{j}~ (Hz)", x, s,
                                             _value(lambda q: approximation(j, q), p), None,
-                                            APPROX_TEXT[j], "as printed", hull), ("approx", j), eq, x, p, s, hull, inner))
+                                            APPROX_TEXT[j], "as printed", hull, inner), ("approx", j), eq, x, p, s, hull, inner))
     bound = paper.get("error_bound")
     if bound is not None:
         rows.extend(_five_percent_rows(bound, p, omegas))
