@@ -284,6 +284,9 @@ def test_a_threshold_search_without_a_change_is_inconclusive_not_refuted():
 
 def test_relay_thresholds_refuse_s_and_pi_ends():
     assert main(["margin", "roitenberg1947", "--param", "S", "--claim", "stable"]) == 2
+    # the gains p and K enter only the amplitude K p S (flow.amplitude_similarity): no threshold either
+    assert main(["margin", "roitenberg1947", "--param", "p", "--claim", "stable"]) == 2
+    assert main(["margin", "roitenberg1947", "--param", "K", "--claim", "half_period"]) == 2
     assert main(["margin", "rudenko1976", "--param", "Omega2", "--lo", "pi/1000", "--hi", "1"]) == 2
 
 
@@ -523,3 +526,17 @@ def test_the_nu_quadratic_families_enclose_every_member_at_a_point(seed):
                 x = Fraction(rng.randint(1, 4096), 2048)
                 exact = nu_quadratics(*(q(v) for v in pt))[idx](q(x))
                 assert fam(arb(q(x)))[0].contains(arb(exact)), (which, pt, x)
+
+
+def test_a_relay_box_in_the_gains_p_and_k_is_decided_whole():
+    """p, K (and S) are never split: the box claims are decided at the box's lower ends, which
+    amplitude_similarity makes exact; the paving is one proved box over p in [20, 80], K in [5, 10]."""
+    base = load_scene("roitenberg1947")
+    s = Scene(name="gains", kind=base.kind, source="test",
+              parameters={**base.parameters, "p": "[20, 80]", "K": "[5, 10]"},
+              claims_only=["half_period", "orbit_genuine", "stable"], options={})
+    bs = box_scene(s)
+    assert set(bs.frozen) == {"p", "K"} or len(bs.frozen) == 1     # one edge must stay splittable
+    pv = pave(bs)
+    assert all(c.status == "proved" for c in pv.claims)
+    assert all(len(c.boxes) == 1 for c in pv.claims), [len(c.boxes) for c in pv.claims]

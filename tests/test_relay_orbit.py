@@ -4,11 +4,13 @@ and extreme cases, a planted no-orbit case, bad input.
 Slow campaigns (H = 1e4 in both readings, ~5-10 s each) run only with --runslow.
 """
 import json
+from fractions import Fraction
 import subprocess
 import sys
 
 import numpy as np
 import pytest
+from hypothesis import given, strategies as st
 from flint import arb, arb_mat
 
 from rigor_gyro.kinds.periodic_orbit.approx import (approx_multipliers, approx_orbit_mpmath, approx_relay_simulation,
@@ -162,7 +164,9 @@ def test_every_printed_number_is_audited(certs):
                 + sum(1 for v in p["orbit"].values() for x in v if x) + sum(len(v) for v in p["table2"].values())
                 + len(p["table3"]) + 4 + 4 + len(p["table4"]["h"]) + len(p["table4"]["c"]) + len(p["table4"]["k"])
                 + len(p["quartic"]) + len(p["lambda"]) + 1 + len(p.get("as_transcribed", {})))
-    assert len(printed) == expected
+    gains = [r for r in certs["roitenberg1947_b2over15"].paper if r.id.startswith("stability across the gains")]
+    assert len(printed) == expected + 1 and len(gains) == 1          # + the gains row (beyond the paper)
+    assert gains[0].status is AuditStatus.CONFIRMED and "K p S" in gains[0].note
 
 
 # ----------------------------------------------------------------------------- stiff and extreme cases
@@ -209,6 +213,35 @@ def test_relay_amplitude_scales_the_orbit_not_its_period():
         assert c.verdict is Status.PROVED
         assert c.quantities["theta_star"].overlaps(arb("0.1382674296573154568", "1e-18"))
     assert (c2.quantities["beta_dot_0"] / c1.quantities["beta_dot_0"]).overlaps(arb("1e12", "1e-3"))
+
+
+def test_relay_gains_p_and_k_change_the_amplitude_not_the_period_or_the_multipliers():
+    """amplitude_similarity: the same theta* and moduli for p, K far apart; x0 scales with K p S."""
+    c1 = prove_scene(_scene(**dict(B215, p="4", K="0.75")))
+    c2 = prove_scene(_scene(**dict(B215, p="4000", K="75")))
+    for c in (c1, c2):
+        assert c.verdict is Status.PROVED
+        assert c.quantities["theta_star"].overlaps(arb("0.1382674296573154568", "1e-18"))
+    for k in ("multiplier_modulus_1", "multiplier_modulus_4"):
+        assert c1.quantities[k].overlaps(c2.quantities[k])
+    assert (c2.quantities["beta_dot_0"] / c1.quantities["beta_dot_0"]).overlaps(arb("1e5", "1e-6"))
+
+
+@given(st.fractions(min_value=Fraction(1, 100), max_value=100), st.fractions(min_value=Fraction(1, 100), max_value=100),
+       st.fractions(min_value=Fraction(1, 100), max_value=100))
+def test_the_amplitude_similarity_is_exact_and_fails_on_a_changed_model(p, K, n):
+    from rigor_gyro.kinds.periodic_orbit import flow as F
+    P = F.RelayParams.from_strings(A="125", B="0.133", H="100", tau="0.01", sigma="0.13125", n=str(n), K=str(K),
+                                   p=str(p), S="0.15")
+    assert F.amplitude_similarity(P)
+    bad = F.system_matrix(P)
+    bad[3, 2] = bad[3, 2] * P.p            # p in the back-emf term: no longer an amplitude
+    orig = F.system_matrix
+    try:
+        F.system_matrix = lambda Q, _b=bad, _P=P: _b if Q is _P else orig(Q)
+        assert F.amplitude_similarity(P) == (p == 1)
+    finally:
+        F.system_matrix = orig
 
 
 def test_restricted_search_with_no_orbit_is_inconclusive_not_refuted():

@@ -17,6 +17,11 @@ enclosures); ``refuted`` means it fails for every member; ``undecided`` otherwis
 identities e1^T M^j e = 0 (j <= 3) hold for all parameters; they are checked exactly at the box's
 midpoint (a bug check, not a proof step).
 
+The amplitude parameters S, p and K (:data:`.flow.AMPLITUDE_PARAMETERS`) are not taken as balls: the
+claims do not depend on them (homogeneity in S; p and K enter only the amplitude K p S, an exact
+similarity that :func:`.flow.amplitude_similarity` checks in rationals), so the box is decided at their
+lower ends, and the paving never splits them.
+
 Precision: the caller's (the paving fixes it).
 
 Near theta = 0, g = O(theta^5) is the small difference of spectral terms of size O(theta) whose
@@ -45,14 +50,15 @@ from ...core.family_roots import newton_family_root, newton_family_root_complex,
 from ...core.polyroots import isolate_polynomial
 from .. import box_outcomes, require_box_claims
 from .claims import CLAIMS, attempt
-from .flow import PARAMETER_NAMES, DegenerateSpectrum, NearZeroSeries, RelayParams, Spectrum, nutation_cubic
+from .flow import AMPLITUDE_PARAMETERS, PARAMETER_NAMES, amplitude_similarity, DegenerateSpectrum, NearZeroSeries, RelayParams, Spectrum, nutation_cubic
 
 __all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "BoxSpectrum", "validate_box", "evaluate_box"]
 
 BOX_CLAIMS = {c: CLAIMS[c] for c in ("half_period", "orbit_genuine", "stable")}
 BOX_PARAMETERS = PARAMETER_NAMES
-#: the box claims do not depend on S (homogeneity, see evaluate_box): the paving never splits it
-UNSPLIT_PARAMETERS = ("S",)
+#: the box claims do not depend on S, p, K (homogeneity and :func:`~.flow.amplitude_similarity`, see
+#: evaluate_box): the paving never splits them
+UNSPLIT_PARAMETERS = AMPLITUDE_PARAMETERS
 
 
 class BoxSpectrum(Spectrum):
@@ -131,11 +137,14 @@ def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str
     # g = S g_1, the signs of beta and the multipliers (the half-period map is homogeneous of degree 1,
     # its Jacobian of degree 0) are the same for every S > 0: the box claims are decided at one S (the
     # box's lower end). Taking S as a ball instead would widen every spectral term by the same factor
-    # independently and lose the cancellation that makes g small near 0.
-    scaled = [k for k in box.names if k != "S"]
-    Pb = RelayParams(**{k: box.ball(k) if k in scaled else
-                        ball(_q(box.interval("S")[0])) if k == "S" and "S" in box.names else
+    # independently and lose the cancellation that makes g small near 0. The gains p and K enter only
+    # through the amplitude K p S (flow.amplitude_similarity, checked exactly at the box's lower ends),
+    # so they too are taken at the box's lower ends.
+    fixed = {k: _q(box.interval(k)[0]) for k in AMPLITUDE_PARAMETERS if k in box.names}
+    Pb = RelayParams(**{k: ball(fixed[k]) if k in fixed else box.ball(k) if k in box.names else
                         ball(getattr(model.params, k)) for k in PARAMETER_NAMES})
+    if fixed and not amplitude_similarity(dataclasses.replace(model.params, **fixed)):
+        raise AssertionError("the relay model no longer enters p, K only through the amplitude K p S")
     mid = box.midpoint()
     Pmid = dataclasses.replace(model.params, **{k: _q(v) for k, v in mid.items()})
     boxed = dataclasses.replace(model, params=Pmid, paper={})

@@ -56,7 +56,7 @@ from ...core.roots import Isolation, RootPiece, RootStatus, enclose_f_df, merge_
 from ...core.subdivision import certify_positive
 from .. import Attempt, Phases
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table, orbit_quantities
-from .flow import (PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, envelope_margin, g_coeffs, half_period_jacobian, pole_free_coeffs,
+from .flow import (AMPLITUDE_PARAMETERS, PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, envelope_margin, g_coeffs, half_period_jacobian, pole_free_coeffs,
                    moment_zero_orders, orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure,
                    x0_at)
 
@@ -109,9 +109,11 @@ MAX_PIECES = 200000
 
 
 #: claims that do not depend on a parameter (a threshold search over it is bad input): the relay
-#: amplitude S scales the orbit (x(t; S) = S x(t; 1)), so the half-period roots, the sign condition
-#: and the multipliers are the same for every S > 0 (kinds/periodic_orbit/boxes.py uses the same fact)
-CLAIMS_INDEPENDENT_OF = {"S": ("half_period", "orbit_genuine", "multipliers", "stable")}
+#: amplitude S scales the orbit (x(t; S) = S x(t; 1)), and the gains p and K enter only through the
+#: amplitude K p S (:func:`~.flow.amplitude_similarity`, an exact identity), so the half-period roots,
+#: the sign condition and the multipliers are the same for every S, p, K > 0
+#: (kinds/periodic_orbit/boxes.py uses the same fact)
+CLAIMS_INDEPENDENT_OF = {k: ("half_period", "orbit_genuine", "multipliers", "stable") for k in AMPLITUDE_PARAMETERS}
 
 @dataclass(frozen=True)
 class RelayModel:

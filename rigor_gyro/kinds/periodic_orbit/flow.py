@@ -63,7 +63,7 @@ from ...core.polyroots import isolate_polynomial
 __all__ = ["PARAMETER_NAMES", "RelayParams", "DegenerateSpectrum", "Mode", "Spectrum", "envelope_margin", "system_matrix",
            "forcing", "nutation_cubic", "g_coeffs", "pole_free_coeffs", "x0_at", "ExpSum", "orbit_expsums", "state_at",
            "phi_at", "vector_field", "half_period_jacobian", "taylor_enclosure", "tail_bound",
-           "taylor5_leading_coefficient", "moment_zero_orders"]
+           "taylor5_leading_coefficient", "moment_zero_orders", "AMPLITUDE_PARAMETERS", "amplitude_similarity"]
 
 PARAMETER_NAMES = ("A", "B", "H", "tau", "sigma", "n", "K", "p", "S")
 
@@ -117,6 +117,30 @@ def system_matrix(P: RelayParams) -> fmpq_mat:
 def forcing(P: RelayParams) -> list[fmpq]:
     """e of x' = M x + e u (u = S sign beta), exactly."""
     return [fmpq(0), fmpq(0), fmpq(0), fmpq(0), 1 / P.sigma]
+
+
+#: the parameters that enter the orbit only through its amplitude K p S (see :func:`amplitude_similarity`)
+AMPLITUDE_PARAMETERS = ("S", "p", "K")
+
+
+def amplitude_similarity(P: RelayParams) -> bool:
+    """Exactly (rationals): the gains p and K enter only the amplitude of the orbit.
+
+    With D = diag(1, 1, 1, 1/K, 1/(p K)) and y = D^-1 x, the system x' = M x + e S sign(beta) becomes
+    y' = M_1 y + e (K p S) sign(beta), where M_1 is M at p = K = 1: checked here as
+    D^-1 M(P) D = M(P at p = K = 1) and D^-1 e = K p e. The first three components (alpha-dot, beta,
+    beta-dot, which carry g, the switching and the sign condition) are the same in x and y, so
+    x(t; p, K, S) has the half-period roots, the sign condition and (the Jacobians being similar) the
+    multipliers of the orbit with p = K = 1 and amplitude K p S, and those do not depend on the
+    amplitude (homogeneity in S). True for every valid P; a False would mean the model changed."""
+    D = fmpq_mat(5, 5, [fmpq(1) if i == j and i < 3 else fmpq(0) for i in range(5) for j in range(5)])
+    D[3, 3], D[4, 4] = 1 / P.K, 1 / (P.p * P.K)
+    Dinv = fmpq_mat(5, 5, [fmpq(1) if i == j and i < 3 else fmpq(0) for i in range(5) for j in range(5)])
+    Dinv[3, 3], Dinv[4, 4] = P.K, P.p * P.K
+    one = RelayParams(**{k: (fmpq(1) if k in ("p", "K") else getattr(P, k)) for k in PARAMETER_NAMES})
+    e, e1 = forcing(P), forcing(one)
+    De = [sum((Dinv[i, j] * e[j] for j in range(5)), fmpq(0)) for i in range(5)]
+    return Dinv * system_matrix(P) * D == system_matrix(one) and De == [P.K * P.p * x for x in e1]
 
 
 def nutation_cubic(P: RelayParams) -> fmpq_poly:

@@ -29,7 +29,7 @@ from flint import acb, arb, arb_mat, fmpq
 from ...core.audit import NUMBER, TEXT, agreeing_digits, audit_printed, half_unit, keys, numbers
 from ...core.balls import ball, certainly_negative, certainly_positive, decimal_bounds
 from ...core.outcome import AuditRow, AuditStatus
-from .flow import (ExpSum, Spectrum, half_period_jacobian, nutation_cubic, orbit_expsums, phi_at,
+from .flow import (ExpSum, amplitude_similarity, Spectrum, half_period_jacobian, nutation_cubic, orbit_expsums, phi_at,
                    vector_field)
 
 __all__ = ["PAPER_SCHEMA", "formula_table", "paper_coefficients", "orbit_quantities", "determinant_12", "audit"]
@@ -516,6 +516,7 @@ def audit(model, sp: Spectrum, orbit) -> list[AuditRow]:
                                  AuditStatus.CONFIRMED if orbit.stable else
                                  AuditStatus.REFUTED if orbit.stable is False else AuditStatus.UNDECIDED,
                                  f"max modulus {_fmt(orbit.moduli[0], 10)}"))
+            rows.append(_gains_row(P))
     by_id = {r.id: r for r in rows}
     for rid, txt in paper.get("as_transcribed", {}).items():
         used = by_id[rid].printed if rid in by_id else "(no such row)"
@@ -523,3 +524,20 @@ def audit(model, sp: Spectrum, orbit) -> list[AuditRow]:
                              "a symbol garbled by the transcription, read as the digit its neighbours and the certified "
                              f"value imply (a reading of the print, not a result); the row {rid!r} judges the reading"))
     return rows
+
+
+def _gains_row(P) -> AuditRow:
+    """The stability across the stabiliser's gains, as far as an exact identity settles it: the paper
+    computes its example at p = 40, K = 7.5 only and says nothing of other gains."""
+    ok = amplitude_similarity(P)
+    amp = ball(P.K * P.p * P.S)
+    return AuditRow("stability across the gains p and K (the paper: the example only)",
+                    "(no statement: one example, at p = 40 and K = 7.5)",
+                    "D^-1 M D = M(p = K = 1), D^-1 e = K p e, D = diag(1, 1, 1, 1/K, 1/(p K)) (exact rationals)",
+                    None, AuditStatus.CONFIRMED if ok else AuditStatus.UNDECIDED,
+                    ("certified beyond the paper: the amplifier gain p and the torque constant K enter the orbit only "
+                     f"through its amplitude K p S = {_fmt(amp)}, so theta*, the sign condition and the multipliers, "
+                     "hence the existence and the stability of the self-oscillation, are the same for every p, K, S > 0; "
+                     "across the gains, stability is a question of n = K n1 (the back-emf), tau, sigma, A, B and H only "
+                     "(thresholds H_c(n): proofs/margins/README.md)") if ok else
+                    "the exact similarity did not hold: the model is not the paper's system (2)")
