@@ -540,3 +540,38 @@ def test_a_relay_box_in_the_gains_p_and_k_is_decided_whole():
     pv = pave(bs)
     assert all(c.status == "proved" for c in pv.claims)
     assert all(len(c.boxes) == 1 for c in pv.claims), [len(c.boxes) for c in pv.claims]
+
+
+def test_a_relay_box_across_the_stability_threshold_is_never_proved_stable():
+    """H in [9000, 9650] at the printed parameters: stable at H = 9000, refuted at H = 9600 (point
+    proofs, checked here), so the box can never be proved stable. Only S, p, K may be taken at a box's
+    lower end; H (or n) never: a box taken at its lower end would be 'proved'."""
+    from rigor_gyro.kinds.periodic_orbit import validate as relay_validate
+    from rigor_gyro.kinds.periodic_orbit.boxes import evaluate_box as relay_box
+    base = load_scene("roitenberg1947")
+    def point(h):
+        s = Scene(name="x", kind=base.kind, source="test", parameters={**base.parameters, "H": h},
+                  claims_only=["stable"], options=dict(base.options))
+        return prove_scene(s).claim("stable").status.value
+    assert (point("9000"), point("9600")) == ("proved", "refuted")
+    m = relay_validate(base)
+    with working_precision(128):
+        out = relay_box(m, Box.of({"H": (Fraction(9000), Fraction(9650))}), ["half_period", "orbit_genuine", "stable"])
+    assert out["stable"][0] != "proved"
+
+
+@pytest.mark.parametrize("name", ["S", "p", "K", "n", "tau"])
+def test_only_the_amplitude_parameters_leave_the_orbit_unchanged(name):
+    """theta* and the largest multiplier modulus at a parameter and ten times it: unchanged exactly for
+    the amplitude parameters (S, p, K), changed for any other (n, tau): AMPLITUDE_PARAMETERS is right."""
+    from rigor_gyro.kinds.periodic_orbit.flow import AMPLITUDE_PARAMETERS
+    base = load_scene("roitenberg1947")
+    def at(v):
+        s = Scene(name="x", kind=base.kind, source="test", parameters={**base.parameters, name: v},
+                  claims_only=None, options=dict(base.options))
+        q = prove_scene(s).quantities
+        return q["theta_star"], q["multiplier_modulus_1"]
+    t1, m1 = at(base.parameters[name])
+    t2, m2 = at(str(Fraction(base.parameters[name]) * 10))
+    same = t1.overlaps(t2) and m1.overlaps(m2)
+    assert same == (name in AMPLITUDE_PARAMETERS)
