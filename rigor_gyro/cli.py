@@ -69,6 +69,16 @@ def _parser() -> argparse.ArgumentParser:
     mg.add_argument("--claim", default=None, help="the claim (default: the scene's first claim)")
     mg.add_argument("--width", default="1e-6", help="relative width of the threshold bracket (default 1e-6)")
     mg.add_argument("--out", default=None, help="also write margin_<scene>_<param>.json/.md here")
+    mg.add_argument("--scan", type=int, default=None, metavar="N",
+                    help="instead of a threshold: prove the claims (or --claim) at N exact points from --lo to --hi, "
+                         "a map of point proofs (exit 0 all decided, 3 some inconclusive); writes "
+                         "scan_<scene>_<param>.json/.md with --out")
+    mg.add_argument("--log", action="store_true", help="with --scan: points evenly spaced in log scale")
+    mg.add_argument("--quantity", action="append", default=None, metavar="Q",
+                    help="with --scan: also report this certified quantity at each point (repeatable)")
+    mg.add_argument("--workers", type=int, default=1, help="with --scan: processes (default 1)")
+    mg.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                    help="with --scan: run the points on a Dask scheduler (tcp://host:8786 or 'local')")
     mg.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     cp = sub.add_parser("campaign", help="prove N random scenes of a kind and compare them with mpmath, "
                         "floats and independent decisions (needs the 'crosscheck' extra)")
@@ -282,6 +292,20 @@ def _cmd_margin(args) -> int:
         problem = _check_out(args.out)
         if problem:
             return _bad(problem)
+    if args.scan is not None:
+        from .margins.scan import run_scan, write_scan
+        if not 1 <= args.workers <= 64:
+            return _bad("need 1 <= --workers <= 64")
+        sres = run_scan(scene, args.param, args.scan, lo=args.lo, hi=args.hi, claim=args.claim,
+                        quantities=args.quantity, log=args.log, workers=args.workers, scheduler=args.scheduler)
+        for line in sres.lines():
+            _say(line)
+        if args.out is not None:
+            for path in write_scan(sres, args.out):
+                _say(f"-> {path}")
+        return sres.exit_code
+    if args.log or args.quantity or args.workers != 1 or args.scheduler:
+        return _bad("--log, --quantity, --workers and --scheduler go with --scan")
     res = find_threshold(scene, args.param, lo=args.lo, hi=args.hi, claim=args.claim, width=args.width)
     for line in res.lines():
         _say(line)

@@ -575,3 +575,40 @@ def test_only_the_amplitude_parameters_leave_the_orbit_unchanged(name):
     t2, m2 = at(str(Fraction(base.parameters[name]) * 10))
     same = t1.overlaps(t2) and m1.overlaps(m2)
     assert same == (name in AMPLITUDE_PARAMETERS)
+
+
+def test_a_scan_is_a_map_of_point_proofs_the_same_on_a_pool(tmp_path):
+    from rigor_gyro.margins.scan import run_scan, scan_points
+    pts = scan_points(Fraction(1, 100), Fraction(10000), 7, True)
+    assert pts[0] == Fraction(1, 100) and pts[-1] == 10000 and len(pts) == 7
+    assert all(a < b for a, b in zip(pts, pts[1:])) and pts[3] == 10
+    one = run_scan(load_scene("roitenberg1947"), "n", 3, lo="1", hi="100", claim="stable",
+                   quantities=["stability_margin"], workers=1)
+    assert one.exit_code == 0 and one.counts() == {"stable": {"proved": 3, "refuted": 0, "inconclusive": 0}}
+    margins = [Fraction(r["quantities"]["stability_margin"][0]) for r in one.results]
+    assert margins == sorted(margins) and margins[0] > 0          # the back-emf damping stabilises
+    two = run_scan(load_scene("roitenberg1947"), "n", 3, lo="1", hi="100", claim="stable",
+                   quantities=["stability_margin"], workers=2)
+    assert json.dumps(one.to_json()) == json.dumps(two.to_json())
+    assert [p["value"] for p in one.to_json()["points"]] == ["1", "101/2", "100"]     # exact
+
+
+def test_a_scan_where_stability_is_lost_says_refuted_at_those_points():
+    from rigor_gyro.margins.scan import run_scan
+    res = run_scan(load_scene("stress_relay_H_1e4"), "n", 2, lo="50", hi="500", claim="stable")
+    assert [r["claims"]["stable"]["status"] for r in res.results] == ["proved", "refuted"]
+    assert res.exit_code == 0          # a map: every point decided
+
+
+@pytest.mark.parametrize("argv", [
+    ["--scan", "1"], ["--scan", "3", "--lo", "2", "--hi", "1"], ["--scan", "3", "--log", "--lo", "0", "--hi", "1"],
+    ["--scan", "3", "--quantity", "no_such_quantity"], ["--log"], ["--quantity", "theta_star"],
+    ["--scan", "3", "--lo", "-1", "--hi", "1"], ["--scan", "3", "--workers", "0"],
+])
+def test_bad_scans_are_bad_input(argv):
+    assert main(["margin", "roitenberg1947", "--param", "n", "--claim", "stable"] + argv) == 2
+
+
+def test_a_scan_of_a_tolerance_scene_is_bad_input(tmp_path):
+    (tmp_path / "box.toml").write_text(RUDENKO_BOX)
+    assert main(["margin", str(tmp_path / "box.toml"), "--param", "a", "--scan", "3"]) == 2

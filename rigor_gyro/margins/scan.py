@@ -1,0 +1,192 @@
+"""Scans: a scene's claims proved point by point along one parameter (``rigor-gyro margin --scan N``).
+
+The N points are exact decimals from ``lo`` to ``hi`` (both included), evenly spaced, or evenly spaced
+in log scale with ``--log`` (each point rounded to 12 significant digits, then taken exactly). Each is
+proved by the point prover, on the executor of the pavings (a process pool or Dask; the results come
+back in the order of the points, so the map is the same whatever the executor). The result is a map of
+point proofs: at each of the N exact points, each claim's status is a theorem (and the quantities asked
+for are certified enclosures there); nothing is said between the points (a threshold bisection or a
+paving of a tolerance box does that).
+
+Exit status: 0 every point decided every claim (proved or refuted), 3 some point left a claim
+inconclusive; never 1 (a scan is a map, not a claim over the range); 2 bad input (the parameter is
+absent, a tolerance or not rational; lo >= hi; --log with lo <= 0; N outside [2, 10000]; a point
+outside the kind's domain; a quantity the kind does not report).
+"""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+from ..core.boxes import fraction_text, is_tolerance
+from ..core.errors import ParameterError
+from ..core.exact import parse_exact
+from ..kinds import kind_module
+from ..scene import Scene
+
+__all__ = ["Scan", "scan_points", "run_scan", "write_scan"]
+
+MAX_POINTS = 10000
+
+
+def scan_points(lo: Fraction, hi: Fraction, n: int, log: bool) -> list[Fraction]:
+    """N exact points from lo to hi (ends exact; interior points rounded to 12 significant digits)."""
+    if log:
+        import math
+        a, b = math.log10(lo), math.log10(hi)
+        inner = [Fraction(f"{10 ** (a + (b - a) * i / (n - 1)):.11e}") for i in range(1, n - 1)]
+    else:
+        inner = [Fraction(f"{float(lo + (hi - lo) * Fraction(i, n - 1)):.11e}") for i in range(1, n - 1)]
+    pts = [lo] + inner + [hi]
+    out = []
+    for x in pts:                                   # strictly increasing, whatever the rounding did
+        if not out or x > out[-1]:
+            out.append(x)
+    return out
+
+
+def scan_task(kind: str, params_json: str, options_json: str, claims: tuple[str, ...],
+              quantities: tuple[str, ...]) -> dict[str, Any]:
+    """The point prover at one exact parameter point (strings in, JSON-able data out)."""
+    from ..core.balls import decimal_bounds
+    from ..prover import prove_scene
+    scene = Scene(name="scan_point", kind=kind, source="margin scan point", parameters=json.loads(params_json),
+                  claims_only=list(claims), options=json.loads(options_json))
+    cert = prove_scene(scene)
+    out: dict[str, Any] = {"claims": {}, "quantities": {}, "precision_bits": cert.precision_bits}
+    for c in claims:
+        cl = cert.claim(c)
+        out["claims"][c] = {"status": cl.status.value, "reason": cl.reason[:300]}
+    for q in quantities:
+        v = cert.quantities.get(q)
+        out["quantities"][q] = list(decimal_bounds(v, 12)) if v is not None and v.is_finite() else None
+    return out
+
+
+@dataclass
+class Scan:
+    scene: Scene
+    param: str
+    claims: list[str]
+    quantities: list[str]
+    values: list[Fraction]
+    log: bool
+    results: list[dict[str, Any]] = field(default_factory=list)
+
+    @property
+    def exit_code(self) -> int:
+        decided = all(r["claims"][c]["status"] in ("proved", "refuted") for r in self.results for c in self.claims)
+        return 0 if decided else 3
+
+    def counts(self) -> dict[str, dict[str, int]]:
+        out = {c: {"proved": 0, "refuted": 0, "inconclusive": 0} for c in self.claims}
+        for r in self.results:
+            for c in self.claims:
+                out[c][r["claims"][c]["status"]] = out[c].get(r["claims"][c]["status"], 0) + 1
+        return out
+
+    def lines(self) -> list[str]:
+        head = (f"{self.scene.name}: scan of {self.param} over [{_d(self.values[0])}, {_d(self.values[-1])}] "
+                f"({len(self.values)} exact points{', log-spaced' if self.log else ''}; point proofs, nothing "
+                "is claimed between the points)")
+        out = [head]
+        for c, k in self.counts().items():
+            out.append(f"  {c}: proved at {k['proved']}, refuted at {k['refuted']}, inconclusive at "
+                       f"{k['inconclusive']} of {len(self.values)} points")
+        return out
+
+    def to_json(self) -> dict[str, Any]:
+        return {"schema": "rigor-gyro/scan/1", "scene": self.scene.header(), "param": self.param,
+                "claims": self.claims, "quantities": self.quantities, "log": self.log,
+                "statement": (f"at each exact value of {self.param} listed, each claim has the status given (a "
+                              "point proof at that value, the other parameters as in the scene); nothing is "
+                              "claimed between the values"),
+                "counts": self.counts(),
+                "points": [{"value": fraction_text(v), **r} for v, r in zip(self.values, self.results)]}
+
+    def markdown(self) -> str:
+        cols = self.claims + self.quantities
+        rows = [f"# {self.lines()[0]}", ""] + [f"- {x.strip()}" for x in self.lines()[1:]] + [
+            "", "Each cell is a point proof at that exact value (the other parameters as in the scene); the "
+            "quantities are certified enclosures of what the scene reports there (for the relay kind: of the orbit "
+            "theta_star, the stable genuine orbit when exactly one is stable, else the shortest genuine orbit; the "
+            "`stable` claim holds when some genuine orbit is stable).",
+            "", f"| {self.param} | " + " | ".join(cols) + " |", "|---" * (len(cols) + 1) + "|"]
+        for v, r in zip(self.values, self.results):
+            cells = [r["claims"][c]["status"] for c in self.claims]
+            for q in self.quantities:
+                b = r["quantities"].get(q)
+                cells.append(f"[{b[0]}, {b[1]}]" if b else "-")
+            rows.append(f"| {_d(v)} | " + " | ".join(cells) + " |")
+        return "\n".join(rows) + "\n"
+
+
+def _d(q: Fraction) -> str:
+    return f"{float(q):.12g}"
+
+
+def run_scan(scene: Scene, param: str, n: int, *, lo: str | None = None, hi: str | None = None,
+             claim: str | None = None, quantities: list[str] | None = None, log: bool = False,
+             workers: int | None = 1, scheduler: str | None = None) -> Scan:
+    """Prove ``scene``'s claims (or ``claim``) at ``n`` exact values of ``param`` between lo and hi."""
+    module = kind_module(scene.kind)
+    if param not in scene.parameters:
+        raise ParameterError(f"--param {param!r} is not a parameter of scene {scene.name!r}; it has "
+                             f"{sorted(scene.parameters)}")
+    if any(is_tolerance(v) for v in scene.parameters.values()):
+        raise ParameterError("--scan needs a scene of points (write every parameter as a number; a tolerance "
+                             "box is paved by `rigor-gyro prove`)")
+    module.validate(scene)
+    if not 2 <= n <= MAX_POINTS:
+        raise ParameterError(f"--scan {n}: need 2 <= N <= {MAX_POINTS}")
+    claims = list(module.CLAIMS) if scene.claims_only is None else [c for c in module.CLAIMS if c in scene.claims_only]
+    if claim is not None:
+        if claim not in module.CLAIMS:
+            raise ParameterError(f"--claim {claim!r}: kind {scene.kind!r} has {list(module.CLAIMS)}")
+        claims = [claim]
+    quantities = list(quantities or [])
+    bad = [q for q in quantities if q not in getattr(module, "HEADLINE", {})]
+    if bad:
+        raise ParameterError(f"--quantity {bad[0]!r}: kind {scene.kind!r} reports {sorted(module.HEADLINE)}")
+
+    def end(text, name):
+        x = parse_exact(text, name)
+        if not x.is_rational:
+            raise ParameterError(f"{name} {text!r} involves pi: give a rational end")
+        return x.rational
+    value = parse_exact(scene.parameters[param], param)
+    if (lo is None or hi is None) and not value.is_rational:
+        raise ParameterError(f"--param {param!r} = {scene.parameters[param]!r} involves pi: give --lo and --hi")
+    v = value.rational if value.is_rational else None
+    lo_q = end(lo, "--lo") if lo is not None else min(v / 2, 2 * v)
+    hi_q = end(hi, "--hi") if hi is not None else max(v / 2, 2 * v)
+    if not lo_q < hi_q:
+        raise ParameterError(f"need --lo < --hi (got {lo_q}, {hi_q})")
+    if log and not lo_q > 0:
+        raise ParameterError(f"--log needs --lo > 0 (got {lo_q})")
+    values = scan_points(lo_q, hi_q, n, log)
+    for x in (values[0], values[-1]):               # the domain, checked before any work
+        try:
+            module.validate(Scene(name=scene.name, kind=scene.kind, source=scene.source,
+                                  parameters={**scene.parameters, param: fraction_text(x)}, options=dict(scene.options)))
+        except ParameterError as e:
+            raise ParameterError(f"{param} = {_d(x)} is outside the kind's domain: {e}") from None
+    options_json = json.dumps(scene.options, sort_keys=True)
+    tasks = [(scene.kind, json.dumps({**scene.parameters, param: fraction_text(x)}, sort_keys=True), options_json,
+              tuple(claims), tuple(quantities)) for x in values]
+    from .executors import make_executor
+    ex = make_executor(workers, scheduler)
+    try:
+        results = ex.map(scan_task, tasks)
+    finally:
+        ex.close()
+    return Scan(scene, param, claims, quantities, values, log, results)
+
+
+def write_scan(res: Scan, out_dir: str) -> list[Path]:
+    from ..report import write_pair
+    return list(write_pair(out_dir, f"scan_{res.scene.name}_{res.param}", json.dumps(res.to_json(), indent=1) + "\n",
+                           res.markdown(), None))
