@@ -77,6 +77,8 @@ PARAMETERS = {
 OPTIONS = {"T_max": "auto", "theta_width": "1e-12"}
 
 #: the numbers a report's summary opens with (quantity name -> what it is), in this order
+#: theta_star and its quantities belong to the stable genuine orbit when exactly one is stable, else to
+#: the shortest genuine orbit (claims._select); the others are theta_star_2, ... with their own margins
 HEADLINE = {"theta_star": "half-period theta* (s)", "period": "period 2 theta* (s)",
             "multiplier_modulus_1": "largest multiplier modulus", "multiplier_modulus_2": "multiplier modulus 2",
             "multiplier_modulus_3": "multiplier modulus 3", "multiplier_modulus_4": "multiplier modulus 4",
@@ -400,10 +402,32 @@ def _g_series_function(sp: Spectrum, coeffs=None):
     return f
 
 
+#: entries of a spectrum's memo of G's Taylor coefficients before it is cleared
+COEFF_MEMO_LIMIT = 100_000
+
+
 def isolation_coeffs(sp: Spectrum):
     """The Taylor coefficients of the function whose roots the search isolates, and its name in the
-    witness: G = g K (:func:`~.flow.pole_free_coeffs`: same roots as g, no poles next to the real axis)."""
-    return (lambda ctr, n: pole_free_coeffs(sp, ctr, n)), "pole_free"
+    witness: G = g K (:func:`~.flow.pole_free_coeffs`: same roots as g, no poles next to the real axis).
+
+    Memoised per spectrum, keyed by the precision, the centre ball's exact midpoint and radius and the
+    length: Arb is deterministic given those, so a memoised list holds the very balls a new call would
+    return (certificates are unchanged; the root search asks for the same piece's coefficients again
+    and again: about a third of the calls on the H = 1e4 stress scene). Non-finite or complex centres
+    are computed, never memoised."""
+    memo = sp.__dict__.setdefault("_pole_free_memo", {})
+
+    def coeffs(ctr, n):
+        if type(ctr) is not arb or not ctr.is_finite():
+            return pole_free_coeffs(sp, ctr, n)
+        key = (current_precision(), ctr.mid().man_exp(), ctr.rad().man_exp(), n)
+        hit = memo.get(key)
+        if hit is None:
+            if len(memo) >= COEFF_MEMO_LIMIT:
+                memo.clear()
+            hit = memo[key] = tuple(pole_free_coeffs(sp, ctr, n))
+        return list(hit)
+    return coeffs, "pole_free"
 
 
 def _g_derivatives(coeffs, X: arb, derivs) -> list[arb]:
