@@ -328,3 +328,21 @@ def test_taylor_enclosure_contains_the_function_on_the_whole_box(order):
         for t in ("0.5", "0.75", "1", "1.5"):
             v = A(t).exp()
             assert f.contains(v) and df.contains(v), (order, t)
+
+
+def test_the_memo_of_g_coefficients_keys_on_the_whole_ball():
+    """A ball and its own midpoint have the same centre: the memo must not hand back the point's
+    coefficients for the ball (they would enclose G at one point only)."""
+    from rigor_gyro.kinds.periodic_orbit.claims import isolation_coeffs
+    from rigor_gyro.kinds.periodic_orbit import validate
+    m = validate(load_scene("roitenberg1947"))
+    with working_precision(128):
+        sp = Spectrum(m.params)
+        coeffs, _ = isolation_coeffs(sp)
+        x = arb("0.1")
+        point = coeffs(x, 4)
+        wide = coeffs(arb(x.mid(), "1e-3"), 4)
+        edge = coeffs(arb(x.mid() + arb("0.0009")), 4)      # a point inside the ball, computed fresh
+        for j in range(4):
+            assert wide[j].contains(edge[j]) and wide[j].rad() > point[j].rad()
+        assert [str(c) for c in coeffs(x, 4)] == [str(c) for c in point]     # a hit is the same balls
