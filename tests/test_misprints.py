@@ -4,11 +4,13 @@ the digit thresholds, and a property: a single planted edit of a correct roundin
 from __future__ import annotations
 
 from decimal import Decimal
+from fractions import Fraction
 
 import pytest
 from flint import arb, fmpq
 from hypothesis import given, strategies as st
 
+from rigor_gyro.core.balls import working_precision
 from rigor_gyro.core.misprints import CLASSES, classify_printed, classify_row, rounded_at
 from rigor_gyro.core.outcome import AuditRow, AuditStatus
 
@@ -111,3 +113,29 @@ def test_the_relay_tables_are_judged_against_the_paper_s_own_closed_form():
     # a symbol the transcription garbled is a row, never only a silent correction in the scene's data
     tr = rows["transcription: Table 2 t=0.10 Omega"]
     assert tr["printed"] == "0.028f524" and tr["reading"] == rows["Table 2 t=0.10 Omega"]["printed"] == "0.0286524"
+
+
+@given(st.integers(min_value=-10 ** 30, max_value=10 ** 30), st.integers(min_value=0, max_value=700),
+       st.integers(min_value=-40, max_value=5))
+def test_rounded_at_is_the_exact_half_even_rounding(man, shift, exponent):
+    """An exact ball m 2^-shift against the half-even rounding done in Fractions: rounded_at is exact,
+    whatever the number of decimal digits of the dyadic (a 200-digit conversion was not)."""
+    with working_precision(4096):
+        x = arb(fmpq(man, 2 ** shift))
+        assert x.rad() == 0
+    q = Fraction(man, 2 ** shift) / Fraction(10) ** exponent
+    n = q.numerator // q.denominator
+    r = q - n
+    if r > Fraction(1, 2) or (r == Fraction(1, 2) and n % 2):
+        n += 1
+    assert rounded_at(x, exponent) == Decimal(f"{n}E{exponent}")
+
+
+def test_a_dyadic_within_1e_200_of_a_tie_rounds_away_from_the_tie():
+    with working_precision(2400):
+        above = arb(fmpq(1, 8)) + arb(fmpq(1, 2 ** 700))      # 0.125 + 2^-700: rounds up at 2 places
+        below = arb(fmpq(1, 8)) - arb(fmpq(1, 2 ** 700))
+        assert above.rad() == 0 and below.rad() == 0
+        assert rounded_at(above, -2) == Decimal("0.13")
+        assert rounded_at(below, -2) == Decimal("0.12")
+        assert rounded_at(arb(fmpq(1, 8)), -2) == Decimal("0.12")            # the tie: half-even

@@ -38,13 +38,13 @@ order above is reported (``readings`` lists every one that fits).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from decimal import ROUND_HALF_EVEN, Decimal, localcontext
+from decimal import Decimal
 from fractions import Fraction
 
 from flint import arb, fmpq
 
 from .audit import PRINTED_NUMBER, agreeing_digits, audit_printed
-from .balls import exact_fraction
+from .balls import _exponent10, exact_fraction
 from .outcome import AuditRow, AuditStatus
 
 __all__ = ["CLASSES", "ROW_CLASSES", "MIN_DIGITS_FOR_EDITS", "MIN_DIGITS_FOR_COMPOUND", "Classification", "classify_printed", "classify_row",
@@ -69,35 +69,43 @@ class Classification:
     readings: list[str] = field(default_factory=list)
 
 
-def _dec(x: Fraction) -> Decimal:
-    with localcontext() as c:
-        c.prec = 200
-        return Decimal(x.numerator) / Decimal(x.denominator)
+def _round_q_at(q: Fraction, exponent: int) -> Decimal:
+    """q rounded half-even at the place 10^exponent, exactly (integer arithmetic; the Decimal is built
+    from its digit string, so no context precision rounds it)."""
+    num, den = q.numerator, q.denominator
+    if exponent >= 0:
+        den *= 10 ** exponent
+    else:
+        num *= 10 ** -exponent
+    n, r = divmod(num, den)                 # floor; 0 <= r < den
+    twice = 2 * r
+    if twice > den or (twice == den and n % 2):
+        n += 1
+    return Decimal(f"{n}E{exponent}")
 
 
 def rounded_at(value: arb, exponent: int) -> Decimal | None:
     """The correct rounding (half-even) of every point of ``value`` at the place 10^exponent, or None
-    when the ball's two ends round differently (or it is not finite)."""
+    when the ball's two ends round differently (or it is not finite). Exact: the ends are dyadic
+    rationals, rounded in integer arithmetic (a conversion to a 200-digit Decimal first would round a
+    value within 10^-200 of a tie onto the tie)."""
     if not value.is_finite():
         return None
     lo, hi = exact_fraction(value.lower()), exact_fraction(value.upper())
-    q = Decimal(1).scaleb(exponent)
-    with localcontext() as c:
-        c.prec = 250
-        a = _dec(lo).quantize(q, rounding=ROUND_HALF_EVEN)
-        b = _dec(hi).quantize(q, rounding=ROUND_HALF_EVEN)
-    return a if a == b else None
+    a = _round_q_at(lo, exponent)
+    return a if a == _round_q_at(hi, exponent) else None
 
 
 def _sig_rounded(value: arb, nsig: int) -> Decimal | None:
-    """``value`` rounded to ``nsig`` significant digits (None if its ends round differently)."""
+    """``value`` rounded to ``nsig`` significant digits (None if its ends round differently or lie in
+    different decades)."""
     if nsig < 1 or not value.is_finite():
         return None
     lo, hi = exact_fraction(value.lower()), exact_fraction(value.upper())
     if lo == 0 or hi == 0 or (lo < 0) != (hi < 0):
         return None
-    mag = _dec(abs(lo)).adjusted()
-    if _dec(abs(hi)).adjusted() != mag:
+    mag = _exponent10(lo)
+    if _exponent10(hi) != mag:
         return None
     return rounded_at(value, mag - nsig + 1)
 
