@@ -371,6 +371,31 @@ CAMPAIGN_CASES = {
 }
 
 
+# seed 7 (1 of 500): invariant_estimate inconclusive (c* = [-0.00017, 0.00084] not certainly positive), and
+# the c* it reports was checked only when the claim was proved: the checker now re-derives c* and its face
+# term from the cylinder pieces whatever the claim's outcome
+CSTAR_INCONCLUSIVE = {"A": "1.43357", "C": "8.88046", "A1": "0.569612", "B1": "5.99438", "C1": "1.98079",
+                      "A2": "2.12752", "H": "138.715", "k": "0.0808509", "a": "1.25074", "x2_star": "pi/6",
+                      "mu": "0.0134819", "moment": "sine"}
+CAMPAIGN_CASES["c_star of an inconclusive estimate"] = CSTAR_INCONCLUSIVE
+
+
+def test_the_c_star_of_an_inconclusive_estimate_is_re_derived():
+    from rigor_gyro.prover import prove_scene
+    from rigor_gyro.scene import Scene
+    sc = Scene(name="x", kind="lyapunov", source="", parameters=CSTAR_INCONCLUSIVE, options={"max_pieces": "4000"},
+               claims_only=["constants", "vdot_nonpositive", "invariant_estimate"])
+    data = json.loads(json.dumps(prove_scene(sc, maxprec=64).to_json()))
+    inv = next(c for c in data["claims"] if c["id"] == "invariant_estimate")
+    assert inv["status"] == "inconclusive" and "c_star" in data["quantities"]
+    assert check_certificate(data).ok
+    d = copy.deepcopy(data)
+    hi = d["quantities"]["c_star"]["hi"]                 # the ball shrunk to its upper end
+    d["quantities"]["c_star"].update({"lo": hi, "mid": hi, "rad": "0"})
+    report = check_certificate(_refix(d))
+    assert not report.ok and "c_star" in report.first_failure.message
+
+
 @pytest.mark.parametrize("params", list(CAMPAIGN_CASES.values()), ids=list(CAMPAIGN_CASES))
 def test_campaign_certificates_are_confirmed(params):
     from rigor_gyro.prover import prove_scene

@@ -263,7 +263,10 @@ def check(model, data: dict) -> list[CheckResult]:
     inv_ok = False
     wi = W.get("invariant_estimate")
     ic = claims.get("invariant_estimate", {})
-    if wi and R is not None and vdot_ok and v_ok and ic.get("status") == "proved":
+    # c* and its face term are stored whatever the claim's outcome (an inconclusive claim reports the c*
+    # it could not prove positive): they are re-derived from the cylinder pieces whenever R is; the set
+    # {V < c_set} and its extents only when the claim is proved (they need Vdot <= 0 and V > 0)
+    if wi and R is not None:
         face = g.phi(xs)
         m1, m3 = g.phi_minimiser(xs)
         inside = certainly_lt(m1 ** 2 + m3 ** 2, R ** 2)
@@ -286,7 +289,8 @@ def check(model, data: dict) -> list[CheckResult]:
             if cstar_lo_ok and cstar_hi_ok:
                 verified.add("c_star")
             contains("c_star_face", face)
-            c_text = ic.get("details", {}).get("c_set")
+            proved = vdot_ok and v_ok and ic.get("status") == "proved"
+            c_text = ic.get("details", {}).get("c_set") if proved else None
             if c_text is not None:
                 cl = arb(fmpq_of(Fraction(c_text)))
                 contains("c_set", cl)
