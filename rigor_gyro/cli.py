@@ -67,7 +67,7 @@ def _parser() -> argparse.ArgumentParser:
     mg.add_argument("--lo", default=None, help="lower end of the search (exact number; default: value / 2)")
     mg.add_argument("--hi", default=None, help="upper end of the search (exact number; default: 2 value)")
     mg.add_argument("--claim", default=None, help="the claim (default: the scene's first claim)")
-    mg.add_argument("--width", default="1e-6", help="relative width of the threshold bracket (default 1e-6)")
+    mg.add_argument("--width", default=None, help="relative width of the threshold bracket (default 1e-6)")
     mg.add_argument("--out", default=None, help="also write margin_<scene>_<param>.json/.md here")
     mg.add_argument("--scan", type=int, default=None, metavar="N",
                     help="instead of a threshold: prove the claims (or --claim) at N exact points from --lo to --hi, "
@@ -294,6 +294,8 @@ def _cmd_margin(args) -> int:
             return _bad(problem)
     if args.scan is not None:
         from .margins.scan import run_scan, write_scan
+        if args.width is not None:
+            return _bad("--width is the threshold's; a scan proves exactly the --scan N points")
         if not 1 <= args.workers <= 64:
             return _bad("need 1 <= --workers <= 64")
         sres = run_scan(scene, args.param, args.scan, lo=args.lo, hi=args.hi, claim=args.claim,
@@ -306,7 +308,8 @@ def _cmd_margin(args) -> int:
         return sres.exit_code
     if args.log or args.quantity or args.workers != 1 or args.scheduler:
         return _bad("--log, --quantity, --workers and --scheduler go with --scan")
-    res = find_threshold(scene, args.param, lo=args.lo, hi=args.hi, claim=args.claim, width=args.width)
+    res = find_threshold(scene, args.param, lo=args.lo, hi=args.hi, claim=args.claim,
+                         width=args.width if args.width is not None else "1e-6")
     for line in res.lines():
         _say(line)
     if args.out is not None:

@@ -287,6 +287,7 @@ def test_relay_thresholds_refuse_s_and_pi_ends():
     # the gains p and K enter only the amplitude K p S (flow.amplitude_similarity): no threshold either
     assert main(["margin", "roitenberg1947", "--param", "p", "--claim", "stable"]) == 2
     assert main(["margin", "roitenberg1947", "--param", "K", "--claim", "half_period"]) == 2
+    assert main(["margin", "roitenberg1947", "--param", "K", "--claim", "initial_point"]) == 2
     assert main(["margin", "rudenko1976", "--param", "Omega2", "--lo", "pi/1000", "--hi", "1"]) == 2
 
 
@@ -540,6 +541,8 @@ def test_a_relay_box_in_the_gains_p_and_k_is_decided_whole():
     pv = pave(bs)
     assert all(c.status == "proved" for c in pv.claims)
     assert all(len(c.boxes) == 1 for c in pv.claims), [len(c.boxes) for c in pv.claims]
+    # the reasons quote amplitudes at the lower ends: they say so
+    assert all("lower end" in why for c in pv.claims for why in c.reasons.values())
 
 
 def test_a_relay_box_across_the_stability_threshold_is_never_proved_stable():
@@ -582,6 +585,11 @@ def test_a_scan_is_a_map_of_point_proofs_the_same_on_a_pool(tmp_path):
     pts = scan_points(Fraction(1, 100), Fraction(10000), 7, True)
     assert pts[0] == Fraction(1, 100) and pts[-1] == 10000 and len(pts) == 7
     assert all(a < b for a, b in zip(pts, pts[1:])) and pts[3] == 10
+    lo, hi = Fraction("49.999999999990"), Fraction("49.999999999999")    # rounding to 12 digits collapses
+    for log in (False, True):
+        close = scan_points(lo, hi, 4, log)
+        assert close[0] == lo and close[-1] == hi and all(lo <= x <= hi for x in close)
+        assert all(a < b for a, b in zip(close, close[1:]))
     one = run_scan(load_scene("roitenberg1947"), "n", 3, lo="1", hi="100", claim="stable",
                    quantities=["stability_margin"], workers=1)
     assert one.exit_code == 0 and one.counts() == {"stable": {"proved": 3, "refuted": 0, "inconclusive": 0}}
@@ -603,7 +611,8 @@ def test_a_scan_where_stability_is_lost_says_refuted_at_those_points():
 @pytest.mark.parametrize("argv", [
     ["--scan", "1"], ["--scan", "3", "--lo", "2", "--hi", "1"], ["--scan", "3", "--log", "--lo", "0", "--hi", "1"],
     ["--scan", "3", "--quantity", "no_such_quantity"], ["--log"], ["--quantity", "theta_star"],
-    ["--scan", "3", "--lo", "-1", "--hi", "1"], ["--scan", "3", "--workers", "0"],
+    ["--scan", "3", "--lo", "-1", "--hi", "1"], ["--scan", "3", "--workers", "0"], ["--scan", "3", "--width", "0"],
+    ["--scan", "2", "--scheduler", "bogus"],
 ])
 def test_bad_scans_are_bad_input(argv):
     assert main(["margin", "roitenberg1947", "--param", "n", "--claim", "stable"] + argv) == 2

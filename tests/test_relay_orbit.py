@@ -164,7 +164,7 @@ def test_every_printed_number_is_audited(certs):
                 + sum(1 for v in p["orbit"].values() for x in v if x) + sum(len(v) for v in p["table2"].values())
                 + len(p["table3"]) + 4 + 4 + len(p["table4"]["h"]) + len(p["table4"]["c"]) + len(p["table4"]["k"])
                 + len(p["quartic"]) + len(p["lambda"]) + 1 + len(p.get("as_transcribed", {})))
-    gains = [r for r in certs["roitenberg1947_b2over15"].paper if r.id.startswith("stability across the gains")]
+    gains = [r for r in certs["roitenberg1947_b2over15"].paper if r.id.startswith("conclusion across the gains")]
     assert len(printed) == expected + 1 and len(gains) == 1          # + the gains row (beyond the paper)
     assert gains[0].status is AuditStatus.CONFIRMED and "K p S" in gains[0].note
 

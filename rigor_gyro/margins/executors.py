@@ -58,7 +58,12 @@ class Executor:
                                              dashboard_address=None)
                 self._client = Client(self._cluster)
             else:
-                self._client = Client(scheduler)
+                try:
+                    self._client = Client(scheduler, timeout=10)
+                except (OSError, ValueError, TypeError, TimeoutError) as e:
+                    raise ParameterError(f"--scheduler {scheduler!r}: cannot reach a Dask scheduler there "
+                                         f"({type(e).__name__}: {e}); give tcp://host:port of a running "
+                                         "scheduler, or 'local'") from None
         elif self.workers > 1:
             from concurrent.futures import ProcessPoolExecutor   # only when used: 20 ms of every start-up
             self._pool = ProcessPoolExecutor(max_workers=self.workers)

@@ -90,7 +90,7 @@ def render_paving(data: dict[str, Any]) -> str:
     s = data["settings"]
     if s.get("unsplit"):
         out.append(f"Not split: {', '.join(s['unsplit'])} (the box claims do not depend on it; the kind's boxes "
-                   "module says why).")
+                   "module says why, and decides each sub-box at its lower end there).")
         out.append("")
     out.append(f"Settings: box_resolution {s['box_resolution']} of each edge, max_boxes {s['max_boxes']}, box "
                f"evaluations at {s['box_prec']} bits; {data['boxes_evaluated']} boxes evaluated in "
@@ -100,7 +100,8 @@ def render_paving(data: dict[str, Any]) -> str:
         out.append(f"Not decided over boxes (point claims only): {', '.join(data['not_box_claims'])}.")
     out.append("")
     out.append("A sub-box is *proved* when the claim holds for every parameter value in it, *refuted* when it fails "
-               "for every value in it (certified on balls containing the sub-box), *undecided* otherwise; a "
+               "for every value in it (certified on balls containing the sub-box, or at one value of a parameter the "
+               "claims do not depend on), *undecided* otherwise; a "
                "resolution or budget never refutes. The JSON beside this file lists every sub-box exactly "
                f"(schema `{data['schema']}`).")
     out.append("")

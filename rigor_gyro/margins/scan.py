@@ -40,12 +40,11 @@ def scan_points(lo: Fraction, hi: Fraction, n: int, log: bool) -> list[Fraction]
         inner = [Fraction(f"{10 ** (a + (b - a) * i / (n - 1)):.11e}") for i in range(1, n - 1)]
     else:
         inner = [Fraction(f"{float(lo + (hi - lo) * Fraction(i, n - 1)):.11e}") for i in range(1, n - 1)]
-    pts = [lo] + inner + [hi]
-    out = []
-    for x in pts:                                   # strictly increasing, whatever the rounding did
-        if not out or x > out[-1]:
+    out = [lo]
+    for x in inner:             # strictly increasing and strictly inside (lo, hi), whatever the rounding did
+        if out[-1] < x < hi:
             out.append(x)
-    return out
+    return out + [hi]
 
 
 def scan_task(kind: str, params_json: str, options_json: str, claims: tuple[str, ...],
@@ -125,7 +124,7 @@ class Scan:
 
 
 def _d(q: Fraction) -> str:
-    return f"{float(q):.12g}"
+    return f"{float(q):.17g}"
 
 
 def run_scan(scene: Scene, param: str, n: int, *, lo: str | None = None, hi: str | None = None,

@@ -268,9 +268,7 @@ class _Ctx:
 def _vdot_claim(ctx: _Ctx, R: arb, how: str) -> tuple[Claim, dict]:
     record: dict = {}
     v = certify_vdot_nonpositive(ctx.g, ctx.xs, R, how, ctx.m.max_pieces, record=record)
-    info = {"pieces": v.pieces, "R": R, "record": record}
-    if v.witness is not None:
-        info["witness"] = v.witness
+    info = {"pieces": v.pieces, "record": record}      # the record: the checker's witness
     claim = _claim("vdot_nonpositive", v.status, v.reason, v.counterexample, **v.details)
     claim.decides = v.decides
     return claim, info

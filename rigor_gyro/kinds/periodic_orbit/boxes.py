@@ -149,7 +149,13 @@ def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str
     Pmid = dataclasses.replace(model.params, **{k: _q(v) for k, v in mid.items()})
     boxed = dataclasses.replace(model, params=Pmid, paper={})
     a = attempt(boxed, list(claims), 0, spectrum=lambda: BoxSpectrum(Pb, Pmid))
-    return box_outcomes(a, claims)
+    out = box_outcomes(a, claims)
+    spread = [k for k in fixed if box.interval(k)[0] != box.interval(k)[1]]
+    if spread:      # the statuses hold on the whole box; amplitudes quoted in the reasons (x(0)) do not
+        tag = (f" [evaluated at the box's lower end of {', '.join(spread)}: the status holds for every value "
+               "(the claims do not depend on them); amplitudes quoted here scale with K p S]")
+        out = {k: (st, why + tag) for k, (st, why) in out.items()}
+    return out
 
 
 def _q(x):

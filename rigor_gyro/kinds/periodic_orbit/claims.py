@@ -113,9 +113,11 @@ MAX_PIECES = 200000
 #: claims that do not depend on a parameter (a threshold search over it is bad input): the relay
 #: amplitude S scales the orbit (x(t; S) = S x(t; 1)), and the gains p and K enter only through the
 #: amplitude K p S (:func:`~.flow.amplitude_similarity`, an exact identity), so the half-period roots,
-#: the sign condition and the multipliers are the same for every S, p, K > 0
+#: the sign condition and the multipliers are the same for every S, p, K > 0 (initial_point: whether a
+#: genuine orbit exists; its x(0) scales with K p S)
 #: (kinds/periodic_orbit/boxes.py uses the same fact)
-CLAIMS_INDEPENDENT_OF = {k: ("half_period", "orbit_genuine", "multipliers", "stable") for k in AMPLITUDE_PARAMETERS}
+CLAIMS_INDEPENDENT_OF = {k: ("half_period", "orbit_genuine", "initial_point", "multipliers", "stable")
+                         for k in AMPLITUDE_PARAMETERS}
 
 @dataclass(frozen=True)
 class RelayModel:

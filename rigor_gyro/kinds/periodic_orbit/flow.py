@@ -128,8 +128,8 @@ def amplitude_similarity(P: RelayParams) -> bool:
 
     With D = diag(1, 1, 1, 1/K, 1/(p K)) and y = D^-1 x, the system x' = M x + e S sign(beta) becomes
     y' = M_1 y + e (K p S) sign(beta), where M_1 is M at p = K = 1: checked here as
-    D^-1 M(P) D = M(P at p = K = 1) and D^-1 e = K p e. The first three components (alpha-dot, beta,
-    beta-dot, which carry g, the switching and the sign condition) are the same in x and y, so
+    D^-1 M(P) D = M(P at p = K = 1) and D^-1 e = K p e. The first three components (beta, beta', Omega,
+    which carry g, the switching and the sign condition) are the same in x and y, so
     x(t; p, K, S) has the half-period roots, the sign condition and (the Jacobians being similar) the
     multipliers of the orbit with p = K = 1 and amplitude K p S, and those do not depend on the
     amplitude (homogeneity in S). True for every valid P; a False would mean the model changed."""

@@ -516,7 +516,7 @@ def audit(model, sp: Spectrum, orbit) -> list[AuditRow]:
                                  AuditStatus.CONFIRMED if orbit.stable else
                                  AuditStatus.REFUTED if orbit.stable is False else AuditStatus.UNDECIDED,
                                  f"max modulus {_fmt(orbit.moduli[0], 10)}"))
-            rows.append(_gains_row(P))
+            rows.append(_gains_row(P, orbit.stable))
     by_id = {r.id: r for r in rows}
     for rid, txt in paper.get("as_transcribed", {}).items():
         used = by_id[rid].printed if rid in by_id else "(no such row)"
@@ -526,18 +526,27 @@ def audit(model, sp: Spectrum, orbit) -> list[AuditRow]:
     return rows
 
 
-def _gains_row(P) -> AuditRow:
-    """The stability across the stabiliser's gains, as far as an exact identity settles it: the paper
-    computes its example at p = 40, K = 7.5 only and says nothing of other gains."""
+def _gains_row(P, stable: bool | None) -> AuditRow:
+    """The paper's conclusion (the stabiliser performs a stable self-oscillation), which it shows for its
+    example only, across the gains p and K: certified for every p, K, S > 0 at the scene's other
+    parameters (n = K n1 held fixed) when the example's orbit is certified stable and the exact
+    similarity of :func:`~.flow.amplitude_similarity` holds."""
     ok = amplitude_similarity(P)
     amp = ball(P.K * P.p * P.S)
-    return AuditRow("stability across the gains p and K (the paper: the example only)",
-                    "(no statement: one example, at p = 40 and K = 7.5)",
-                    "D^-1 M D = M(p = K = 1), D^-1 e = K p e, D = diag(1, 1, 1, 1/K, 1/(p K)) (exact rationals)",
-                    None, AuditStatus.CONFIRMED if ok else AuditStatus.UNDECIDED,
-                    ("certified beyond the paper: the amplifier gain p and the torque constant K enter the orbit only "
-                     f"through its amplitude K p S = {_fmt(amp)}, so theta*, the sign condition and the multipliers, "
-                     "hence the existence and the stability of the self-oscillation, are the same for every p, K, S > 0; "
-                     "across the gains, stability is a question of n = K n1 (the back-emf), tau, sigma, A, B and H only "
-                     "(thresholds H_c(n): proofs/margins/README.md)") if ok else
-                    "the exact similarity did not hold: the model is not the paper's system (2)")
+    status = (AuditStatus.CONFIRMED if ok and stable is True else
+              AuditStatus.REFUTED if ok and stable is False else AuditStatus.UNDECIDED)
+    if not ok:
+        note = "the exact similarity did not hold: the model is not the paper's system (2)"
+    else:
+        note = ("the amplifier gain p and the torque constant K enter the orbit only through its amplitude K p S = "
+                f"{_fmt(amp)} (exact similarity), so theta*, the sign condition and the multipliers are those of "
+                "the example for every p, K, S > 0 with A, B, H, tau, sigma and n = K n1 as in the scene; the "
+                "example's stability is " + ("certified, so the conclusion holds for every such gain" if stable is True
+                                             else "refuted, so it fails for every such gain" if stable is False
+                                             else "undecided") +
+                " (the paper shows it at p = 40, K = 7.5 only; changing K at a fixed n1 changes n, which does "
+                "matter: scans in n in proofs/margins/README.md)")
+    return AuditRow("conclusion across the gains p and K (at fixed n = K n1)",
+                    "the periodic motion is stable: the stabiliser performs auto-oscillations (shown for the example)",
+                    "for every p, K, S > 0: D^-1 M D = M(p = K = 1), D^-1 e = K p e, D = diag(1, 1, 1, 1/K, 1/(p K)) "
+                    "(exact rationals), and the example's orbit stable", None, status, note)
