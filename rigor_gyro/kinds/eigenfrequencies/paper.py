@@ -9,13 +9,15 @@ digits). Audit rows never change a claim.
 """
 from __future__ import annotations
 
+import functools
 from typing import Callable
 
 from flint import arb, fmpq
 
 from ...core.audit import NUMBER, audit_printed, half_unit, numbers
 from ...core.formula_edits import search_single_edits
-from ...core.balls import ball, certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds
+from ...core.balls import (ball, certainly_gt, certainly_le, certainly_lt, certainly_positive, current_precision,
+                           decimal_bounds)
 from ...core.outcome import AuditRow, AuditStatus
 from ...core.polyroots import isolate_polynomial
 from .model import (APPROX_TEXT, BRACKETS, EDIT_FORMULAS, NotReal, Params, approximation, bracket,
@@ -110,11 +112,17 @@ def _value(f: Callable[[Params], arb] | None, p: Params) -> arb | None:
         return None
 
 
+@functools.lru_cache(maxsize=512)
+def _print_balls(printed: str, prec: int) -> tuple[arb, arb]:
+    """The printed decimal and half a unit in its last place, as balls at ``prec`` bits (the edit search
+    asks for the same print's scales hundreds of times; parsing it is most of the cost)."""
+    h = half_unit(printed)
+    return _q(printed), arb(fmpq(h.numerator, h.denominator))
+
+
 def _scale_range(printed: str, w: arb) -> arb:
     """The set of scales s for which s*sqrt(w) rounds to ``printed``, as a ball (hull)."""
-    h = half_unit(printed)
-    x = _q(printed)
-    hq = arb(fmpq(h.numerator, h.denominator))
+    x, hq = _print_balls(printed, current_precision())
     return ((x - hq) / w.sqrt()).union((x + hq) / w.sqrt())
 
 

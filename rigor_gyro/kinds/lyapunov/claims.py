@@ -456,7 +456,7 @@ def _v_positive_claim(ctx: _Ctx) -> Claim:
             record[key] = pieces_text(kept)
             ctx.witnesses["v_positive"] = record
             continue
-        if (r.status is Status.REFUTED and text.startswith("psi") and r.witness.rad().is_zero()
+        if (r.status is Status.REFUTED and key == "psi" and r.witness.rad().is_zero()
                 and certainly_gt(r.witness, 0) and certainly_le(r.witness, xs)):
             x2 = r.witness
             x1, x3 = g.phi_minimiser(x2)
