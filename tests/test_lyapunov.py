@@ -260,3 +260,34 @@ def test_example_equilibria_are_listed_and_classified(example):
     assert all(r["estimate"].startswith("outside") for x, r in by_x2.items() if x != "0")
     # x1 = -f(pi/2)/k = -a/k = -250 at the equilibrium x2 = pi/2
     assert "-250.00001" in by_x2["pi/2"]["x1"] or "-250" in by_x2["pi/2"]["x1"]
+
+
+@pytest.mark.parametrize("step, witness", [
+    ("S", "0.1"),            # only a psi failure builds a counterexample (S > 0 failing says nothing of V)
+    ("f_over_x", "0.1"),
+    ("psi", "0"),            # x2 = 0: V = 0 at the origin is no counterexample
+    ("psi", "2"),            # beyond x2* (pi/6): outside the region
+    ("psi", "inexact"),      # a witness that is not an exact point
+])
+def test_v_positive_refutes_only_at_an_exact_psi_witness_inside_the_range(monkeypatch, step, witness):
+    """The refutation branch of v_positive (mutmut: its guards were untested): a subdivision 'refuted'
+    with a witness the claim cannot use leaves the claim inconclusive, never refuted."""
+    import rigor_gyro.kinds.lyapunov.claims as C
+    from rigor_gyro.core.subdivision import Positivity
+    order = ["S", "f_over_x", "psi"]
+    calls = []
+    real = C.certify_positive
+
+    def fake(fn, lo, hi, **kw):
+        if len(calls) >= 3 or kw.get("record") is None:
+            return real(fn, lo, hi, **kw)
+        calls.append(fn)
+        if order[len(calls) - 1] != step:
+            return real(fn, lo, hi, **kw)
+        w = arb("0.1", "1e-3") if witness == "inexact" else arb(witness)
+        return Positivity(Status.REFUTED, 1, witness=w, witness_value=arb(-1), reason="planted")
+    monkeypatch.setattr(C, "certify_positive", fake)
+    sc = parse_scene('name = "x"\nkind = "lyapunov"\nsource = "t"\n[parameters]\n' +
+                     "".join(f'{k} = "{v}"\n' for k, v in BASE.items()) + '[claims]\nonly = ["v_positive"]\n')
+    c = prove_scene(sc, maxprec=64).claim("v_positive")
+    assert c.status is Status.INCONCLUSIVE, (step, witness, c.reason)
