@@ -291,3 +291,17 @@ def test_v_positive_refutes_only_at_an_exact_psi_witness_inside_the_range(monkey
                      "".join(f'{k} = "{v}"\n' for k, v in BASE.items()) + '[claims]\nonly = ["v_positive"]\n')
     c = prove_scene(sc, maxprec=64).claim("v_positive")
     assert c.status is Status.INCONCLUSIVE, (step, witness, c.reason)
+
+
+@pytest.mark.parametrize("x2", ["0", "0.01", "0.3", "0.5"])
+def test_rho_lower_is_a_tight_lower_bound_of_rho(x2):
+    """rho = max_i |(ci1, ci3)| / ci0 at a point (mutmut: a floor of 1 on the bound survived, because
+    rho is about 25 wherever the tests looked; at x2 = 0, rho = 0)."""
+    from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters, rho_lower
+    g, _ = gimbal_from_parameters(load_scene("agafonov2013").parameters)
+    with working_precision(128):
+        x = arb(x2)
+        (c10, c11, c13), (c20, c21, c23) = g.psi_coefficients(x, g.c.mu)
+        direct = max(((c11 ** 2 + c13 ** 2).sqrt() / c10).mid(), ((c21 ** 2 + c23 ** 2).sqrt() / c20).mid())
+        low = rho_lower(g, x, g.c.mu)
+        assert low <= direct + abs(direct) * arb("1e-30") and low >= direct * (1 - arb("1e-20"))
