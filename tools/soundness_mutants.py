@@ -116,7 +116,7 @@ MUTANTS = [
      "    elif certainly_positive(-slow):\n        sigma = -1", "    elif certainly_positive(-slow):\n        sigma = 1",
      "the envelope bound taken with the wrong sign of the slow part"),
     ("envelope_checker_accepts", "rigor_gyro/kinds/periodic_orbit/check.py",
-     "    if getattr(sp, \"near_zero\", None) is not None or not (certainly_positive(lo) and certainly_lt(lo, hi)):\n        return False",
+     "    low = _envelope_lower(sp, lo, hi)\n    return low is not None and certainly_positive(low)",
      "    return True",
      "the checker accepts any piece said to be root-free by the envelope"),
     ("memo_key_without_precision", "rigor_gyro/kinds/lyapunov/model.py",
