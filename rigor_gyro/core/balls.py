@@ -47,7 +47,7 @@ __all__ = [
     "DEFAULT_PREC", "DEFAULT_MAXPREC", "working_precision", "current_precision", "ball", "is_finite",
     "certainly_lt", "certainly_le", "certainly_gt", "certainly_ge", "certainly_positive",
     "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
-    "overlaps", "certainly_within", "interval", "exact_fraction", "decimal_bounds", "quantity", "stored_hull",
+    "overlaps", "certainly_within", "interval", "exact_fraction", "exponent10", "decimal_bounds", "quantity", "stored_hull",
     "rel_width_at_most", "sqrt_of_nonnegative", "exact_endpoints", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
 ]
 
@@ -241,9 +241,13 @@ def exact_fraction(x: arb) -> Fraction:
     return Fraction(man * 2**exp) if exp >= 0 else Fraction(man, 2**-exp)
 
 
-def _exponent10(q: Fraction) -> int:
-    """floor(log10(|q|)) for q != 0, in exact (integer) arithmetic."""
+def exponent10(q: Fraction) -> int:
+    """floor(log10(|q|)) for a rational q != 0, in exact (integer) arithmetic (no float or Decimal
+    rounding: a value within 10^-200 of a power of ten still gets its own decade)."""
     return _exponent10_int(abs(q.numerator), q.denominator)
+
+
+_exponent10 = exponent10
 
 
 def _exponent10_int(n: int, d: int) -> int:

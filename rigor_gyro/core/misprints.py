@@ -44,7 +44,7 @@ from fractions import Fraction
 from flint import arb, fmpq
 
 from .audit import PRINTED_NUMBER, agreeing_digits, audit_printed
-from .balls import _exponent10, exact_fraction
+from .balls import exact_fraction, exponent10
 from .outcome import AuditRow, AuditStatus
 
 __all__ = ["CLASSES", "ROW_CLASSES", "MIN_DIGITS_FOR_EDITS", "MIN_DIGITS_FOR_COMPOUND", "Classification", "classify_printed", "classify_row",
@@ -104,8 +104,8 @@ def _sig_rounded(value: arb, nsig: int) -> Decimal | None:
     lo, hi = exact_fraction(value.lower()), exact_fraction(value.upper())
     if lo == 0 or hi == 0 or (lo < 0) != (hi < 0):
         return None
-    mag = _exponent10(lo)
-    if _exponent10(hi) != mag:
+    mag = exponent10(lo)
+    if exponent10(hi) != mag:
         return None
     return rounded_at(value, mag - nsig + 1)
 
