@@ -298,24 +298,23 @@ def _cmd_margin(args) -> int:
             return _bad("--width is the threshold's; a scan proves exactly the --scan N points")
         if not 1 <= args.workers <= 64:
             return _bad("need 1 <= --workers <= 64")
-        sres = run_scan(scene, args.param, args.scan, lo=args.lo, hi=args.hi, claim=args.claim,
-                        quantities=args.quantity, log=args.log, workers=args.workers, scheduler=args.scheduler)
-        for line in sres.lines():
-            _say(line)
-        if args.out is not None:
-            for path in write_scan(sres, args.out):
-                _say(f"-> {path}")
-        return sres.exit_code
+        return _said(run_scan(scene, args.param, args.scan, lo=args.lo, hi=args.hi, claim=args.claim,
+                              quantities=args.quantity, log=args.log, workers=args.workers,
+                              scheduler=args.scheduler), write_scan, args.out)
     if args.log or args.quantity or args.workers != 1 or args.scheduler:
         return _bad("--log, --quantity, --workers and --scheduler go with --scan")
-    res = find_threshold(scene, args.param, lo=args.lo, hi=args.hi, claim=args.claim,
-                         width=args.width if args.width is not None else "1e-6")
-    for line in res.lines():
+    return _said(find_threshold(scene, args.param, lo=args.lo, hi=args.hi, claim=args.claim,
+                                width=args.width if args.width is not None else "1e-6"), write_threshold, args.out)
+
+
+def _said(result, write, out: str | None) -> int:
+    """Print a margin result's lines, write its files to ``out`` (when given), return its exit code."""
+    for line in result.lines():
         _say(line)
-    if args.out is not None:
-        for path in write_threshold(res, args.out):
+    if out is not None:
+        for path in write(result, out):
             _say(f"-> {path}")
-    return res.exit_code
+    return result.exit_code
 
 
 def _cmd_campaign(args) -> int:

@@ -23,9 +23,9 @@ from typing import Any
 
 from ..core.boxes import fraction_text, is_tolerance
 from ..core.errors import ParameterError
-from ..core.exact import parse_exact
 from ..kinds import kind_module
 from ..scene import Scene
+from .threshold import search_range
 
 __all__ = ["Scan", "scan_points", "run_scan", "write_scan"]
 
@@ -151,19 +151,7 @@ def run_scan(scene: Scene, param: str, n: int, *, lo: str | None = None, hi: str
     if bad:
         raise ParameterError(f"--quantity {bad[0]!r}: kind {scene.kind!r} reports {sorted(module.HEADLINE)}")
 
-    def end(text, name):
-        x = parse_exact(text, name)
-        if not x.is_rational:
-            raise ParameterError(f"{name} {text!r} involves pi: give a rational end")
-        return x.rational
-    value = parse_exact(scene.parameters[param], param)
-    if (lo is None or hi is None) and not value.is_rational:
-        raise ParameterError(f"--param {param!r} = {scene.parameters[param]!r} involves pi: give --lo and --hi")
-    v = value.rational if value.is_rational else None
-    lo_q = end(lo, "--lo") if lo is not None else min(v / 2, 2 * v)
-    hi_q = end(hi, "--hi") if hi is not None else max(v / 2, 2 * v)
-    if not lo_q < hi_q:
-        raise ParameterError(f"need --lo < --hi (got {lo_q}, {hi_q})")
+    lo_q, hi_q = search_range(scene, param, lo, hi)
     if log and not lo_q > 0:
         raise ParameterError(f"--log needs --lo > 0 (got {lo_q})")
     values = scan_points(lo_q, hi_q, n, log)

@@ -28,7 +28,7 @@ from ..core.exact import option_number, parse_exact
 from ..kinds import kind_module
 from ..scene import Scene
 
-__all__ = ["Threshold", "find_threshold", "write_threshold"]
+__all__ = ["Threshold", "find_threshold", "search_range", "write_threshold"]
 
 MAX_STEPS = 200
 
@@ -111,6 +111,27 @@ def _status(scene: Scene, param: str, value: Fraction, claim: str) -> tuple[str,
     return c.status.value, c.reason
 
 
+def search_range(scene: Scene, param: str, lo: str | None, hi: str | None) -> tuple[Fraction, Fraction]:
+    """The exact ends of a search along ``param`` (``--lo``/``--hi``, default half and twice the scene's
+    value): rationals with lo < hi (the bisection and scan points are exact rationals); ParameterError
+    otherwise."""
+    def end(text, name):
+        x = parse_exact(text, name)
+        if not x.is_rational:
+            raise ParameterError(f"{name} {text!r} involves pi: give a rational end (the search points are exact "
+                                 "rationals)")
+        return x.rational
+    value = parse_exact(scene.parameters[param], param)
+    if (lo is None or hi is None) and not value.is_rational:
+        raise ParameterError(f"--param {param!r} = {scene.parameters[param]!r} involves pi: give --lo and --hi")
+    v = value.rational if value.is_rational else None
+    lo_q = end(lo, "--lo") if lo is not None else min(v / 2, 2 * v)
+    hi_q = end(hi, "--hi") if hi is not None else max(v / 2, 2 * v)
+    if not lo_q < hi_q:
+        raise ParameterError(f"need --lo < --hi (got {lo_q}, {hi_q})")
+    return lo_q, hi_q
+
+
 def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str | None = None,
                    claim: str | None = None, width: str = "1e-6") -> Threshold:
     """Bisect ``param`` between ``lo`` and ``hi`` (default value/2 and 2 value) for ``claim``."""
@@ -134,19 +155,7 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
     independent = getattr(module, "CLAIMS_INDEPENDENT_OF", {})
     if claim in independent.get(param, ()):
         raise ParameterError(f"claim {claim!r} does not depend on {param!r}: no threshold to find")
-    def end(text, name):
-        x = parse_exact(text, name)
-        if not x.is_rational:
-            raise ParameterError(f"{name} {text!r} involves pi: give a rational end (the bisection points are exact rationals)")
-        return x.rational
-    value = parse_exact(scene.parameters[param], param)
-    if (lo is None or hi is None) and not value.is_rational:
-        raise ParameterError(f"--param {param!r} = {scene.parameters[param]!r} involves pi: give --lo and --hi")
-    v = value.rational if value.is_rational else None
-    lo_q = end(lo, "--lo") if lo is not None else min(v / 2, 2 * v)
-    hi_q = end(hi, "--hi") if hi is not None else max(v / 2, 2 * v)
-    if not lo_q < hi_q:
-        raise ParameterError(f"need --lo < --hi (got {lo_q}, {hi_q})")
+    lo_q, hi_q = search_range(scene, param, lo, hi)
     w = option_number(width, "--width", above="0", at_most="1").rational
     res = Threshold(scene, param, claim, lo_q, hi_q, w)
     ends = {}
