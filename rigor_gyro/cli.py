@@ -74,6 +74,8 @@ def _parser() -> argparse.ArgumentParser:
                          "a map of point proofs (exit 0 all decided, 3 some inconclusive); writes "
                          "scan_<scene>_<param>.json/.md with --out")
     mg.add_argument("--log", action="store_true", help="with --scan: points evenly spaced in log scale")
+    mg.add_argument("--plots", action="store_true",
+                    help="with --out: also draw the result (<stem>.png; needs the 'plots' extra: matplotlib)")
     mg.add_argument("--quantity", action="append", default=None, metavar="Q",
                     help="with --scan: also report this certified quantity at each point (repeatable)")
     mg.add_argument("--workers", type=int, default=1, help="with --scan: processes (default 1)")
@@ -292,6 +294,13 @@ def _cmd_margin(args) -> int:
         problem = _check_out(args.out)
         if problem:
             return _bad(problem)
+    if args.plots:
+        if args.out is None:
+            return _bad("--plots writes the figure beside the result: give --out")
+        try:
+            import matplotlib  # noqa: F401  (optional extra, imported only here)
+        except ImportError:
+            return _bad("--plots needs matplotlib: pip install 'rigor_gyro[plots]'")
     if args.scan is not None:
         from .margins.scan import run_scan, write_scan
         if args.width is not None:
@@ -300,20 +309,25 @@ def _cmd_margin(args) -> int:
             return _bad("need 1 <= --workers <= 64")
         return _said(run_scan(scene, args.param, args.scan, lo=args.lo, hi=args.hi, claim=args.claim,
                               quantities=args.quantity, log=args.log, workers=args.workers,
-                              scheduler=args.scheduler), write_scan, args.out)
+                              scheduler=args.scheduler), write_scan, args.out, args.plots)
     if args.log or args.quantity or args.workers != 1 or args.scheduler:
         return _bad("--log, --quantity, --workers and --scheduler go with --scan")
     return _said(find_threshold(scene, args.param, lo=args.lo, hi=args.hi, claim=args.claim,
-                                width=args.width if args.width is not None else "1e-6"), write_threshold, args.out)
+                                width=args.width if args.width is not None else "1e-6"), write_threshold, args.out,
+                 args.plots)
 
 
-def _said(result, write, out: str | None) -> int:
-    """Print a margin result's lines, write its files to ``out`` (when given), return its exit code."""
+def _said(result, write, out: str | None, plots: bool = False) -> int:
+    """Print a margin result's lines, write its files (and with ``plots`` its figure) to ``out`` (when
+    given), return its exit code."""
     for line in result.lines():
         _say(line)
     if out is not None:
         for path in write(result, out):
             _say(f"-> {path}")
+        if plots:
+            from .margins.plots import margin_plot
+            _say(f"-> {margin_plot(result.to_json(), out)}")
     return result.exit_code
 
 

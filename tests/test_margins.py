@@ -621,3 +621,17 @@ def test_bad_scans_are_bad_input(argv):
 def test_a_scan_of_a_tolerance_scene_is_bad_input(tmp_path):
     (tmp_path / "box.toml").write_text(RUDENKO_BOX)
     assert main(["margin", str(tmp_path / "box.toml"), "--param", "a", "--scan", "3"]) == 2
+
+
+def test_margin_figures_are_images_with_content(tmp_path):
+    """`margin --plots`: the scan's points against the quantity, the threshold's proofs and bracket."""
+    pytest.importorskip("matplotlib")
+    import matplotlib.image as mpimg
+    assert main(["margin", "roitenberg1947", "--param", "n", "--scan", "3", "--lo", "1", "--hi", "100", "--claim",
+                 "stable", "--quantity", "stability_margin", "--out", str(tmp_path), "--plots"]) == 0
+    assert main(["margin", "rudenko1976", "--param", "Omega2", "--claim", "bracket_2", "--lo", "1e-6", "--hi", "1",
+                 "--width", "1e-3", "--out", str(tmp_path), "--plots"]) == 0
+    for stem in ("scan_roitenberg1947_n", "margin_rudenko1976_Omega2"):
+        img = mpimg.imread(tmp_path / f"{stem}.png")
+        assert img.shape[0] > 100 and img.std() > 0.01
+    assert main(["margin", "roitenberg1947", "--param", "n", "--scan", "3", "--plots"]) == 2     # no --out

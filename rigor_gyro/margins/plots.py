@@ -5,6 +5,10 @@ one, the interval against a unit height; with more, the projection onto the firs
 drawn over its projection, so a colour says that some box projecting there has that outcome). Green:
 proved for every parameter in the sub-box; red: refuted for every parameter; yellow: undecided;
 black dots: point counterexamples re-proved by the point prover. Needs the ``plots`` extra.
+
+:func:`margin_plot` draws a threshold (``rigor-gyro margin``: each point proof of the bisection at its
+value, the certified bracket shaded) or a scan (``--scan``: each point proof at its value, coloured by
+the claim's status, against the first quantity asked for, its certified enclosure as an error bar).
 """
 from __future__ import annotations
 
@@ -12,7 +16,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-__all__ = ["paving_plots"]
+__all__ = ["paving_plots", "margin_plot"]
 
 COLOURS = {"proved": "#4caf50", "refuted": "#e53935", "undecided": "#fdd835"}
 
@@ -61,3 +65,55 @@ def paving_plots(data: dict[str, Any], out_dir: str | Path) -> list[Path]:
         plt.close(fig)
         paths.append(path)
     return paths
+
+
+def margin_plot(data: dict[str, Any], out_dir: str | Path) -> Path:
+    """One figure for a threshold or scan result (``to_json()`` of either), ``<out>/<stem>.png``."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    colour = {"proved": COLOURS["proved"], "refuted": COLOURS["refuted"], "inconclusive": COLOURS["undecided"]}
+    name, param = data["scene"]["name"], data["param"]
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    if data["schema"].startswith("rigor-gyro/scan/"):
+        claim = data["claims"][-1]
+        q = data["quantities"][0] if data["quantities"] else None
+        for p in data["points"]:
+            x = float(Fraction(p["value"]))
+            st = p["claims"][claim]["status"]
+            b = p["quantities"].get(q) if q else None
+            if b:
+                lo, hi = float(b[0]), float(b[1])
+                ax.errorbar([x], [(lo + hi) / 2], yerr=[[(hi - lo) / 2], [(hi - lo) / 2]], fmt="o",
+                            color=colour[st], markersize=5)
+            else:
+                ax.plot([x], [0.5], "o", color=colour[st], markersize=6)
+        if data.get("log"):
+            ax.set_xscale("log")
+        ax.set_ylabel(q or "")
+        if not q:
+            ax.set_yticks([])
+        k = data["counts"][claim]
+        ax.set_title(f"{name}: scan of {param}, claim {claim!r} (point proofs)\nproved at {k['proved']}, refuted at "
+                     f"{k['refuted']}, inconclusive at {k['inconclusive']} points", fontsize=9)
+        stem = f"scan_{name}_{param}"
+    else:
+        for i, st in enumerate(data["steps"], start=1):
+            ax.plot([float(Fraction(st["value"]))], [i], "o", color=colour.get(st["status"], "black"), markersize=5)
+        if data.get("bracket"):
+            l, r = (float(Fraction(v)) for v in data["bracket"])
+            ax.axvspan(l, r, color="#90caf9", alpha=0.6, label=f"certified bracket [{data['bracket_decimal'][0]}, "
+                                                               f"{data['bracket_decimal'][1]}]")
+            ax.legend(fontsize=7, loc="upper right")
+        ax.set_ylabel("point proof (step)")
+        ax.set_title(f"{name}: threshold of {data['claim']!r} in {param}\n"
+                     + ("certified" if data["certified"] else f"stopped: {data['stopped'][:80]}"), fontsize=9)
+        stem = f"margin_{name}_{param}"
+    ax.set_xlabel(param)
+    path = Path(out_dir) / f"{stem}.png"
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+

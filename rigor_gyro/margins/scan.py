@@ -124,6 +124,18 @@ class Scan:
 
 
 def _d(q: Fraction) -> str:
+    """The exact decimal of q when it has one of at most 40 digits (every scan point does), else 17 digits."""
+    d = q.denominator
+    for f in (2, 5):
+        while d % f == 0:
+            d //= f
+    if d == 1:
+        from decimal import Decimal, localcontext
+        with localcontext() as c:
+            c.prec = 40
+            text = format((Decimal(q.numerator) / Decimal(q.denominator)).normalize(), "f")
+        if Fraction(text) == q:                 # exact (a longer expansion was rounded: not used)
+            return text
     return f"{float(q):.17g}"
 
 
