@@ -275,10 +275,8 @@ def _pave(bs, executor, args) -> int:
     _say(f"{bs.scene.name}: verdict {paving.verdict} over the box in {paving.seconds:.2f} s "
          f"({paving.evaluated} boxes, {executor.label}) -> {jpath}, {mpath}")
     if args.plots:
-        try:
-            import matplotlib  # noqa: F401  (optional extra, imported only here)
-        except ImportError:
-            return _bad("--plots needs matplotlib: pip install 'rigor_gyro[plots]'")
+        if not _has_matplotlib():
+            return _bad(NO_MATPLOTLIB)
         from .margins.plots import paving_plots
         from .margins.report import paving_json
         for path in paving_plots(paving_json(paving), args.out):
@@ -297,10 +295,8 @@ def _cmd_margin(args) -> int:
     if args.plots:
         if args.out is None:
             return _bad("--plots writes the figure beside the result: give --out")
-        try:
-            import matplotlib  # noqa: F401  (optional extra, imported only here)
-        except ImportError:
-            return _bad("--plots needs matplotlib: pip install 'rigor_gyro[plots]'")
+        if not _has_matplotlib():
+            return _bad(NO_MATPLOTLIB)
     if args.scan is not None:
         from .margins.scan import run_scan, write_scan
         if args.width is not None:
@@ -315,6 +311,15 @@ def _cmd_margin(args) -> int:
     return _said(find_threshold(scene, args.param, lo=args.lo, hi=args.hi, claim=args.claim,
                                 width=args.width if args.width is not None else "1e-6"), write_threshold, args.out,
                  args.plots)
+
+
+NO_MATPLOTLIB = "--plots needs matplotlib: pip install 'rigor_gyro[plots]'"
+
+
+def _has_matplotlib() -> bool:
+    """Whether the optional 'plots' extra is installed (looked up, not imported: figures import it)."""
+    from importlib.util import find_spec
+    return find_spec("matplotlib") is not None
 
 
 def _said(result, write, out: str | None, plots: bool = False) -> int:
@@ -390,10 +395,8 @@ def _plots(scene, cert, out: str) -> int:
     if draw is None:
         _say(f"rigor-gyro: {scene.name}: kind {scene.kind!r} has no figures; --plots ignored", err=True)
         return 0
-    try:
-        import matplotlib  # noqa: F401  (optional extra, imported only here)
-    except ImportError:
-        return _bad("--plots needs matplotlib: pip install 'rigor_gyro[plots]'")
+    if not _has_matplotlib():
+        return _bad(NO_MATPLOTLIB)
     for path in draw(scene, cert, out):
         _say(f"{scene.name}: figure -> {path}")
     return 0
@@ -426,8 +429,8 @@ def _cmd_bench(args) -> int:
     if missing:
         return _bad(f"bench needs the cross-check libraries ({', '.join(missing)}): "
                     "pip install 'rigor_gyro[crosscheck]'")
-    if args.plots and find_spec("matplotlib") is None:
-        return _bad("--plots needs matplotlib: pip install 'rigor_gyro[plots]'")
+    if args.plots and not _has_matplotlib():
+        return _bad(NO_MATPLOTLIB)
     tty = sys.stderr.isatty()
 
     def progress(text):

@@ -127,3 +127,13 @@ def test_a_report_opens_with_the_answer_and_keeps_the_audit_compact(tmp_path):
     audit = md.split("## Audit of the paper", 1)[1]
     assert audit.index("rows:**") < audit.index("### Misprints") < audit.index("unexplained:")
     assert len(md) < 45000, len(md)          # 63 KB before the audit was grouped by class
+
+
+def test_plots_without_matplotlib_are_bad_input(monkeypatch, tmp_path):
+    """Every --plots says which extra to install (exit 2) when matplotlib is missing, and writes no figure."""
+    from rigor_gyro import cli
+    monkeypatch.setattr(cli, "_has_matplotlib", lambda: False)
+    assert cli.main(["margin", "roitenberg1947", "--param", "n", "--scan", "2", "--lo", "1", "--hi", "2",
+                     "--claim", "stable", "--out", str(tmp_path), "--plots"]) == 2
+    assert cli.main(["prove", "roitenberg1947", "--out", str(tmp_path), "--quiet", "--plots"]) == 2
+    assert not list(tmp_path.glob("*.png"))
