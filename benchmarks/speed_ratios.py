@@ -2,11 +2,12 @@
 
     python benchmarks/speed_ratios.py [--repeat 3]
 
-1. Cold processes: ``rigor-gyro prove --all`` (certified, writes the certificates and reports) against
+1. Cold processes: ``rigor-gyro prove --all`` (certified, writes the certificates and reports; one scene per core, and
+   with ``--workers 1``) against
    the equivalent uncertified float script (``--float-script`` below: numpy/scipy compute the same
    quantities for the same scenes: the quartic's roots; m, M, the constants, c* and the mu search;
    g's roots on the certificate's search range, x(0) and the multipliers). Median wall time of
-   ``--repeat`` runs each, imports included.
+   ``--repeat`` runs each, interleaved, imports included.
 2. Computation only (in one process, imports excluded): ``prove_scene`` against the mpmath path at 30
    digits (non-rigorous; the kind's ``approx.bench_mpmath``, with the mu search for the Lyapunov kind).
    For the Lyapunov kind two rows: against the constants and the mu search only (the row the issue
@@ -45,13 +46,16 @@ def float_script() -> None:
             relay(p, hint={"theta_star": 0.13827, "T": RELAY_T[name], "t0": 1e-3})
 
 
-def _median_cold(cmd, repeat):
-    ts = []
+def _medians_cold(cmds, repeat):
+    """Median wall time of each command, the commands interleaved run by run (this machine's speed drifts
+    by up to 50 % within an hour: blocks of runs of one command would compare different machines)."""
+    ts = [[] for _ in cmds]
     for _ in range(repeat):
-        t = time.perf_counter()
-        subprocess.run(cmd, check=True, capture_output=True)
-        ts.append(time.perf_counter() - t)
-    return statistics.median(ts)
+        for cmd, t_list in zip(cmds, ts):
+            t = time.perf_counter()
+            subprocess.run(cmd, check=True, capture_output=True)
+            t_list.append(time.perf_counter() - t)
+    return [statistics.median(t_list) for t_list in ts]
 
 
 def _median(fn, repeat):
@@ -72,12 +76,15 @@ def main() -> None:
         float_script()
         return
     out = tempfile.mkdtemp()
-    t_prove = _median_cold([sys.executable, "-m", "rigor_gyro", "prove", "--all", "--quiet", "--out", out], args.repeat)
-    t_float = _median_cold([sys.executable, __file__, "--float-script"], args.repeat)
+    prove = [sys.executable, "-m", "rigor_gyro", "prove", "--all", "--quiet", "--out", out]
+    t_prove, t_one, t_float = _medians_cold([prove, prove + ["--workers", "1"],
+                                             [sys.executable, __file__, "--float-script"]], args.repeat)
     print("| measure | certified s | uncertified s | ratio |")
     print("|---|---|---|---|")
-    print(f"| `rigor-gyro prove --all` vs the float script, cold processes | {t_prove:.2f} | {t_float:.2f} | "
-          f"{t_prove / t_float:.2f}x |")
+    print(f"| `rigor-gyro prove --all` (one scene per core) vs the float script, cold processes | {t_prove:.2f} | "
+          f"{t_float:.2f} | {t_prove / t_float:.2f}x |")
+    print(f"| `rigor-gyro prove --all --workers 1` vs the float script, cold processes | {t_one:.2f} | "
+          f"{t_float:.2f} | {t_one / t_float:.2f}x |")
     from rigor_gyro import load_scene, prove_scene
     import importlib
     from rigor_gyro.kinds import KINDS

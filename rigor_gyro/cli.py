@@ -56,7 +56,8 @@ def _parser() -> argparse.ArgumentParser:
     pr.add_argument("--plots", action="store_true",
                     help="also draw the scene's figures into --out (needs the 'plots' extra: matplotlib)")
     pr.add_argument("--workers", type=int, default=None,
-                    help="processes for the sub-boxes of scenes with tolerances (default: the cores)")
+                    help="processes (default: the cores): one scene per process when several are proved, "
+                         "and the sub-boxes of scenes with tolerances")
     pr.add_argument("--scheduler", default=None, metavar="ADDRESS",
                     help="run the sub-boxes on a Dask distributed scheduler (tcp://host:8786, or 'local' for a "
                          "LocalCluster of --workers processes; needs the 'dask' extra)")
@@ -153,10 +154,9 @@ def _check_out(out: str) -> str | None:
 
 
 def _cmd_prove(args) -> int:
-    from .certificate import EXIT_CODES
     from .kinds import kind_module
-    from .prover import prove_scene, requested_claims
-    from .report import output_paths, write_outputs
+    from .prover import requested_claims
+    from .report import output_paths
     from .margins.paving import box_scene, has_tolerances
     from .scene import builtin_scenes, load_scene
 
@@ -219,35 +219,92 @@ def _cmd_prove(args) -> int:
             codes.append(EXIT_INTERNAL)
     if executor is not None:
         executor.close()
-    for ref, scene in scenes:
-        if hasattr(scene, "box"):
-            continue
-        try:
-            cert = prove_scene(scene, prec=args.prec, maxprec=args.maxprec)
-            jpath, mpath = write_outputs(cert, args.out)
-        except RigorGyroError as e:
-            _say(f"rigor-gyro: {ref}: bad input: {e}", err=True)
-            codes.append(EXIT_BAD_INPUT)
-            continue
-        except OSError as e:
-            _say(f"rigor-gyro: {ref}: cannot write to --out {args.out!r}: {e.strerror or e}", err=True)
-            codes.append(EXIT_BAD_INPUT)
-            continue
-        except Exception as e:  # a bug: say so in one line, never exit 1 (refuted)
-            _internal(e, args, where=ref)
-            codes.append(EXIT_INTERNAL)
-            continue
-        if args.plots:
-            code = _plots(scene, cert, args.out)
-            if code:
-                codes.append(code)
-        if not args.quiet:
-            for c in cert.claims:
-                _say(f"{scene.name}: {c.id}: {c.status.value} ({c.precision_bits} bits) - {c.reason}")
-        _say(f"{scene.name}: verdict {cert.verdict.value} in {cert.timings['total_s']:.2f} s "
-             f"at {cert.precision_bits} bits -> {jpath}, {mpath}")
-        codes.append(EXIT_CODES[cert.verdict])
+    points = [(ref, scene) for ref, scene in scenes if not hasattr(scene, "box")]
+    codes.extend(_prove_points(points, args))
     return next(c for c in _PRECEDENCE if c in codes or c == 0)
+
+
+#: the scenes of one ``prove`` call and its arguments, inherited by forked workers (nothing is pickled)
+_POINT_JOBS: list = []
+
+
+def _prove_points(points: list, args) -> list[int]:
+    """Prove scenes without tolerances, each in its own worker process when there are several and more
+    than one worker (``--workers``, default the cores). Each worker writes its scene's files and returns
+    its exit code and printed text; the text is printed in the order of the scenes, so the output and
+    the files are the same whatever the worker count."""
+    from .margins.executors import default_workers
+    workers = min(len(points), default_workers() if args.workers is None else args.workers)
+    if workers <= 1 or "fork" not in _mp_start_methods():
+        return [_prove_point(ref, scene, args) for ref, scene in points]
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+    from concurrent.futures.process import BrokenProcessPool
+    _POINT_JOBS[:] = [(ref, scene, args) for ref, scene in points]
+    codes = []
+    try:
+        with ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("fork")) as pool:
+            for code, out, err in pool.map(_prove_point_captured, range(len(points))):
+                if out:
+                    _say(out.rstrip("\n"))
+                if err:
+                    _say(err.rstrip("\n"), err=True)
+                codes.append(code)
+    except BrokenProcessPool as e:  # a worker died (killed, out of memory): a failure, never a verdict
+        _internal(e, args, where="a prove worker")
+        codes.append(EXIT_INTERNAL)
+    finally:
+        _POINT_JOBS.clear()
+    return codes
+
+
+def _mp_start_methods() -> list[str]:
+    import multiprocessing
+    return multiprocessing.get_all_start_methods()
+
+
+def _prove_point_captured(i: int) -> tuple[int, str, str]:
+    """In a worker: prove scene ``i`` of :data:`_POINT_JOBS`, capturing what it prints."""
+    import io
+    from contextlib import redirect_stderr, redirect_stdout
+    ref, scene, args = _POINT_JOBS[i]
+    out, err = io.StringIO(), io.StringIO()
+    with redirect_stdout(out), redirect_stderr(err):
+        try:
+            code = _prove_point(ref, scene, args)
+        except Exception as e:  # a bug outside the proof (a figure): one line, never exit 1
+            _internal(e, args, where=ref)
+            code = EXIT_INTERNAL
+    return code, out.getvalue(), err.getvalue()
+
+
+def _prove_point(ref: str, scene, args) -> int:
+    """Prove one scene without tolerances, write its certificate and report, print its lines; its exit
+    code."""
+    from .certificate import EXIT_CODES
+    from .prover import prove_scene
+    from .report import write_outputs
+    try:
+        cert = prove_scene(scene, prec=args.prec, maxprec=args.maxprec)
+        jpath, mpath = write_outputs(cert, args.out)
+    except RigorGyroError as e:
+        _say(f"rigor-gyro: {ref}: bad input: {e}", err=True)
+        return EXIT_BAD_INPUT
+    except OSError as e:
+        _say(f"rigor-gyro: {ref}: cannot write to --out {args.out!r}: {e.strerror or e}", err=True)
+        return EXIT_BAD_INPUT
+    except Exception as e:  # a bug: say so in one line, never exit 1 (refuted)
+        _internal(e, args, where=ref)
+        return EXIT_INTERNAL
+    code = EXIT_CODES[cert.verdict]
+    if args.plots:
+        code = _plots(scene, cert, args.out) or code
+    if not args.quiet:
+        for c in cert.claims:
+            _say(f"{scene.name}: {c.id}: {c.status.value} ({c.precision_bits} bits) - {c.reason}")
+    _say(f"{scene.name}: verdict {cert.verdict.value} in {cert.timings['total_s']:.2f} s "
+         f"at {cert.precision_bits} bits -> {jpath}, {mpath}")
+    return code
 
 
 def _pave(bs, executor, args) -> int:

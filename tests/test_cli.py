@@ -137,3 +137,41 @@ def test_plots_without_matplotlib_are_bad_input(monkeypatch, tmp_path):
                      "--claim", "stable", "--out", str(tmp_path), "--plots"]) == 2
     assert cli.main(["prove", "roitenberg1947", "--out", str(tmp_path), "--quiet", "--plots"]) == 2
     assert not list(tmp_path.glob("*.png"))
+
+
+def test_several_scenes_on_worker_processes_give_the_same_files_and_lines(tmp_path):
+    """One scene per worker process: the files and the printed lines are those of one process, in order."""
+    outs = {}
+    for w in ("1", "2"):
+        (tmp_path / w).mkdir()
+        r = run("prove", "roitenberg1947", "rudenko1976", "--workers", w, "--out", "out", cwd=tmp_path / w)
+        assert r.returncode == 0, r.stderr
+        outs[w] = [line.split(" in ")[0] if "verdict" in line else line for line in r.stdout.splitlines()]
+    assert outs["1"] == outs["2"] and outs["1"][-1] == "rudenko1976: verdict proved"
+    for name in ("roitenberg1947.json", "roitenberg1947.md", "rudenko1976.json", "rudenko1976.md"):
+        assert (tmp_path / "1" / "out" / name).read_bytes() == (tmp_path / "2" / "out" / name).read_bytes(), name
+
+
+@pytest.mark.parametrize("how", ["raises", "dies"])
+def test_a_failing_worker_is_an_internal_error_never_a_verdict(monkeypatch, tmp_path, capsys, how):
+    """A bug in one scene's worker (an exception, or the process killed) exits 4 naming it; the other
+    scene is still proved and written."""
+    import os
+    from rigor_gyro import cli, prover
+    real = prover.prove_scene
+
+    def broken(scene, **kw):
+        if scene.name == "rudenko1976":
+            if how == "dies":
+                os._exit(9)
+            raise RuntimeError("planted")
+        return real(scene, **kw)
+    monkeypatch.setattr(prover, "prove_scene", broken)
+    code = cli.main(["prove", "roitenberg1947_b2over15", "rudenko1976", "--workers", "2", "--quiet",
+                     "--out", str(tmp_path)])
+    err = capsys.readouterr().err
+    assert code == 4 and "internal error" in err
+    assert ("rudenko1976: internal error: RuntimeError: planted" in err) if how == "raises" else "worker" in err
+    assert not (tmp_path / "rudenko1976.json").exists()
+    if how == "raises":
+        assert (tmp_path / "roitenberg1947_b2over15.json").exists()

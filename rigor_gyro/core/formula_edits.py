@@ -133,30 +133,47 @@ def _int_constant(node: ast.AST) -> int | None:
     return None
 
 
-def evaluate(tree: Tree | str, env: dict[str, arb]) -> arb:
-    """The formula's ball at the current precision, every symbol from ``env`` (KeyError if missing)."""
+def evaluate(tree: Tree | str, env: dict[str, arb], memo: dict | None = None) -> arb:
+    """The formula's ball at the current precision, every symbol from ``env`` (KeyError if missing).
+
+    ``memo``: a dict shared by evaluations of trees with common subtrees on the same ``env`` at the
+    same precision (the edits of one formula share all but one path), keyed by the subtree's identity
+    (kept with its value). Arb arithmetic is deterministic, so a memoised ball is the very ball the
+    evaluation would give: only repeated work goes. An error (a division by a ball containing 0) is
+    raised again, never memoised."""
     t = parse_formula(tree) if isinstance(tree, str) else tree
+    if memo is not None:
+        hit = memo.get(id(t))
+        if hit is not None and hit[0] is t:
+            return hit[1]
+        value = _evaluate(t, env, memo)
+        memo[id(t)] = (t, value)
+        return value
+    return _evaluate(t, env, None)
+
+
+def _evaluate(t: Tree, env: dict[str, arb], memo: dict | None) -> arb:
     op = t[0]
     if op == "+":
-        return evaluate(t[1], env) + evaluate(t[2], env)
+        return evaluate(t[1], env, memo) + evaluate(t[2], env, memo)
     if op == "-":
-        return evaluate(t[1], env) - evaluate(t[2], env)
+        return evaluate(t[1], env, memo) - evaluate(t[2], env, memo)
     if op == "*":
-        return evaluate(t[1], env) * evaluate(t[2], env)
+        return evaluate(t[1], env, memo) * evaluate(t[2], env, memo)
     if op == "/":
-        return evaluate(t[1], env) / evaluate(t[2], env)
+        return evaluate(t[1], env, memo) / evaluate(t[2], env, memo)
     if op == "**":
-        a, n = evaluate(t[1], env), t[2]
+        a, n = evaluate(t[1], env, memo), t[2]
         out = arb(1)
         for _ in range(abs(n)):
             out = out * a
         return out if n >= 0 else 1 / out
     if op == "neg":
-        return -evaluate(t[1], env)
+        return -evaluate(t[1], env, memo)
     if op == "call":
-        return FUNCTIONS[t[1]](evaluate(t[2], env))
+        return FUNCTIONS[t[1]](evaluate(t[2], env, memo))
     if op == "id":                       # a removed square root
-        return evaluate(t[1], env)
+        return evaluate(t[1], env, memo)
     if op == "sym":
         return env[t[1]]
     if op == "num":
@@ -171,27 +188,40 @@ def _level(t: Tree) -> int:
     return _LEVEL.get(t[0], 5)
 
 
-def show(t: Tree) -> str:
-    """The formula as text (Python syntax, the parentheses the precedence needs)."""
+def show(t: Tree, memo: dict | None = None) -> str:
+    """The formula as text (Python syntax, the parentheses the precedence needs). ``memo``: a dict
+    shared by calls on trees with common subtrees (the edits of one formula), keyed by the subtree's
+    identity (the subtree is kept with its text, so the identity is never reused)."""
+    if memo is not None:
+        hit = memo.get(id(t))
+        if hit is not None and hit[0] is t:
+            return hit[1]
     op = t[0]
     if op in ("+", "-", "*", "/"):
         p = _LEVEL[op]
-        left = show(t[1]) if _level(t[1]) >= p else f"({show(t[1])})"
-        right = show(t[2]) if _level(t[2]) > p else f"({show(t[2])})"
-        return f"{left} {op} {right}"
-    if op == "**":
-        base = show(t[1]) if _level(t[1]) > 4 else f"({show(t[1])})"
-        return f"{base} ** {t[2]}"
-    if op == "neg":
-        inner = show(t[1]) if _level(t[1]) >= 3 else f"({show(t[1])})"
-        return f"-{inner}"
-    if op == "call":
-        return f"{t[1]}({show(t[2])})"
-    if op == "id":
-        return f"_id({show(t[1])})"
-    if op == "sym":
-        return t[1]
-    return t[2]
+        left = show(t[1], memo) if _level(t[1]) >= p else f"({show(t[1], memo)})"
+        right = show(t[2], memo) if _level(t[2]) > p else f"({show(t[2], memo)})"
+        text = f"{left} {op} {right}"
+    elif op == "**":
+        base = show(t[1], memo) if _level(t[1]) > 4 else f"({show(t[1], memo)})"
+        text = f"{base} ** {t[2]}"
+    elif op == "neg":
+        inner = show(t[1], memo) if _level(t[1]) >= 3 else f"({show(t[1], memo)})"
+        text = f"-{inner}"
+    elif op == "call":
+        text = f"{t[1]}({show(t[2], memo)})"
+    elif op == "id":
+        text = f"_id({show(t[1], memo)})"
+    elif op == "sym":
+        text = t[1]
+    else:
+        text = t[2]
+    if memo is not None:
+        memo[id(t)] = (t, text)
+    return text
+
+
+_show = show
 
 
 def _sites(t: Tree, path: tuple = ()):
@@ -229,6 +259,10 @@ def single_edits(text: str) -> list[FormulaEdit]:
     """Every single edit of the formula ``text`` (see the module docstring), as edited formulas."""
     tree = parse_formula(text)
     out: list[FormulaEdit] = []
+    memo: dict = {}                     # the edits share every subtree but one path: each shown once
+
+    def show(t: Tree) -> str:
+        return _show(t, memo)
 
     def add(kind: str, what: str, t: Tree) -> None:
         out.append(FormulaEdit(kind, what, show(t), tree=t))
@@ -305,9 +339,11 @@ def search_single_edits(text: str, env: dict[str, arb], printed: str, defs: dict
     for name in order:
         base[name] = evaluate(defs[name], base)
 
+    memo: dict = {}                     # the edits of the text share all its subtrees but one path
+
     def value(where: str | None, edited: Tree) -> arb:
         if where is None:
-            return evaluate(edited, base)
+            return evaluate(edited, base, memo)
         scope = dict(env)
         for name in order:
             scope[name] = evaluate(edited if name == where else defs[name], scope)
