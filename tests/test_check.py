@@ -65,7 +65,7 @@ def test_any_edit_without_the_digest_is_rejected(rudenko):
 
 #: quantities that are certified upper bounds (a number the proof computed), not enclosures of one value
 UPPER_BOUNDS = {"R_sup_upper_bound", "R_max_relative_gap", "R_direct_upper",
-                "R_direct_relative_gap"}
+                "R_direct_relative_gap", "R_direct_sup_upper_bound", "R_direct_max_relative_gap"}
 #: parameters no claim depends on (the lyapunov model uses C only through H = C r0, given as H)
 UNUSED = {("lyapunov", "C")}
 
@@ -331,6 +331,28 @@ def test_the_direct_vdot_witness_is_re_verified():
     def origin(w, d):           # Vdot = 0 at the origin: not a point where Vdot > 0
         w["point"] = {k: ["0", "0"] for k in ("x1", "x2", "x3")}
     assert bad(origin)
+
+
+def test_the_direct_test_over_mu_is_re_verified():
+    """best_mu_direct: a dropped mu piece or (x2, t) box, a larger R_direct_max, mu_direct moved out of (16),
+    or the points replaced by a poor one (the bound re-derived above the stored one) is rejected."""
+    from rigor_gyro.prover import prove_scene
+    from rigor_gyro.scene import load_scene
+    data = json.loads(json.dumps(prove_scene(load_scene("agafonov2013")).to_json()))
+    assert check_certificate(data).ok
+    w = data["witnesses"]["best_mu_direct"]
+    assert len(w["boxes"]) > 10 and len(w["mu_pieces"]) > 4 and w["points"]
+
+    def bad(mutate):
+        d = copy.deepcopy(data)
+        mutate(d["witnesses"]["best_mu_direct"], d)
+        return not check_certificate(_refix(d)).ok
+    assert bad(lambda w, d: w["mu_pieces"].pop(len(w["mu_pieces"]) // 2))
+    assert bad(lambda w, d: w["boxes"].pop(5))
+    assert bad(lambda w, d: w.__setitem__("R", str(Fraction(w["R"]) * Fraction(101, 100))))
+    assert bad(lambda w, d: w.__setitem__("mu", "0.04"))
+    assert bad(lambda w, d: w.__setitem__("points", [["1/3", "9/10"]]))
+    assert bad(lambda w, d: w.__setitem__("points", [["2", "1/2"]]))     # outside the range: proves nothing
 
 
 #: Lyapunov scenes from the campaign whose certificates the checker once failed to confirm (all right)

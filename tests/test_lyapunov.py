@@ -47,7 +47,7 @@ def near(ball, ref, rel):
 def test_example_every_claim_proved(example):
     assert {c.id: c.status for c in example.claims} == {c: Status.PROVED for c in (
         "constants", "damping_condition", "vdot_nonpositive", "vdot_direct", "v_positive", "invariant_estimate",
-        "largest_sublevel", "equilibria", "best_mu")}
+        "largest_sublevel", "equilibria", "best_mu", "best_mu_direct")}
     assert example.precision_bits == 64
 
 
@@ -68,6 +68,44 @@ def test_example_best_mu_and_R_max(example):
     # R_max is certified and no larger than the supremum, and beats the paper's R and ours
     assert certainly_lt(q["R_max"], q["R_sup_at_mu_best"] + arb("1e-15"))
     assert certainly_gt(q["R_max"], arb("0.018")) and certainly_gt(q["R_max"], q["R"])
+
+
+def test_the_direct_test_over_mu_beats_the_psi_test_and_bounds_every_mu(example):
+    """best_mu_direct: R_direct_max certified at mu_direct, within 1e-6 of the certified bound over (16), and
+    larger than the Psi test's best (R_max) and the direct test at the scene's mu. Independently, the
+    mpmath estimate of the direct supremum (a point search on the analytic grad V . f) lies in
+    [R_direct_max, bound] at mu_direct and below the bound across (16)."""
+    from rigor_gyro.kinds.lyapunov.approx import mp_polar_estimates
+    q = example.quantities
+    R, U, mu = q["R_direct_max"], q["R_direct_sup_upper_bound"], q["mu_direct"]
+    assert certainly_lt(q["mu_min"], mu) and certainly_lt(mu, q["mu_max"])
+    assert certainly_lt(R, U) and certainly_lt(q["R_direct_max_relative_gap"], arb("1e-6"))
+    assert certainly_gt(R, q["R_max"] * arb("1.15")) and certainly_gt(R, q["R_direct"] * arb("1.15"))
+    mu_text = example.claim("best_mu_direct").details["mu_direct"]
+    est = mp_polar_estimates(dict(BASE, mu=mu_text), dps=30)["R_direct"]
+    assert float(R.lower()) <= est <= float(U.upper()) * (1 + 1e-9)
+    lo, hi = float(q["mu_min"].mid()), float(q["mu_max"].mid())
+    for j in range(1, 8):
+        m = lo + (hi - lo) * j / 8
+        assert mp_polar_estimates(dict(BASE, mu=f"{m:.12g}"), dps=20)["R_direct"] <= float(U.upper()) * (1 + 1e-9)
+
+
+def test_the_direct_radius_bound_holds_at_every_mu_of_a_ball():
+    """direct_radius_upper over a mu ball (monotone end or ball evaluation) is >= the point value A/|B| at
+    every mu sampled in the ball, at several (x2, t) points, and never below R_dsup at those mu."""
+    from flint import fmpq
+    from rigor_gyro.kinds.lyapunov.model import direct_radius_upper, vdot_polar
+    g = validate(scene()).gimbal
+    xs = g.c.x2_star
+    for u, s in ((fmpq(-1), fmpq(1, 2)), (fmpq(-1), fmpq(1, 3)), (fmpq(1, 3), fmpq(1, 5)), (fmpq(1), fmpq(9, 10))):
+        for a, b in (("0.014", "0.016"), ("0.02", "0.0200001"), ("0.023", "0.0235"), ("0.028", "0.031")):
+            Mu = arb(a).union(arb(b))
+            bound = direct_radius_upper(g, u, s, Mu)
+            for j in range(11):
+                m = arb(a) + (arb(b) - arb(a)) * j / 10
+                A, B = vdot_polar(g, xs * arb(u), arb.pi() * arb(s), m)
+                if certainly_positive(abs(B)):
+                    assert not certainly_lt(bound, (A.max(arb(0)) / abs(B))), (u, s, a, b, j)
 
 
 def test_example_widths(example):

@@ -5,7 +5,8 @@ for A0 .. R; the damping condition decided in mpmath with a margin; Vdot and V s
 the region where the certificate says Vdot <= 0 or V > 0 (a sample clearly of the wrong sign is a
 verdict disagreement, checked again in mpmath before it is reported). ``vdot_direct``: grad V . f (the
 analytic gradient, not the Psi form) sampled on the disc of radius R_direct, half the samples on its
-rim (Vdot is -r^2 (A + r B) along a ray: the rim is the worst case). ``largest_sublevel``: along random
+rim (Vdot is -r^2 (A + r B) along a ray: the rim is the worst case); ``best_mu_direct``: the same at
+mu_direct on the disc of radius R_direct_max. ``largest_sublevel``: along random
 rays (x2, t), where grad V . f first turns >= 0 and at V's minimum beyond it, V must be >= c_max_lower.
 """
 from __future__ import annotations
@@ -110,6 +111,17 @@ def compare(params: dict[str, str], cert, res) -> None:
                 if wrong:
                     res.verdict_disagreements.append(f"{claim} proved but mpmath {fn} = {mpmath.nstr(val, 8)} at "
                                                      f"({float(x1):.6g}, {float(x2):.6g}, {float(x3):.6g})")
+    # best_mu_direct: the same samples at mu_direct on the disc of radius R_direct_max
+    bd = next((c for c in cert.claims if c.id == "best_mu_direct"), None)
+    if bd is not None and st.get("best_mu_direct") == "proved":
+        at_mu = dict(params, mu=bd.details["mu_direct"])
+        for claim, fn, x1, x2, x3 in _direct_samples(FloatGimbal(at_mu), q, st, rng, xs, "best_mu_direct",
+                                                     "R_direct_max"):
+            with mpmath.workdps(40):
+                val = MpGimbal(at_mu).grad_V_dot_f(mpmath.mpf(float(x1)), mpmath.mpf(float(x2)), mpmath.mpf(float(x3)))
+            if val > 0:
+                res.verdict_disagreements.append(f"{claim} proved but mpmath {fn} = {mpmath.nstr(val, 8)} at mu_direct, "
+                                                 f"({float(x1):.6g}, {float(x2):.6g}, {float(x3):.6g})")
     try:
         fl = float_constants(params, with_best_mu=False)
     except Exception:
@@ -132,10 +144,10 @@ def _ray_coefficients(fg, x2, t):
     return -v1 - B, B
 
 
-def _direct_samples(fg, q, st, rng, xs) -> list:
-    if st.get("vdot_direct") != "proved" or "R_direct" not in q:
+def _direct_samples(fg, q, st, rng, xs, claim: str = "vdot_direct", radius: str = "R_direct") -> list:
+    if st.get(claim) != "proved" or radius not in q:
         return []
-    R = float(q["R_direct"].mid())
+    R = float(q[radius].mid())
     n = SAMPLES
     r = np.where(np.arange(n) % 2 == 0, R, R * np.sqrt(rng.uniform(0, 1, n)))
     t = rng.uniform(0, 2 * np.pi, n)
@@ -143,7 +155,7 @@ def _direct_samples(fg, q, st, rng, xs) -> list:
     vd = fg.grad_V_dot_f(x1, x2, x3)
     scale = np.abs(fg.grad_V_dot_f(x1, x2 * 0, x3)) + 1e-300
     bad = np.nonzero(vd > 1e-9 * scale)[0][:3]
-    return [("vdot_direct", "grad_V_dot_f", x1[i], x2[i], x3[i]) for i in bad]
+    return [(claim, "grad_V_dot_f", x1[i], x2[i], x3[i]) for i in bad]
 
 
 def _sublevel_samples(fg, q, st, rng, xs) -> list:

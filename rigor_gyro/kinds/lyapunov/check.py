@@ -16,7 +16,9 @@ in the precision), and checks
   R_direct_upper;
   c* from the faces' closed form and the cylinder bound on the stored cover, the level c_set below it,
   the extents; at mu_best, Psi > 0 on the disc of radius R_max, R_sup(mu_best) on its cover, and the
-  upper bound of R_sup over (16) re-derived from the stored mu pieces and x2 points;
+  upper bound of R_sup over (16) re-derived from the stored mu pieces and x2 points; at mu_direct, the
+  direct test's boxes at R_direct_max, and its bound over (16) re-derived from the stored mu pieces and
+  (x2, t) points;
 * c_max (the largest sublevel set): the stored (x2, t) boxes tile the domain and the model's lower bound
   of V over {Vdot >= 0} is >= the stated vdot_level_lower on each; the faces' phi(+-x2*) recomputed; Vdot > 0
   and V at the stored point re-evaluated; every stated bound compared with its exact decimal;
@@ -36,6 +38,7 @@ from ...core.stored import encloses, fmpq_of, interval as stored_interval, numbe
 from ...core.boxes import Box, tiles_by_bisection
 from ...core.roots import RootStatus, enclose_f_df, newton_root
 from .claims import rho_function, rho_lower
+from .direct_mu import piece_upper as direct_piece_upper
 from .equilibria import Equilibrium, classify as classify_equilibrium
 from .model import (DIRECT_DOMAIN, closed_form_constants, cylinder_lower_bound, direct_margin, mean_value_enclosure,
                     psi_min_functions, slice_extent, slice_in_region, sublevel_lower_bound, vdot_polar)
@@ -89,7 +92,8 @@ REQUIRED = {"constants": ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "m
             "largest_sublevel": ("c_max_lower", "c_max_upper", "vdot_level_lower", "face_level"),
             "invariant_estimate": ("c_star", "c_set"),
             "best_mu": ("mu_best", "R_max", "R_sup_upper_bound", "R_max_relative_gap"),
-            "vdot_direct": ("R_direct",)}
+            "vdot_direct": ("R_direct",),
+            "best_mu_direct": ("mu_direct", "R_direct_max", "R_direct_sup_upper_bound", "R_direct_max_relative_gap")}
 
 
 def _max_upper(f, pieces, target=None) -> arb:
@@ -164,6 +168,14 @@ def _box_lower_ends(make, boxes, prec: int) -> list[arb]:
 def _positive_end(low: arb) -> bool:
     """A lower end certainly > 0 (+inf counts: nothing to bound there)."""
     return float(low) == float("inf") or (low.is_finite() and certainly_positive(low))
+
+
+def _direct_boxes_hold(g, R: arb, stored_boxes, cert_prec: int) -> bool:
+    """R > 0, the stored (x2, t) boxes are the leaves of a bisection tree of the domain, and A - R |B| > 0
+    on each (the better lower end of two precisions)."""
+    boxes = [Box.from_json(b) for b in stored_boxes]
+    return (certainly_positive(R) and tiles_by_bisection(Box.of(DIRECT_DOMAIN), boxes)
+            and all(_positive_end(lo) for lo in _box_lower_ends(lambda: direct_margin(g, R), boxes, cert_prec)))
 
 
 def _all_positive(f, pieces) -> bool:
@@ -396,10 +408,7 @@ def check(model, data: dict) -> list[CheckResult]:
     if wd and claims.get("vdot_direct", {}).get("status") == "proved":
         Rd = arb(fmpq_of(number(wd["R"])))
         contains("R_direct", Rd)
-        boxes = [Box.from_json(b) for b in wd.get("boxes", [])]
-        whole = Box.of(DIRECT_DOMAIN)
-        direct_ok = (certainly_positive(Rd) and tiles_by_bisection(whole, boxes)
-                     and all(_positive_end(lo) for lo in _box_lower_ends(lambda: direct_margin(g, Rd), boxes, cert_prec)))
+        direct_ok = _direct_boxes_hold(g, Rd, wd.get("boxes", []), cert_prec)
         pt = wd.get("point")
         if pt and direct_ok:
             x1, x2, x3 = (_b(_pair(pt[k])) for k in ("x1", "x2", "x3"))
@@ -409,6 +418,37 @@ def check(model, data: dict) -> list[CheckResult]:
                 if "R_direct_upper" in q:
                     up = arb(fmpq_of(stored_interval(q["R_direct_upper"])[1]))
                     upper_bound_holds("R_direct_relative_gap", (up - Rd) / Rd)
+
+    # ---------------------------------------------------------------- the direct test over (16)
+    bd_ok = False
+    wbd = W.get("best_mu_direct")
+    if wbd and K is not None and claims.get("best_mu_direct", {}).get("status") == "proved":
+        mu_d = fmpq_of(number(wbd["mu"]))
+        Rdm = arb(fmpq_of(number(wbd["R"])))
+        contains("mu_direct", arb(mu_d))
+        contains("R_direct_max", Rdm)
+        inside16 = certainly_lt(K["mu_min"], arb(mu_d)) and certainly_lt(arb(mu_d), K["mu_max"])
+        at_mu = _direct_boxes_hold(g.with_mu(mu_d), Rdm, wbd.get("boxes", []), cert_prec)
+        Ud = None
+        try:
+            pts = [(fmpq_of(Fraction(u)), fmpq_of(Fraction(t))) for u, t in wbd.get("points", [])]
+        except (TypeError, ValueError, ZeroDivisionError):
+            pts = []
+        if pts and _covers(wbd.get("mu_pieces", []), K["mu_min"].lower(), K["mu_max"].upper()):
+            stored_Ud = _stored_hi("R_direct_sup_upper_bound")
+
+            def both_d(Mu: arb) -> arb:     # both are upper bounds: keep the smaller (30-bit radii)
+                u = direct_piece_upper(g, Mu, pts)
+                with working_precision(cert_prec):
+                    u_cert = direct_piece_upper(g, Mu, pts)
+                return u_cert if u_cert.is_finite() and (not u.is_finite() or certainly_lt(u_cert, u)) else u
+            for p in wbd["mu_pieces"]:
+                u = _refined_upper(both_d, _b(p), stored_Ud)
+                Ud = u if Ud is None or not u.is_finite() or (Ud.is_finite() and certainly_gt(u, Ud)) else Ud
+        if Ud is not None and Ud.is_finite():
+            upper_bound_holds("R_direct_sup_upper_bound", Ud)
+            upper_bound_holds("R_direct_max_relative_gap", (Ud - Rdm) / Rdm)
+        bd_ok = inside16 and at_mu and Ud is not None and Ud.is_finite()
 
     # ---------------------------------------------------------------- the largest sublevel set
     sub_ok, sub_msg = False, "no stored boxes"
@@ -486,6 +526,13 @@ def check(model, data: dict) -> list[CheckResult]:
         elif cid == "best_mu":
             if st == "proved":
                 say(cid, bm_ok, "mu_best inside (16), Psi > 0 at R_max, the bound over (16) re-derived")
+            else:
+                say(cid, K is not None and certainly_le(K["mu_max"], K["mu_min"]), "the interval (16) is empty")
+        elif cid == "best_mu_direct":
+            if st == "proved":
+                say(cid, bd_ok, "mu_direct inside (16), A - R_direct_max |B| > 0 on every stored (x2, t) box at "
+                    "mu_direct (the boxes tile the domain), the bound over (16) re-derived from the stored mu pieces "
+                    "and points")
             else:
                 say(cid, K is not None and certainly_le(K["mu_max"], K["mu_min"]), "the interval (16) is empty")
         else:

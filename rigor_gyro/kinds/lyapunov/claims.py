@@ -60,6 +60,7 @@ from ...core.boxes import Box
 from ...core.subdivision import certify_positive, certify_positive_on_box, enclose_max
 from .. import Attempt, Phases
 from .equilibria import equilibria
+from .direct_mu import direct_sup_upper_bound
 from .search import grid_then_compass
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
 from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, direct_margin, vdot_polar, closed_form_constants, cylinder_lower_bound, hypot_ball,
@@ -77,6 +78,10 @@ PARAMETERS = {"A": "equatorial moment of inertia of the rotor", "C": "polar mome
 RATIONAL = ("A", "C", "A1", "B1", "C1", "A2", "H", "k", "a", "mu")
 #: best_mu: branch and bound over mu stops once its upper bound is within this relative gap of R_max
 BEST_MU_GAP = "1e-6"    # escalation beyond this only repeats the same subdivision (see attempt)
+#: best_mu_direct: the branch and bound over mu stops once its bound is within this relative gap of the
+#: search's best estimate (R_direct_max is certified 4e-7 below the estimate: the gap stays below 1e-6)
+DIRECT_MU_GAP = "5e-7"
+DIRECT_MU_PIECES = 400
 OPTIONS = {"rel_width": "1e-15", "R": "", "max_pieces": "20000"}
 MAX_PIECES_LIMIT = 1_000_000
 
@@ -87,6 +92,9 @@ HEADLINE = {"R_used": "radius R of region (17) used", "c_star": "level c* of the
             "R_direct_upper": "Vdot > 0 at a certified point of this radius",
             "R_max": "certified radius R_max at mu_best (Psi test)", "mu_best": "mu_best (a search result)",
             "R_sup_upper_bound": "no mu in (16) gives the Psi test a radius above this",
+            "R_direct_max": "certified radius with Vdot < 0 at mu_direct (direct test)",
+            "mu_direct": "mu_direct (a search result)",
+            "R_direct_sup_upper_bound": "no mu in (16) gives Vdot <= 0 on a disc cylinder of larger radius",
             "k_min": "k_min = p A0 / H of (18)", "damping_margin": "design margin k/k_min - 1"}
 
 CLAIMS = {
@@ -122,6 +130,11 @@ CLAIMS = {
                "on the disc of radius R_max, so vdot_nonpositive holds there; and R_sup(mu) <= R_sup_upper_bound for "
                "every mu in (16), where R_sup(mu) is the supremum of the radii for which Psi1, Psi2 > 0 on the disc: "
                "R_max is within R_max_relative_gap of the largest radius this test certifies at any admissible mu.",
+    "best_mu_direct": "At mu = mu_direct (a decimal in (16) chosen by a search, not proved optimal), Vdot < 0 on "
+                      "|x2| <= x2*, 0 < x1^2 + x3^2 <= R_direct_max^2 (the direct test of vdot_direct, at that mu); and "
+                      "R_dsup(mu) <= R_direct_sup_upper_bound for every mu in (16), where R_dsup(mu) is the supremum of "
+                      "the radii R with Vdot <= 0 on |x2| <= x2*, x1^2 + x3^2 <= R^2: R_direct_max is within "
+                      "R_direct_max_relative_gap of the largest such radius at any admissible mu.",
 }
 
 
@@ -299,40 +312,68 @@ def _direct_search(g: Gimbal) -> tuple[float, float, float, float | None]:
     return r0, u, sv, amin
 
 
-def _vdot_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
-    g, xs = ctx.g, ctx.xs
+@dataclass
+class _Direct:
+    """The direct test certified at one mu: the search's estimate and point, the radius certified (or None)
+    with its boxes, and a certified point above it where Vdot > 0 (or None)."""
+    est: float
+    u0: float
+    s0: float
+    amin: float
+    R_text: str = ""
+    cert: object = None
+    point: tuple | None = None
+    up_text: str = ""
+
+
+def _certify_direct(g: Gimbal, max_pieces: int) -> _Direct:
+    """Search the supremum radius of the direct test at g's mu, certify A - R |B| > 0 a little below it
+    (DIRECT_MARGINS) and a point a little above it where Vdot > 0."""
+    xs = g.c.x2_star
     est, u0, s0, amin = _direct_search(g)
+    d = _Direct(est, u0, s0, amin)
     if not (math.isfinite(est) and est > 0 and amin > 0):
-        claim = _claim("vdot_direct", Status.INCONCLUSIVE,
-                       f"the search found no positive radius (inf A/|B| ~ {est:.6g}, min A ~ {amin:.3g}): the direct "
-                       "test gives nothing here (A <= 0 somewhere means Vdot > 0 arbitrarily near x1 = x3 = 0)")
-        claim.precision_cannot_help = "the float search finds A <= 0: no radius to certify at any precision"
-        return claim
+        return d
     whole = Box.of(DIRECT_DOMAIN)
-    cert, R_text = None, ""
     for m in DIRECT_MARGINS:
-        R_text = decimal_bounds(arb(est) * (1 - arb(m)), 10)[0]
-        R = _q(_fmpq(Fraction(R_text)))
-        cert = certify_positive_on_box(direct_margin(g, R), whole, max_pieces=ctx.m.max_pieces)
-        if cert.status is Status.PROVED:
+        d.R_text = decimal_bounds(arb(est) * (1 - arb(m)), 10)[0]
+        d.cert = certify_positive_on_box(direct_margin(g, _q(_fmpq(Fraction(d.R_text)))), whole, max_pieces=max_pieces)
+        if d.cert.status is Status.PROVED:
             break
-    if cert is None or cert.status is not Status.PROVED:
-        return _claim("vdot_direct", Status.INCONCLUSIVE,
-                      f"A - R |B| > 0 not certified at R = {R_text} (search estimate {est:.10g}): {cert.reason}; "
-                      "try a larger max_pieces or --maxprec")
-    R_direct = _q(_fmpq(Fraction(R_text)))
+    if d.cert.status is not Status.PROVED:
+        return d
     # an upper bound of the supremum: a certified point of the region where Vdot > 0
     pi = arb.pi()
     x2p = _q(_fmpq(exact_fraction((xs * arb(u0)).mid())))
     x2p = x2p if certainly_le(abs(x2p), xs) else (xs.lower() if u0 > 0 else -xs.lower())
-    point, up = None, None
     for m in DIRECT_MARGINS:
         rr = arb(est) * (1 + arb(m))
         t = pi * arb(s0)
         x1, x3 = (_q(_fmpq(exact_fraction((rr * t.cos()).mid()))), _q(_fmpq(exact_fraction((rr * t.sin()).mid()))))
         if certainly_le(abs(x2p), xs) and certainly_positive(g.vdot(x1, x2p, x3)):
-            point, up = (x1, x2p, x3), (x1 * x1 + x3 * x3).sqrt()
+            d.point = (x1, x2p, x3)
+            d.up_text = decimal_bounds((x1 * x1 + x3 * x3).sqrt(), 12)[1]
             break
+    return d
+
+
+def _vdot_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
+    g = ctx.g
+    d = _certify_direct(g, ctx.m.max_pieces)
+    est = d.est
+    if not (math.isfinite(est) and est > 0 and d.amin > 0):
+        claim = _claim("vdot_direct", Status.INCONCLUSIVE,
+                       f"the search found no positive radius (inf A/|B| ~ {est:.6g}, min A ~ {d.amin:.3g}): the direct "
+                       "test gives nothing here (A <= 0 somewhere means Vdot > 0 arbitrarily near x1 = x3 = 0)")
+        claim.precision_cannot_help = "the float search finds A <= 0: no radius to certify at any precision"
+        return claim
+    cert, R_text = d.cert, d.R_text
+    if cert.status is not Status.PROVED:
+        return _claim("vdot_direct", Status.INCONCLUSIVE,
+                      f"A - R |B| > 0 not certified at R = {R_text} (search estimate {est:.10g}): {cert.reason}; "
+                      "try a larger max_pieces or --maxprec")
+    R_direct = _q(_fmpq(Fraction(R_text)))
+    point = d.point
     ctx.witnesses["vdot_direct"] = {"R": R_text, "boxes": [b.to_json() for b in cert.leaves]}
     quantities["R_direct"] = R_direct
     if point is None:
@@ -342,13 +383,13 @@ def _vdot_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
                       "of the supremum is stated", R_direct=R_text, boxes=len(cert.leaves))
     ctx.witnesses["vdot_direct"]["point"] = {"x1": ball_text(point[0]), "x2": ball_text(point[1]),
                                             "x3": ball_text(point[2])}
-    up_text = decimal_bounds(up, 12)[1]
+    up_text = d.up_text
     quantities["R_direct_upper"] = _q(_fmpq(Fraction(up_text)))
     gap = (quantities["R_direct_upper"] - R_direct) / R_direct
     quantities["R_direct_relative_gap"] = gap
     return _claim("vdot_direct", Status.PROVED,
                   f"A - R |B| > 0 certified at R_direct = {R_text} on {len(cert.leaves)} boxes of (x2, t) (centered "
-                  f"form; the search put the supremum at x2 = {float(u0):.6g} x2*, t = {float(s0):.6g} pi); Vdot = "
+                  f"form; the search put the supremum at x2 = {float(d.u0):.6g} x2*, t = {float(d.s0):.6g} pi); Vdot = "
                   f"{_fmt(g.vdot(*point), 4)} > 0 at the point x1 = {_fmt(point[0], 8)}, x2 = {_fmt(point[1], 8)}, "
                   f"x3 = {_fmt(point[2], 8)} (radius <= {up_text}), so the supremum radius lies in [{R_text}, {up_text}] "
                   f"(relative gap {decimal_bounds(gap, 2)[1]})",
@@ -718,16 +759,30 @@ def r_sup_upper_bound(g: Gimbal, xs: arb, mu_lo: arb, mu_hi: arb, target: arb, m
     return upper, count, [(item[2], item[3]) for item in heap], points
 
 
+def _decimal_inside(mu: Fraction, lo: arb, hi: arb) -> str | None:
+    """A short exact decimal near ``mu`` certainly inside (lo, hi) (the optimum may sit at an end), or None."""
+    for digits in (12, 16, 20, 30):
+        for cand in decimal_bounds(_q(_fmpq(mu)), digits):
+            if certainly_lt(lo, _q(_fmpq(Fraction(cand)))) and certainly_lt(_q(_fmpq(Fraction(cand))), hi):
+                return cand
+    return None
+
+
+def _no_mu_interval(cid: str, lo: arb, hi: arb) -> Claim:
+    """The claim over (16) when (16) is not certainly non-empty: refuted when it is certainly empty."""
+    empty = certainly_le(hi, lo)
+    return _claim(cid, Status.REFUTED if empty else Status.INCONCLUSIVE,
+                  f"the mu interval (16) ({_fmt(lo)}, {_fmt(hi)}) is " + ("empty: no admissible mu" if empty else
+                                                                          "not certainly non-empty"),
+                  {"mu_min": _fmt(lo, 20), "mu_max": _fmt(hi, 20)} if empty else None)
+
+
 def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     g, xs = ctx.g, ctx.xs
     k = ctx.constants()
     lo, hi = k["mu_min"], k["mu_max"]
     if not certainly_lt(lo, hi):
-        empty = certainly_le(hi, lo)
-        return _claim("best_mu", Status.REFUTED if empty else Status.INCONCLUSIVE,
-                      f"the mu interval (16) ({_fmt(lo)}, {_fmt(hi)}) is " + ("empty: no admissible mu" if empty else
-                                                                              "not certainly non-empty"),
-                      {"mu_min": _fmt(lo, 20), "mu_max": _fmt(hi, 20)} if empty else None)
+        return _no_mu_interval("best_mu", lo, hi)
 
     def est(mu: Fraction) -> float:
         return _r_sup_search(g.with_mu(_fmpq(mu)), xs)[0]
@@ -749,15 +804,7 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
         if (b - a) < Fraction(1, 10 ** 14) * b:
             break
     mu_mid = (a + b) / 2
-    # fix mu_best as a short exact decimal certainly inside (16) (the optimum may sit at an end)
-    mu_text = None
-    for digits in (12, 16, 20, 30):
-        for cand in decimal_bounds(_q(_fmpq(mu_mid)), digits):
-            if certainly_lt(lo, _q(_fmpq(Fraction(cand)))) and certainly_lt(_q(_fmpq(Fraction(cand))), hi):
-                mu_text = cand
-                break
-        if mu_text is not None:
-            break
+    mu_text = _decimal_inside(mu_mid, lo, hi)
     if mu_text is None:
         return _claim("best_mu", Status.INCONCLUSIVE,
                       f"no decimal mu certainly inside (16) near the optimum {float(mu_mid):.15g} (the interval is "
@@ -816,6 +863,59 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
                   relative_gap=decimal_bounds(gap, 3)[1], float_estimate=f"{estimate:.15g}")
 
 
+def _best_mu_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
+    g = ctx.g
+    k = ctx.constants()
+    lo, hi = k["mu_min"], k["mu_max"]
+    if not certainly_lt(lo, hi):
+        return _no_mu_interval("best_mu_direct", lo, hi)
+    # over the hull of (16), padded by 4 radii of its ends (a checker's own enclosure of (16) must lie inside)
+    U, n_pieces, cover, points, (best_est, best_mu) = direct_sup_upper_bound(
+        g, (lo.lower() - 4 * lo.rad()).lower(), (hi.upper() + 4 * hi.rad()).upper(), arb(DIRECT_MU_GAP),
+        max_pieces=min(ctx.m.max_pieces, DIRECT_MU_PIECES))
+    if best_mu is None or not U.is_finite():
+        return _claim("best_mu_direct", Status.INCONCLUSIVE,
+                      f"no finite bound of the direct test's radius over (16) ({n_pieces} mu pieces): A <= 0 or B = 0 "
+                      "at every point tried", decides=U)
+    mu_text = _decimal_inside(best_mu, lo, hi)
+    if mu_text is None:
+        return _claim("best_mu_direct", Status.INCONCLUSIVE,
+                      f"no decimal mu certainly inside (16) near the search's optimum {float(best_mu):.15g}: raise --maxprec")
+    mu = _fmpq(Fraction(mu_text))
+    d = _certify_direct(g.with_mu(mu), ctx.m.max_pieces)
+    if d.cert is None or d.cert.status is not Status.PROVED:
+        why = d.cert.reason if d.cert is not None else f"the search found no positive radius (~{d.est:.6g})"
+        return _claim("best_mu_direct", Status.INCONCLUSIVE,
+                      f"at mu_direct = {mu_text}, A - R |B| > 0 not certified at R = {d.R_text or '-'}: {why}; try a "
+                      "larger max_pieces or --maxprec")
+    R = _q(_fmpq(Fraction(d.R_text)))
+    # stored as its 15-digit decimal rounded up (as best_mu's bound: a re-derivation at another precision
+    # differs in arb's last radius bits)
+    U = _q(_fmpq(Fraction(decimal_bounds(U, 15)[1])))
+    if not certainly_le(R, U):      # R <= R_dsup(mu_direct) <= U: both certified, so this cannot happen
+        raise AssertionError(f"best_mu_direct: certified R {d.R_text} above the certified bound {U}")
+    gap = (U - R) / R
+    quantities.update({"mu_direct": _q(mu), "R_direct_max": R, "R_direct_sup_upper_bound": U,
+                       "R_direct_max_relative_gap": gap})
+    ctx.witnesses["best_mu_direct"] = {"mu": mu_text, "R": d.R_text, "boxes": [b.to_json() for b in d.cert.leaves],
+                                       "mu_pieces": pieces_text(cover),
+                                       "points": [[str(u), str(s)] for u, s in points]}
+    compare = []
+    for name, what in (("R_max", "the Psi test's best radius R_max"), ("R_direct", "the direct test at the scene's mu")):
+        if name in quantities and certainly_positive(quantities[name]):
+            compare.append(f"{decimal_bounds(R / quantities[name], 6)[0]} times {what}")
+    return _claim("best_mu_direct", Status.PROVED,
+                  f"mu_direct = {mu_text} (chosen by a branch and bound over (16) on float point searches, then fixed "
+                  f"as an exact decimal: a search result, not proved optimal); at mu_direct, A - R |B| > 0 certified at "
+                  f"R_direct_max = {d.R_text} on {len(d.cert.leaves)} boxes of (x2, t) (search estimate {d.est:.10g}). "
+                  f"Certified: R_dsup(mu) <= {decimal_bounds(U, 12)[1]} for every mu in (16) (branch and bound over "
+                  f"mu, {n_pieces} pieces, {len(points)} points of (x2, t)), so R_direct_max is within a relative "
+                  f"{decimal_bounds(gap, 3)[1]} of the largest radius with Vdot <= 0 on the disc cylinder at any "
+                  f"admissible mu" + (f"; R_direct_max is {' and '.join(compare)}" if compare else ""),
+                  mu_direct=mu_text, R_direct_max=d.R_text, R_direct_sup_upper_bound=decimal_bounds(U, 15)[1],
+                  relative_gap=decimal_bounds(gap, 3)[1], boxes=len(d.cert.leaves), mu_pieces=n_pieces)
+
+
 # ------------------------------------------------------------------------------------ attempt
 
 def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
@@ -826,7 +926,7 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
     widths_met = True
     notes: list[str] = []
     phase = Phases()
-    need_constants = any(c in wanted for c in ("constants", "damping_condition", "best_mu")) or model.R_option is None
+    need_constants = any(c in wanted for c in ("constants", "damping_condition", "best_mu", "best_mu_direct")) or model.R_option is None
     if need_constants:
         with phase("constants (m, M by subdivision)"):
             k = ctx.constants()
@@ -915,6 +1015,9 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
     if "best_mu" in wanted:
         with phase("best_mu"):
             claims.append(_best_mu(ctx, quantities))
+    if "best_mu_direct" in wanted:
+        with phase("best_mu_direct"):
+            claims.append(_best_mu_direct(ctx, quantities))
     with phase("paper audit"):
         paper, formulas, audit_notes = audit_paper(ctx, quantities)
     notes += audit_notes

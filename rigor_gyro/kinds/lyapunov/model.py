@@ -616,15 +616,47 @@ def cylinder_lower_bound(g: Gimbal, R: arb):
 DIRECT_DOMAIN = {"u": (Fraction(-1), Fraction(1)), "s": (Fraction(0), Fraction(1))}
 
 
-def vdot_polar(g: Gimbal, x2, t):
+def vdot_polar(g: Gimbal, x2, t, mu: arb | None = None):
     """(A, B) with Vdot(r cos t, x2, r sin t) = -r^2 (A + r B) for every r, exactly (Vdot's Psi form:
     A = c10 cos^2 t + c20 sin^2 t, B = c11 cos^3 t + c13 sin t cos^2 t + c21 cos t sin^2 t + c23 sin^3 t).
-    Accepts balls or :class:`Dual` numbers in x2 and t."""
-    (c10, c11, c13), (c20, c21, c23) = g.psi_coefficients(x2)
+    Accepts balls or :class:`Dual` numbers in x2 and t; ``mu``: a ball, for every mu in it (default the
+    scene's mu)."""
+    (c10, c11, c13), (c20, c21, c23) = g.psi_coefficients(x2) if mu is None else g.psi_coefficients(x2, mu)
     c, s = t.cos(), t.sin()
     A = c10 * c * c + c20 * s * s
     B = c11 * c * c * c + c13 * s * c * c + c21 * c * s * s + c23 * s * s * s
     return A, B
+
+
+def direct_radius_upper(g: Gimbal, u: fmpq, s: fmpq, mu: arb) -> arb:
+    """An upper bound, valid for every mu in the ball ``mu``, of the supremum radius of the direct test: the
+    largest R with Vdot <= 0 on |x2| <= x2*, x1^2 + x3^2 <= R^2 (R_dsup(mu)). +inf when nothing is known.
+
+    Why: at the point x2 = u x2* (|u| <= 1 exact, inside the range), t = pi s, Vdot(r cos t, x2, r sin t)
+    = -r^2 (A + r B) (:func:`vdot_polar`). Where B != 0, r = -sign(B) rho (1 + delta) with rho = A / |B|
+    gives Vdot > 0 for every delta > 0 when A > 0, and any small r of that sign does when A <= 0: so
+    R_dsup(mu) <= max(rho(mu), 0).
+
+    How: where d rho / d mu (forward-mode over the ball) has one sign, max(rho, 0) is monotone on the
+    ball and its maximum is taken at the exact end it points to (no dependency overestimation: mu enters
+    A and B through terms of size H^2 that cancel); otherwise the ball evaluation over the whole ball.
+    Either way the upper end of max(A, 0).upper / |B|.lower."""
+    if not certainly_le(abs(arb(u)), 1):
+        return arb("inf")
+    X, T = g.c.x2_star * arb(u), arb.pi() * arb(s)
+    A, B = vdot_polar(g, X, T, mu)
+    if not (A.is_finite() and B.is_finite()) or not (certainly_positive(B) or certainly_negative(B)):
+        return arb("inf")
+    if not mu.rad().is_zero():
+        Ad, Bd = vdot_polar(g, X, T, Dual(mu, arb(1)))
+        slope = (Ad / Bd).d if certainly_positive(B) else -(Ad / Bd).d
+        end = mu.upper() if certainly_le(arb(0), slope) else mu.lower() if certainly_le(slope, 0) else None
+        if end is not None:
+            A, B = vdot_polar(g, X, T, end)
+            if not (A.is_finite() and (certainly_positive(B) or certainly_negative(B))):
+                return arb("inf")
+    num = A.upper() if certainly_positive(A.upper()) else arb(0)
+    return (num / abs(B).lower()).upper()
 
 
 def direct_margin(g: Gimbal, R: arb):

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from typing import Any, Callable
 
-__all__ = ["grid_then_compass"]
+__all__ = ["grid_then_compass", "compass"]
 
 
 def grid_then_compass(value: Callable[[float, float], tuple[float, Any]], grid: tuple[int, int], steps: int,
@@ -27,7 +27,16 @@ def grid_then_compass(value: Callable[[float, float], tuple[float, Any]], grid: 
             if v < best[0]:
                 best = (v, u, s, x)
     v0, u, s, x0 = best
-    hu, hs = 2 / (nu - 1), 1 / (ns - 1)
+    return compass(value, (v0, u, s, x0), (2 / (nu - 1), 1 / (ns - 1)), steps)
+
+
+def compass(value: Callable[[float, float], tuple[float, Any]], start: tuple[float, float, float, Any],
+            step: tuple[float, float], steps: int) -> tuple[float, float, float, Any]:
+    """A compass search for the smallest ``value(u, s)[0]`` from ``start`` = (value, u, s, extra) there: the
+    four axis moves of ``step``, halved when none improves, for ``steps`` rounds. Returns (value, u, s,
+    extra) at the best point seen. A heuristic: a local minimum at best."""
+    v0, u, s, x0 = start
+    hu, hs = step
     for _ in range(steps):
         moved = False
         for du, ds in ((hu, 0), (-hu, 0), (0, hs), (0, -hs)):

@@ -1,0 +1,132 @@
+"""The direct test over the mu interval (16): which mu gives the largest radius with Vdot <= 0 on the
+whole disc cylinder, and a certified bound that no admissible mu does better.
+
+R_dsup(mu) is the supremum of the radii R with Vdot <= 0 on |x2| <= x2*, x1^2 + x3^2 <= R^2 (Vdot of
+system (2) and V (7) at that mu). :func:`direct_sup_upper_bound` bounds sup over a mu interval of
+R_dsup by branch and bound over mu: on a piece Mu, any point (x2, t) of the (x2, t) rectangle gives
+R_dsup(mu) <= :func:`~rigor_gyro.kinds.lyapunov.model.direct_radius_upper` for every mu in Mu, so the
+smallest of these over a point set bounds the piece. The piece with the largest bound first gets its own
+point (a float search for the minimiser of A/|B| at its midpoint, warm-started from the best point
+known), then is bisected, until the largest bound is within the target.
+
+The float searches only choose points and the best mu (a search result, named as such by the claim);
+the bound holds whatever they return (any point gives a valid bound). Precision: the working one.
+
+Fails when: never raises on a finite model; a piece without a finite bound keeps the whole bound at
++inf (then the claim is inconclusive).
+"""
+from __future__ import annotations
+
+import heapq
+import math
+from fractions import Fraction
+
+from flint import arb, fmpq
+
+from ...core.balls import certainly_gt, certainly_le, certainly_lt, exact_fraction
+from .model import Gimbal, direct_radius_upper, vdot_polar
+from .search import compass, grid_then_compass
+
+__all__ = ["direct_sup_upper_bound", "direct_point_search", "piece_upper"]
+
+
+def _fq(x: float) -> fmpq:
+    f = Fraction(x)
+    return fmpq(f.numerator, f.denominator)
+
+
+def _ratio(g: Gimbal):
+    """(u, s) -> (A/|B| as a float at x2 = u x2*, t = pi s, at the scene's mu of ``g``; None)."""
+    xs, pi = g.c.x2_star, arb.pi()
+
+    def value(u: float, s: float):
+        A, B = vdot_polar(g, xs * arb(u), pi * arb(s))
+        a, b = float(A.mid()), float(B.mid())
+        return (a / abs(b) if b != 0 else math.inf), None
+    return value
+
+
+def direct_point_search(g: Gimbal, start: tuple[float, float] | None = None) -> tuple[float, float, float]:
+    """(estimate of R_dsup at g's mu, u, s) at the point found: a 17 x 33 grid then a compass search, or
+    from ``start`` a compass search only (warm start). A heuristic: it only chooses a point."""
+    value = _ratio(g)
+    if start is None:
+        v, u, s, _ = grid_then_compass(value, (17, 33), 90)
+    else:
+        v0, _ = value(*start)
+        v, u, s, _ = compass(value, (v0, start[0], start[1], None), (1 / 64, 1 / 128), 40)
+    return v, u, s
+
+
+def piece_upper(g: Gimbal, Mu: arb, points: list[tuple[fmpq, fmpq]]) -> arb:
+    """The smallest of the points' bounds of R_dsup over the mu ball ``Mu`` (exact comparisons: arb's min of
+    two balls widens), +inf if none is finite."""
+    best = arb("inf")
+    for u, s in points:
+        b = direct_radius_upper(g, u, s, Mu)
+        if b.is_finite() and (not best.is_finite() or certainly_lt(b, best)):
+            best = b
+    return best
+
+
+def direct_sup_upper_bound(g: Gimbal, mu_lo: arb, mu_hi: arb, gap: arb, max_pieces: int = 400):
+    """A certified upper bound U of sup over mu in [mu_lo, mu_hi] of R_dsup(mu) (exact ends), and the best
+    mu the searches saw.
+
+    Stops when the largest piece bound is <= (1 + gap) times the best estimate seen, or at ``max_pieces``.
+    Returns (U, pieces evaluated, the cover [(lo, hi), ...] of [mu_lo, mu_hi], the points [(u, s), ...]
+    as exact rationals, (estimate, mu as a Fraction) of the best estimate seen). Guarantee: U (an exact
+    ball) is >= R_dsup(mu) for every mu in the interval, whatever the stopping reason; the estimate is a
+    float search result, not certified."""
+    points: list[tuple[fmpq, fmpq]] = []
+    seen: dict = {}
+    best = (-math.inf, None)
+    last = None
+    heap: list = []
+    count = 0
+
+    def own_point(mu: Fraction) -> None:
+        nonlocal best, last
+        gm = g.with_mu(fmpq(mu.numerator, mu.denominator))
+        v, u, s = direct_point_search(gm, last)
+        if last is not None:            # a warm start may sit in a local minimum: compare with a cold one
+            v2, u2, s2 = direct_point_search(gm) if len(points) % 8 == 0 else (math.inf, u, s)
+            if v2 < v:
+                v, u, s = v2, u2, s2
+        last = (u, s)
+        if (u, s) not in seen:
+            seen[(u, s)] = True
+            points.append((_fq(u), _fq(s)))
+        if math.isfinite(v) and v > best[0]:
+            best = (v, mu)
+
+    def push(a: arb, b: arb, own: bool) -> None:
+        nonlocal count
+        up = piece_upper(g, a.union(b), points)
+        count += 1
+        key = -exact_fraction(up) if up.is_finite() else -math.inf
+        heapq.heappush(heap, (key, count, a, b, up, own))
+
+    own_point(exact_fraction(((mu_lo + mu_hi) / 2).mid()))
+    push(mu_lo, mu_hi, True)
+    while count < max_pieces:
+        _, _, a, b, up, own = heap[0]
+        if up.is_finite() and best[1] is not None and certainly_le(up, arb(best[0]) * (1 + gap)):
+            break
+        heapq.heappop(heap)
+        mid = ((a + b) / 2).mid()
+        if not own:
+            own_point(exact_fraction(mid))
+            push(a, b, True)
+            continue
+        if not (certainly_lt(a, mid) and certainly_lt(mid, b)):
+            push(a, b, True)
+            break
+        push(a, mid, False)
+        push(mid, b, False)
+    U = heap[0][4]
+    for item in heap:
+        u = item[4]
+        if not u.is_finite() or (U.is_finite() and certainly_gt(u, U)):
+            U = u
+    return U, count, sorted(((item[2], item[3]) for item in heap), key=lambda p: exact_fraction(p[0])), points, best
