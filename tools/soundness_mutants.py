@@ -142,6 +142,23 @@ MUTANTS = [
      "            if certainly_le(vm, 0):\n                return BoxPositivity(Status.REFUTED",
      "            if not certainly_positive(vm):\n                return BoxPositivity(Status.REFUTED",
      "a box refuted where f is only possibly <= 0 at its midpoint"),
+    # the direct test over the mu interval (issue 13): best_mu_direct and its checker
+    ("direct_bound_wrong_end", "rigor_gyro/kinds/lyapunov/model.py",
+     "        end = mu.upper() if certainly_le(arb(0), slope) else mu.lower() if certainly_le(slope, 0) else None",
+     "        end = mu.lower() if certainly_le(arb(0), slope) else mu.upper() if certainly_le(slope, 0) else None",
+     "a mu piece's radius bound taken at the end its derivative points away from (a bound below the radius)"),
+    ("direct_slope_sign_ignored", "rigor_gyro/kinds/lyapunov/model.py",
+     "        slope = (Ad / Bd).d if certainly_positive(B) else -(Ad / Bd).d",
+     "        slope = (Ad / Bd).d", "the derivative of A/|B| taken as that of A/B where B < 0"),
+    ("direct_point_outside_range", "rigor_gyro/kinds/lyapunov/model.py",
+     "    if not certainly_le(abs(arb(u)), 1):\n        return arb(\"inf\")\n    X, T",
+     "    X, T", "a point with |x2| > x2* allowed to bound the radius"),
+    ("direct_checker_skips_mu_cover", "rigor_gyro/kinds/lyapunov/check.py",
+     "        if pts and _covers(wbd.get(\"mu_pieces\", []), K[\"mu_min\"].lower(), K[\"mu_max\"].upper()):",
+     "        if pts:", "the checker accepts mu pieces that do not cover (16)"),
+    ("direct_checker_at_scene_mu", "rigor_gyro/kinds/lyapunov/check.py",
+     "        at_mu = _direct_boxes_hold(g.with_mu(mu_d), Rdm,", "        at_mu = _direct_boxes_hold(g, Rdm,",
+     "the checker re-evaluates best_mu_direct's boxes at the scene's mu, not at mu_direct"),
 ]
 
 
