@@ -353,6 +353,16 @@ def test_the_direct_test_over_mu_is_re_verified():
     assert bad(lambda w, d: w.__setitem__("mu", "0.04"))
     assert bad(lambda w, d: w.__setitem__("points", [["1/3", "9/10"]]))
     assert bad(lambda w, d: w.__setitem__("points", [["2", "1/2"]]))     # outside the range: proves nothing
+    # a point that is not a stored number (a bare Fraction of it would take minutes): rejected at once
+    assert bad(lambda w, d: w.__setitem__("points", [["1e-99999999", "0"]] + w["points"]))
+
+    def details(key, value):    # the claim's details say the same as the witness and the quantities
+        def mutate(w, d):
+            next(c for c in d["claims"] if c["id"] == "best_mu_direct")["details"][key] = value
+        return mutate
+    for key, value in (("mu_direct", "0.03"), ("R_direct_max", "0.03"), ("R_direct_sup_upper_bound", "0.0278"),
+                       ("relative_gap", "0")):
+        assert bad(details(key, value)), key
 
 
 #: Lyapunov scenes from the campaign whose certificates the checker once failed to confirm (all right)

@@ -90,6 +90,19 @@ def test_the_direct_test_over_mu_beats_the_psi_test_and_bounds_every_mu(example)
         assert mp_polar_estimates(dict(BASE, mu=f"{m:.12g}"), dps=20)["R_direct"] <= float(U.upper()) * (1 + 1e-9)
 
 
+def test_a_warm_search_stuck_in_a_local_minimum_does_not_fix_a_poor_mu():
+    """Review regression (A2 = 1e-6, C1 = 0): the warm-started point searches of the branch and bound over
+    mu stuck at s ~ 0 and put the radius at 40667 where it is about 1470; the claim chose that mu and a gap
+    of 26.7. The cold search at mu_direct now exposes it, the branch and bound is redone with cold searches,
+    and the radius certified is within 1e-4 of the bound over (16)."""
+    import dataclasses
+    c = prove_scene(dataclasses.replace(scene("stuck", A2="1e-6", C1="0"), claims_only=["best_mu_direct"]))
+    claim = c.claim("best_mu_direct")
+    assert claim.status is Status.PROVED, claim.reason
+    assert certainly_lt(c.quantities["R_direct_max_relative_gap"], arb("1e-4"))
+    assert certainly_gt(c.quantities["R_direct_max"], arb(12000))
+
+
 def test_the_direct_radius_bound_holds_at_every_mu_of_a_ball():
     """direct_radius_upper over a mu ball (monotone end or ball evaluation) is >= the point value A/|B| at
     every mu sampled in the ball, at several (x2, t) points, and never below R_dsup at those mu."""
@@ -106,6 +119,11 @@ def test_the_direct_radius_bound_holds_at_every_mu_of_a_ball():
                 A, B = vdot_polar(g, xs * arb(u), arb.pi() * arb(s), m)
                 if certainly_positive(abs(B)):
                     assert not certainly_lt(bound, (A.max(arb(0)) / abs(B))), (u, s, a, b, j)
+    # a point outside the range |x2| <= x2* bounds nothing (Vdot > 0 there is not in the cylinder)
+    Mu = arb("0.02").union(arb("0.021"))
+    assert direct_radius_upper(g, fmpq(1), fmpq(1, 2), Mu).is_finite()
+    for u in (fmpq(3, 2), fmpq(-2), fmpq(1) + fmpq(1, 10 ** 30)):
+        assert not direct_radius_upper(g, u, fmpq(1, 2), Mu).is_finite()
 
 
 def test_example_widths(example):

@@ -188,7 +188,9 @@ def run(names: list[str] | None, out: str | None, tests: list[str] | None = None
                                env=env, capture_output=True, text=True)
             secs = time.time() - t0
         killed = r.returncode != 0
-        failed = next((ln.split(" ")[1] for ln in r.stdout.splitlines() if ln.startswith("FAILED ")), "")
+        # the first failing test, or the first erroring one (a fixture that raised: an internal check fired)
+        failed = next((ln.split(" ")[1] + (" (error)" if ln.startswith("ERROR ") else "")
+                       for ln in r.stdout.splitlines() if ln.startswith(("FAILED ", "ERROR "))), "")
         rows.append((name, what, f"killed by {failed}" if killed else "SURVIVED", secs))
         if not killed:
             survivors.append(name)

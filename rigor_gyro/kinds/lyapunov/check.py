@@ -170,6 +170,22 @@ def _positive_end(low: arb) -> bool:
     return float(low) == float("inf") or (low.is_finite() and certainly_positive(low))
 
 
+def _same_number(a, b) -> bool:
+    """Two stored numbers (decimal or p/q texts) are the same exact rational; False if either is unreadable."""
+    try:
+        return number(a) == number(b)
+    except (TypeError, ValueError, ZeroDivisionError):
+        return False
+
+
+def _states_a_bound(text, bound: arb) -> bool:
+    """The stated decimal ``text`` is >= the upper end of the checker's finite ``bound``."""
+    try:
+        return bound.is_finite() and number(text) >= _upper(bound)
+    except (TypeError, ValueError, ZeroDivisionError):
+        return False
+
+
 def _direct_boxes_hold(g, R: arb, stored_boxes, cert_prec: int) -> bool:
     """R > 0, the stored (x2, t) boxes are the leaves of a bisection tree of the domain, and A - R |B| > 0
     on each (the better lower end of two precisions)."""
@@ -304,7 +320,7 @@ def check(model, data: dict) -> list[CheckResult]:
             proved = vdot_ok and v_ok and ic.get("status") == "proved"
             c_text = ic.get("details", {}).get("c_set") if proved else None
             if c_text is not None:
-                cl = arb(fmpq_of(Fraction(c_text)))
+                cl = arb(fmpq_of(number(c_text)))
                 contains("c_set", cl)
                 hx = c.H / c.B0
                 axes = {"x1": ((2 * cl).sqrt() / hx).min(R),
@@ -360,8 +376,8 @@ def check(model, data: dict) -> list[CheckResult]:
     bc = claims.get("best_mu", {})
     if wb and K is not None and bc.get("status") == "proved":
         d = bc.get("details", {})
-        mu_b = fmpq_of(Fraction(d["mu_best"]))
-        R_max = arb(fmpq_of(Fraction(d["R_max"])))
+        mu_b = fmpq_of(number(d["mu_best"]))
+        R_max = arb(fmpq_of(number(d["R_max"])))
         gb = g.with_mu(mu_b)
         contains("mu_best", arb(mu_b))
         contains("R_max", R_max)
@@ -400,7 +416,9 @@ def check(model, data: dict) -> list[CheckResult]:
         if U is not None and U.is_finite():
             upper_bound_holds("R_sup_upper_bound", U)
             upper_bound_holds("R_max_relative_gap", (U - R_max) / R_max)
-        bm_ok = inside16 and at_R_max and U is not None and U.is_finite()
+        bm_ok = (inside16 and at_R_max and U is not None and U.is_finite()
+                 and _states_a_bound(d.get("R_sup_upper_bound"), U)
+                 and _states_a_bound(d.get("relative_gap"), (U - R_max) / R_max))
 
     # ---------------------------------------------------------------- Vdot < 0 directly
     direct_ok = False
@@ -423,15 +441,19 @@ def check(model, data: dict) -> list[CheckResult]:
     bd_ok = False
     wbd = W.get("best_mu_direct")
     if wbd and K is not None and claims.get("best_mu_direct", {}).get("status") == "proved":
+        dd = claims["best_mu_direct"].get("details", {})
         mu_d = fmpq_of(number(wbd["mu"]))
         Rdm = arb(fmpq_of(number(wbd["R"])))
+        # the claim's details state the same mu and radius as the witness, exactly (the campaign and a reader
+        # take them from there)
+        same = _same_number(dd.get("mu_direct"), wbd["mu"]) and _same_number(dd.get("R_direct_max"), wbd["R"])
         contains("mu_direct", arb(mu_d))
         contains("R_direct_max", Rdm)
         inside16 = certainly_lt(K["mu_min"], arb(mu_d)) and certainly_lt(arb(mu_d), K["mu_max"])
         at_mu = _direct_boxes_hold(g.with_mu(mu_d), Rdm, wbd.get("boxes", []), cert_prec)
         Ud = None
         try:
-            pts = [(fmpq_of(Fraction(u)), fmpq_of(Fraction(t))) for u, t in wbd.get("points", [])]
+            pts = [(fmpq_of(number(u)), fmpq_of(number(t))) for u, t in wbd.get("points", [])]
         except (TypeError, ValueError, ZeroDivisionError):
             pts = []
         if pts and _covers(wbd.get("mu_pieces", []), K["mu_min"].lower(), K["mu_max"].upper()):
@@ -445,10 +467,14 @@ def check(model, data: dict) -> list[CheckResult]:
             for p in wbd["mu_pieces"]:
                 u = _refined_upper(both_d, _b(p), stored_Ud)
                 Ud = u if Ud is None or not u.is_finite() or (Ud.is_finite() and certainly_gt(u, Ud)) else Ud
+        stated = False
         if Ud is not None and Ud.is_finite():
             upper_bound_holds("R_direct_sup_upper_bound", Ud)
             upper_bound_holds("R_direct_max_relative_gap", (Ud - Rdm) / Rdm)
-        bd_ok = inside16 and at_mu and Ud is not None and Ud.is_finite()
+            # the stated decimals are bounds too: at or above the checker's own
+            stated = _states_a_bound(dd.get("R_direct_sup_upper_bound"), Ud) and \
+                _states_a_bound(dd.get("relative_gap"), (Ud - Rdm) / Rdm)
+        bd_ok = inside16 and at_mu and same and stated and Ud is not None and Ud.is_finite()
 
     # ---------------------------------------------------------------- the largest sublevel set
     sub_ok, sub_msg = False, "no stored boxes"
@@ -507,7 +533,7 @@ def check(model, data: dict) -> list[CheckResult]:
                 say(cid, certainly_le(_face_level(g, xs), 0), "min phi(+-x2*) <= 0 re-evaluated")
             else:
                 try:
-                    t = Fraction(ce.get("t_over_pi", ""))
+                    t = number(ce.get("t_over_pi", ""))
                 except (ValueError, ZeroDivisionError):
                     t = None
                 A = vdot_polar(g, arb(0), arb.pi() * arb(fmpq_of(t)))[0] if t is not None else arb("nan")
@@ -563,8 +589,8 @@ def _check_sublevel(g, xs: arb, w: dict, details: dict, q: dict, verified: set, 
     model's lower bound re-evaluated on each), the faces' closed form and the stored point of
     {Vdot > 0} (Vdot and V re-evaluated). Each stated bound is compared with its exact decimal."""
     try:
-        lo_t, hi_t, n_lo_t = (Fraction(details[k]) for k in ("c_max_lower", "c_max_upper", "vdot_level_lower"))
-        n_up_t = Fraction(details["vdot_level_upper"]) if details.get("vdot_level_upper") else None
+        lo_t, hi_t, n_lo_t = (number(details[k]) for k in ("c_max_lower", "c_max_upper", "vdot_level_lower"))
+        n_up_t = number(details["vdot_level_upper"]) if details.get("vdot_level_upper") else None
     except (KeyError, TypeError, ValueError, ZeroDivisionError):
         return False, "the bounds in the claim's details are missing or not numbers"
     for name, t in (("c_max_lower", lo_t), ("c_max_upper", hi_t), ("vdot_level_lower", n_lo_t),

@@ -60,7 +60,7 @@ from ...core.boxes import Box
 from ...core.subdivision import certify_positive, certify_positive_on_box, enclose_max
 from .. import Attempt, Phases
 from .equilibria import equilibria
-from .direct_mu import direct_sup_upper_bound
+from .direct_mu import direct_sup_upper_bound, piece_upper
 from .search import grid_then_compass
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
 from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, direct_margin, vdot_polar, closed_form_constants, cylinder_lower_bound, hypot_ball,
@@ -326,11 +326,15 @@ class _Direct:
     up_text: str = ""
 
 
-def _certify_direct(g: Gimbal, max_pieces: int) -> _Direct:
+def _certify_direct(g: Gimbal, max_pieces: int, cap: float | None = None) -> _Direct:
     """Search the supremum radius of the direct test at g's mu, certify A - R |B| > 0 a little below it
-    (DIRECT_MARGINS) and a point a little above it where Vdot > 0."""
+    (DIRECT_MARGINS) and a point a little above it where Vdot > 0. ``cap``: a known upper bound of the
+    supremum (the search's estimate is lowered to it: a search that misses the global minimiser of A/|B|
+    overestimates the radius, and a radius above the supremum cannot be certified)."""
     xs = g.c.x2_star
     est, u0, s0, amin = _direct_search(g)
+    if cap is not None and math.isfinite(cap) and 0 < cap < est:
+        est = cap
     d = _Direct(est, u0, s0, amin)
     if not (math.isfinite(est) and est > 0 and amin > 0):
         return d
@@ -761,7 +765,7 @@ def r_sup_upper_bound(g: Gimbal, xs: arb, mu_lo: arb, mu_hi: arb, target: arb, m
 
 def _decimal_inside(mu: Fraction, lo: arb, hi: arb) -> str | None:
     """A short exact decimal near ``mu`` certainly inside (lo, hi) (the optimum may sit at an end), or None."""
-    for digits in (12, 16, 20, 30):
+    for digits in (12, 16, 20, 30, 45, 60):
         for cand in decimal_bounds(_q(_fmpq(mu)), digits):
             if certainly_lt(lo, _q(_fmpq(Fraction(cand)))) and certainly_lt(_q(_fmpq(Fraction(cand))), hi):
                 return cand
@@ -869,20 +873,28 @@ def _best_mu_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     lo, hi = k["mu_min"], k["mu_max"]
     if not certainly_lt(lo, hi):
         return _no_mu_interval("best_mu_direct", lo, hi)
-    # over the hull of (16), padded by 4 radii of its ends (a checker's own enclosure of (16) must lie inside)
-    U, n_pieces, cover, points, (best_est, best_mu) = direct_sup_upper_bound(
-        g, (lo.lower() - 4 * lo.rad()).lower(), (hi.upper() + 4 * hi.rad()).upper(), arb(DIRECT_MU_GAP),
-        max_pieces=min(ctx.m.max_pieces, DIRECT_MU_PIECES))
-    if best_mu is None or not U.is_finite():
-        return _claim("best_mu_direct", Status.INCONCLUSIVE,
-                      f"no finite bound of the direct test's radius over (16) ({n_pieces} mu pieces): A <= 0 or B = 0 "
-                      "at every point tried", decides=U)
-    mu_text = _decimal_inside(best_mu, lo, hi)
-    if mu_text is None:
-        return _claim("best_mu_direct", Status.INCONCLUSIVE,
-                      f"no decimal mu certainly inside (16) near the search's optimum {float(best_mu):.15g}: raise --maxprec")
-    mu = _fmpq(Fraction(mu_text))
-    d = _certify_direct(g.with_mu(mu), ctx.m.max_pieces)
+    a, b = exact_fraction(lo.upper()), exact_fraction(hi.lower())     # certainly inside (16)
+    for cold_every in (8, 1):
+        # over the hull of (16), padded by 4 radii of its ends (a checker's own enclosure of (16) must lie inside)
+        U, n_pieces, cover, points, (best_est, best_mu) = direct_sup_upper_bound(
+            g, (lo.lower() - 4 * lo.rad()).lower(), (hi.upper() + 4 * hi.rad()).upper(), arb(DIRECT_MU_GAP),
+            max_pieces=min(ctx.m.max_pieces, DIRECT_MU_PIECES), cold_every=cold_every)
+        if best_mu is None or not U.is_finite():
+            return _claim("best_mu_direct", Status.INCONCLUSIVE,
+                          f"no finite bound of the direct test's radius over (16) ({n_pieces} mu pieces): A <= 0 or B = 0 "
+                          "at every point tried", decides=U)
+        # the search's optimum may sit in the padding: the nearest point of (16), or its midpoint
+        mu_text = _decimal_inside(min(max(best_mu, a), b), lo, hi) or _decimal_inside((a + b) / 2, lo, hi)
+        if mu_text is None:
+            return _claim("best_mu_direct", Status.INCONCLUSIVE,
+                          f"no decimal mu certainly inside (16) near the search's optimum {float(best_mu):.15g}: raise --maxprec")
+        mu = _fmpq(Fraction(mu_text))
+        known = piece_upper(g, _q(mu), points)            # certified, at mu_direct: the radius is at most this
+        d = _certify_direct(g.with_mu(mu), ctx.m.max_pieces, float(known.lower()) if known.is_finite() else None)
+        # a warm-started point search stuck in a local minimum overestimates the radius (and stops the branch
+        # and bound early at a poor mu): the whole-grid search at mu_direct tells; then every point is searched cold
+        if not (math.isfinite(d.est) and d.est < best_est * (1 - 1e-6)):
+            break
     if d.cert is None or d.cert.status is not Status.PROVED:
         why = d.cert.reason if d.cert is not None else f"the search found no positive radius (~{d.est:.6g})"
         return _claim("best_mu_direct", Status.INCONCLUSIVE,

@@ -69,11 +69,15 @@ def piece_upper(g: Gimbal, Mu: arb, points: list[tuple[fmpq, fmpq]]) -> arb:
     return best
 
 
-def direct_sup_upper_bound(g: Gimbal, mu_lo: arb, mu_hi: arb, gap: arb, max_pieces: int = 400):
+def direct_sup_upper_bound(g: Gimbal, mu_lo: arb, mu_hi: arb, gap: arb, max_pieces: int = 400, cold_every: int = 8):
     """A certified upper bound U of sup over mu in [mu_lo, mu_hi] of R_dsup(mu) (exact ends), and the best
     mu the searches saw.
 
     Stops when the largest piece bound is <= (1 + gap) times the best estimate seen, or at ``max_pieces``.
+    Each piece's point comes from a compass search warm-started at the last point found; every
+    ``cold_every``-th one also from a whole grid search (the better of the two is kept). A warm search stuck
+    in a local minimum overestimates the radius at that mu: the caller compares the best estimate with a
+    cold search at its mu and retries with ``cold_every = 1`` when they disagree.
     Returns (U, pieces evaluated, the cover [(lo, hi), ...] of [mu_lo, mu_hi], the points [(u, s), ...]
     as exact rationals, (estimate, mu as a Fraction) of the best estimate seen). Guarantee: U (an exact
     ball) is >= R_dsup(mu) for every mu in the interval, whatever the stopping reason; the estimate is a
@@ -90,13 +94,18 @@ def direct_sup_upper_bound(g: Gimbal, mu_lo: arb, mu_hi: arb, gap: arb, max_piec
         gm = g.with_mu(fmpq(mu.numerator, mu.denominator))
         v, u, s = direct_point_search(gm, last)
         if last is not None:            # a warm start may sit in a local minimum: compare with a cold one
-            v2, u2, s2 = direct_point_search(gm) if len(points) % 8 == 0 else (math.inf, u, s)
+            v2, u2, s2 = direct_point_search(gm) if len(points) % cold_every == 0 else (math.inf, u, s)
             if v2 < v:
                 v, u, s = v2, u2, s2
         last = (u, s)
         if (u, s) not in seen:
             seen[(u, s)] = True
             points.append((_fq(u), _fq(s)))
+        # the search's value overestimates R_dsup(mu) when it misses the global minimiser: every known
+        # point bounds it too, so keep the smallest
+        at = piece_upper(g, arb(fmpq(mu.numerator, mu.denominator)), points)
+        if at.is_finite():
+            v = min(v, float(at))
         if math.isfinite(v) and v > best[0]:
             best = (v, mu)
 

@@ -675,7 +675,9 @@ def direct_margin(g: Gimbal, R: arb):
         U, S = box["u"], box["s"]
         A, B = at(U, S)
         direct = A - R * abs(B)
-        if U.rad().is_zero() and S.rad().is_zero():
+        if U.rad().is_zero() and S.rad().is_zero() or certainly_positive(direct):
+            # a point, or already positive: the centered form (a subset of a positive ball) decides nothing
+            # more (only the sign is used: leaves and refutations are the same with or without it)
             return direct
         if certainly_positive(B):
             sgn = 1
