@@ -346,3 +346,26 @@ def test_the_memo_of_g_coefficients_keys_on_the_whole_ball():
         for j in range(4):
             assert wide[j].contains(edge[j]) and wide[j].rad() > point[j].rad()
         assert [str(c) for c in coeffs(x, 4)] == [str(c) for c in point]     # a hit is the same balls
+
+
+def test_the_g_table_is_recomputed_from_the_papers_printed_inputs():
+    """Issue 13's example of a propagated check: (12) with the paper's own printed a_ij, mu1, omega, mu2 and
+    1/sigma. It changes sign between the printed x = 0.138254 and 0.13826977 and no single scale maps it to
+    the printed table: the row says the table does not come from (12) as written. With a table that is one
+    scale times the recomputed values, the same row agrees."""
+    from flint import arb
+    from rigor_gyro.certificate import AuditStatus
+    from rigor_gyro.kinds.periodic_orbit.paper import _g_from_printed_row
+    from rigor_gyro.prover import prove_scene
+    from rigor_gyro.scene import load_scene
+    cert = prove_scene(load_scene("roitenberg1947_b2over15"))
+    row = next(r for r in cert.paper if r.id == "g(x) table from (12) with the printed a_ij")
+    assert row.status is AuditStatus.DISAGREES
+    assert "between x = 0.13825400 and 0.13826977" in row.note and "no common scale" in row.note
+    g_rows = [r for r in cert.paper if r.id.startswith("g(0.1") and r.id.endswith("of (12)")]
+    assert len(g_rows) == 6 and all(r.propagated is not None and r.propagated.is_finite() for r in g_rows)
+    made = [("0.1", arb(-2)), ("0.2", arb(3)), ("0.3", arb(5))]
+    same = _g_from_printed_row(["0.1", "0.2", "0.3"], ["-14", "21", "35"], made)
+    assert same.status is AuditStatus.AGREES and "one scale fits" in same.note
+    other = _g_from_printed_row(["0.1", "0.2", "0.3"], ["-14", "21", "40"], made)     # 8 against 7
+    assert other.status is AuditStatus.DISAGREES

@@ -319,6 +319,49 @@ def _row(rid: str, printed: str, value: arb | None, reading: str = "certified va
     return AuditRow(rid, printed, reading, value, st, note)
 
 
+def _printed_inputs_of_12(paper: dict):
+    """(coefficients, sigma) of determinant (12) exactly as the paper prints them (its a_ij, mu1, omega, mu2
+    and 1/sigma), or None when the scene does not print them all."""
+    a = paper.get("a", {})
+    need = [(1, 6), (1, 7), (4, 7)] + [(G, j) for G in (2, 3, 4) for j in range(1, 7)]
+    if not all(f"a{G}{j}" in a for G, j in need) or not all(k in paper for k in ("mu1", "omega", "mu2", "inv_sigma")):
+        return None
+    pc = {"a": {(G, j): ball(a[f"a{G}{j}"]) for G, j in need},
+          "mu1": ball(paper["mu1"]), "omega": ball(paper["omega"]), "mu2": ball(paper["mu2"])}
+    return pc, 1 / ball(paper["inv_sigma"])
+
+
+def _g_from_printed_row(gx, gv, from_printed) -> AuditRow:
+    """Does the printed g(x) table come from (12) with the paper's own printed inputs? Where that
+    determinant changes sign between two printed x, and the ratios print / recomputed (one scale would
+    make them equal)."""
+    signs = ["+" if certainly_positive(d) else "-" if certainly_negative(d) else "?" for _, d in from_printed]
+    change = next(((from_printed[i][0], from_printed[i + 1][0]) for i in range(len(signs) - 1)
+                   if {signs[i], signs[i + 1]} == {"+", "-"}), None)
+    # each print read within its rounding: a common scale exists iff the ratio balls share a point
+    ratios = [_within_rounding(v) / d for (x, d), v in zip(from_printed, gv) if v.strip() not in ("0", "-0") and
+              (certainly_positive(d) or certainly_negative(d))]
+    lo = min(float(r.mid()) for r in ratios) if ratios else float("nan")
+    hi = max(float(r.mid()) for r in ratios) if ratios else float("nan")
+    apart = any(not r.overlaps(q) for r in ratios for q in ratios)
+    common = None
+    for r in ratios:
+        common = r if common is None else (common.intersection(r) if common.overlaps(r) else None)
+        if common is None:
+            break
+    one_scale = bool(ratios) and not apart and common is not None and all(r.overlaps(common) for r in ratios)
+    status = AuditStatus.DISAGREES if apart else AuditStatus.AGREES if one_scale else AuditStatus.UNDECIDED
+    return AuditRow("g(x) table from (12) with the printed a_ij", " ".join(gv),
+                    " ".join(signs), None, status,
+                    "determinant (12) evaluated (certified) with the paper's printed a_ij, mu1, omega, mu2, 1/sigma: "
+                    + (f"its sign changes between x = {change[0]} and {change[1]}" if change else "no sign change")
+                    + f"; the printed values divided by it range over [{lo:.4g}, {hi:.4g}]"
+                    + (" (one scale fits every print within its rounding)" if one_scale else
+                       ": no common scale (certified, each print within its rounding), so the printed table does not "
+                       "come from (12) as written with the printed coefficients" if apart else
+                       ": a common scale is not excluded at this precision"))
+
+
 def _within_rounding(txt: str) -> arb:
     """Every number a printed decimal may stand for: [x - h, x + h], h half a unit in its last place."""
     h = half_unit(txt)
@@ -416,6 +459,8 @@ def audit(model, sp: Spectrum, orbit) -> list[AuditRow]:
     if gx:
         sig = ball(P.sigma)
         signs_p, signs_o = [], []
+        printed_pc = _printed_inputs_of_12(paper)
+        from_printed = []
         for x, v in zip(gx, gv):
             d = determinant_12(pc, sig, ball(x))
             st, note = audit_printed(v, d)
@@ -423,8 +468,17 @@ def audit(model, sp: Spectrum, orbit) -> list[AuditRow]:
             sp_ = "+" if certainly_positive(ball(v)) else "-" if certainly_negative(ball(v)) else "0"
             signs_p.append(sp_)
             signs_o.append(so)
-            rows.append(AuditRow(f"g({x}) of (12)", v, "determinant (12), exact a_ij", d, st,
-                                 f"{note}; sign: printed {sp_}, certified {so}"))
+            row = AuditRow(f"g({x}) of (12)", v, "determinant (12), exact a_ij", d, st,
+                           f"{note}; sign: printed {sp_}, certified {so}")
+            if printed_pc is not None:
+                # the paper's own computation: (12) with its printed a_ij and exponents, each exactly as printed
+                row.propagated = determinant_12(printed_pc[0], printed_pc[1], ball(x))
+                row.propagated_from = ("determinant (12) with the paper's printed a_ij, mu1, omega, mu2 and 1/sigma, "
+                                       "each exactly as printed")
+                from_printed.append((x, row.propagated))
+            rows.append(row)
+        if from_printed:
+            rows.append(_g_from_printed_row(gx, gv, from_printed))
         rows.append(AuditRow("g(x) table: sign pattern", " ".join(signs_p), " ".join(signs_o), None,
                              AuditStatus.DISAGREES if signs_p != signs_o else AuditStatus.AGREES,
                              f"certified root theta* = {_fmt(orbit.theta, 12)}: (12) changes sign between the "
