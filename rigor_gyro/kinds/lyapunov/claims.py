@@ -83,7 +83,7 @@ BEST_MU_GAP = "1e-6"    # escalation beyond this only repeats the same subdivisi
 DIRECT_MU_GAP = "5e-7"
 DIRECT_MU_PIECES = 400
 #: the box budget of the direct test at the searched mu_direct (past it, the scene's mu is tried)
-DIRECT_MU_BOXES = 5000
+DIRECT_MU_BOXES = 2000
 OPTIONS = {"rel_width": "1e-15", "R": "", "max_pieces": "20000"}
 MAX_PIECES_LIMIT = 1_000_000
 
@@ -365,7 +365,7 @@ def _certify_direct(g: Gimbal, max_pieces: int, cap: float | None = None) -> _Di
 
 def _vdot_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     g = ctx.g
-    d = _certify_direct(g, ctx.m.max_pieces)
+    d = ctx.memo("direct at the scene's mu", lambda: _certify_direct(g, ctx.m.max_pieces))
     est = d.est
     if not (math.isfinite(est) and est > 0 and d.amin > 0):
         claim = _claim("vdot_direct", Status.INCONCLUSIVE,
@@ -916,7 +916,8 @@ def _best_mu_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
             mu = _fmpq(frac)
             chosen = (f"the scene's own mu: the searched optimum {float(best_mu):.12g} could not be certified within "
                       f"{min(ctx.m.max_pieces, DIRECT_MU_BOXES)} boxes of (x2, t)")
-            d = _certify_direct(g.with_mu(mu), ctx.m.max_pieces)
+            # the same computation as vdot_direct's (done once: at the scene's mu, g is the scene's gimbal)
+            d = ctx.memo("direct at the scene's mu", lambda: _certify_direct(g, ctx.m.max_pieces))
     if d.cert is None or d.cert.status is not Status.PROVED:
         why = d.cert.reason if d.cert is not None else f"the search found no positive radius (~{d.est:.6g})"
         return _claim("best_mu_direct", Status.INCONCLUSIVE,
