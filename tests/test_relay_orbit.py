@@ -160,7 +160,8 @@ def test_every_printed_number_is_audited(certs):
     scene = load_scene("roitenberg1947_b2over15")
     printed = [r.printed for r in certs["roitenberg1947_b2over15"].paper]
     p = scene.paper
-    expected = (len(p["cubic"]) + 1 + 3 + len(p["a"]) + 1 + len(p["g_table_g"]) + 1 + len(p["D"])
+    # the g table: its rows, the sign pattern, and the table against (12) with the printed a_ij
+    expected = (len(p["cubic"]) + 1 + 3 + len(p["a"]) + 1 + len(p["g_table_g"]) + 2 + len(p["D"])
                 + sum(1 for v in p["orbit"].values() for x in v if x) + sum(len(v) for v in p["table2"].values())
                 + len(p["table3"]) + 4 + 4 + len(p["table4"]["h"]) + len(p["table4"]["c"]) + len(p["table4"]["k"])
                 + len(p["quartic"]) + len(p["lambda"]) + 1 + len(p.get("as_transcribed", {})))
