@@ -74,7 +74,7 @@ def test_the_direct_test_over_mu_beats_the_psi_test_and_bounds_every_mu(example)
     """best_mu_direct: R_direct_max certified at mu_direct, within 1e-6 of the certified bound over (16), and
     larger than the Psi test's best (R_max) and the direct test at the scene's mu. Independently, the
     mpmath estimate of the direct supremum (a point search on the analytic grad V . f) lies in
-    [R_direct_max, bound] at mu_direct and below the bound across (16)."""
+    [R_direct_max, bound] at mu_direct and below the bound at four mu across (16)."""
     from rigor_gyro.kinds.lyapunov.approx import mp_polar_estimates
     q = example.quantities
     R, U, mu = q["R_direct_max"], q["R_direct_sup_upper_bound"], q["mu_direct"]
@@ -85,9 +85,9 @@ def test_the_direct_test_over_mu_beats_the_psi_test_and_bounds_every_mu(example)
     est = mp_polar_estimates(dict(BASE, mu=mu_text), dps=30)["R_direct"]
     assert float(R.lower()) <= est <= float(U.upper()) * (1 + 1e-9)
     lo, hi = float(q["mu_min"].mid()), float(q["mu_max"].mid())
-    for j in range(1, 8):
+    for j in (1, 3, 5, 7):
         m = lo + (hi - lo) * j / 8
-        assert mp_polar_estimates(dict(BASE, mu=f"{m:.12g}"), dps=20)["R_direct"] <= float(U.upper()) * (1 + 1e-9)
+        assert mp_polar_estimates(dict(BASE, mu=f"{m:.12g}"), dps=15)["R_direct"] <= float(U.upper()) * (1 + 1e-9)
 
 
 def test_a_warm_search_stuck_in_a_local_minimum_does_not_fix_a_poor_mu():
