@@ -75,3 +75,27 @@ def test_a_coarse_refutation_is_found_on_the_first_box():
         return (d_lo * d_lo).union(d_hi * d_hi) - arb(1) / 100
     out = certify_positive_on_box(f, Box.of({"x": (Fraction(0), Fraction(1))}), max_pieces=2)
     assert out.status is Status.REFUTED and out.witness == {"x": Fraction(1, 2)}
+
+
+def test_best_first_bisection_covers_the_interval_and_bounds_its_maximum():
+    """The pieces returned tile [lo, hi] whatever the stopping reason, each with its bound; the largest
+    bound is >= the maximum; refine is called once per piece before it is split; done stops early."""
+    from fractions import Fraction
+    from flint import arb
+    from rigor_gyro.core.balls import certainly_le, exact_fraction
+    from rigor_gyro.core.subdivision import best_first_bisection
+    refined = []
+
+    def bound(a, b):                    # 1 - (x - 1/3)^2 over [a, b], as a ball's upper end
+        x = a.union(b)
+        return (1 - (x - arb(1) / 3) ** 2).upper()
+    for budget, target in ((7, arb("0.5")), (200, arb("1.0001")), (200, arb("0.9"))):
+        refined.clear()
+        pieces, count = best_first_bisection(arb(0), arb(1), bound, refined.append,
+                                             lambda u: certainly_le(u, target), budget)
+        ends = sorted((exact_fraction(a), exact_fraction(b)) for a, b, _ in pieces)
+        assert ends[0][0] == 0 and ends[-1][1] == 1 and all(x[1] == y[0] for x, y in zip(ends, ends[1:]))
+        top = max(exact_fraction(u) for _, _, u in pieces)
+        assert top >= 1 and count <= budget + 1 and len(refined) >= 1
+        if target > arb(1):
+            assert count < budget and top <= Fraction(10001, 10000)     # stopped because done

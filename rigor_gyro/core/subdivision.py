@@ -33,11 +33,11 @@ from typing import Callable
 
 from flint import arb, fmpq
 
-from .balls import ball, certainly_le, certainly_lt, certainly_positive, interval
+from .balls import ball, certainly_le, certainly_lt, certainly_positive, exact_fraction, interval
 from .outcome import Status
 from .roots import enclose_f_df
 
-__all__ = ["Positivity", "Extremum", "BoxPositivity", "BoxLowerBound", "mean_value_form", "certify_positive",
+__all__ = ["best_first_bisection", "Positivity", "Extremum", "BoxPositivity", "BoxLowerBound", "mean_value_form", "certify_positive",
            "certify_positive_on_box", "lower_bound_on_box", "enclose_max", "enclose_min"]
 
 IntervalFunction = Callable[[arb], arb]
@@ -329,3 +329,44 @@ def lower_bound_on_box(f: BoxFunction, whole, target: object, *, max_pieces: int
         if key.lo is not None and (not bound.is_finite() or certainly_lt(key.lo, bound)):
             bound = key.lo
     return BoxLowerBound(bound, [item[2] for item in heap], reached, count)
+
+
+def best_first_bisection(lo: arb, hi: arb, bound: Callable[[arb, arb], arb], refine: Callable[[arb], None],
+                         done: Callable[[arb], bool], max_pieces: int, refined: bool = False):
+    """Best-first bisection of [lo, hi] (exact ends) for an upper bound of a function's maximum.
+
+    ``bound(a, b)`` is an upper bound (an exact ball, or +inf) over [a, b]; ``refine(mid)`` may add what
+    makes the bounds better (a search point at the piece's midpoint): the piece with the largest bound
+    is first refined once (unless ``refined``: the whole interval already was), then bisected, until
+    ``done(bound)`` holds for the largest bound or ``max_pieces`` bounds were taken.
+
+    Returns ([(a, b, bound), ...], bounds taken): the pieces cover [lo, hi], each with its bound, in heap
+    order (the largest first). Guarantee: whatever the stopping reason, the largest of the bounds is an
+    upper bound over [lo, hi] (as much as each ``bound`` is one over its piece)."""
+    heap: list = []
+    count = 0
+
+    def push(a: arb, b: arb, own: bool) -> None:
+        nonlocal count
+        up = bound(a, b)
+        count += 1
+        key = -exact_fraction(up) if up.is_finite() else float("-inf")
+        heapq.heappush(heap, (key, count, a, b, up, own))
+
+    push(lo, hi, refined)
+    while count < max_pieces:
+        _, _, a, b, up, own = heap[0]
+        if done(up):
+            break
+        heapq.heappop(heap)
+        mid = ((a + b) / 2).mid()
+        if not own:
+            refine(mid)
+            push(a, b, True)
+            continue
+        if not (certainly_lt(a, mid) and certainly_lt(mid, b)):
+            push(a, b, True)
+            break
+        push(a, mid, False)
+        push(mid, b, False)
+    return [(item[2], item[3], item[4]) for item in heap], count

@@ -41,7 +41,6 @@ motion of a gyroscope in gimbals, 2013 (seed 000 in shared/seeds).
 """
 from __future__ import annotations
 
-import heapq
 import math
 from dataclasses import dataclass
 from fractions import Fraction
@@ -57,7 +56,7 @@ from ...core.exact import (Exact, option_count, option_number, parse_options, pa
 from ...core.outcome import Claim, Status
 from ...core.stored import ball_text, pieces_text
 from ...core.boxes import Box
-from ...core.subdivision import certify_positive, certify_positive_on_box, enclose_max
+from ...core.subdivision import best_first_bisection, certify_positive, certify_positive_on_box, enclose_max
 from .. import Attempt, Phases
 from .equilibria import equilibria
 from .direct_mu import direct_sup_upper_bound, piece_upper
@@ -729,40 +728,21 @@ def r_sup_upper_bound(g: Gimbal, xs: arb, mu_lo: arb, mu_hi: arb, target: arb, m
     Guarantee: U (returned as an exact ball, its upper end) is >= R_sup(mu) for every mu in the
     interval, whatever the stopping reason; the pieces count says how much work it took."""
     points = [xs * j / 16 for j in range(17)]
-    heap: list = []
-    count = 0
 
-    def push(a: arb, b: arb, own: bool) -> None:
-        nonlocal count
+    def bound(a: arb, b: arb) -> arb:
         M = interval(a, b)
         L = arb(0)
         for x in points:
             L = L.max(rho_lower(g, x, M))
-        u = (1 / L).upper() if certainly_positive(L) else arb("inf")
-        count += 1
-        key = -exact_fraction(u) if u.is_finite() else float("-inf")
-        heapq.heappush(heap, (key, count, a, b, u, own))
+        return (1 / L).upper() if certainly_positive(L) else arb("inf")
 
-    push(mu_lo, mu_hi, False)
-    while count < max_pieces:
-        _, _, a, b, u, own = heap[0]
-        if certainly_le(u, target):
-            break
-        heapq.heappop(heap)
-        mid = ((a + b) / 2).mid()
-        if not own:
-            points.append(_argmax_x2(g, xs, _fmpq(exact_fraction(mid))))
-            push(a, b, True)
-            continue
-        if not (certainly_lt(a, mid) and certainly_lt(mid, b)):
-            push(a, b, True)
-            break
-        push(a, mid, False)
-        push(mid, b, False)
-    upper = heap[0][4]
-    for item in heap:               # the heap's pieces cover [mu_lo, mu_hi]
-        upper = upper.max(item[4])
-    return upper, count, [(item[2], item[3]) for item in heap], points
+    def refine(mid: arb) -> None:
+        points.append(_argmax_x2(g, xs, _fmpq(exact_fraction(mid))))
+    pieces, count = best_first_bisection(mu_lo, mu_hi, bound, refine, lambda u: certainly_le(u, target), max_pieces)
+    upper = pieces[0][2]
+    for _, _, u in pieces:          # the pieces cover [mu_lo, mu_hi]
+        upper = upper.max(u)
+    return upper, count, [(a, b) for a, b, _ in pieces], points
 
 
 def _decimal_inside(mu: Fraction, lo: arb, hi: arb) -> str | None:

@@ -17,13 +17,13 @@ Fails when: never raises on a finite model; a piece without a finite bound keeps
 """
 from __future__ import annotations
 
-import heapq
 import math
 from fractions import Fraction
 
 from flint import arb, fmpq
 
 from ...core.balls import certainly_gt, certainly_le, certainly_lt, exact_fraction
+from ...core.subdivision import best_first_bisection
 from .model import Gimbal, direct_radius_upper, vdot_polar
 from .search import compass, grid_then_compass
 
@@ -86,8 +86,6 @@ def direct_sup_upper_bound(g: Gimbal, mu_lo: arb, mu_hi: arb, gap: arb, max_piec
     seen: dict = {}
     best = (-math.inf, None)
     last = None
-    heap: list = []
-    count = 0
 
     def own_point(mu: Fraction) -> None:
         nonlocal best, last
@@ -109,33 +107,13 @@ def direct_sup_upper_bound(g: Gimbal, mu_lo: arb, mu_hi: arb, gap: arb, max_piec
         if math.isfinite(v) and v > best[0]:
             best = (v, mu)
 
-    def push(a: arb, b: arb, own: bool) -> None:
-        nonlocal count
-        up = piece_upper(g, a.union(b), points)
-        count += 1
-        key = -exact_fraction(up) if up.is_finite() else -math.inf
-        heapq.heappush(heap, (key, count, a, b, up, own))
-
     own_point(exact_fraction(((mu_lo + mu_hi) / 2).mid()))
-    push(mu_lo, mu_hi, True)
-    while count < max_pieces:
-        _, _, a, b, up, own = heap[0]
-        if up.is_finite() and best[1] is not None and certainly_le(up, arb(best[0]) * (1 + gap)):
-            break
-        heapq.heappop(heap)
-        mid = ((a + b) / 2).mid()
-        if not own:
-            own_point(exact_fraction(mid))
-            push(a, b, True)
-            continue
-        if not (certainly_lt(a, mid) and certainly_lt(mid, b)):
-            push(a, b, True)
-            break
-        push(a, mid, False)
-        push(mid, b, False)
-    U = heap[0][4]
-    for item in heap:
-        u = item[4]
+    pieces, count = best_first_bisection(
+        mu_lo, mu_hi, lambda a, b: piece_upper(g, a.union(b), points), lambda mid: own_point(exact_fraction(mid)),
+        lambda up: up.is_finite() and best[1] is not None and certainly_le(up, arb(best[0]) * (1 + gap)),
+        max_pieces, refined=True)
+    U = pieces[0][2]
+    for _, _, u in pieces:
         if not u.is_finite() or (U.is_finite() and certainly_gt(u, U)):
             U = u
-    return U, count, sorted(((item[2], item[3]) for item in heap), key=lambda p: exact_fraction(p[0])), points, best
+    return U, count, sorted(((a, b) for a, b, _ in pieces), key=lambda p: exact_fraction(p[0])), points, best
