@@ -221,9 +221,6 @@ def show(t: Tree, memo: dict | None = None) -> str:
     return text
 
 
-_show = show
-
-
 def _sites(t: Tree, path: tuple = ()):
     """(path, subtree) for every node, breadth first (child indices: 1, 2 of binary nodes, 1 of neg/**,
     2 of call)."""
@@ -261,26 +258,21 @@ def single_edits(text: str) -> list[FormulaEdit]:
     out: list[FormulaEdit] = []
     memo: dict = {}                     # the edits share every subtree but one path: each shown once
 
-    def show(t: Tree) -> str:
-        return _show(t, memo)
+    def shown(t: Tree) -> str:
+        return show(t, memo)
 
     def add(kind: str, what: str, t: Tree) -> None:
-        out.append(FormulaEdit(kind, what, show(t), tree=t))
+        out.append(FormulaEdit(kind, what, shown(t), tree=t))
 
-    parents = {}
-    for path, node in _sites(tree):
-        for child_index in ((1, 2) if node[0] in ("+", "-", "*", "/") else (1,) if node[0] in ("**", "neg") else
-                            (2,) if node[0] == "call" else ()):
-            parents[path + (child_index,)] = path
     for path, n in _sites(tree):
-        op, src = n[0], show(n)
+        op, src = n[0], shown(n)
         if op in ("+", "-"):
             flip = "-" if op == "+" else "+"
-            add("sign", f"{src} -> {show((flip, n[1], n[2]))}", _replace(tree, path, (flip, n[1], n[2])))
+            add("sign", f"{src} -> {shown((flip, n[1], n[2]))}", _replace(tree, path, (flip, n[1], n[2])))
         if op == "neg":
             add("sign", f"{src} without its minus", _replace(tree, path, n[1]))
         if op == "**":
-            base = show(n[1]) if _level(n[1]) > 4 else f"({show(n[1])})"
+            base = shown(n[1]) if _level(n[1]) > 4 else f"({shown(n[1])})"
             for e in (n[2] - 1, n[2] + 1):
                 if e >= 1:
                     add("exponent", f"{src} -> {base} ** {e}", _replace(tree, path, ("**", n[1], e)))
@@ -291,12 +283,12 @@ def single_edits(text: str) -> list[FormulaEdit]:
             add("label-swap", f"{src} read as {other}", _replace(tree, path, ("call", other, n[2])))
         if op == "*":
             for side, other in ((1, 2), (2, 1)):
-                moved = show(n[side])
+                moved = shown(n[side])
                 add("moved", f"the factor {moved} divides instead of multiplying", _replace(tree, path, ("/", n[other], n[side])))
                 kept = (n[0], ("num", Fraction(1), "1"), n[2]) if side == 1 else (n[0], n[1], ("num", Fraction(1), "1"))
                 add("factor-dropped", f"the factor {moved} left out", _replace(tree, path, kept))
         if op == "/":
-            add("moved", f"the divisor {show(n[2])} multiplies instead of dividing", _replace(tree, path, ("*", n[1], n[2])))
+            add("moved", f"the divisor {shown(n[2])} multiplies instead of dividing", _replace(tree, path, ("*", n[1], n[2])))
     seen: dict[str, int] = {}
     for e in out:                       # the same words for two sites: number the occurrences
         seen[e.description] = seen.get(e.description, 0) + 1

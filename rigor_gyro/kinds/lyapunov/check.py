@@ -135,6 +135,23 @@ def _refined_upper(f, X: arb, target, levels: int = REFINE_LEVELS) -> arb:
     return best if best.is_finite() and certainly_lt(best, u) else u
 
 
+def _bound_over_pieces(piece_bound, pieces, stored, cert_prec: int) -> arb | None:
+    """The largest of ``piece_bound`` over the stored mu pieces (None if there are none): each piece's bound
+    taken at the current precision and at ``cert_prec`` (both are upper bounds: the smaller is kept, arb's
+    30-bit radii round differently), and re-bounded on its halves where it exceeds the ``stored`` bound by
+    arb's last bits (:func:`_refined_upper`); the largest by exact comparison (arb's max of two balls widens)."""
+    def both(Mu: arb) -> arb:
+        u = piece_bound(Mu)
+        with working_precision(cert_prec):
+            u_cert = piece_bound(Mu)
+        return u_cert if u_cert.is_finite() and (not u.is_finite() or certainly_lt(u_cert, u)) else u
+    top = None
+    for p in pieces:
+        u = _refined_upper(both, _b(p), stored)
+        top = u if top is None or not u.is_finite() or (top.is_finite() and certainly_gt(u, top)) else top
+    return top
+
+
 def _tighter(f, X: arb, prec: int) -> arb:
     """f over X at the current precision and at ``prec`` (the certificate's), intersected: both balls
     contain f(X), so their intersection does (a NaN or infinite one is dropped)."""
@@ -401,18 +418,7 @@ def check(model, data: dict) -> list[CheckResult]:
                     L = v               # exact comparison: arb's max of two balls widens
             return (1 / L).upper() if certainly_positive(L) else arb("inf")
         if _covers(wb["mu_pieces"], K["mu_min"].lower(), K["mu_max"].upper()):
-            stored_U = _stored_hi("R_sup_upper_bound")
-
-            def both(Mu: arb) -> arb:       # both are upper bounds: keep the smaller (30-bit radii)
-                u = piece_upper(Mu)
-                with working_precision(cert_prec):
-                    u_cert = piece_upper(Mu)
-                return u_cert if u_cert.is_finite() and (not u.is_finite() or certainly_lt(u_cert, u)) else u
-            for p in wb["mu_pieces"]:
-                # a piece whose bound exceeds the stored one by arb's last bits: re-bounded on its halves
-                u = _refined_upper(both, _b(p), stored_U)
-                # the largest of exact points, by exact comparison (arb's max of two balls widens)
-                U = u if U is None or not u.is_finite() or (U.is_finite() and certainly_gt(u, U)) else U
+            U = _bound_over_pieces(piece_upper, wb["mu_pieces"], _stored_hi("R_sup_upper_bound"), cert_prec)
         if U is not None and U.is_finite():
             upper_bound_holds("R_sup_upper_bound", U)
             upper_bound_holds("R_max_relative_gap", (U - R_max) / R_max)
@@ -457,16 +463,8 @@ def check(model, data: dict) -> list[CheckResult]:
         except (TypeError, ValueError, ZeroDivisionError):
             pts = []
         if pts and _covers(wbd.get("mu_pieces", []), K["mu_min"].lower(), K["mu_max"].upper()):
-            stored_Ud = _stored_hi("R_direct_sup_upper_bound")
-
-            def both_d(Mu: arb) -> arb:     # both are upper bounds: keep the smaller (30-bit radii)
-                u = direct_piece_upper(g, Mu, pts)
-                with working_precision(cert_prec):
-                    u_cert = direct_piece_upper(g, Mu, pts)
-                return u_cert if u_cert.is_finite() and (not u.is_finite() or certainly_lt(u_cert, u)) else u
-            for p in wbd["mu_pieces"]:
-                u = _refined_upper(both_d, _b(p), stored_Ud)
-                Ud = u if Ud is None or not u.is_finite() or (Ud.is_finite() and certainly_gt(u, Ud)) else Ud
+            Ud = _bound_over_pieces(lambda Mu: direct_piece_upper(g, Mu, pts), wbd["mu_pieces"],
+                                    _stored_hi("R_direct_sup_upper_bound"), cert_prec)
         stated = False
         if Ud is not None and Ud.is_finite():
             upper_bound_holds("R_direct_sup_upper_bound", Ud)

@@ -59,10 +59,9 @@ from ...core.boxes import Box
 from ...core.subdivision import best_first_bisection, certify_positive, certify_positive_on_box, enclose_max
 from .. import Attempt, Phases
 from .equilibria import equilibria
-from .direct_mu import direct_sup_upper_bound, piece_upper
-from .search import grid_then_compass
+from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
-from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, direct_margin, vdot_polar, closed_form_constants, cylinder_lower_bound, hypot_ball,
+from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, direct_margin, closed_form_constants, cylinder_lower_bound, hypot_ball,
                     mean_value_enclosure, slice_extent, slice_in_region)
 from .moments import MOMENTS
 from .paper import PAPER_SCHEMA, audit as audit_paper
@@ -294,25 +293,6 @@ def _vdot_claim(ctx: _Ctx, R: arb, how: str) -> tuple[Claim, dict]:
 DIRECT_MARGINS = ("4e-7", "4e-6", "4e-5", "4e-4", "4e-3")
 
 
-def _direct_search(g: Gimbal) -> tuple[float, float, float, float | None]:
-    """A float search for inf over (x2, t) of A/|B| (the supremum radius of the direct test): the
-    smallest value on a 17 x 33 grid of (u, s) (x2 = u x2*, t = pi s), refined by a pattern search.
-    Returns (estimate, u, s, the smallest A seen). A heuristic: it only chooses R_direct and the
-    counterexample's direction; both are certified afterwards."""
-    xs, pi = g.c.x2_star, arb.pi()
-
-    amin = math.inf
-
-    def ratio(u: float, sv: float) -> tuple[float, float]:
-        nonlocal amin
-        A, B = vdot_polar(g, xs * arb(u), pi * arb(sv))
-        a, b = float(A.mid()), float(B.mid())
-        amin = min(amin, a)
-        return (a / abs(b) if b != 0 else math.inf), a
-    r0, u, sv, _ = grid_then_compass(ratio, (17, 33), 90)
-    return r0, u, sv, amin
-
-
 @dataclass
 class _Direct:
     """The direct test certified at one mu: the search's estimate and point, the radius certified (or None)
@@ -333,7 +313,7 @@ def _certify_direct(g: Gimbal, max_pieces: int, cap: float | None = None) -> _Di
     supremum (the search's estimate is lowered to it: a search that misses the global minimiser of A/|B|
     overestimates the radius, and a radius above the supremum cannot be certified)."""
     xs = g.c.x2_star
-    est, u0, s0, amin = _direct_search(g)
+    est, u0, s0, amin = direct_point_search(g)
     if cap is not None and math.isfinite(cap) and 0 < cap < est:
         est = cap
     d = _Direct(est, u0, s0, amin)

@@ -35,27 +35,27 @@ def _fq(x: float) -> fmpq:
     return fmpq(f.numerator, f.denominator)
 
 
-def _ratio(g: Gimbal):
-    """(u, s) -> (A/|B| as a float at x2 = u x2*, t = pi s, at the scene's mu of ``g``; None)."""
+def direct_point_search(g: Gimbal, start: tuple[float, float] | None = None) -> tuple[float, float, float, float]:
+    """A float search for inf over (x2, t) of A/|B| at g's mu (the supremum radius of the direct test):
+    the smallest value on a 17 x 33 grid of (u, s) (x2 = u x2*, t = pi s), refined by a compass search; from
+    ``start``, the compass search only (a warm start). Returns (estimate, u, s, the smallest A seen). A
+    heuristic: it only chooses a radius to certify, a direction for a point above it, a bounding point;
+    everything is certified afterwards."""
     xs, pi = g.c.x2_star, arb.pi()
+    amin = math.inf
 
     def value(u: float, s: float):
+        nonlocal amin
         A, B = vdot_polar(g, xs * arb(u), pi * arb(s))
         a, b = float(A.mid()), float(B.mid())
+        amin = min(amin, a)
         return (a / abs(b) if b != 0 else math.inf), None
-    return value
-
-
-def direct_point_search(g: Gimbal, start: tuple[float, float] | None = None) -> tuple[float, float, float]:
-    """(estimate of R_dsup at g's mu, u, s) at the point found: a 17 x 33 grid then a compass search, or
-    from ``start`` a compass search only (warm start). A heuristic: it only chooses a point."""
-    value = _ratio(g)
     if start is None:
         v, u, s, _ = grid_then_compass(value, (17, 33), 90)
     else:
         v0, _ = value(*start)
         v, u, s, _ = compass(value, (v0, start[0], start[1], None), (1 / 64, 1 / 128), 40)
-    return v, u, s
+    return v, u, s, amin
 
 
 def piece_upper(g: Gimbal, Mu: arb, points: list[tuple[fmpq, fmpq]]) -> arb:
@@ -83,21 +83,21 @@ def direct_sup_upper_bound(g: Gimbal, mu_lo: arb, mu_hi: arb, gap: arb, max_piec
     ball) is >= R_dsup(mu) for every mu in the interval, whatever the stopping reason; the estimate is a
     float search result, not certified."""
     points: list[tuple[fmpq, fmpq]] = []
-    seen: dict = {}
+    seen: set = set()
     best = (-math.inf, None)
     last = None
 
     def own_point(mu: Fraction) -> None:
         nonlocal best, last
         gm = g.with_mu(fmpq(mu.numerator, mu.denominator))
-        v, u, s = direct_point_search(gm, last)
+        v, u, s, _ = direct_point_search(gm, last)
         if last is not None:            # a warm start may sit in a local minimum: compare with a cold one
-            v2, u2, s2 = direct_point_search(gm) if len(points) % cold_every == 0 else (math.inf, u, s)
+            v2, u2, s2, _ = direct_point_search(gm) if len(points) % cold_every == 0 else (math.inf, u, s, 0)
             if v2 < v:
                 v, u, s = v2, u2, s2
         last = (u, s)
         if (u, s) not in seen:
-            seen[(u, s)] = True
+            seen.add((u, s))
             points.append((_fq(u), _fq(s)))
         # the search's value overestimates R_dsup(mu) when it misses the global minimiser: every known
         # point bounds it too, so keep the smallest
