@@ -395,3 +395,40 @@ def test_rho_lower_over_a_ball_lies_below_rho_at_every_point_of_it():
             (c10, c11, c13), (c20, c21, c23) = g.psi_coefficients(arb("0.28") + arb("0.004") * i, g.c.mu)
             pts.append(((c11 ** 2 + c13 ** 2).sqrt() / c10).max((c21 ** 2 + c23 ** 2).sqrt() / c20))
     assert all(low <= p.lower() for p in pts) and low > 0
+
+
+def test_a_direct_search_that_misses_the_minimiser_searches_again(monkeypatch):
+    """When the float search puts the supremum too high (it found a local minimum of A/|B| only), the
+    certification fails at a point where A/|B| is lower; the direct test searches again from there and
+    certifies a radius below the supremum, with a certified point above it (stress scene x2* near pi/2:
+    inconclusive after 4096 bits before)."""
+    from rigor_gyro.kinds.lyapunov import claims as C
+    g = validate(load_scene("agafonov2013")).gimbal
+    real = C.direct_point_search
+    calls = []
+
+    def missing(gg, start=None):
+        calls.append(start)
+        est, u, s, amin = real(gg, start)
+        return (est * 1.3, 0.0, 0.25, amin) if start is None else (est, u, s, amin)
+    monkeypatch.setattr(C, "direct_point_search", missing)
+    with working_precision(64):
+        d = C._certify_direct(g, 4000)
+        assert d.cert.status is Status.PROVED and d.point is not None
+        assert len(calls) >= 2 and calls[0] is None and calls[1] is not None
+        R, up = Fraction(d.R_text), Fraction(d.up_text)
+        assert R < up < R * Fraction(1001, 1000)
+        assert certainly_positive(g.vdot(*d.point))
+
+
+def test_a_failed_direct_certification_without_a_lower_point_does_not_search_again():
+    from rigor_gyro.core.subdivision import BoxPositivity
+    from rigor_gyro.kinds.lyapunov import claims as C
+    g = validate(load_scene("agafonov2013")).gimbal
+    with working_precision(64):
+        sup = C.direct_point_search(g)[0]
+        refuted = BoxPositivity(Status.REFUTED, [], witness={"u": Fraction(-1), "s": Fraction(1, 2)})
+        assert C._lower_ratio(g, refuted, sup * 0.9) is None                    # A/|B| there is above R
+        hit = C._lower_ratio(g, refuted, sup * 1.1)
+        assert hit is not None and hit[0] < sup * 1.1 and hit[1:] == (-1.0, 0.5)
+        assert C._lower_ratio(g, BoxPositivity(Status.INCONCLUSIVE, [], stuck=None), sup * 2) is None

@@ -87,3 +87,80 @@ def test_a_memoised_dual_is_the_fresh_dual(num, radexp):
             seeded = list(_flat(method(G, Dual(X, arb(2)))))     # another seed: another key
             assert all(_same(2 * a.d, b.d) or (2 * a.d).overlaps(b.d) for a, b in zip(fresh, seeded))
             assert not all(_same(a.d, b.d) for a, b in zip(fresh, seeded) if not a.d.is_zero())
+
+
+# ------------------------------------------------------------------ the x2 -> -x2 symmetry (issue 12)
+
+def test_even_in_reuses_a_ball_only_for_the_exact_mirror_box():
+    """even_in evaluates a box with a negative midpoint as its mirror image (negated midpoint, same radius,
+    the other coordinates the same), each box once; non-finite balls are never kept."""
+    from rigor_gyro.core.boxes import even_in
+    calls = []
+
+    def f(b):
+        calls.append(b)
+        return b["u"] * b["u"] + b["s"]
+    g = even_in(f, "u")
+    U, S = arb(fmpq(3, 20), fmpq(1, 20)), arb(fmpq(1, 4), fmpq(1, 8))
+    first = g({"u": U, "s": S})
+    assert g({"u": -U, "s": S}) is first and len(calls) == 1          # the mirror: reused
+    g({"u": arb(fmpq(-3, 20), fmpq(1, 10)), "s": S})                   # same midpoint, wider: evaluated
+    g({"u": -U, "s": S + fmpq(1, 2)})                                  # another s: evaluated
+    g({"u": U, "s": -S})                                               # s mirrored: not a symmetry of f
+    assert len(calls) == 4
+    assert all(c["u"].mid() > 0 for c in calls)                        # the canonical image evaluated
+    assert g({"u": -U, "s": S + fmpq(1, 2)}) is g({"u": U, "s": S + fmpq(1, 2)}) and len(calls) == 4
+    g({"u": arb("nan"), "s": S})
+    g({"u": arb("nan"), "s": S})
+    assert len(calls) == 6
+
+
+@given(st.integers(-1000, 1000), st.integers(4, 30), st.integers(0, 1000), st.booleans())
+def test_the_polar_forms_are_symmetric_under_x2_to_minus_x2(num, radexp, snum, linear):
+    """The premise of symmetric_in_x2, for both laws (odd by their formulas): A(-x2, t) = A(x2, t),
+    B(-x2, t) = -B(x2, t), and V, Vdot even under p -> -p, checked on balls (the two enclosures of one
+    value must overlap)."""
+    from rigor_gyro.kinds.lyapunov.model import vdot_polar
+    from rigor_gyro.kinds.lyapunov.moments import MOMENTS
+    g = G
+    if linear:
+        g = Gimbal(G.A0, G.B0, G.C0, G.H, G.k, G.a, G.mu, G.x2_star, MOMENTS["linear"])
+    assert g.law.odd
+    x2 = g.c.x2_star * arb(fmpq(num, 1000), fmpq(1, 2 ** radexp))
+    t = arb.pi() * arb(fmpq(snum, 1000))
+    A, B = vdot_polar(g, x2, t)
+    Am, Bm = vdot_polar(g, -x2, t)
+    assert A.overlaps(Am) and B.overlaps(-Bm)
+    assert g.law.f(g.c.a, -x2).overlaps(-g.law.f(g.c.a, x2))
+    x1, x3 = arb("0.003") * t.cos(), arb("0.003") * t.sin()
+    assert g.V(x1, x2, x3).overlaps(g.V(-x1, -x2, -x3))
+    assert g.vdot(x1, x2, x3).overlaps(g.vdot(-x1, -x2, -x3))
+
+
+def test_the_symmetry_is_used_only_for_an_odd_law():
+    from rigor_gyro.kinds.lyapunov.model import symmetric_in_x2
+    from rigor_gyro.kinds.lyapunov.moments import SineMoment
+
+    class NotOdd(SineMoment):
+        odd = False
+    f = lambda b: b["u"]                                   # noqa: E731
+    assert symmetric_in_x2(G, f) is not f
+    h = Gimbal(G.A0, G.B0, G.C0, G.H, G.k, G.a, G.mu, G.x2_star, NotOdd())
+    assert symmetric_in_x2(h, f) is f
+
+
+def test_the_mirrored_bisection_is_the_bisection_without_the_symmetry():
+    """The direct test's leaves with the mirror reuse are the leaves without it (the reuse removes only
+    repeated work), at the scene's R_direct."""
+    from fractions import Fraction
+    from rigor_gyro.core.boxes import Box
+    from rigor_gyro.core.subdivision import certify_positive_on_box
+    from rigor_gyro.kinds.lyapunov.model import DIRECT_DOMAIN, direct_margin, symmetric_in_x2
+    R = arb(fmpq(2416695292, 10 ** 11))
+    whole = Box.of(DIRECT_DOMAIN)
+    with working_precision(64):
+        plain = certify_positive_on_box(direct_margin(G, R), whole)
+        mirrored = certify_positive_on_box(symmetric_in_x2(G, direct_margin(G, R)), whole)
+    assert plain.status.name == mirrored.status.name == "PROVED"
+    assert [b.edges for b in plain.leaves] == [b.edges for b in mirrored.leaves]
+    assert any(b.interval("u")[1] <= Fraction(-1, 2) for b in plain.leaves)

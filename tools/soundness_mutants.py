@@ -159,6 +159,14 @@ MUTANTS = [
     ("direct_checker_at_scene_mu", "rigor_gyro/kinds/lyapunov/check.py",
      "        at_mu = _direct_boxes_hold(g.with_mu(mu_d), Rdm,", "        at_mu = _direct_boxes_hold(g, Rdm,",
      "the checker re-evaluates best_mu_direct's boxes at the scene's mu, not at mu_direct"),
+    # the x2 -> -x2 symmetry of the (x2, t) branch and bounds (issue 12)
+    ("mirror_key_without_radius", "rigor_gyro/core/boxes.py",
+     "        key = tuple((k, balls[k].mid().man_exp(), balls[k].rad().man_exp()) for k in sorted(balls))",
+     "        key = tuple((k, balls[k].mid().man_exp()) for k in sorted(balls))",
+     "a box's ball handed back for a wider box with the same (mirrored) midpoint"),
+    ("mirror_for_every_law", "rigor_gyro/kinds/lyapunov/model.py",
+     "    return even_in(f, \"u\") if g.law.odd else f", "    return even_in(f, \"u\")",
+     "the x2 -> -x2 symmetry used for a law not declared odd"),
 ]
 
 

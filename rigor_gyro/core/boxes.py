@@ -32,7 +32,8 @@ from flint import arb, fmpq
 from .errors import ParameterError
 from .exact import parse_exact
 
-__all__ = ["Box", "parse_tolerance", "is_tolerance", "split_parameters", "fraction_text", "tiles_by_bisection"]
+__all__ = ["Box", "parse_tolerance", "is_tolerance", "split_parameters", "fraction_text", "tiles_by_bisection",
+           "even_in"]
 
 _BRACKET = re.compile(r"^\[\s*([^,\[\]]+?)\s*,\s*([^,\[\]]+?)\s*\]$")
 _PLUS_MINUS = re.compile(r"^(.+?)\s*(?:\+-|\+/-|±)\s*(.+)$")
@@ -182,3 +183,32 @@ def tiles_by_bisection(whole: Box, boxes: list[Box], frozen: tuple[str, ...] = (
             return False
         stack.extend(node.split(whole, frozen))
     return seen == len(boxes)
+
+
+def even_in(f, name: str):
+    """Wrap a box function ``f`` ({coordinate: ball} -> ball) that is even in the coordinate ``name``
+    (its value at x and at x with ``name`` negated are the same for every x): a box whose ``name`` ball
+    has a negative midpoint is evaluated as its mirror image (that ball negated, exactly: the other
+    balls the same), and each box's ball is kept, so a box and its mirror image cost one evaluation.
+
+    Guarantee: the set of values of f over a box and over its mirror image are the same set, so the
+    ball ``f`` gives on one encloses f over the other. Every caller that wraps the same ``f`` (a prover
+    and a checker) gets the very same ball for a box and its mirror image: the canonical image is
+    evaluated either way. The evenness is the caller's theorem about ``f``; it is not checked here (a
+    caller that cannot prove it must not wrap).
+
+    Fails when: never; non-finite balls are passed to ``f`` as they are and not kept."""
+    cache: dict = {}
+
+    def g(balls: dict):
+        if not all(b.is_finite() for b in balls.values()):
+            return f(balls)
+        b = balls[name]
+        if b.mid() < 0:
+            balls = {**balls, name: -b}
+        key = tuple((k, balls[k].mid().man_exp(), balls[k].rad().man_exp()) for k in sorted(balls))
+        hit = cache.get(key)
+        if hit is None:
+            hit = cache[key] = f(balls)
+        return hit
+    return g

@@ -41,7 +41,7 @@ from .claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
 from .equilibria import Equilibrium, classify as classify_equilibrium
 from .model import (DIRECT_DOMAIN, closed_form_constants, cylinder_lower_bound, direct_margin, mean_value_enclosure,
-                    psi_min_functions, slice_extent, slice_in_region, sublevel_lower_bound, vdot_polar)
+                    psi_min_functions, slice_extent, slice_in_region, sublevel_lower_bound, symmetric_in_x2, vdot_polar)
 
 __all__ = ["check"]
 
@@ -167,9 +167,11 @@ def _tighter(f, X: arb, prec: int) -> arb:
 
 def _box_lower_ends(make, boxes, prec: int) -> list[arb]:
     """For each box, the larger of the lower ends of the box function ``make()`` at the current precision
-    and at ``prec`` (the certificate's): both are valid lower bounds, and arb's 30-bit radii on wide balls
-    round differently at two precisions (2e-9 relative seen on a c_max box), so neither one alone can
-    confirm a bound stored from the other. ``make`` builds the function (it captures balls at the
+    and at ``prec`` (the certificate's): both are valid lower bounds (the (x2, t) functions evaluate a
+    box with u < 0 as its mirror image where the law is odd, as the prover does:
+    :func:`~rigor_gyro.kinds.lyapunov.model.symmetric_in_x2` states the theorem), and arb's 30-bit radii
+    on wide balls round differently at two precisions (2e-9 relative seen on a c_max box), so neither one
+    alone can confirm a bound stored from the other. ``make`` builds the function (it captures balls at the
     precision it is built at)."""
     f_here = make()
     here = [f_here({k: b.ball(k) for k in b.names}).lower() for b in boxes]
@@ -208,7 +210,8 @@ def _direct_boxes_hold(g, R: arb, stored_boxes, cert_prec: int) -> bool:
     on each (the better lower end of two precisions)."""
     boxes = [Box.from_json(b) for b in stored_boxes]
     return (certainly_positive(R) and tiles_by_bisection(Box.of(DIRECT_DOMAIN), boxes)
-            and all(_positive_end(lo) for lo in _box_lower_ends(lambda: direct_margin(g, R), boxes, cert_prec)))
+            and all(_positive_end(lo) for lo in _box_lower_ends(lambda: symmetric_in_x2(g, direct_margin(g, R)), boxes,
+                                                                 cert_prec)))
 
 
 def _all_positive(f, pieces) -> bool:
@@ -606,7 +609,7 @@ def _check_sublevel(g, xs: arb, w: dict, details: dict, q: dict, verified: set, 
     if not tiles_by_bisection(Box.of(DIRECT_DOMAIN), boxes):
         return False, "the stored (x2, t) boxes do not tile the domain"
     n_lo = fmpq_of(n_lo_t)
-    for b, low in zip(boxes, _box_lower_ends(lambda: sublevel_lower_bound(g), boxes, cert_prec)):
+    for b, low in zip(boxes, _box_lower_ends(lambda: symmetric_in_x2(g, sublevel_lower_bound(g)), boxes, cert_prec)):
         key = float(low)                # +inf: no point of {Vdot >= 0} above the box
         if not (key == float("inf") or (low.is_finite() and low >= n_lo)):
             return False, f"on the box {b.to_json()} the lower bound of V over {{Vdot >= 0}} is below {details['vdot_level_lower']}"

@@ -61,8 +61,8 @@ from .. import Attempt, Phases
 from .equilibria import equilibria
 from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
-from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, direct_margin, closed_form_constants, cylinder_lower_bound, hypot_ball,
-                    mean_value_enclosure, slice_extent, slice_in_region)
+from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, closed_form_constants, cylinder_lower_bound, direct_margin,
+                    hypot_ball, mean_value_enclosure, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
 from .moments import MOMENTS
 from .paper import PAPER_SCHEMA, audit as audit_paper
 
@@ -293,6 +293,24 @@ def _vdot_claim(ctx: _Ctx, R: arb, how: str) -> tuple[Claim, dict]:
 DIRECT_MARGINS = ("4e-7", "4e-6", "4e-5", "4e-4", "4e-3")
 
 
+#: how many times the direct test searches again from the point where a certification failed
+DIRECT_RESEARCHES = 4
+
+
+def _lower_ratio(g: Gimbal, cert, R: float) -> tuple[float, float, float] | None:
+    """(A/|B|, u, s) at the point where a failed certification of A - R |B| > 0 stopped (its certified
+    counterexample, or the midpoint of the box it could not decide), when that ratio is below R: the
+    float search missed the minimiser of A/|B| (a heuristic; it only chooses where to search again)."""
+    pt = cert.witness if cert.status is Status.REFUTED else cert.stuck.midpoint() if cert.stuck is not None else None
+    if pt is None:
+        return None
+    u, s = float(pt["u"]), float(pt["s"])
+    A, B = vdot_polar(g, g.c.x2_star * arb(u), arb.pi() * arb(s))
+    a, b = float(A.mid()), abs(float(B.mid()))
+    r = a / b if b > 0 else math.inf
+    return (r, u, s) if 0 < r < R else None
+
+
 @dataclass
 class _Direct:
     """The direct test certified at one mu: the search's estimate and point, the radius certified (or None)
@@ -320,11 +338,23 @@ def _certify_direct(g: Gimbal, max_pieces: int, cap: float | None = None) -> _Di
     if not (math.isfinite(est) and est > 0 and amin > 0):
         return d
     whole = Box.of(DIRECT_DOMAIN)
-    for m in DIRECT_MARGINS:
-        d.R_text = decimal_bounds(arb(est) * (1 - arb(m)), 10)[0]
-        d.cert = certify_positive_on_box(direct_margin(g, _q(_fmpq(Fraction(d.R_text)))), whole, max_pieces=max_pieces)
-        if d.cert.status is Status.PROVED:
+    for _ in range(DIRECT_RESEARCHES + 1):
+        better = None
+        for m in DIRECT_MARGINS:
+            d.R_text = decimal_bounds(arb(d.est) * (1 - arb(m)), 10)[0]
+            d.cert = certify_positive_on_box(symmetric_in_x2(g, direct_margin(g, _q(_fmpq(Fraction(d.R_text))))),
+                                             whole, max_pieces=max_pieces)
+            if d.cert.status is Status.PROVED:
+                break
+            better = _lower_ratio(g, d.cert, float(Fraction(d.R_text)))
+            if better is not None:      # the search missed the minimiser: search again from there
+                break
+        if d.cert.status is Status.PROVED or better is None:
             break
+        est, u0, s0, amin = direct_point_search(g, better[1:])
+        d.est, d.u0, d.s0, d.amin = min(est, better[0]), u0, s0, min(amin, d.amin)
+        if not (math.isfinite(d.est) and d.est > 0 and d.amin > 0):
+            return d
     if d.cert.status is not Status.PROVED:
         return d
     # an upper bound of the supremum: a certified point of the region where Vdot > 0

@@ -43,6 +43,7 @@ from flint import arb, fmpq
 
 from ...core.balls import (certainly_le, certainly_lt, certainly_negative, certainly_positive, current_precision, decimal_bounds,
                            exact_fraction, sqrt_of_nonnegative)
+from ...core.boxes import even_in
 from ...core.exact import Exact
 from ...core.outcome import Status
 from ...core.stored import ball_text, pieces_text
@@ -51,7 +52,7 @@ from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
            "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound",
-           "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "v_polar", "sublevel_lower_bound",
+           "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "symmetric_in_x2", "v_polar", "sublevel_lower_bound",
            "slice_extent", "slice_in_region"]
 
 
@@ -118,6 +119,14 @@ class Dual:
     def sqrt(self):
         r = self.v.sqrt()
         return Dual(r, self.d / (2 * r))
+
+
+def sin_cos(x):
+    """(sin x, cos x) of a ball or a :class:`Dual` from one sin_cos evaluation."""
+    if type(x) is Dual:
+        sv, cv = x.v.sin_cos()
+        return Dual(sv, cv * x.d), Dual(cv, -sv * x.d)
+    return x.sin_cos()
 
 
 def mean_value_enclosure(fn):
@@ -306,16 +315,22 @@ class Gimbal:
         c = self.c
         H, B0, C0, A0, k = c.H, c.B0, c.C0, c.A0, c.k
         mu = c.mu if mu is None else mu
-        s, cs = x2.sin(), x2.cos()
-        D = self.D(x2)
+        s, cs = sin_cos(x2)
+        # common factors computed once (a Dual operation costs several ball operations)
+        iD = 1 / (A0 - C0 * s * s)                   # 1 / D
         f, fp = self.f(x2), self.df(x2)
-        P = A0 - C0 - C0 * cs ** 2
-        c10 = H ** 2 * cs ** 2 / B0 ** 2 * (k / D - mu) + C0 * H * cs ** 2 * s * f / (D * B0 ** 2)
-        c11 = mu * H * C0 * s * cs ** 2 / B0 ** 2
-        c13 = (mu * k * B0 * C0 + (A0 - C0) * H ** 2) * s * cs / (D * B0 ** 2)
-        c20 = mu * H ** 2 * cs ** 2 / (B0 * D) - H * cs * fp / (B0 * D) + H * P * s * f / (B0 * D ** 2)
-        c21 = mu * H * P * s / (B0 * D)
-        c23 = ((A0 - C0) * H ** 2 - mu * k * B0 * C0) * s * cs / (B0 * D ** 2)
+        cs2, sf = cs * cs, s * f
+        scs_iD = s * cs * iD
+        HB = H / B0
+        C0HB2 = C0 * H / (B0 * B0)
+        mkBC, AH2 = mu * k * B0 * C0, (A0 - C0) * H * H
+        P = A0 - C0 - C0 * cs2
+        c10 = cs2 * (HB * HB * (k * iD - mu) + C0HB2 * sf * iD)
+        c11 = mu * C0HB2 * s * cs2
+        c13 = (mkBC + AH2) / (B0 * B0) * scs_iD
+        c20 = HB * iD * (mu * H * cs2 - cs * fp + P * sf * iD)
+        c21 = mu * HB * P * s * iD
+        c23 = (AH2 - mkBC) / B0 * scs_iD * iD
         return (c10, c11, c13), (c20, c21, c23)
 
     def psi_printed_coefficients(self, x2: arb) -> tuple[tuple[arb, arb, arb], tuple[arb, arb, arb]]:
@@ -626,6 +641,20 @@ def vdot_polar(g: Gimbal, x2, t, mu: arb | None = None):
     A = c10 * c * c + c20 * s * s
     B = c11 * c * c * c + c13 * s * c * c + c21 * c * s * s + c23 * s * s * s
     return A, B
+
+
+def symmetric_in_x2(g: Gimbal, f):
+    """The (u, s) box function ``f`` of :func:`direct_margin` or :func:`sublevel_lower_bound`, evaluating
+    a box with u < 0 as its mirror image u -> -u and each box once (:func:`rigor_gyro.core.boxes.even_in`)
+    when g's law is odd; ``f`` itself otherwise. The prover and the checker both wrap, so they get the
+    same ball on every box.
+
+    Why it is valid: with f odd (so f' even) and D, cos even in x2, the coefficients c10, c20 of
+    :meth:`Gimbal.psi_coefficients` are even in x2 and c11, c13, c21, c23 odd, so in the polar form
+    (:func:`vdot_polar`) A(-x2, t) = A(x2, t) and B(-x2, t) = -B(x2, t): A - R |B| is even in u. For V,
+    F and the S term are even and f3 odd, so the part of {Vdot >= 0} above the box -U x S is the
+    point reflection p -> -p of the part above U x S, where V takes the same values."""
+    return even_in(f, "u") if g.law.odd else f
 
 
 def direct_radius_upper(g: Gimbal, u: fmpq, s: fmpq, mu: arb) -> arb:

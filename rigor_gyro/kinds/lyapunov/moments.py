@@ -56,6 +56,10 @@ class MomentLaw:
     name = ""
     formula = ""
     G_on_balls = False                 # True: G's formula encloses G over wide balls directly
+    #: True only for a law that is odd by its formula (f(-x) = -f(x), so f' is even): the polar forms of
+    #: Vdot and V are then symmetric under x2 -> -x2, and the (x2, t) branch and bounds reuse a box's
+    #: enclosure for its mirror image (:func:`rigor_gyro.core.boxes.even_in`)
+    odd = False
 
     def f(self, a: arb, x):            # f(x); x may be an arb or a rigor_gyro.kinds.lyapunov.model.Dual
         raise NotImplementedError
@@ -87,6 +91,7 @@ class SineMoment(MomentLaw):
     name = "sine"
     formula = "f(x2) = a sin x2"
     G_on_balls = True
+    odd = True
 
     def f(self, a, x):
         return a * x.sin()
@@ -117,6 +122,7 @@ class LinearMoment(MomentLaw):
 
     name = "linear"
     formula = "f(x2) = a x2"
+    odd = True
 
     def f(self, a, x):
         return a * x

@@ -39,7 +39,7 @@ from flint import arb, fmpq
 from ...core.balls import certainly_le, certainly_positive, decimal_bounds, exact_fraction
 from ...core.boxes import Box
 from ...core.subdivision import lower_bound_on_box
-from .model import DIRECT_DOMAIN, Gimbal, sublevel_lower_bound, v_polar, vdot_polar
+from .model import DIRECT_DOMAIN, Gimbal, sublevel_lower_bound, symmetric_in_x2, v_polar, vdot_polar
 from .search import grid_then_compass
 
 __all__ = ["Sublevel", "largest_sublevel", "GAP", "GAP_FACES_BIND", "BOX_BUDGET"]
@@ -183,7 +183,7 @@ def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
         if found is not None and found[1].is_finite():
             out.point, n_up = found[0], found[1].upper()
             out.n_upper = decimal_bounds(n_up, 12)[1]
-    lb = sublevel_lower_bound(g)
+    lb = symmetric_in_x2(g, sublevel_lower_bound(g))
     whole = Box.of(DIRECT_DOMAIN)
     # aim at the point's value (or, without a point, at the faces' minimum: N then only has to stay above)
     top = _q(Fraction(out.n_upper)) if out.n_upper is not None else face.lower()
