@@ -6,14 +6,16 @@
    with ``--workers 1``) against
    the equivalent uncertified float script (``--float-script`` below: numpy/scipy compute the same
    quantities for the same scenes: the quartic's roots; m, M, the constants, c* and the mu search;
-   g's roots on the certificate's search range, x(0) and the multipliers). Median wall time of
-   ``--repeat`` runs each, interleaved, imports included.
+   g's roots on the certificate's search range, x(0) and the multipliers), and against the same script
+   with ``--full``, which also computes the Lyapunov kind's polar-form quantities that ``prove --all``
+   certifies since issue 13 (R_direct, c_max, mu_direct and R_direct_max, by the same searches in
+   floats). Median wall time of ``--repeat`` runs each, interleaved, imports included.
 2. Computation only (in one process, imports excluded): ``prove_scene`` against the mpmath path at 30
    digits (non-rigorous; the kind's ``approx.bench_mpmath``, with the mu search for the Lyapunov kind).
    Each scene also without its paper audit (the mpmath path audits nothing). For the Lyapunov kind
    two rows: against the constants and the mu search only (the row the issue first measured), and
-   against every quantity the claims certify (also R_direct and c_max, by
-   ``approx.mp_polar_estimates``, the same grid-then-compass searches in mpmath).
+   against every quantity the claims certify (also R_direct, c_max and the direct test's search over
+   mu, by ``approx.mp_polar_estimates``, the same grid-then-compass searches in mpmath).
 3. Relay fast nutation: H = 1e4 and 1e5 (the stress scenes), time, pieces and roots.
 """
 from __future__ import annotations
@@ -31,11 +33,13 @@ PAPER = ("agafonov2013", "roitenberg1947", "roitenberg1947_b2over15", "rudenko19
 RELAY_T = {"roitenberg1947": 0.7283, "roitenberg1947_b2over15": 0.7283}
 
 
-def float_script() -> None:
-    """The uncertified equivalent of ``prove --all``: every quantity in floats, nothing certified."""
+def float_script(full: bool = False) -> None:
+    """The uncertified equivalent of ``prove --all``: every quantity in floats, nothing certified. ``full``:
+    also the quantities of the Lyapunov kind's polar-form claims (R_direct at the scene's mu, c_max, and
+    the direct test's search over mu: mu_direct, R_direct_max), which ``prove --all`` certifies too."""
     from rigor_gyro import load_scene
     from rigor_gyro.kinds.eigenfrequencies.approx import bench_float as eig
-    from rigor_gyro.kinds.lyapunov.approx import float_constants
+    from rigor_gyro.kinds.lyapunov.approx import float_constants, float_polar_estimates
     from rigor_gyro.kinds.periodic_orbit.approx import bench_float as relay
     for name in PAPER:
         sc = load_scene(name)
@@ -43,7 +47,9 @@ def float_script() -> None:
         if sc.kind == "eigenfrequencies":
             eig(p)
         elif sc.kind == "lyapunov":
-            float_constants(p, with_best_mu=True)
+            k = float_constants(p, with_best_mu=True)
+            if full:
+                float_polar_estimates(p, (k["mu_min"], k["mu_max"]))
         else:
             relay(p, hint={"theta_star": 0.13827, "T": RELAY_T[name], "t0": 1e-3})
 
@@ -73,20 +79,24 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--float-script", action="store_true", help=argparse.SUPPRESS)
+    ap.add_argument("--full", action="store_true", help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.float_script:
-        float_script()
+        float_script(args.full)
         return
     out = tempfile.mkdtemp()
     prove = [sys.executable, "-m", "rigor_gyro", "prove", "--all", "--quiet", "--out", out]
-    t_prove, t_one, t_float = _medians_cold([prove, prove + ["--workers", "1"],
-                                             [sys.executable, __file__, "--float-script"]], args.repeat)
+    fl = [sys.executable, __file__, "--float-script"]
+    t_prove, t_one, t_float, t_full = _medians_cold([prove, prove + ["--workers", "1"], fl, fl + ["--full"]],
+                                                    args.repeat)
     print("| measure | certified s | uncertified s | ratio |")
     print("|---|---|---|---|")
-    print(f"| `rigor-gyro prove --all` (one scene per core) vs the float script, cold processes | {t_prove:.2f} | "
-          f"{t_float:.2f} | {t_prove / t_float:.2f}x |")
-    print(f"| `rigor-gyro prove --all --workers 1` vs the float script, cold processes | {t_one:.2f} | "
-          f"{t_float:.2f} | {t_one / t_float:.2f}x |")
+    for what, t_f in (("the float script", t_float),
+                      ("the float script computing every certified quantity (+ R_direct, c_max, mu_direct)", t_full)):
+        print(f"| `rigor-gyro prove --all` (one scene per core) vs {what}, cold processes | {t_prove:.2f} | "
+              f"{t_f:.2f} | {t_prove / t_f:.2f}x |")
+        print(f"| `rigor-gyro prove --all --workers 1` vs {what}, cold processes | {t_one:.2f} | "
+              f"{t_f:.2f} | {t_one / t_f:.2f}x |")
     from rigor_gyro import load_scene, prove_scene
     import importlib
     from rigor_gyro.kinds import KINDS
@@ -98,13 +108,15 @@ def main() -> None:
         p = dict(sc.parameters)
         if sc.kind == "lyapunov":
             fn = lambda: approx.mp_constants(p, dps=30, with_best_mu=True)  # noqa: E731
-            # the same quantity set as the claims: also R_direct and c_max (vdot_direct, largest_sublevel)
-            full = lambda: (approx.mp_constants(p, dps=30, with_best_mu=True),  # noqa: E731
-                            approx.mp_polar_estimates(p, dps=30))
+            # the same quantity set as the claims: also R_direct, c_max and the direct test's search over mu
+            # (vdot_direct, largest_sublevel, best_mu_direct)
+            def full():
+                k = approx.mp_constants(p, dps=30, with_best_mu=True)
+                return approx.mp_polar_estimates(p, dps=30, mu_interval=(k["mu_min"], k["mu_max"]))
             full()
             tf = _median(full, args.repeat)
             print(f"| `{name}`: computation, prove_scene vs mpmath 30 digits computing every certified quantity "
-                  f"(+ R_direct, c_max) | {tp:.3f} | {tf:.3f} | {tp / tf:.2f}x |")
+                  f"(+ R_direct, c_max, mu_direct) | {tp:.3f} | {tf:.3f} | {tp / tf:.2f}x |")
         elif sc.kind == "periodic_orbit":
             fn = lambda: approx.bench_mpmath(p, dps=30, hint={"theta_star": 0.13827})  # noqa: E731
         else:

@@ -41,10 +41,16 @@ def requested_claims(scene: Scene, available: dict[str, str]) -> list[str]:
 
 def _stuck(before: arb | None, after: arb | None, prec: int) -> str | None:
     """Why doubling the precision did not help the undecided ball (``before`` at prec/2, ``after`` at
-    prec), or None when it still may: the ball did not shrink by at least half. (A ball that shrinks
-    around 0 is not taken as "exactly 0": a tiny nonzero margin is decided by more precision; exact
-    equalities are decided exactly by the kinds.)"""
-    if before is None or after is None or not (before.is_finite() and after.is_finite()):
+    prec), or None when it still may: the ball did not shrink by at least half, or it stayed unbounded
+    (infinite radius at both; NaN, no information, may still progress). (A ball that shrinks around 0
+    is not taken as "exactly 0": a tiny nonzero margin is decided by more precision; exact equalities
+    are decided exactly by the kinds.)"""
+    if before is None or after is None:
+        return None
+    if not (before.is_finite() or after.is_finite() or before.is_nan() or after.is_nan()):
+        return ("doubling the precision left the deciding enclosure unbounded (most likely a subdivision budget "
+                "or a search limits it, not the precision; a larger --maxprec may still be tried)")
+    if not (before.is_finite() and after.is_finite()):
         return None
     r0, r1 = before.rad(), after.rad()
     if not (2 * r1 < r0) and not (r0.is_zero() and not r1.is_zero()):
@@ -183,7 +189,7 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
                 break
         if claim.status is Status.INCONCLUSIVE:
             if claim.id in hopeless:
-                hint = f"more precision cannot help: {hopeless[claim.id]}"
+                hint = f"escalation stopped: {hopeless[claim.id]}"
             elif final.stalled and not final.settled:
                 hint = "more precision does not help here (see the reason)"
             else:

@@ -303,3 +303,26 @@ def test_trajectories_from_outside_the_box_are_reported(example_mp, example_edge
         assert not o.in_box_at_start and not o.in_region_at_start and not o.in_set_at_start
         assert o.left_box and o.left_region
         assert o.stayed_in_set is False
+
+
+def test_float_polar_estimates_agree_with_mpmath_and_lie_above_the_certified_infima():
+    """The float polar-form estimates (the speed benchmark's uncertified equivalent of vdot_direct,
+    largest_sublevel and best_mu_direct) agree with mpmath at the example; R_direct and R_direct_max are
+    searches for an infimum over (x2, t), so up to rounding they lie above the certified R_direct and
+    R_direct_max (which the prover certifies a little below the supremum)."""
+    from rigor_gyro.kinds.lyapunov.approx import float_polar_estimates, mp_polar_estimates
+    k = float_constants(AGAFONOV2013, with_best_mu=False)
+    fl = float_polar_estimates(AGAFONOV2013, (k["mu_min"], k["mu_max"]))
+    mp = mp_polar_estimates(AGAFONOV2013, dps=20)
+    assert abs(fl["R_direct"] - float(mp["R_direct"])) <= 1e-9 * fl["R_direct"]
+    assert abs(fl["c_max"] - float(mp["c_max"])) <= 1e-9 * fl["c_max"]
+    import json
+    from pathlib import Path
+    cert = json.loads((Path(__file__).parents[1] / "proofs" / "agafonov2013.json").read_text())
+    details = {c["id"]: c.get("details", {}) for c in cert["claims"]}
+    R_direct = float(details["vdot_direct"]["R_direct"])
+    R_max, mu_d = float(details["best_mu_direct"]["R_direct_max"]), float(details["best_mu_direct"]["mu_direct"])
+    assert fl["R_direct"] >= R_direct * (1 - 1e-12)
+    assert R_max * (1 - 1e-12) <= fl["R_direct_max"] <= R_max * (1 + 1e-4)
+    assert k["mu_min"] < fl["mu_direct"] < k["mu_max"] and abs(fl["mu_direct"] - mu_d) < 1e-5
+    assert "mu_direct" not in float_polar_estimates(AGAFONOV2013, (0.02, 0.01))

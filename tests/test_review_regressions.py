@@ -360,6 +360,9 @@ def _attempt(claim_decides, prec_pairs=None):
     ("0 +/- 1e-38", "0 +/- 1e-77", 256, False),            # shrinking around 0: more precision may decide
     ("1e-40 +/- 1e-38", "1e-40 +/- 1e-77", 256, False),    # shrinking, no longer contains 0
     ("nan", "nan", 256, False),                            # no information: may still progress
+    ("0 +/- inf", "0 +/- inf", 256, True),                 # unbounded at both: a budget, not the precision
+    ("0 +/- inf", "0.5 +/- 1e-10", 256, False),            # bounded now: may still progress
+    ("0 +/- inf", "nan", 256, False),
 ])
 def test_9_no_progress_rule(before, after, prec, stuck):
     """One doubling's evidence (the prover stops only after two doublings running say the same)."""

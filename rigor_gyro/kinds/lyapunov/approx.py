@@ -60,7 +60,7 @@ import numpy as np
 
 from ...core.errors import ParameterError
 from ...core.exact import parse_exact
-from .search import grid_then_compass
+from .search import compass, grid_then_compass
 
 __all__ = ["AGAFONOV2013", "PARAMETER_NAMES", "FLOAT_MOMENTS", "FloatGimbal", "MpGimbal", "mp_constants",
            "float_constants", "time_scales", "trajectories", "TrajectoryOutcome", "edge_points", "EdgePoints",
@@ -1044,46 +1044,79 @@ def bench_mpmath(params: dict, dps: int = 30, hint=None) -> dict:
     return {k: mp[k] for k in BENCH_NAMES if mp.get(k) is not None}
 
 
-def mp_polar_estimates(params: dict, dps: int = 30) -> dict:
-    """mpmath estimates (no guarantee) of the two quantities of the polar form that the claims
-    ``vdot_direct`` and ``largest_sublevel`` certify: R_direct ~ inf over (x2, t) of A / |B| where
-    Vdot(r cos t, x2, r sin t) = -r^2 (A + r B), and c_max ~ the smallest V where Vdot turns >= 0
-    along a ray (at the threshold r = -A/B and at V's minimum beyond it) or on the faces |x2| = x2*.
-    Both by the prover's own search pattern (:func:`~.search.grid_then_compass` on a 17 x 33 grid,
-    then 90 compass rounds) on mpmath values of the analytic grad V . f and V: the non-rigorous
-    equivalent of those two claims (for the speed benchmark: the same work, without enclosures)."""
+def mp_polar_estimates(params: dict, dps: int = 30, mu_interval: tuple | None = None) -> dict:
+    """mpmath estimates (no guarantee) of the quantities of the polar form that the claims
+    ``vdot_direct``, ``largest_sublevel`` and ``best_mu_direct`` certify: R_direct ~ inf over (x2, t) of
+    A / |B| where Vdot(r cos t, x2, r sin t) = -r^2 (A + r B), and c_max ~ the smallest V where Vdot
+    turns >= 0 along a ray (at the threshold r = -A/B and at V's minimum beyond it) or on the faces
+    |x2| = x2*; with ``mu_interval`` = (mu_min, mu_max), also mu_direct and R_direct_max, the maximiser
+    and maximum of R_direct(mu) (a golden-section search, each R_direct by a compass search warm-started
+    from the best point). Both by the prover's own search pattern (:func:`~.search.grid_then_compass` on
+    a 17 x 33 grid, then 90 compass rounds) on mpmath values of the analytic grad V . f and V: the
+    non-rigorous equivalent of those claims (for the speed benchmark: the same work, without enclosures)."""
     with mpmath.workdps(dps):
-        g = MpGimbal(params)
-        xs = g.xs
+        return _polar_estimates(MpGimbal(params), mpmath.pi, mpmath.cos, mpmath.sin, mu_interval)
 
-        def ray(u: float, s: float):
-            x2, t = xs * u, mpmath.pi * s
-            c, sn = mpmath.cos(t), mpmath.sin(t)
-            v1 = g.grad_V_dot_f(c, x2, sn)
-            v2 = g.grad_V_dot_f(2 * c, x2, 2 * sn)
-            B = -v2 / 4 + v1
-            return x2, c, sn, -v1 - B, B
 
-        def ratio(u: float, s: float):
-            _, _, _, A, B = ray(u, s)
-            return (float(A / abs(B)) if B != 0 and A > 0 else math.inf), None
+def float_polar_estimates(params: dict, mu_interval: tuple | None = None) -> dict:
+    """The same as :func:`mp_polar_estimates` in float64 (no guarantee)."""
+    return _polar_estimates(FloatGimbal(params), math.pi, math.cos, math.sin, mu_interval)
 
-        def level(u: float, s: float):
-            x2, c, sn, A, B = ray(u, s)
-            if B == 0:
-                return math.inf, None
-            r0 = -A / B
-            v0 = g.V(0, x2, 0)
-            vp, vm = g.V(c, x2, sn), g.V(-c, x2, -sn)
-            beta, gamma = (vp - vm) / 2, (vp + vm) / 2 - v0
-            best = g.V(r0 * c, x2, r0 * sn)
-            if gamma > 0:
-                rv = -beta / (2 * gamma)
-                if A + rv * B <= 0:
-                    best = min(best, v0 + beta * rv + gamma * rv * rv)
-            return float(best), None
-        r_direct = grid_then_compass(ratio, (17, 33), 90)[0]
-        c_rays = grid_then_compass(level, (17, 33), 90)[0]
-        f3, S = g.f3(xs), g.S(xs)
-        face = float(g.mu * g.F(xs) - f3 * f3 / (2 * S))
-        return {"R_direct": r_direct, "c_max": min(c_rays, face), "c_max_rays": c_rays, "c_max_face": face}
+
+def _polar_estimates(g, pi, cos, sin, mu_interval) -> dict:
+    xs = g.xs
+
+    def ray(u: float, s: float, mu=None):
+        x2, t = xs * u, pi * s
+        c, sn = cos(t), sin(t)
+        v1 = g.grad_V_dot_f(c, x2, sn, mu)
+        v2 = g.grad_V_dot_f(2 * c, x2, 2 * sn, mu)
+        B = -v2 / 4 + v1
+        return x2, c, sn, -v1 - B, B
+
+    def ratio(u: float, s: float, mu=None):
+        _, _, _, A, B = ray(u, s, mu)
+        return (float(A / abs(B)) if B != 0 and A > 0 else math.inf), None
+
+    def level(u: float, s: float):
+        x2, c, sn, A, B = ray(u, s)
+        if B == 0:
+            return math.inf, None
+        r0 = -A / B
+        v0 = g.V(0, x2, 0)
+        vp, vm = g.V(c, x2, sn), g.V(-c, x2, -sn)
+        beta, gamma = (vp - vm) / 2, (vp + vm) / 2 - v0
+        best = g.V(r0 * c, x2, r0 * sn)
+        if gamma > 0:
+            rv = -beta / (2 * gamma)
+            if A + rv * B <= 0:
+                best = min(best, v0 + beta * rv + gamma * rv * rv)
+        return float(best), None
+    r_direct, u0, s0, _ = grid_then_compass(ratio, (17, 33), 90)
+    c_rays = grid_then_compass(level, (17, 33), 90)[0]
+    f3, S = g.f3(xs), g.S(xs)
+    face = float(g.mu * g.F(xs) - f3 * f3 / (2 * S))
+    out = {"R_direct": r_direct, "c_max": min(c_rays, face), "c_max_rays": c_rays, "c_max_face": face}
+    if mu_interval is not None and mu_interval[0] < mu_interval[1]:
+        start = [u0, s0]
+
+        def R_of(mu: float) -> float:
+            v0, _ = ratio(*start, mu)
+            v, u, s, _ = compass(lambda a, b: ratio(a, b, mu), (v0, start[0], start[1], None), (1 / 64, 1 / 128), 40)
+            start[:] = [u, s]
+            return v
+        lo, hi = float(mu_interval[0]), float(mu_interval[1])
+        phi = (math.sqrt(5) - 1) / 2
+        a, b = hi - phi * (hi - lo), lo + phi * (hi - lo)
+        fa, fb = R_of(a), R_of(b)
+        for _ in range(40):
+            if fa > fb:
+                hi, b, fb = b, a, fa
+                a = hi - phi * (hi - lo)
+                fa = R_of(a)
+            else:
+                lo, a, fa = a, b, fb
+                b = lo + phi * (hi - lo)
+                fb = R_of(b)
+        out["mu_direct"], out["R_direct_max"] = (a, fa) if fa > fb else (b, fb)
+    return out

@@ -298,9 +298,10 @@ DIRECT_RESEARCHES = 4
 
 
 def _lower_ratio(g: Gimbal, cert, R: float) -> tuple[float, float, float] | None:
-    """(A/|B|, u, s) at the point where a failed certification of A - R |B| > 0 stopped (its certified
-    counterexample, or the midpoint of the box it could not decide), when that ratio is below R: the
-    float search missed the minimiser of A/|B| (a heuristic; it only chooses where to search again)."""
+    """(A/|B|, u, s) at the point where a failed certification of A - R' |B| > 0 stopped (its certified
+    counterexample, or the midpoint of the box it could not decide), when that ratio is below ``R``
+    (the radius of the loosest margin): the float search missed the minimiser of A/|B| (a heuristic;
+    it only chooses where to search again)."""
     pt = cert.witness if cert.status is Status.REFUTED else cert.stuck.midpoint() if cert.stuck is not None else None
     if pt is None:
         return None
@@ -346,8 +347,9 @@ def _certify_direct(g: Gimbal, max_pieces: int, cap: float | None = None) -> _Di
                                              whole, max_pieces=max_pieces)
             if d.cert.status is Status.PROVED:
                 break
-            better = _lower_ratio(g, d.cert, float(Fraction(d.R_text)))
-            if better is not None:      # the search missed the minimiser: search again from there
+            # below the loosest margin's radius: no margin can succeed, the search missed the minimiser
+            better = _lower_ratio(g, d.cert, d.est * (1 - float(DIRECT_MARGINS[-1])))
+            if better is not None:      # search again from there
                 break
         if d.cert.status is Status.PROVED or better is None:
             break
@@ -424,7 +426,8 @@ def _largest_sublevel(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
         claim = _claim("largest_sublevel", Status.REFUTED, r.reason + tail, ce)
         return claim
     if r.c_lower is None:
-        return _claim("largest_sublevel", Status.INCONCLUSIVE, r.reason + "; try a larger max_pieces or --maxprec")
+        return _claim("largest_sublevel", Status.INCONCLUSIVE, r.reason + "; try a larger max_pieces or --maxprec",
+                      decides=r.bound)
     lo, hi = _q(_fmpq(Fraction(r.c_lower))), _q(_fmpq(Fraction(r.c_upper)))
     quantities["c_max_lower"], quantities["c_max_upper"] = lo, hi
     quantities["vdot_level_lower"] = _q(_fmpq(Fraction(r.n_lower)))

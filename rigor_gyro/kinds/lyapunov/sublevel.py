@@ -77,6 +77,9 @@ class Sublevel:
     #: a certified reason why c_max <= 0 (no estimate at all): {"where": "faces", "phi": ball} or
     #: {"where": "origin", "s": Fraction, "A": ball} (A(0, pi s) < 0: Vdot > 0 arbitrarily near 0)
     refutation: dict | None = None
+    #: when no positive lower bound over N was certified: the best one (it decides the claim; its
+    #: progress over doublings of the precision steers the escalation)
+    bound: arb | None = None
 
     @property
     def binding(self) -> str:
@@ -194,6 +197,7 @@ def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
     if not (best.bound.is_finite() and certainly_positive(best.bound)):
         out.reason = ("no positive lower bound of V over {Vdot >= 0, (x1, x3) != 0, |x2| <= x2*} was certified "
                       f"(best {best.bound.str(6)} on {best.boxes} boxes)")
+        out.bound = best.bound
         return out
     out.n_lower = decimal_bounds(best.bound, 12)[0]
     if not certainly_positive(_q(Fraction(out.n_lower))):
