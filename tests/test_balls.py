@@ -176,3 +176,24 @@ def test_agreeing_digits_matches_the_decimal_formulation(x, radexp, digits, nudg
     if nudge and printed[-1].isdigit():      # a last digit off by a few units: fewer digits agree
         printed = printed[:-1] + str((int(printed[-1]) + nudge) % 10)
     assert agreeing_digits(printed, v) == _agreeing_digits_reference(printed, v)
+
+
+@given(st.integers(-10**6, 10**6), st.integers(2, 40), st.integers(0, 60), st.integers(3, 8), st.booleans())
+def test_decimal_bounds_apart_excludes_the_value_exactly_when_the_ball_does(num, k, radexp, digits, near):
+    """decimal_bounds_apart (how a multiplier modulus is printed against 1): the printed interval
+    contains the ball; it excludes the value whenever the ball certainly does (a modulus certainly > 1
+    never prints as [1, 1.0001]), with the digits asked when those already exclude it, and it is the
+    plain decimal_bounds when the ball does not exclude the value."""
+    from rigor_gyro.core.balls import decimal_bounds, decimal_bounds_apart, exact_fraction
+    x = arb(1) + arb(fmpq(num, 10 ** k)) * (arb(fmpq(1, 10 ** 6)) if near else 1) + arb(0, fmpq(1, 2 ** radexp))
+    lo, hi = decimal_bounds_apart(x, 1, digits)
+    assert Fraction(lo) <= exact_fraction(x.lower()) and Fraction(hi) >= exact_fraction(x.upper())
+    plain = decimal_bounds(x, digits)
+    if certainly_gt(x, 1):
+        assert Fraction(lo) > 1
+    elif certainly_lt(x, 1):
+        assert Fraction(hi) < 1
+    else:
+        assert (lo, hi) == plain
+    if Fraction(plain[0]) > 1 or Fraction(plain[1]) < 1:
+        assert (lo, hi) == plain

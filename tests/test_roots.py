@@ -109,3 +109,77 @@ def test_a_real_root_ball_without_an_exact_sign_change_is_not_verified(monkeypat
     with working_precision(64):
         r = isolate_polynomial(p)
     assert not r.verified and "sign change" in r.reason
+
+
+@pytest.mark.parametrize("prec", [64, 128, 256])
+def test_refine_narrows_a_loose_isolating_ball_to_the_working_precision(prec):
+    """polyroots._refine (interval Newton on the polynomial's Horner series): from a loose ball around
+    a simple root it returns a ball inside it, still containing the root, about 2^-(prec - 8) wide
+    relative (Arb's own isolation is usually that tight already, so only a loose start shows it); a
+    ball where Newton cannot certify a unique root is returned unchanged."""
+    from flint import fmpq, fmpq_poly
+    from rigor_gyro.core.balls import working_precision
+    from rigor_gyro.core.polyroots import _refine
+    p = fmpq_poly([fmpq(-2), 0, 3]) * fmpq_poly([fmpq(5, 7), 1])        # roots +-sqrt(2/3), -5/7
+    with working_precision(prec):
+        root = (arb(2) / 3).sqrt()
+        loose = arb(fmpq(4, 5), fmpq(1, 20))                             # [0.75, 0.85] holds sqrt(2/3) only
+        y = _refine(p, loose)
+        assert y.contains(root) and loose.contains(y)
+        assert y.rad() <= abs(root) * arb(2) ** (8 - prec)
+        x = arb(fmpq(-5, 7), fmpq(1, 100))
+        assert _refine(p, x).contains(arb(fmpq(-5, 7))) and _refine(p, x).rad() <= arb(2) ** (8 - prec)
+        both = arb(0, 1)                                                   # holds two roots: unchanged
+        assert _refine(p, both).mid() == both.mid() and _refine(p, both).rad() == both.rad()
+
+
+def test_a_linear_polynomial_has_its_one_root_and_a_constant_is_refused():
+    """isolate_polynomial accepts every degree >= 1 (a linear factor is a polynomial too) and refuses a
+    constant with a message that names its degree."""
+    from rigor_gyro.core.errors import ParameterError
+    r = isolate_polynomial(fmpq_poly([fmpq(-1, 3), 1]))
+    from fractions import Fraction
+    from rigor_gyro.core.balls import exact_fraction
+    assert r.verified and len(r.real) == 1 and not r.nonreal
+    assert exact_fraction(r.real[0].lower()) <= Fraction(1, 3) <= exact_fraction(r.real[0].upper())
+    with pytest.raises(ParameterError, match="degree 0"):
+        isolate_polynomial(fmpq_poly([fmpq(2)]))
+
+
+def test_isolate_polynomial_reports_each_inconsistency_of_the_root_finder(monkeypatch):
+    """The exact checks of isolate_polynomial do not trust Arb's root list: a planted list with a
+    multiplicity, an undecided imaginary part, a point ball that is not a root, a ball without a sign
+    change, two overlapping balls (adjacent or not) or a wrong count is never verified, and the reason
+    names what failed; a genuine isolation says how the real roots were proved."""
+    from flint import acb
+    from rigor_gyro.core import polyroots as P
+    p = fmpq_poly([fmpq(-1), 0, 1]) * fmpq_poly([fmpq(-4), 1])            # roots -1, 1, 4
+    good = isolate_polynomial(p)
+    assert good.verified and good.poly == p and good.squarefree and len(good.multiplicities) == 3
+    assert "exact sign change" in good.reason
+    assert [round(float(x.mid()), 9) for x in good.real] == [-1, 1, 4]
+    one = isolate_polynomial(fmpq_poly([fmpq(-1), 1]))                    # x - 1: the root may be a point ball
+    assert one.verified and len(one.real) == 1
+    r = lambda m, rad=fmpq(1, 10**6): acb(arb(m, rad))                 # noqa: E731
+    cases = {
+        "multiplicity": [(r(-1), 2), (r(1), 1), (r(4), 1)],
+        "imaginary part": [(r(-1), 1), (r(1), 1), (acb(arb(4, fmpq(1, 10**6)), arb(0, fmpq(1, 10**3))), 1)],
+        "not an exact root": [(acb(arb(fmpq(-1, 2))), 1), (r(1), 1), (r(4), 1)],
+        "no exact sign change": [(r(-1), 1), (r(1), 1), (r(fmpq(9, 2), fmpq(1, 10)), 1)],
+        "overlap": [(r(-1), 1), (r(1, fmpq(6)), 1), (r(4), 1)],
+        "root count": [(r(-1), 1), (r(1), 1)],
+    }
+    for word, planted in cases.items():
+        monkeypatch.setattr(P, "arb_complex_roots", lambda q, planted=planted: planted)
+        out = isolate_polynomial(p)
+        assert not out.verified and word in out.reason, (word, out.reason)
+    monkeypatch.setattr(P, "arb_complex_roots", lambda q: [(r(-1, fmpq(3)), 1), (r(1, fmpq(1, 10)), 1), (r(4, fmpq(4)), 1)])
+    out = isolate_polynomial(p)                                           # -1's and 4's balls overlap (not adjacent)
+    assert not out.verified and "overlap" in out.reason
+
+
+def test_a_multiple_root_is_reported_not_isolated():
+    p = fmpq_poly([fmpq(-1), 1]) ** 2 * fmpq_poly([fmpq(2), 1])
+    out = isolate_polynomial(p)
+    assert out.poly == p and out.squarefree is False and not out.verified and "multiple root" in out.reason
+    assert sorted(m for _, m in out.multiplicities) == [1, 2]
