@@ -316,10 +316,13 @@ def test_float_polar_estimates_agree_with_mpmath_and_lie_above_the_certified_inf
     mp = mp_polar_estimates(AGAFONOV2013, dps=20)
     assert abs(fl["R_direct"] - float(mp["R_direct"])) <= 1e-9 * fl["R_direct"]
     assert abs(fl["c_max"] - float(mp["c_max"])) <= 1e-9 * fl["c_max"]
-    import json
-    from pathlib import Path
-    cert = json.loads((Path(__file__).parents[1] / "proofs" / "agafonov2013.json").read_text())
-    details = {c["id"]: c.get("details", {}) for c in cert["claims"]}
+    from rigor_gyro import load_scene
+    from rigor_gyro.prover import prove_scene
+    from rigor_gyro.scene import Scene
+    sc = load_scene("agafonov2013")
+    cert = prove_scene(Scene(name="x", kind="lyapunov", source="", parameters=dict(sc.parameters),
+                             options=dict(sc.options), claims_only=["vdot_direct", "best_mu_direct"]))
+    details = {c.id: c.details for c in cert.claims}
     R_direct = float(details["vdot_direct"]["R_direct"])
     R_max, mu_d = float(details["best_mu_direct"]["R_direct_max"]), float(details["best_mu_direct"]["mu_direct"])
     assert fl["R_direct"] >= R_direct * (1 - 1e-12)

@@ -177,6 +177,16 @@ def run(names: list[str] | None, out: str | None, tests: list[str] | None = None
     for part in ("rigor_gyro", "tests"):
         shutil.copytree(ROOT / part, snapshot / part, ignore=shutil.ignore_patterns("__pycache__"))
     shutil.copy(ROOT / "pyproject.toml", snapshot)
+    # the unmutated snapshot must pass the same tests: a test that fails there (one that reads a file
+    # the snapshot does not hold, say) would "kill" every mutant and the run would measure nothing
+    env = dict(os.environ, PYTHONPATH=str(snapshot), HYPOTHESIS_PROFILE="ci")
+    base = subprocess.run([sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", *(tests or [])],
+                          cwd=snapshot, env=env, capture_output=True, text=True)
+    if base.returncode != 0:
+        print("the unmutated snapshot fails its tests, so every kill would be void:\n" + base.stdout[-2000:])
+        shutil.rmtree(snapshot, ignore_errors=True)
+        return 4
+    print("the unmutated snapshot passes its tests", flush=True)
     for name, path, old, new, what in MUTANTS:
         if names and name not in names:
             continue
