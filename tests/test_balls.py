@@ -197,3 +197,13 @@ def test_decimal_bounds_apart_excludes_the_value_exactly_when_the_ball_does(num,
         assert (lo, hi) == plain
     if Fraction(plain[0]) > 1 or Fraction(plain[1]) < 1:
         assert (lo, hi) == plain
+
+
+def test_the_certificate_form_of_a_non_finite_ball_says_which_it_is():
+    """quantity() of a NaN ball and of an unbounded one: outward ends that say nothing is known, and a
+    midpoint that tells them apart (a reader of the certificate sees why no decimal is given)."""
+    from rigor_gyro.core.balls import quantity
+    nan, unbounded = quantity(arb("nan")), quantity(arb(0, "inf"))
+    assert nan["mid"] == "nan" and unbounded["mid"] == "inf"
+    assert nan["rad"] == unbounded["rad"] == "inf"
+    assert set(nan) == set(unbounded) == {"lo", "hi", "mid", "rad"}
