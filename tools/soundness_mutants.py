@@ -2,10 +2,12 @@
 
     python tools/soundness_mutants.py [--only NAME ...] [--tests FILE ...] [--list] [--out proofs/mutation.md]
 
-Each mutant is one textual substitution in one file. It is applied to a fresh copy of the package and
-the tests (in a temporary folder), and the README's test command runs there (``python -m pytest -x``,
-the ``ci`` hypothesis profile, with the copy first on ``sys.path``). A mutant is *killed* when the
-tests fail. Prints a table (and writes it with ``--out``); exits 1 if any mutant survives.
+Each mutant is one textual substitution in one file. It is applied to a fresh copy of the files git
+tracks, as they are in the working tree (in a temporary folder), and the README's test command runs
+there (``python -m pytest -x``, the ``ci`` hypothesis profile, with the copy first on ``sys.path``). A
+mutant is *killed* when the tests fail. The unmutated copy must pass the same tests first (otherwise the
+run stops, exit 4: a test failing there would "kill" every mutant). Prints a table (and writes it with
+``--out``); exits 1 if any mutant survives.
 """
 from __future__ import annotations
 
@@ -174,9 +176,14 @@ def run(names: list[str] | None, out: str | None, tests: list[str] | None = None
     rows, survivors = [], []
     # one snapshot of the tree, taken now: edits made while the mutants run do not leak into them
     snapshot = Path(tempfile.mkdtemp(prefix="mutants-snapshot-"))
-    for part in ("rigor_gyro", "tests"):
-        shutil.copytree(ROOT / part, snapshot / part, ignore=shutil.ignore_patterns("__pycache__"))
-    shutil.copy(ROOT / "pyproject.toml", snapshot)
+    # every file git tracks, as it is in the working tree (the tests also read README.md, tools/ and
+    # proofs/: a snapshot of rigor_gyro/ and tests/ alone failed test_readme for every mutant)
+    tracked = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
+    for rel in filter(None, tracked.decode().split("\0")):
+        src = ROOT / rel
+        if src.is_file():
+            (snapshot / rel).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(src, snapshot / rel)
     # the unmutated snapshot must pass the same tests: a test that fails there (one that reads a file
     # the snapshot does not hold, say) would "kill" every mutant and the run would measure nothing
     env = dict(os.environ, PYTHONPATH=str(snapshot), HYPOTHESIS_PROFILE="ci")
@@ -196,9 +203,7 @@ def run(names: list[str] | None, out: str | None, tests: list[str] | None = None
             survivors.append(name)
             continue
         with tempfile.TemporaryDirectory() as tmp:
-            for part in ("rigor_gyro", "tests"):
-                shutil.copytree(snapshot / part, Path(tmp) / part)
-            shutil.copy(snapshot / "pyproject.toml", tmp)
+            shutil.copytree(snapshot, tmp, dirs_exist_ok=True)
             (Path(tmp) / path).write_text(text.replace(old, new))
             env = dict(os.environ, PYTHONPATH=tmp, HYPOTHESIS_PROFILE="ci")
             t0 = time.time()
