@@ -49,7 +49,8 @@ def _stuck(before: arb | None, after: arb | None, prec: int) -> str | None:
         return None
     if not (before.is_finite() or after.is_finite() or before.is_nan() or after.is_nan()):
         return ("doubling the precision left the deciding enclosure unbounded (most likely a subdivision budget "
-                "or a search limits it, not the precision; a larger --maxprec may still be tried)")
+                "or a search limits it, not the precision: raise the scene's max_pieces; the escalation stops "
+                "here whatever --maxprec is)")
     if not (before.is_finite() and after.is_finite()):
         return None
     r0, r1 = before.rad(), after.rad()

@@ -148,6 +148,15 @@ def test_the_symmetry_is_used_only_for_an_odd_law():
     h = Gimbal(G.A0, G.B0, G.C0, G.H, G.k, G.a, G.mu, G.x2_star, NotOdd())
     assert symmetric_in_x2(h, f) is f
 
+    class Skewed(SineMoment):                              # changes f, inherits SineMoment's declaration
+        def f(self, a, x):
+            return a * (x.sin() + x * x / 4)
+
+    class Claimed(Skewed):                                 # declares it, but f is not odd
+        odd = True
+    for law in (Skewed(), Claimed()):
+        assert symmetric_in_x2(Gimbal(G.A0, G.B0, G.C0, G.H, G.k, G.a, G.mu, G.x2_star, law), f) is f
+
 
 def test_the_mirrored_bisection_is_the_bisection_without_the_symmetry():
     """The direct test's leaves with the mirror reuse are the leaves without it (the reuse removes only

@@ -167,7 +167,7 @@ MUTANTS = [
      "        key = tuple((k, balls[k].mid().man_exp()) for k in sorted(balls))",
      "a box's ball handed back for a wider box with the same (mirrored) midpoint"),
     ("mirror_for_every_law", "rigor_gyro/kinds/lyapunov/model.py",
-     "    return even_in(f, \"u\") if g.law.odd else f", "    return even_in(f, \"u\")",
+     "    return even_in(f, \"u\") if law_is_odd(g.law) else f", "    return even_in(f, \"u\")",
      "the x2 -> -x2 symmetry used for a law not declared odd"),
 ]
 

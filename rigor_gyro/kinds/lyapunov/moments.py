@@ -57,8 +57,9 @@ class MomentLaw:
     formula = ""
     G_on_balls = False                 # True: G's formula encloses G over wide balls directly
     #: True only for a law that is odd by its formula (f(-x) = -f(x), so f' is even): the polar forms of
-    #: Vdot and V are then symmetric under x2 -> -x2, and the (x2, t) branch and bounds reuse a box's
-    #: enclosure for its mirror image (:func:`rigor_gyro.core.boxes.even_in`)
+    #: Vdot and V are then symmetric under x2 -> -x2, and the (x2, t) branch and bounds evaluate a box
+    #: as its mirror image (:func:`rigor_gyro.kinds.lyapunov.model.symmetric_in_x2`). Declare it in the
+    #: law's own class: a subclass that changes f does not inherit it (``model.law_is_odd``)
     odd = False
 
     def f(self, a: arb, x):            # f(x); x may be an arb or a rigor_gyro.kinds.lyapunov.model.Dual
