@@ -1106,17 +1106,5 @@ def _polar_estimates(g, pi, cos, sin, mu_interval) -> dict:
             start[:] = [u, s]
             return v
         lo, hi = float(mu_interval[0]), float(mu_interval[1])
-        phi = (math.sqrt(5) - 1) / 2
-        a, b = hi - phi * (hi - lo), lo + phi * (hi - lo)
-        fa, fb = R_of(a), R_of(b)
-        for _ in range(40):
-            if fa > fb:
-                hi, b, fb = b, a, fa
-                a = hi - phi * (hi - lo)
-                fa = R_of(a)
-            else:
-                lo, a, fa = a, b, fb
-                b = lo + phi * (hi - lo)
-                fb = R_of(b)
-        out["mu_direct"], out["R_direct_max"] = (a, fa) if fa > fb else (b, fb)
+        out["mu_direct"], out["R_direct_max"] = _golden(R_of, lo, hi, NP, (hi - lo) * 1e-9, maximise=True)
     return out
