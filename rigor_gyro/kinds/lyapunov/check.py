@@ -336,6 +336,14 @@ def check(model, data: dict) -> list[CheckResult]:
             cstar_hi_ok = "c_star" in q and stored_interval(q["c_star"])[1] >= _upper(upper)
             if cstar_lo_ok and cstar_hi_ok:
                 verified.add("c_star")
+            if "cylinder_margin_lower" in q:
+                # a lower bound of min_cylinder V / c* - 1: valid when at most this checker's own bound
+                # (its cylinder bound over its c*'s upper end: the prover's c* is the faces' closed form
+                # when they bind, else the hull of the lower and upper bounds)
+                cs_up = face.upper() if inside and certainly_lt(face.upper(), cyl) else upper
+                own = (cyl / cs_up - 1).lower()
+                if certainly_positive(lower) and stored_interval(q["cylinder_margin_lower"])[1] <= _lower(own):
+                    verified.add("cylinder_margin_lower")
             contains("c_star_face", face)
             proved = vdot_ok and v_ok and ic.get("status") == "proved"
             c_text = ic.get("details", {}).get("c_set") if proved else None

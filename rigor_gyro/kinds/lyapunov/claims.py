@@ -95,7 +95,9 @@ HEADLINE = {"R_used": "radius R of region (17) used", "c_star": "level c* of the
             "R_direct_max": "certified radius with Vdot < 0 at mu_direct (direct test)",
             "mu_direct": "mu_direct (a search result)",
             "R_direct_sup_upper_bound": "no mu in (16) gives Vdot <= 0 on a disc cylinder of larger radius",
-            "k_min": "k_min = p A0 / H of (18)", "damping_margin": "design margin k/k_min - 1"}
+            "k_min": "k_min = p A0 / H of (18)", "damping_margin": "design margin k/k_min - 1",
+            "cylinder_margin_lower": "c* against the region's side: V >= (1 + this) c* on x1^2 + x3^2 = R^2 "
+                                     "(a certified lower bound)"}
 
 CLAIMS = {
     "constants": "Enclosures of A0, B0, C0, m, M, p, k_min = p A0/H, the mu interval (p/H, k/A0), R1, R2 and "
@@ -572,6 +574,11 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
         where = "lower bound from the cylinder's certified bound" + (" and the faces' closed form" if inside else "")
     quantities["c_star"] = cstar
     quantities["c_star_face"] = face
+    if certainly_positive(cstar):
+        # c* against the region's side: V >= cyl_lb on the cylinder x1^2 + x3^2 = R^2, so V >= (1 + margin) c*
+        # there (0 or below when the cylinder binds; a certified lower bound, not the exact ratio), rounded
+        # down to 10 digits (an exact decimal: a checker's own bound, at its precision, stays above it)
+        quantities["cylinder_margin_lower"] = _q(_fmpq(Fraction(decimal_bounds((cyl_lb / cstar.upper() - 1).lower(), 10)[0])))
     if not certainly_positive(cstar):
         return _claim("invariant_estimate", Status.INCONCLUSIVE,
                       f"c* = {_fmt(cstar)} is not certainly positive (cylinder bound on {cyl.pieces} pieces); "
