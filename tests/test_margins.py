@@ -635,3 +635,63 @@ def test_margin_figures_are_images_with_content(tmp_path):
         img = mpimg.imread(tmp_path / f"{stem}.png")
         assert img.shape[0] > 100 and img.std() > 0.01
     assert main(["margin", "roitenberg1947", "--param", "n", "--scan", "3", "--plots"]) == 2     # no --out
+
+
+def test_a_split_point_of_a_box_spectrum_is_where_g_has_a_sign():
+    """Over a box a root of g is spread over an interval; a split inside that spread can never be
+    decided, so a box spectrum's pieces are split where g has a certain sign (the first of the
+    tried fractions), the midpoint otherwise; a point spectrum always at the midpoint."""
+    from rigor_gyro.kinds.periodic_orbit.claims import _split_point
+    a, b = arb(0), arb(1)
+    # g's ball contains 0 on [0.45, 0.55] (the spread), has a sign elsewhere
+    g = lambda x, n: [arb(0, 1) if 0.45 <= float(x.mid()) <= 0.55 else arb(float(x.mid()) - 0.5)]
+    assert _split_point(g, a, b, True) == arb(fmpq(3, 8))
+    assert _split_point(g, a, b, False) == arb(fmpq(1, 2))
+    g_sign_at_mid = lambda x, n: [arb(1)]
+    assert _split_point(g_sign_at_mid, a, b, True) == arb(fmpq(1, 2))
+    g_nowhere = lambda x, n: [arb(0, 1)]
+    assert _split_point(g_nowhere, a, b, True) == arb(fmpq(1, 2))     # no sign anywhere: the midpoint
+    for fr in (fmpq(3, 8), fmpq(5, 8), fmpq(1, 4)):                     # the chosen point is inside (a, b)
+        x = _split_point(lambda x, n, fr=fr: [arb(1) if x == arb(fr) else arb(0, 1)], a, b, True)
+        assert x == arb(fr) and a < x < b
+
+
+@pytest.mark.parametrize("beta_values, verdict", [
+    ({16: -0.25}, "spurious"),          # beta < 0 at one grid point (certainly): a witness
+    ({}, "undecided"),                  # beta's balls all contain 0: no witness
+    ({16: "wide"}, "undecided"),        # a ball that may be negative is no witness
+])
+def test_a_root_with_beta_dot_of_no_sign_is_spurious_only_on_a_certain_negative_point(monkeypatch, beta_values,
+                                                                                     verdict):
+    """beta'(0) of no certain sign (a box spectrum's wide enclosure): the root is spurious only if
+    beta is *certainly* negative at a point of (0, theta), the point kept as the witness."""
+    from rigor_gyro.kinds.periodic_orbit import claims as relay_claims
+    theta = arb(1)
+    grid = relay_claims.WITNESS_GRID
+
+    def beta(t):
+        k = round(float(t.mid()) * grid)
+        v = beta_values.get(k)
+        if v == "wide":
+            return arb(-1, 2)
+        return arb(v) if v is not None else arb(0, 1)
+    monkeypatch.setattr(relay_claims, "x0_at", lambda sp, th: [arb(0), arb(0, 1), arb(0), arb(0), arb(0)])
+    monkeypatch.setattr(relay_claims, "orbit_expsums", lambda sp, x0: [beta])
+    v = relay_claims.classify_root(None, theta)
+    assert v.kind == verdict, v.reason
+    if verdict == "spurious":
+        assert v.witness_t == arb(fmpq(16, grid)) and "no certain sign" in v.reason
+
+
+def test_a_relay_box_in_n_decides_a_spurious_root_by_a_point_of_beta_below_zero():
+    """n in [48, 48.25] (the rest as printed): the spurious root near theta = 0.638 (beside the pole
+    of tanh at 5 pi / omega) has beta'(0) = -0.009 at n = 48.25, of no certain sign over the box; it is
+    classified spurious by beta < 0 at a point of (0, theta), so every root is isolated and classified
+    for every n in the box (before: undecided)."""
+    from rigor_gyro.kinds.periodic_orbit import validate as relay_validate
+    from rigor_gyro.kinds.periodic_orbit.boxes import evaluate_box as relay_box
+    m = relay_validate(load_scene("roitenberg1947"))
+    with working_precision(128):
+        out = relay_box(m, Box.of({"n": (Fraction(48), Fraction(193, 4))}), ["half_period", "orbit_genuine"])
+    assert out["half_period"][0] == "proved", out["half_period"][1]
+    assert out["orbit_genuine"][0] == "proved"

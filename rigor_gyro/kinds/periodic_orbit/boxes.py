@@ -29,10 +29,19 @@ projectors depend on the parameters independently, so on a box the spectral form
 10^6 there; :class:`BoxSpectrum` therefore carries a :class:`.flow.NearZeroSeries` (g's power series
 from matrix powers, certified tail) that :func:`.flow.g_coeffs` uses up to its reach.
 
-Known limit (measured on margin_roitenberg_b_s_tolerance, 128 bits): sub-boxes of relative width about
-4e-6 in B decide everywhere except where the spread of a root of g over the sub-box crosses the edge
-of an isolation piece (theta ~ 0.638, and at the series' reach theta ~ 0.0248): there the pieces stay
-undecided (never refuted). Isolating with pieces merged across such an edge is the next step.
+Over a box a root of g is an interval (its value for each member). The root search therefore splits a
+piece where g has a certain sign for every member (:func:`.claims._split_point`), so that a root's
+whole spread stays in one piece, and a root whose beta'(0) has no certain sign over the box is still
+proved spurious by a point where beta is certainly negative (:func:`.claims.classify_root`).
+
+Known limits (measured at 128 bits on the printed Roitenberg parameters): ``stable`` decides sub-boxes
+of relative width about 1e-3 in n (the multipliers' enclosure over the box must stay below 1: the
+margin is 0.043), ``orbit_genuine`` boxes 40 times wider. ``half_period`` (every root of g isolated,
+simple) can never be decided on a box holding a parameter where two roots merge: near n = 50.7 the
+two spurious roots beside the pole of tanh at theta = 5 pi / omega = 0.640 meet and vanish (a fold),
+so there the paving keeps an undecided sliver whatever the resolution (never refuted: the claim
+fails to be provable there, not to hold). ``orbit_genuine`` and ``stable`` do not need every root
+classified and hold across the fold.
 
 Fails when: the domain fails somewhere in the box (every parameter > 0): ParameterError. A box where
 the cubic's roots cannot be separated, or -1/sigma may be one of them, is undecided (the paving splits it).

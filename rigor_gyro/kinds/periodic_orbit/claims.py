@@ -213,6 +213,10 @@ def _dbeta(beta, X: arb) -> arb:
     return taylor_enclosure(beta.coeffs, X, TAYLOR_ORDER, (1,))[0]
 
 
+#: where beta'(0) has no certain sign, beta is tried at theta_lo k / WITNESS_GRID, 0 < k < WITNESS_GRID
+WITNESS_GRID = 32
+
+
 def classify_root(sp: Spectrum, theta: arb) -> RootVerdict:
     """Decide whether the root theta of g is a genuine orbit (beta > 0 on (0, theta)) or spurious."""
     x0 = x0_at(sp, theta)
@@ -228,7 +232,16 @@ def classify_root(sp: Spectrum, theta: arb) -> RootVerdict:
         return RootVerdict(theta, x0, "spurious", f"beta'(0) = {_fmt(bd0, 8)} < 0: beta < 0 just after the "
                            "switching (the orbit starts into beta < 0)")
     if not certainly_positive(bd0):
-        return RootVerdict(theta, x0, "undecided", f"sign of beta'(0) = {_fmt(bd0, 8)} undecided (raise precision)")
+        # beta'(0) of no certain sign (a box spectrum's wide enclosure, say): beta certainly < 0 at a
+        # point of (0, theta) still proves the root spurious (the relay would switch there first)
+        for k in range(1, WITNESS_GRID):
+            t = (th_lo * k / WITNESS_GRID).mid()
+            bt = beta(arb(t))
+            if certainly_negative(bt):
+                return RootVerdict(theta, x0, "spurious", f"beta(t) = {_fmt(bt, 6)} < 0 at t = {_fmt(arb(t), 10)} "
+                                   f"in (0, theta) (beta'(0) = {_fmt(bd0, 8)} of no certain sign)", witness_t=arb(t))
+        return RootVerdict(theta, x0, "undecided", f"sign of beta'(0) = {_fmt(bd0, 8)} undecided and beta not "
+                           f"certainly < 0 at {WITNESS_GRID - 1} points of (0, theta) (raise precision)")
     # left end: beta' > 0 on [0, d1]
     d1 = None
     for j in range(1, 60):
@@ -567,8 +580,36 @@ def envelope_test(sp: Spectrum):
     return root_free
 
 
+#: where :func:`_isolate` tries to split a piece of a box spectrum, as fractions of the piece (first the
+#: midpoint): the first point where g has a certain sign for every member of the box is taken
+SPLIT_FRACTIONS = (Fraction(1, 2), Fraction(3, 8), Fraction(5, 8), Fraction(1, 4), Fraction(3, 4), Fraction(1, 8),
+                   Fraction(7, 8))
+
+
+def _split_point(coeffs, a: arb, b: arb, signed: bool) -> arb:
+    """Where to bisect [a, b]: its midpoint, or with ``signed`` (a box spectrum) the first point of
+    :data:`SPLIT_FRACTIONS` where g certainly has one sign for every member (the midpoint if none).
+    Why: over a parameter box a root of g is spread over an interval (its value for each member); a
+    split inside that spread leaves both halves with a root for some members and none for others,
+    undecidable at any depth, while a split where g has one sign keeps the whole spread in one piece,
+    where interval Newton (its derivative enclosed over the box) proves one root for every member.
+    Any split point is sound: the pieces still tile [a, b]; this only chooses which tiling."""
+    mid = ((a + b) / 2).mid()
+    if not signed or coeffs is None:
+        return mid
+    w = b - a
+    for fr in SPLIT_FRACTIONS:
+        x = mid if fr == Fraction(1, 2) else (a + w * fr.numerator / fr.denominator).mid()
+        if not (certainly_lt(a, x) and certainly_lt(x, b)):
+            continue
+        if _sign(coeffs(arb(x), 1)[0]) != 0:
+            return x
+    return mid
+
+
 def _isolate(f, lo: arb, hi: arb, *, coeffs=None, max_depth: int = 48,
-             max_pieces: int = MAX_PIECES, resume: tuple | None = None, root_free=None) -> Isolation:
+             max_pieces: int = MAX_PIECES, resume: tuple | None = None, root_free=None,
+             signed_split: bool = False) -> Isolation:
     """:func:`rigor_gyro.core.roots.isolate_roots` with two changes. A piece where interval Newton fails
     and the second derivative has one sign is decided at once by :func:`_critical_split` (given the
 Taylor ``coeffs`` of f) instead of being
@@ -597,7 +638,7 @@ Taylor ``coeffs`` of f) instead of being
         if piece.status is RootStatus.UNKNOWN:
             small = certainly_lt(b - a, b.abs_upper() * rel)
             if depth < max_depth and not small and len(done) + len(stack) < max_pieces:
-                mid = ((a + b) / 2).mid()
+                mid = _split_point(coeffs, a, b, signed_split)
                 stack.append((mid, b, depth + 1))
                 stack.append((a, mid, depth + 1))
                 continue
@@ -671,7 +712,7 @@ def analyse(model: RelayModel, spectrum=None, phase: Phases | None = None) -> An
             iso = Isolation(pieces)
         else:
             iso = _isolate(_g_series_function(sp, coeffs), an.theta_min, an.T_search, coeffs=coeffs, resume=cached,
-                           root_free=envelope_test(sp))
+                           root_free=envelope_test(sp), signed_split=getattr(sp, "near_zero", None) is not None)
         if spectrum is None:
             model.decided[key] = iso.resume if iso.resume is not None else \
                 ((list(iso.pieces), None) if not iso.unknown else None)
