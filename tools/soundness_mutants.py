@@ -169,6 +169,14 @@ MUTANTS = [
     ("mirror_for_every_law", "rigor_gyro/kinds/lyapunov/model.py",
      "    return even_in(f, \"u\") if law_is_odd(g.law) else f", "    return even_in(f, \"u\")",
      "the x2 -> -x2 symmetry used for a law not declared odd"),
+    # the relay boxes' root classification and c* against the region (issue 11, 2026-12-02)
+    ("spurious_grid_point_possibly", "rigor_gyro/kinds/periodic_orbit/claims.py",
+     "            bt = beta(arb(t))\n            if certainly_negative(bt):",
+     "            bt = beta(arb(t))\n            if not certainly_positive(bt):",
+     "a root called spurious at a point where beta is only possibly negative"),
+    ("cylinder_margin_checker_accepts", "rigor_gyro/kinds/lyapunov/check.py",
+     "stored_interval(q[\"cylinder_margin_lower\"])[1] <= _lower(own)", "True",
+     "the checker accepts any stored c* margin against the region's side"),
 ]
 
 
