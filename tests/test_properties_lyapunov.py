@@ -75,7 +75,8 @@ MU_BEST_REL_GAP = "1e-8"
 #: quantities that are *chosen* by the proof (decimals fixed from a bound, and what is computed from
 #: them), not enclosures of one fixed number: they may differ between precisions
 CHOSEN = ("c_set", "extent_x1_axis", "extent_x2_axis", "extent_x3_axis", "extent_x1", "extent_x2", "extent_x3", "mu_best",
-          "R_max", "R_sup_at_mu_best", "R_sup_upper_bound", "R_max_relative_gap")
+          "R_max", "R_sup_at_mu_best", "R_sup_upper_bound", "R_max_relative_gap",
+          "cylinder_margin_lower")   # a certified lower bound: it may rise with the precision
 #: quantities of `constants` checked against mpmath
 CONSTANTS = ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R")
 
