@@ -578,7 +578,8 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
         # c* against the region's side: V >= cyl_lb on the cylinder x1^2 + x3^2 = R^2, so V >= (1 + margin) c*
         # there (0 or below when the cylinder binds; a certified lower bound, not the exact ratio), rounded
         # down to 10 digits (an exact decimal: a checker's own bound, at its precision, stays above it)
-        quantities["cylinder_margin_lower"] = _q(_fmpq(Fraction(decimal_bounds((cyl_lb / cstar.upper() - 1).lower(), 10)[0])))
+        margin_text = decimal_bounds((cyl_lb / cstar.upper() - 1).lower(), 10)[0]
+        quantities["cylinder_margin_lower"] = _q(_fmpq(Fraction(margin_text)))
     if not certainly_positive(cstar):
         return _claim("invariant_estimate", Status.INCONCLUSIVE,
                       f"c* = {_fmt(cstar)} is not certainly positive (cylinder bound on {cyl.pieces} pieces); "

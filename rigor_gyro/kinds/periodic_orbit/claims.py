@@ -236,10 +236,10 @@ def classify_root(sp: Spectrum, theta: arb) -> RootVerdict:
         # point of (0, theta) still proves the root spurious (the relay would switch there first)
         for k in range(1, WITNESS_GRID):
             t = (th_lo * k / WITNESS_GRID).mid()
-            bt = beta(arb(t))
+            bt = beta(t)
             if certainly_negative(bt):
-                return RootVerdict(theta, x0, "spurious", f"beta(t) = {_fmt(bt, 6)} < 0 at t = {_fmt(arb(t), 10)} "
-                                   f"in (0, theta) (beta'(0) = {_fmt(bd0, 8)} of no certain sign)", witness_t=arb(t))
+                return RootVerdict(theta, x0, "spurious", f"beta(t) = {_fmt(bt, 6)} < 0 at t = {_fmt(t, 10)} "
+                                   f"in (0, theta) (beta'(0) = {_fmt(bd0, 8)} of no certain sign)", witness_t=t)
         return RootVerdict(theta, x0, "undecided", f"sign of beta'(0) = {_fmt(bd0, 8)} undecided and beta not "
                            f"certainly < 0 at {WITNESS_GRID - 1} points of (0, theta) (raise precision)")
     # left end: beta' > 0 on [0, d1]
@@ -602,7 +602,7 @@ def _split_point(coeffs, a: arb, b: arb, signed: bool) -> arb:
         x = mid if fr == Fraction(1, 2) else (a + w * fr.numerator / fr.denominator).mid()
         if not (certainly_lt(a, x) and certainly_lt(x, b)):
             continue
-        if _sign(coeffs(arb(x), 1)[0]) != 0:
+        if _sign(coeffs(x, 1)[0]) != 0:
             return x
     return mid
 
@@ -610,16 +610,17 @@ def _split_point(coeffs, a: arb, b: arb, signed: bool) -> arb:
 def _isolate(f, lo: arb, hi: arb, *, coeffs=None, max_depth: int = 48,
              max_pieces: int = MAX_PIECES, resume: tuple | None = None, root_free=None,
              signed_split: bool = False) -> Isolation:
-    """:func:`rigor_gyro.core.roots.isolate_roots` with two changes. A piece where interval Newton fails
+    """:func:`rigor_gyro.core.roots.isolate_roots` with three changes. A piece where interval Newton fails
     and the second derivative has one sign is decided at once by :func:`_critical_split` (given the
-Taylor ``coeffs`` of f) instead of being
-    bisected towards a close pair of roots. And a fail-fast rule: when a piece is still undecided at
-    the depth limit or at a width the precision cannot resolve (< 2^(-prec/2) relative), the search
+    Taylor ``coeffs`` of f) instead of being bisected towards a close pair of roots. A fail-fast rule:
+    when a piece is still undecided at the depth limit or at a width the precision cannot resolve (< 2^(-prec/2) relative), the search
     stops and the rest of the range is reported undecided (the prover then raises the precision)
     instead of bisecting every piece of a cancellation-dominated stretch to the depth limit; the
     decided pieces before the stop and the stop point are kept in ``Isolation.resume``, and a later
     call given them as ``resume`` searches only the rest. ``root_free(a, b)``, when given, is tried on
-    each piece first: True means certainly no root there (:func:`envelope_test`), an empty piece."""
+    each piece first: True means certainly no root there (:func:`envelope_test`), an empty piece. And
+    with ``signed_split`` (a box spectrum) a piece is bisected where g has a certain sign
+    (:func:`_split_point`), not always at its midpoint."""
     done: list[RootPiece] = list(resume[0]) if resume else []
     stack: list[tuple[arb, arb, int]] = [(resume[1], hi, 1)] if resume else [(lo, hi, 0)]
     stopped = None
