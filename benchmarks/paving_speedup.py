@@ -1,6 +1,6 @@
 """Speed-up of a paving with the worker count, for the process pool and for Dask. Prints a table.
 
-    python benchmarks/paving_speedup.py [--repeat 2]
+    python benchmarks/paving_speedup.py [--repeat 2] [--scene eigen|lyap] [--executor pool|dask]
 
 Paves two scenes (the eigenfrequency example over eps x Omega2 and a Lyapunov box in k x mu) in process,
 on a pool of 1 and 2 workers and on a Dask LocalCluster of 1 and 2 workers, checks that every paving
@@ -56,13 +56,19 @@ box_resolution = "1/8"
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=2)
+    ap.add_argument("--scene", choices=("eigen", "lyap"), help="only the scene whose label starts so")
+    ap.add_argument("--executor", choices=("pool", "dask"), help="only this executor")
     args = ap.parse_args()
     print("| scene | executor | workers | wall s (best) | speed-up vs 1 worker | identical |")
     print("|---|---|---|---|---|---|")
     for label, text in SCENES.items():
+        if args.scene and not label.startswith(args.scene):
+            continue
         bs = box_scene(parse_scene(text))
         reference = paving_json(pave(bs, Executor(1)))
         for kind, scheduler in (("pool", None), ("dask", "local")):
+            if args.executor and kind != args.executor:
+                continue
             base = None
             for workers in (1, 2):
                 ex = Executor(workers, scheduler) if (workers > 1 or scheduler) else Executor(1)
