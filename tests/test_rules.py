@@ -133,3 +133,23 @@ def test_proving_a_scene_imports_only_its_own_kind(scene):
     assert kinds == str([kind])
     assert floats == "[]"
     assert float_side == "[]"
+
+
+def _named_mutants():
+    import importlib.util
+    path = PKG.parent / "tools" / "soundness_mutants.py"
+    spec = importlib.util.spec_from_file_location("soundness_mutants", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod.MUTANTS
+
+
+@pytest.mark.parametrize("mutant", _named_mutants(), ids=lambda m: m[0])
+def test_every_named_soundness_mutant_still_applies(mutant):
+    """A refactor that rewrites a mutant's target text would make tools/soundness_mutants.py report it
+    'NOT APPLIED' only when someone runs it: each target must occur exactly once, and the mutation must
+    change the file."""
+    name, path, old, new, _ = mutant
+    text = (PKG.parent / path).read_text(encoding="utf-8")
+    assert text.count(old) == 1, f"mutant {name}: its text occurs {text.count(old)} times in {path}"
+    assert old != new

@@ -171,8 +171,8 @@ MUTANTS = [
      "the x2 -> -x2 symmetry used for a law not declared odd"),
     # the relay boxes' root classification and c* against the region (issue 11, 2026-12-02)
     ("spurious_grid_point_possibly", "rigor_gyro/kinds/periodic_orbit/claims.py",
-     "            bt = beta(arb(t))\n            if certainly_negative(bt):",
-     "            bt = beta(arb(t))\n            if not certainly_positive(bt):",
+     "            bt = beta(t)\n            if certainly_negative(bt):",
+     "            bt = beta(t)\n            if not certainly_positive(bt):",
      "a root called spurious at a point where beta is only possibly negative"),
     ("cylinder_margin_checker_accepts", "rigor_gyro/kinds/lyapunov/check.py",
      "stored_interval(q[\"cylinder_margin_lower\"])[1] <= _lower(own)", "True",
