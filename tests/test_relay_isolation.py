@@ -1,0 +1,196 @@
+"""The relay kind's root isolation helpers on polynomials whose roots are known exactly.
+
+The relay prover's g is a sum of exponentials, but the helpers that decide a piece of the root search
+(:func:`_monotone_side`, :func:`_newton_bracket`, :func:`_critical_split`, :func:`_isolate`) see g only
+through its Taylor coefficients ``coeffs(center, n)``. Fed the coefficients of a polynomial, their
+verdicts can be checked against the exact roots: every piece called root-free holds no root, every
+piece called unique holds exactly one, the pieces tile the range, and a helper that cannot decide says
+None rather than guessing. A lying derivative (Newton's search misled) must never produce a bracket
+whose signs were not certified.
+"""
+from math import factorial
+
+import pytest
+from flint import arb, arb_poly, fmpq, fmpq_poly
+
+from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.roots import RootStatus
+from rigor_gyro.kinds.periodic_orbit.claims import (RootVerdict, _critical_split, _g_series_function, _isolate,
+                                                    _monotone_side, _newton_bracket, _select, _split_point)
+
+
+def poly_coeffs(coefficients, derivative_scale=1):
+    """coeffs(center, n) of the polynomial with these rational coefficients (lowest degree first): balls
+    containing p^(j)(c)/j! for every c in the ball ``center``. ``derivative_scale`` multiplies the
+    derivative terms (j >= 1): a lying derivative, for the search-only paths."""
+    P = fmpq_poly([fmpq(c) if not isinstance(c, fmpq) else c for c in coefficients])
+
+    def coeffs(center, n):
+        out, D = [], P
+        for j in range(n):
+            val = arb_poly([arb(D[i]) for i in range(D.degree() + 1)])(center) if D.degree() >= 0 else arb(0)
+            out.append(val / factorial(j) * (derivative_scale if j >= 1 else 1))
+            D = D.derivative()
+        return out
+    return coeffs
+
+
+def _tiles(pieces, a, b):
+    assert pieces[0].lo == a and pieces[-1].hi == b
+    for p, q in zip(pieces, pieces[1:]):
+        assert p.hi == q.lo, "pieces must tile the range with shared exact endpoints"
+
+
+def _check_against_roots(pieces, roots):
+    """Each root lies in exactly one unique piece's enclosure and in no empty piece."""
+    for r in roots:
+        holders = [p for p in pieces if p.lo <= r <= p.hi or p.lo.overlaps(r) or p.hi.overlaps(r)]
+        assert not any(p.status is RootStatus.EMPTY and p.lo < r < p.hi for p in holders), \
+            f"a piece called root-free holds the root {r}"
+        unique = [p for p in holders if p.status is RootStatus.UNIQUE]
+        assert len(unique) == 1 and unique[0].enclosure.overlaps(r)
+    assert sum(p.status is RootStatus.UNIQUE for p in pieces) == len(roots)
+
+
+def test_a_monotone_piece_with_one_root_is_split_around_it():
+    # p(x) = x^3 + x - 1: increasing, one root 0.68232780382801932737...
+    co = poly_coeffs([-1, 1, 0, 1])
+    f = _g_series_function(None, co)
+    a, b = arb(0), arb(1)
+    pieces = _monotone_side(f, co, a, b)
+    assert pieces is not None
+    _tiles(pieces, a, b)
+    root = arb("0.682327803828019327369483739711 +/- 1e-29")
+    _check_against_roots(pieces, [root])
+    assert [p.status for p in pieces].count(RootStatus.EMPTY) == len(pieces) - 1
+
+
+def test_a_monotone_piece_without_a_sign_change_is_one_empty_piece():
+    co = poly_coeffs([-1, 1, 0, 1])
+    pieces = _monotone_side(_g_series_function(None, co), co, arb("0.7"), arb(1))
+    assert len(pieces) == 1 and pieces[0].status is RootStatus.EMPTY
+
+
+def test_a_monotone_piece_ending_on_a_root_is_not_decided():
+    # x^3 + x - 2 has the root 1 exactly: g(1) has no strict sign
+    co = poly_coeffs([-2, 1, 0, 1])
+    assert _monotone_side(_g_series_function(None, co), co, arb(0), arb(1)) is None
+    assert _monotone_side(_g_series_function(None, co), co, arb(1), arb(2)) is None
+
+
+def test_newtons_bracket_is_narrow_and_certified():
+    co = poly_coeffs([-1, 1, 0, 1])
+    root = arb("0.682327803828019327369483739711 +/- 1e-29")
+    lo, hi = _newton_bracket(co, arb(0), arb(1), -1)
+    assert lo < root < hi
+    assert arb(0) < lo and hi < arb(1)
+    assert hi - lo < arb("1e-6")
+    # the same from a start far from the root (a steep polynomial whose root is near an end)
+    co2 = poly_coeffs([-1, 1000])                     # root 1/1000
+    lo, hi = _newton_bracket(co2, arb(0), arb(1), -1)
+    assert lo < arb(fmpq(1, 1000)) < hi and hi - lo < arb("1e-6")
+
+
+@pytest.mark.parametrize("scale", [arb(10) ** 30, arb(10) ** -30, arb(-1)])
+def test_a_lying_derivative_never_gives_an_uncertified_bracket(scale):
+    """Newton's search only proposes: with a derivative 1e30 too large (steps too short), 1e30 too small
+    (steps overshoot) or of the wrong sign, a bracket comes back only if its signs are certified."""
+    true, lying = poly_coeffs([-1, 1, 0, 1]), poly_coeffs([-1, 1, 0, 1], derivative_scale=scale)
+    root = arb("0.682327803828019327369483739711 +/- 1e-29")
+    out = _newton_bracket(lying, arb(0), arb(1), -1)
+    if out is not None:
+        lo, hi = out
+        assert true(lo, 1)[0] < 0 < true(hi, 1)[0]
+        assert lo < root < hi
+
+
+def test_newtons_bracket_gives_up_on_a_vanishing_derivative():
+    co = poly_coeffs([-1, 0, 0, 1], derivative_scale=0)
+    assert _newton_bracket(co, arb(0), arb(2), -1) is None
+
+
+@pytest.mark.parametrize("gap, roots", [
+    (fmpq(1, 100), [fmpq(7, 30), fmpq(13, 30)]),          # (x - 1/3)^2 - 1/100: roots 1/3 -+ 1/10
+    (fmpq(-1, 100), []),                                  # (x - 1/3)^2 + 1/100: no root, a minimum 1/100
+    (fmpq(1, 10 ** 40), [fmpq(1, 3) - fmpq(1, 10 ** 20), fmpq(1, 3) + fmpq(1, 10 ** 20)]),   # 2e-20 apart
+])
+def test_a_convex_piece_is_decided_at_its_critical_point(gap, roots):
+    # (x - 1/3)^2 - gap = x^2 - 2x/3 + 1/9 - gap (the critical point 1/3 is not a dyadic: its enclosure
+    # has width, as the critical point of g has)
+    co = poly_coeffs([fmpq(1, 9) - gap, fmpq(-2, 3), 1])
+    f = _g_series_function(None, co)
+    a, b = arb(0), arb(1)
+    with working_precision(256):
+        pieces = _critical_split(f, co, a, b)
+        assert pieces is not None
+        _tiles(pieces, a, b)
+        _check_against_roots(pieces, [arb(r) for r in roots])
+
+
+def test_a_piece_with_an_inflection_is_left_to_bisection():
+    # x^3 - x/4 on [-1, 1]: g'' = 6x changes sign at 0
+    co = poly_coeffs([0, fmpq(-1, 4), 0, 1])
+    assert _critical_split(_g_series_function(None, co), co, arb(-1), arb(1)) is None
+
+
+def test_a_critical_point_on_a_root_is_not_decided():
+    # (x - 1/3)^2: a double root at the critical point; g there has no strict sign
+    co = poly_coeffs([fmpq(1, 9), fmpq(-2, 3), 1])
+    assert _critical_split(_g_series_function(None, co), co, arb(0), arb(1)) is None
+
+
+@pytest.mark.parametrize("signed", [False, True])
+def test_isolation_of_a_polynomial_finds_every_root_once(signed):
+    # (x - 1/5)(x - 1/3)(x - 1/2)(x - 7/8)(x - 9/10): five simple roots in [0, 1]
+    rs = [fmpq(1, 5), fmpq(1, 3), fmpq(1, 2), fmpq(7, 8), fmpq(9, 10)]
+    P = fmpq_poly([1])
+    for r in rs:
+        P *= fmpq_poly([-r, 1])
+    co = poly_coeffs([P[i] for i in range(P.degree() + 1)])
+    iso = _isolate(_g_series_function(None, co), arb(0), arb(1), coeffs=co, signed_split=signed)
+    assert not iso.unknown
+    _tiles(iso.pieces, arb(0), arb(1))
+    assert len(iso.roots) == 5
+    for r, enc in zip(rs, sorted(iso.roots, key=lambda x: float(x.mid()))):
+        assert enc.overlaps(arb(r))
+    assert all(p.status in (RootStatus.EMPTY, RootStatus.UNIQUE) for p in iso.pieces)
+
+
+def test_isolation_stops_at_a_double_root_and_reports_the_rest_unexamined():
+    # (x - 1/3)^2 (x - 3/4): the double root can never be proved simple
+    P = fmpq_poly([-fmpq(1, 3), 1]) ** 2 * fmpq_poly([-fmpq(3, 4), 1])
+    co = poly_coeffs([P[i] for i in range(P.degree() + 1)])
+    iso = _isolate(_g_series_function(None, co), arb(0), arb(1), coeffs=co, max_depth=20)
+    assert iso.unknown
+    assert any(p.lo <= arb(fmpq(1, 3)) <= p.hi for p in iso.unknown)
+    assert not any(p.status is RootStatus.EMPTY and p.lo < arb(fmpq(1, 3)) < p.hi for p in iso.pieces)
+    assert iso.resume is not None
+    decided, stop = iso.resume
+    assert all(certainly_le_or_equal(p.hi, stop) for p in decided)
+
+
+def certainly_le_or_equal(x, y):
+    return x < y or x == y
+
+
+def test_the_split_point_keeps_to_the_midpoint_unless_asked():
+    co = poly_coeffs([fmpq(-1, 2), 1])                # x - 1/2: g(1/2) = 0 exactly
+    assert _split_point(co, arb(0), arb(1), False) == arb(fmpq(1, 2))
+    assert _split_point(co, arb(0), arb(1), True) == arb(fmpq(3, 8))
+    assert _split_point(None, arb(0), arb(1), True) == arb(fmpq(1, 2))
+
+
+def _verdict(stable):
+    return RootVerdict(arb(1), [], "genuine", "", stable=stable)
+
+
+def test_the_selected_orbit_is_the_only_stable_one_or_the_shortest():
+    a, b, c = _verdict(None), _verdict(True), _verdict(False)
+    v, why = _select([a, b, c])
+    assert v is b and why == "the stable genuine orbit"
+    d = _verdict(True)
+    v, why = _select([a, b, d])
+    assert v is a and "several are stable" in why
+    v, why = _select([a, c])
+    assert v is a and "none is certified stable" in why
+    assert _select([]) == (None, "no genuine orbit")
