@@ -13,9 +13,9 @@ from math import factorial
 import pytest
 from flint import arb, arb_poly, fmpq, fmpq_poly
 
-from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.balls import series_coefficients, working_precision
 from rigor_gyro.core.roots import RootStatus
-from rigor_gyro.kinds.periodic_orbit.claims import (RootVerdict, _critical_split, _g_series_function, _isolate,
+from rigor_gyro.kinds.periodic_orbit.claims import (ENVELOPE_REASON, RootVerdict, _critical_split, _g_series_function, _isolate,
                                                     _monotone_side, _newton_bracket, _select, _split_point)
 
 
@@ -190,7 +190,71 @@ def test_the_selected_orbit_is_the_only_stable_one_or_the_shortest():
     assert v is b and why == "the stable genuine orbit"
     d = _verdict(True)
     v, why = _select([a, b, d])
-    assert v is a and "several are stable" in why
+    assert v is a and why == "the shortest genuine orbit (several are stable)"
     v, why = _select([a, c])
-    assert v is a and "none is certified stable" in why
+    assert v is a and why == "the shortest genuine orbit (none is certified stable)"
     assert _select([]) == (None, "no genuine orbit")
+
+
+def _five_roots():
+    rs = [fmpq(1, 5), fmpq(1, 3), fmpq(1, 2), fmpq(7, 8), fmpq(9, 10)]
+    P = fmpq_poly([1])
+    for r in rs:
+        P *= fmpq_poly([-r, 1])
+    return rs, poly_coeffs([P[i] for i in range(P.degree() + 1)])
+
+
+def test_pieces_a_root_free_test_decides_are_kept_and_the_search_goes_on():
+    """``root_free`` (the envelope bound) decides whole pieces; the search must still cover the rest of
+    the range: the pieces tile [0, 1], every root is found, and the envelope's pieces say so (the
+    certificate's witness names them by that reason)."""
+    rs, co = _five_roots()
+    lo_free, hi_free = arb(fmpq(11, 20)), arb(fmpq(17, 20))      # no root in [0.55, 0.85]
+    calls = []
+
+    def root_free(a, b):
+        calls.append((a, b))
+        return lo_free <= a and b <= hi_free
+    iso = _isolate(_g_series_function(None, co), arb(0), arb(1), coeffs=co, root_free=root_free)
+    assert not iso.unknown and calls
+    _tiles(iso.pieces, arb(0), arb(1))
+    assert len(iso.roots) == 5
+    by_envelope = [p for p in iso.pieces if p.reason == ENVELOPE_REASON]
+    assert by_envelope and all(p.status is RootStatus.EMPTY and lo_free <= p.lo and p.hi <= hi_free
+                               for p in by_envelope)
+
+
+def test_a_close_pair_of_roots_is_decided_at_the_critical_point_within_the_depth_limit():
+    """(x - 1/3)^2 - 1e-40: two roots 2e-20 apart. Bisection alone would need about 66 levels to
+    separate them (the depth limit is 48); the critical-point split decides the piece holding both."""
+    co = poly_coeffs([fmpq(1, 9) - fmpq(1, 10 ** 40), fmpq(-2, 3), 1])
+    with working_precision(256):
+        iso = _isolate(_g_series_function(None, co), arb(0), arb(1), coeffs=co)
+        assert not iso.unknown
+        _tiles(iso.pieces, arb(0), arb(1))
+        _check_against_roots(iso.pieces, [arb(fmpq(1, 3) - fmpq(1, 10 ** 20)), arb(fmpq(1, 3) + fmpq(1, 10 ** 20))])
+
+
+def test_a_resumed_search_keeps_the_decided_part_and_searches_only_the_rest():
+    """A search stopped at a double root keeps (decided pieces, stop point); resumed (at a higher
+    precision, by the prover) it must not examine the decided part again, and its pieces still tile."""
+    P = fmpq_poly([-fmpq(1, 3), 1]) ** 2 * fmpq_poly([-fmpq(3, 4), 1]) * fmpq_poly([-fmpq(1, 10), 1])
+    co = poly_coeffs([P[i] for i in range(P.degree() + 1)])
+    f = _g_series_function(None, co)
+    first = _isolate(f, arb(0), arb(1), coeffs=co, max_depth=12)
+    assert first.unknown and first.resume is not None
+    decided, stop = first.resume
+    assert decided and all(p.hi < stop or p.hi == stop for p in decided)
+    assert any(p.status is RootStatus.UNIQUE and p.enclosure.overlaps(arb(fmpq(1, 10))) for p in decided)
+    seen = []
+
+    def counting(s):
+        seen.append(s)
+        return f(s)
+    again = _isolate(counting, arb(0), arb(1), coeffs=co, max_depth=12, resume=first.resume)
+    _tiles(again.pieces, arb(0), arb(1))
+    assert seen
+    for s in seen:          # nothing left of the stop point is evaluated again (a ball over [stop, b] has
+        X = series_coefficients(s, 2)[0]         # its centre right of stop; its radius is rounded up)
+        assert X.mid() >= stop, f"the resumed search evaluated g around {X.mid()}, left of its stop point {stop}"
+    assert [p.lo for p in again.pieces[:len(decided)]] == [p.lo for p in decided]

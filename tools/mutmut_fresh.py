@@ -1,6 +1,6 @@
 """Re-run mutmut's survivors, each in a fresh process.
 
-    python tools/mutmut_fresh.py MUTMUT_DIR OUT.jsonl [MUTANT ...]
+    python tools/mutmut_fresh.py MUTMUT_DIR OUT.jsonl [--first TEST_FILE ...] [MUTANT ...]
 
 Why: mutmut 3 runs each mutant in a process forked from one that has already imported the test
 modules, so work done at import time (module-level certificates, caches filled during collection)
@@ -11,7 +11,9 @@ the mutant (``mutmut tests-for-mutant``), file by file (the cheap files first), 
 with ``MUTANT_UNDER_TEST`` set, inside MUTMUT_DIR/mutants, and appends one JSON line per mutant to
 OUT.jsonl: {"name", "verdict": killed | survived | timeout, "by": the first failing test, "tests",
 "s"}. Mutants already in OUT.jsonl are skipped (the run resumes). Default: every mutant ``mutmut
-results`` lists as survived. Asserts nothing; a killed verdict needs a failing test, as in mutmut.
+results`` lists as survived. ``--first TEST_FILE`` runs that whole file first for every mutant (a
+test file written after mutmut's stats run, which ``tests-for-mutant`` does not know). Asserts
+nothing; a killed verdict needs a failing test, as in mutmut.
 """
 from __future__ import annotations
 
@@ -33,14 +35,16 @@ def survivors(root: str) -> list[str]:
     return [line.split(":")[0].strip() for line in r.stdout.splitlines() if line.strip().endswith("survived")]
 
 
-def run_one(root: str, name: str) -> dict:
+def run_one(root: str, name: str, first: list[str] = ()) -> dict:
     r = subprocess.run(["mutmut", "tests-for-mutant", name], cwd=root, capture_output=True, text=True, check=True)
     tests = [t.strip() for t in r.stdout.splitlines() if t.strip().startswith("tests/")]
-    files = sorted({t.split("::")[0] for t in tests}, key=lambda f: ORDER.index(f) if f in ORDER else len(ORDER))
+    tests = [t for t in tests if t.split("::")[0] not in first] + list(first)
+    files = list(first) + sorted({t.split("::")[0] for t in tests if t not in first},
+                                 key=lambda f: ORDER.index(f) if f in ORDER else len(ORDER))
     verdict, by, t0 = "survived", None, time.time()
     env = dict(os.environ, MUTANT_UNDER_TEST=name)
     for f in files:
-        ids = [t for t in tests if t.startswith(f + "::")]
+        ids = [f] if f in first else [t for t in tests if t.startswith(f + "::")]
         try:
             p = subprocess.run([sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider"] + ids,
                                cwd=os.path.join(root, "mutants"), env=env, capture_output=True, text=True,
@@ -59,7 +63,12 @@ def main() -> int:
     if len(sys.argv) < 3:
         print(__doc__)
         return 2
-    root, out, names = sys.argv[1], sys.argv[2], sys.argv[3:] or survivors(sys.argv[1])
+    root, out, rest = sys.argv[1], sys.argv[2], sys.argv[3:]
+    first = []
+    while rest[:1] == ["--first"] and len(rest) >= 2:
+        first.append(rest[1])
+        rest = rest[2:]
+    names = rest or survivors(root)
     done = set()
     if os.path.exists(out):
         with open(out) as fh:
@@ -67,7 +76,7 @@ def main() -> int:
     for name in names:
         if name in done:
             continue
-        rec = run_one(root, name)
+        rec = run_one(root, name, first)
         print(json.dumps(rec), flush=True)
         with open(out, "a") as fh:
             fh.write(json.dumps(rec) + "\n")
