@@ -258,3 +258,56 @@ def test_a_resumed_search_keeps_the_decided_part_and_searches_only_the_rest():
         X = series_coefficients(s, 2)[0]         # its centre right of stop; its radius is rounded up)
         assert X.mid() >= stop, f"the resumed search evaluated g around {X.mid()}, left of its stop point {stop}"
     assert [p.lo for p in again.pieces[:len(decided)]] == [p.lo for p in decided]
+
+
+# ----------------------------------------------------------------------------- classify_root on a known beta
+
+class _PolyBeta:
+    """A switching function beta(t) given as a polynomial: what classify_root needs of an ExpSum."""
+
+    def __init__(self, coefficients):
+        self.coeffs = poly_coeffs(coefficients)
+
+    def __call__(self, t):
+        return self.coeffs(arb(t), 1)[0]
+
+
+def _product(*factors):
+    P = fmpq_poly([1])
+    for f in factors:
+        P *= fmpq_poly([fmpq(c) if not isinstance(c, fmpq) else c for c in f])
+    return [P[i] for i in range(P.degree() + 1)]
+
+
+HALF = [fmpq(1, 2), -1]                          # 1/2 - t: the root of g at theta = 1/2
+T = [0, 1]                                       # t: beta(0) = 0 (the switching)
+BETAS = {
+    # beta > 0 on (0, 1/2): a genuine orbit
+    "positive": (_product(T, HALF, [1, 1]), "genuine"),
+    # beta < 0 on (0.44, 0.46), just before theta, while beta' < 0 at theta: spurious, and only the
+    # middle check sees it (the right end's beta' < 0 must be certified up to theta, not beyond it)
+    "dip_before_theta": (_product(T, HALF, [fmpq(45 ** 2, 10 ** 4) - fmpq(1, 10 ** 4), fmpq(-9, 10), 1]), "spurious"),
+    # beta'(0) < 0: the orbit starts into beta < 0; the witness must be a point of (0, theta)
+    "starts_negative": (_product(T, HALF, [fmpq(-1, 4), 1]), "spurious"),
+}
+
+
+@pytest.mark.parametrize("name", BETAS)
+def test_a_root_is_classified_by_the_sign_of_beta_on_the_whole_of_0_theta(monkeypatch, name):
+    from rigor_gyro.kinds.periodic_orbit import claims as relay_claims
+    coefficients, verdict = BETAS[name]
+    beta = _PolyBeta(coefficients)
+    theta = arb("0.5 +/- 1e-25")
+    monkeypatch.setattr(relay_claims, "x0_at", lambda sp, th: [arb(0), beta.coeffs(arb(0), 2)[1], arb(0), arb(0), arb(0)])
+    monkeypatch.setattr(relay_claims, "orbit_expsums", lambda sp, x0: [beta])
+    v = relay_claims.classify_root(None, theta)
+    assert v.kind == verdict, v.reason
+    if verdict == "spurious":
+        t = v.witness_t
+        assert t is not None and arb(0) < t < theta and beta(t) < 0, (t, v.reason)
+    else:          # the witness of "genuine", re-checked on the polynomial
+        assert beta.coeffs(arb(0).union(v.d1), 2)[1] > 0
+        assert beta.coeffs(v.right_start.union(theta.upper()), 2)[1] < 0
+        pieces = sorted(v.middle, key=lambda p: float(p[0].mid()))
+        assert pieces[0][0] == v.d1 and pieces[-1][1] == v.right_start
+        assert all(beta.coeffs(a.union(b), 1)[0] > 0 for a, b in pieces)
