@@ -292,16 +292,35 @@ BETAS = {
 }
 
 
-@pytest.mark.parametrize("name", BETAS)
+#: beta'(0) as x(0) gives it, when it is not the polynomial's own (the branches where the two
+#: certificates of the left end disagree: a unit test of each branch's decision)
+SLOPES = {
+    # x(0) says beta'(0) > 0, but beta' > 0 cannot be certified on any [0, d]: undecided, never genuine
+    "no_left_end": (_product(T, T, HALF), "undecided", arb(1)),
+    # beta'(0) < 0 certified, beta > 0 at every tried point: still spurious (the orbit starts into
+    # beta < 0), without a witness point
+    "negative_slope_without_witness": (_product(T, HALF), "spurious", arb(-1)),
+}
+
+
+@pytest.mark.parametrize("name", list(BETAS) + list(SLOPES))
 def test_a_root_is_classified_by_the_sign_of_beta_on_the_whole_of_0_theta(monkeypatch, name):
     from rigor_gyro.kinds.periodic_orbit import claims as relay_claims
-    coefficients, verdict = BETAS[name]
+    coefficients, verdict, slope = BETAS[name] + (None,) if name in BETAS else SLOPES[name]
     beta = _PolyBeta(coefficients)
     theta = arb("0.5 +/- 1e-25")
-    monkeypatch.setattr(relay_claims, "x0_at", lambda sp, th: [arb(0), beta.coeffs(arb(0), 2)[1], arb(0), arb(0), arb(0)])
+    bd0 = beta.coeffs(arb(0), 2)[1] if slope is None else slope
+    monkeypatch.setattr(relay_claims, "x0_at", lambda sp, th: [arb(0), bd0, arb(0), arb(0), arb(0)])
     monkeypatch.setattr(relay_claims, "orbit_expsums", lambda sp, x0: [beta])
     v = relay_claims.classify_root(None, theta)
     assert v.kind == verdict, v.reason
+    assert v.theta is theta and v.x0[1] is bd0 and v.reason
+    if name == "negative_slope_without_witness":
+        assert v.witness_t is None and "starts into beta < 0" in v.reason
+        return
+    if verdict == "undecided":
+        assert "could not certify the sign of beta'" in v.reason
+        return
     if verdict == "spurious":
         t = v.witness_t
         assert t is not None and arb(0) < t < theta and beta(t) < 0, (t, v.reason)
@@ -311,3 +330,11 @@ def test_a_root_is_classified_by_the_sign_of_beta_on_the_whole_of_0_theta(monkey
         pieces = sorted(v.middle, key=lambda p: float(p[0].mid()))
         assert pieces[0][0] == v.d1 and pieces[-1][1] == v.right_start
         assert all(beta.coeffs(a.union(b), 1)[0] > 0 for a, b in pieces)
+
+
+@pytest.mark.parametrize("kind, theta", [("XXspuriousXX", arb(1)), (None, arb(1)), ("genuine", None)])
+def test_a_malformed_root_verdict_is_refused(kind, theta):
+    """A verdict of another kind would be counted neither classified nor undecided (and the half-period
+    claim proved with a root nobody classified): refused where it is made."""
+    with pytest.raises(AssertionError, match="malformed root verdict"):
+        RootVerdict(theta, [], kind, "")

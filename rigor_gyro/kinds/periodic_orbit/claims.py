@@ -203,6 +203,17 @@ class RootVerdict:
     right_start: arb | None = None
     middle: list = field(default_factory=list)
 
+    def __post_init__(self):
+        # a verdict of another kind would be counted as neither classified nor undecided (and the
+        # half-period claim proved with a root nobody classified): a bug, refused where it is made
+        if self.kind not in ROOT_KINDS or not isinstance(self.theta, arb) or not isinstance(self.reason, str):
+            raise AssertionError(f"malformed root verdict: kind {self.kind!r}, theta {self.theta!r}, "
+                                 f"reason {self.reason!r}: a bug")
+
+
+#: what :func:`classify_root` can say of a root
+ROOT_KINDS = ("genuine", "spurious", "undecided")
+
 
 def _beta_positive_on(beta, lo: arb, hi: arb, record: list | None = None):
     f = lambda X: taylor_enclosure(beta.coeffs, X, TAYLOR_ORDER, (0,))[0]
@@ -776,7 +787,7 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
                                               if an.covers_all else " (option T_max; roots beyond it not searched)"))
     genuine = [v for v in an.roots if v.kind == "genuine"]
     spurious = [v for v in an.roots if v.kind == "spurious"]
-    undecided = [v for v in an.roots if v.kind == "undecided"]
+    undecided = [v for v in an.roots if v.kind not in ("genuine", "spurious")]
     complete = not an.unknown and not undecided      # every root in the searched range classified
     # A search restricted by option T_max never refutes: an orbit may lie beyond it. Non-existence is
     # certified only when the range is all of (0, oo) (tail bound) and every root in it is classified.
