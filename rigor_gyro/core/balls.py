@@ -207,7 +207,9 @@ def certainly_within(x: object, lo: object, hi: object) -> bool:
 
 
 def interval(lo: object, hi: object) -> arb:
-    """The smallest ball (at the current precision) containing [lo, hi]."""
+    """A ball containing [lo, hi] (Arb's union at the current precision). Its radius is rounded up, so
+    its lower end may sit a little below ``lo`` (a few units in the radius's last place); and printed
+    with few digits it may look far wider than it is (``[+/- 1.01]`` for [1/3, 1] at 53 bits)."""
     return ball(lo).union(ball(hi))
 
 
