@@ -34,9 +34,18 @@ piece where g has a certain sign for every member (:func:`.claims._split_point`)
 whole spread stays in one piece, and a root whose beta'(0) has no certain sign over the box is still
 proved spurious by a point where beta is certainly negative (:func:`.claims.classify_root`).
 
-Known limits (measured at 128 bits on the printed Roitenberg parameters): ``stable`` decides sub-boxes
-of relative width about 1e-3 in n (the multipliers' enclosure over the box must stay below 1: the
-margin is 0.043), ``orbit_genuine`` boxes 40 times wider. ``half_period`` (every root of g isolated,
+The half-period Jacobian whose eigenvalues decide ``stable`` is the direct enclosure intersected with
+the centred (mean-value) form of :mod:`.jacobian_box` (:meth:`BoxSpectrum.jacobian`): the direct one
+alone was 12 times wider than J varies over a box of n in 50 +- 0.01.
+
+Known limits (measured at 128 bits on the printed Roitenberg parameters): ``stable`` decides a box of
+n in 50 +- 0.156 (relative width 6e-3; the direct Jacobian alone: 50 +- 0.01). Wider, Rump's method
+no longer isolates the four eigenvalues of the ball matrix J (radius 0.26 at 50 +- 0.2, about as much as
+J really varies there), although the eigenvalues themselves move by 1e-5: deciding wider boxes needs
+the eigenvalues in centred form, not J. (Tried and not kept: the characteristic polynomial in centred
+form, first order, its constant term from Liouville's det J; it reached only 50 +- 0.2, its other
+coefficients' derivatives summing large terms of J that cancel.) On the paving of n in [40, 60],
+``stable`` needs 64 sub-boxes (512 with the direct Jacobian alone), ``orbit_genuine`` 8. ``half_period`` (every root of g isolated,
 simple) can never be decided on a box holding a parameter where two roots merge: near n = 50.7 the
 two spurious roots beside the pole of tanh at theta = 5 pi / omega = 0.640 meet and vanish (a fold),
 so there the paving keeps an undecided sliver whatever the resolution (never refuted: the claim
@@ -59,6 +68,7 @@ from ...core.family_roots import newton_family_root, newton_family_root_complex,
 from ...core.polyroots import isolate_polynomial
 from .. import box_outcomes, require_box_claims
 from .claims import CLAIMS, attempt
+from .jacobian_box import centred_jacobian
 from .flow import AMPLITUDE_PARAMETERS, PARAMETER_NAMES, amplitude_similarity, DegenerateSpectrum, NearZeroSeries, RelayParams, Spectrum, nutation_cubic
 
 __all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "BoxSpectrum", "validate_box", "evaluate_box"]
@@ -115,6 +125,25 @@ class BoxSpectrum(Spectrum):
                           [z, z, z, z, -1 / P.sigma]])
         # near theta = 0 the spectral terms cancel on a box: g from its power series there
         self.near_zero = NearZeroSeries(self.M, self.e, S)
+
+    def jacobian(self, theta: arb, x0) -> arb_mat:
+        """The half-period Jacobian for every parameter in the box and every theta in the ball: the
+        direct enclosure intersected entrywise with the centred form of :mod:`.jacobian_box` (both
+        contain J for every member; the centred one is about as wide as J actually varies, the
+        direct one about 12 times wider on a box of n in 50 +- 0.01). Disjoint entries would mean one
+        enclosure is wrong: AssertionError."""
+        direct = super().jacobian(theta, x0)
+        centred = centred_jacobian(self.P, theta)
+        if centred is None:
+            return direct
+        out = arb_mat(4, 4)
+        for i in range(4):
+            for j in range(4):
+                a, b = direct[i, j], centred[i, j]
+                if not a.overlaps(b):
+                    raise AssertionError(f"the Jacobian's direct and centred enclosures are disjoint at ({i}, {j}): {a}, {b}: a bug")
+                out[i, j] = a.intersection(b) if a.is_finite() else b
+        return out
 
     def _sigma_mode(self, nu: arb):
         P = self.P

@@ -56,7 +56,7 @@ from ...core.roots import Isolation, RootPiece, RootStatus, enclose_f_df, merge_
 from ...core.subdivision import certify_positive
 from .. import Attempt, Phases
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table, orbit_quantities
-from .flow import (AMPLITUDE_PARAMETERS, PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, envelope_margin, g_coeffs, half_period_jacobian, pole_free_coeffs,
+from .flow import (AMPLITUDE_PARAMETERS, PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, envelope_margin, g_coeffs, pole_free_coeffs,
                    moment_zero_orders, orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure,
                    x0_at)
 
@@ -288,7 +288,7 @@ def classify_root(sp: Spectrum, theta: arb) -> RootVerdict:
 
 
 def _multipliers(sp: Spectrum, v: RootVerdict) -> None:
-    J = half_period_jacobian(sp, v.theta, v.x0)
+    J = sp.jacobian(v.theta, v.x0)
     try:
         eig = acb_mat(J).eig(algorithm="rump")
     except ValueError as e:

@@ -231,6 +231,11 @@ class Spectrum:
         pe = [proj[i, 4] * ball(1 / self.P.sigma) * S for i in range(5)]
         return Mode(lam, weight, proj, pe, label)
 
+    def jacobian(self, theta: arb, x0: Sequence[arb]) -> arb_mat:
+        """The half-period Jacobian at the switching time ``theta`` from ``x0``
+        (:func:`half_period_jacobian`; a box spectrum overrides this with a tighter enclosure)."""
+        return half_period_jacobian(self, theta, x0)
+
     # ----------------------------------------------------------------- convenient scalars
     @property
     def a(self) -> arb:
