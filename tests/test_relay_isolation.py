@@ -15,6 +15,7 @@ from flint import arb, arb_poly, fmpq, fmpq_poly
 
 from rigor_gyro.core.balls import series_coefficients, working_precision
 from rigor_gyro.core.roots import RootStatus
+from rigor_gyro.kinds.periodic_orbit import claims
 from rigor_gyro.kinds.periodic_orbit.claims import (ENVELOPE_REASON, RootVerdict, _critical_split, _g_series_function, _isolate,
                                                     _monotone_side, _newton_bracket, _select, _split_point)
 
@@ -338,3 +339,120 @@ def test_a_malformed_root_verdict_is_refused(kind, theta):
     claim proved with a root nobody classified): refused where it is made."""
     with pytest.raises(AssertionError, match="malformed root verdict"):
         RootVerdict(theta, [], kind, "")
+
+
+# --------------------------------------------------------------------------- _multipliers (mutmut survivors)
+
+class _StubSpectrum:
+    """A spectrum whose Jacobian and eigenvalue enclosures are given: _multipliers' bookkeeping (the
+    Liouville checks, the order, the moduli, the margin) tested apart from the flow."""
+
+    def __init__(self, eigenvalues, det_shift=0, enclosures=None):
+        from rigor_gyro.kinds.periodic_orbit.flow import RelayParams
+        self.P = RelayParams.from_strings(A="125", B="0.133", H="100", tau="0.01", sigma="0.13125", n="50",
+                                          K="7.5", p="40", S="0.15")
+        self.eigenvalues = eigenvalues              # J's (exact) eigenvalues
+        self.enclosures = enclosures or eigenvalues  # what the eigenvalue method returns for them
+        self.det_shift = det_shift
+
+    @staticmethod
+    def liouville(P, theta):
+        from rigor_gyro.core.balls import ball
+        return -((-(1 / ball(P.tau) + 1 / ball(P.sigma))) * theta).exp()
+
+    def jacobian(self, theta, x0):
+        """A real block-diagonal matrix with the stub's eigenvalues (a 2 x 2 rotation-scaling block per
+        conjugate pair) and det shifted by det_shift."""
+        from flint import arb_mat
+        J = arb_mat(4, 4)
+        i, seen = 0, set()
+        for z in self.eigenvalues:
+            key = (str(z.real.mid()), str(abs(z.imag).mid()))
+            if z.imag.contains(0):
+                J[i, i] = z.real
+                i += 1
+            elif key not in seen:
+                seen.add(key)
+                a, b = z.real, abs(z.imag)
+                J[i, i], J[i, i + 1], J[i + 1, i], J[i + 1, i + 1] = a, -b, b, a
+                i += 2
+        J[3, 3] += self.det_shift
+        return J
+
+    def multipliers(self, J, theta):
+        return list(self.enclosures)
+
+
+def _stub_eigenvalues(theta, big, order):
+    """A real multiplier ``big``, the pair 0.3 +- 0.4 i (modulus 0.5) and the fourth real one that makes
+    the product the Liouville value, in the given order of indices."""
+    from flint import acb
+    P = _StubSpectrum([]).P
+    last = _StubSpectrum.liouville(P, theta) / (big * arb("0.25"))
+    zs = [acb(big), acb(arb("0.3"), arb("-0.4")), acb(arb("0.3"), arb("0.4")), acb(last)]
+    return [zs[k] for k in order]
+
+
+@pytest.mark.parametrize("order", [(0, 1, 2, 3), (0, 2, 1, 3), (1, 2, 0, 3), (3, 1, 2, 0), (1, 2, 3, 0)])
+def test_multipliers_keep_every_eigenvalue_whatever_order_they_come_in(order):
+    """The conjugate pair arrives with Im < 0 first; the reordering must swap the pair, never drop or
+    duplicate another multiplier (mutmut: swapping with mults[k - 1] lost the largest, 1.5, and the orbit
+    was called stable)."""
+    theta = arb("0.1381")
+    v = claims.RootVerdict(theta, [arb(0)] * 4, "genuine", "")
+    sp = _StubSpectrum(_stub_eigenvalues(theta, arb("1.5"), order))
+    claims._multipliers(sp, v)
+    assert v.stable is False
+    assert len(v.multipliers) == 4 and v.moduli[0].overlaps(arb("1.5"))
+    mids = [float(m.mid()) for m in v.moduli]
+    assert mids == sorted(mids, reverse=True)                       # by decreasing modulus
+    for z in sp.eigenvalues:
+        assert sum(1 for w in v.multipliers if w.overlaps(z)) == 1
+    pair = [w for w in v.multipliers if not w.imag.contains(0)]
+    assert len(pair) == 2 and pair[0].imag > 0 > pair[1].imag      # the pair: Im > 0 first
+    assert v.margin.overlaps(arb("-0.5"))
+
+
+@pytest.mark.parametrize("first", [0, 1])
+def test_the_margin_is_one_minus_the_largest_modulus_of_all(first):
+    """Two real multipliers whose moduli overlap: the margin must come from the larger upper end,
+    whichever is listed first (mutmut: the maximum taken over moduli[2:] skipped the second)."""
+    from flint import acb
+    theta = arb("0.1381")
+    P = _StubSpectrum([]).P
+    a, b, c = arb("0.9", "0.01"), arb("-0.9", "0.05"), arb("0.2")       # |b| reaches 0.95
+    last = _StubSpectrum.liouville(P, theta) / (a * b * c)
+    pair = [acb(a), acb(b)] if first == 0 else [acb(b), acb(a)]
+    v = claims.RootVerdict(theta, [arb(0)] * 4, "genuine", "")
+    claims._multipliers(_StubSpectrum(pair + [acb(c), acb(last)]), v)
+    assert v.margin.lower() <= 1 - arb("0.95")
+    assert v.stable is True and v.margin > 0
+
+
+def test_a_determinant_that_misses_liouville_is_a_bug_even_when_the_product_matches():
+    theta = arb("0.1381")
+    sp = _StubSpectrum(_stub_eigenvalues(theta, arb("0.9"), (0, 1, 2, 3)), det_shift=arb("0.001"))
+    v = claims.RootVerdict(theta, [arb(0)] * 4, "genuine", "")
+    with pytest.raises(AssertionError, match="Liouville"):
+        claims._multipliers(sp, v)
+
+
+def test_a_ball_straddling_the_real_axis_is_made_real_only_when_its_conjugate_meets_no_other_ball():
+    """A pair 0.5 +- 0.001 i whose Im > 0 member's ball reaches below the axis: its conjugate ball meets
+    the other member's, so it is not a real eigenvalue and must not be made real (mutmut: `not any` ->
+    `any` snapped it to 0.5, whose modulus ball then missed |0.5 + 0.001 i| = 0.500001)."""
+    from flint import acb
+    theta = arb("0.1381")
+    P = _StubSpectrum([]).P
+    lam = acb(arb("0.5"), arb("0.001"))
+    real = arb("0.9")
+    last = _StubSpectrum.liouville(P, theta) / (real * abs(lam) ** 2)
+    true = [acb(real), lam, lam.conjugate(), acb(last)]
+    enclosures = [acb(real), acb(arb("0.5", "1e-9"), arb("0.0008", "0.0009")),
+                  acb(arb("0.5", "1e-9"), arb("-0.00105", "0.0001")), acb(last)]
+    v = claims.RootVerdict(theta, [arb(0)] * 4, "genuine", "")
+    claims._multipliers(_StubSpectrum(true, enclosures=enclosures), v)
+    for z in true:
+        assert sum(1 for w in v.multipliers if w.contains(z)) == 1, (z, v.multipliers)
+    for z, m in zip(v.multipliers, v.moduli):
+        assert m.overlaps(abs(z))

@@ -12,7 +12,7 @@ import itertools
 from fractions import Fraction as F
 
 import pytest
-from flint import arb, arb_mat, fmpq
+from flint import acb_mat, arb, arb_mat, fmpq
 
 from rigor_gyro.core.balls import interval, working_precision
 from rigor_gyro.core.boxes import Box
@@ -137,15 +137,44 @@ def test_a_parameter_ball_reaching_zero_gives_no_centred_form():
         assert jacobian_box.centred_jacobian(_balls({"tau": (F(-1, 100), F(1, 100))}), arb(_q(THETA[0]))) is None
 
 
-def test_stable_is_decided_on_a_box_7_times_wider_than_before():
-    """Before the centred form, the printed scene's stable claim was decided on sub-boxes of n about
-    0.04 wide (the paving of n in [40, 60]: 512 of width 20/512, none wider); now on n in 50 +- 0.15."""
-    from rigor_gyro.scene import Scene
+def _printed_model():
     from rigor_gyro.kinds import kind_module
-    params = {k: str(v) for k, v in PRINTED.items()}
-    scene = Scene(name="t", kind="periodic_orbit", source="", parameters=params, claims_only=None,
-                  options={}, paper={}, path=None)
-    model = kind_module("periodic_orbit").validate(scene)
+    from rigor_gyro.scene import Scene
+    scene = Scene(name="t", kind="periodic_orbit", source="", parameters={k: str(v) for k, v in PRINTED.items()},
+                  claims_only=None, options={}, paper={}, path=None)
+    return kind_module("periodic_orbit").validate(scene)
+
+
+#: n in 50 +- 0.5 and the theta* spread the box analysis finds there
+WIDE_N = (F("49.5"), F("50.5"))
+WIDE_THETA = (F("0.138012457029"), F("0.138254664321"))
+
+
+def test_the_eigen_coordinate_multipliers_contain_every_members_multipliers():
     with working_precision(128):
-        out = boxes.evaluate_box(model, Box.of({"n": (F("49.85"), F("50.15"))}), ["stable"])
+        Pb = _balls({"n": WIDE_N})
+        enclosures = jacobian_box.eigen_coordinate_multipliers(Pb, interval(_q(WIDE_THETA[0]), _q(WIDE_THETA[1])))
+        assert enclosures is not None and len(enclosures) == 4
+        for n, theta in itertools.product(WIDE_N + (sum(WIDE_N) / 2,), WIDE_THETA + (sum(WIDE_THETA) / 2,)):
+            for z in acb_mat(_point_jacobian({"n": n}, theta)).eig(algorithm="rump"):
+                assert sum(1 for e in enclosures if e.contains(z)) == 1, (n, theta, z, enclosures)
+
+
+def test_eigen_coordinates_decide_where_rump_on_the_jacobian_ball_cannot():
+    with working_precision(128):
+        Pb = _balls({"n": WIDE_N})
+        sp = boxes.BoxSpectrum(Pb, RelayParams(**{k: _q(v) for k, v in PRINTED.items()}))
+        theta = interval(_q(WIDE_THETA[0]), _q(WIDE_THETA[1]))
+        J = sp.jacobian(theta, x0_at(sp, theta))
+        with pytest.raises(ValueError):
+            acb_mat(J).eig(algorithm="rump")
+        moduli = [abs(z) for z in sp.multipliers(J, theta)]
+        assert all(m < 1 for m in moduli)         # certainly below 1: the box is stable
+
+
+def test_stable_is_decided_on_a_box_25_times_wider_than_before():
+    """Before the centred forms, the printed scene's stable claim was decided on sub-boxes of n about
+    0.04 wide (the paving of n in [40, 60]: 512 of width 20/512, none wider); now on n in 50 +- 0.5."""
+    with working_precision(128):
+        out = boxes.evaluate_box(_printed_model(), Box.of({"n": WIDE_N}), ["stable"])
     assert out["stable"][0] == "proved", out

@@ -35,17 +35,19 @@ whole spread stays in one piece, and a root whose beta'(0) has no certain sign o
 proved spurious by a point where beta is certainly negative (:func:`.claims.classify_root`).
 
 The half-period Jacobian whose eigenvalues decide ``stable`` is the direct enclosure intersected with
-the centred (mean-value) form of :mod:`.jacobian_box` (:meth:`BoxSpectrum.jacobian`): the direct one
-alone was 12 times wider than J varies over a box of n in 50 +- 0.01.
+the centred (mean-value) form of :mod:`.jacobian_box` (:meth:`BoxSpectrum.jacobian`; the direct one
+alone was 12 times wider than J varies over n in 50 +- 0.01), and its eigenvalues are enclosed both by
+Rump's method on that ball matrix and on the centred form in the centre's eigenvector coordinates
+(:meth:`BoxSpectrum.multipliers`), whichever is narrower: J's entries move with n far more than its
+eigenvalues do, and in eigenvector coordinates the motion is mostly off the diagonal.
 
 Known limits (measured at 128 bits on the printed Roitenberg parameters): ``stable`` decides a box of
-n in 50 +- 0.156 (relative width 6e-3; the direct Jacobian alone: 50 +- 0.01). Wider, Rump's method
-no longer isolates the four eigenvalues of the ball matrix J (radius 0.26 at 50 +- 0.2, about as much as
-J really varies there), although the eigenvalues themselves move by 1e-5: deciding wider boxes needs
-the eigenvalues in centred form, not J. (Tried and not kept: the characteristic polynomial in centred
-form, first order, its constant term from Liouville's det J; it reached only 50 +- 0.2, its other
-coefficients' derivatives summing large terms of J that cancel.) On the paving of n in [40, 60],
-``stable`` needs 64 sub-boxes (512 with the direct Jacobian alone), ``orbit_genuine`` 8. ``half_period`` (every root of g isolated,
+n in 50 +- 0.5 (relative width 0.02; with the direct Jacobian alone 50 +- 0.01, with the centred
+Jacobian but Rump's method on it 50 +- 0.156); at 50 +- 0.625 the eigenvector-coordinate ball is too
+wide to isolate the four eigenvalues. (Tried and not kept: the characteristic polynomial in centred
+form, first order, its constant term from Liouville's det J: 50 +- 0.2.) On the paving of n in
+[40, 60], ``stable`` needs 22 sub-boxes (512 with the direct Jacobian alone), ``orbit_genuine`` 8.
+``half_period`` (every root of g isolated,
 simple) can never be decided on a box holding a parameter where two roots merge: near n = 50.7 the
 two spurious roots beside the pole of tanh at theta = 5 pi / omega = 0.640 meet and vanish (a fold),
 so there the paving keeps an undecided sliver whatever the resolution (never refuted: the claim
@@ -68,7 +70,7 @@ from ...core.family_roots import newton_family_root, newton_family_root_complex,
 from ...core.polyroots import isolate_polynomial
 from .. import box_outcomes, require_box_claims
 from .claims import CLAIMS, attempt
-from .jacobian_box import centred_jacobian
+from .jacobian_box import centred_jacobian, eigen_coordinate_multipliers
 from .flow import AMPLITUDE_PARAMETERS, PARAMETER_NAMES, amplitude_similarity, DegenerateSpectrum, NearZeroSeries, RelayParams, Spectrum, nutation_cubic
 
 __all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "BoxSpectrum", "validate_box", "evaluate_box"]
@@ -144,6 +146,24 @@ class BoxSpectrum(Spectrum):
                     raise AssertionError(f"the Jacobian's direct and centred enclosures are disjoint at ({i}, {j}): {a}, {b}: a bug")
                 out[i, j] = a.intersection(b) if a.is_finite() else b
         return out
+
+    def multipliers(self, J: arb_mat, theta: arb) -> list[acb]:
+        """Enclosures of J's eigenvalues for every member: Rump's method on the ball matrix J and on
+        the centred form in the centre's eigenvector coordinates
+        (:func:`.jacobian_box.eigen_coordinate_multipliers`), the narrower of the two (a float compares
+        the widths; both are enclosures). ValueError if neither isolates the four."""
+        candidates = []
+        try:
+            candidates.append(super().multipliers(J, theta))
+        except ValueError:
+            pass
+        other = eigen_coordinate_multipliers(self.P, theta)
+        if other is not None:
+            candidates.append(other)
+        if not candidates:
+            raise ValueError("neither Rump's method on the Jacobian nor on its centred form in eigenvector "
+                             "coordinates isolated the four multipliers on this box")
+        return min(candidates, key=lambda c: max(float(z.real.rad()) + float(z.imag.rad()) for z in c))
 
     def _sigma_mode(self, nu: arb):
         P = self.P

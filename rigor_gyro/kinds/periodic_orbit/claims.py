@@ -22,7 +22,8 @@ Guarantee: every claim is decided by Arb balls over the exact rational parameter
   the middle by Taylor-model enclosures over sub-intervals (:func:`rigor_gyro.core.subdivision.certify_positive`).
 * ``multipliers``: eigenvalues of the 4x4 ball Jacobian of the half-period map (switching-time
   correction and symmetry included) by ``acb_mat.eig(algorithm="rump")`` (valid for every matrix in
-  the ball; each output ball holds exactly one eigenvalue); checked against Liouville: their product is
+  the ball; each output ball holds exactly one eigenvalue; over a parameter box also in eigenvector
+  coordinates, :meth:`.boxes.BoxSpectrum.multipliers`); checked against Liouville: their product is
   -exp(-(1/tau + 1/sigma) theta*). A multiplier is reported exactly real when its conjugate ball meets
   no other eigenvalue's ball (the Jacobian is real, so the spectrum is closed under conjugation).
 * ``stable``: every modulus certainly < 1 for some genuine orbit (named).
@@ -43,7 +44,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from flint import acb, acb_mat, arb, arb_series, fmpq
+from flint import acb, arb, arb_series, fmpq
 
 from ...core.balls import (ball, exact_fraction, series_coefficients, certainly_gt, certainly_le, certainly_lt, certainly_negative,
                            certainly_positive, current_precision, decimal_bounds, decimal_bounds_apart, interval,
@@ -290,7 +291,7 @@ def classify_root(sp: Spectrum, theta: arb) -> RootVerdict:
 def _multipliers(sp: Spectrum, v: RootVerdict) -> None:
     J = sp.jacobian(v.theta, v.x0)
     try:
-        eig = acb_mat(J).eig(algorithm="rump")
+        eig = sp.multipliers(J, v.theta)
     except ValueError as e:
         v.multiplier_reason = f"eigenvalues of the Jacobian not isolated at this precision ({e})"
         return

@@ -236,6 +236,12 @@ class Spectrum:
         (:func:`half_period_jacobian`; a box spectrum overrides this with a tighter enclosure)."""
         return half_period_jacobian(self, theta, x0)
 
+    def multipliers(self, J: arb_mat, theta: arb) -> list[acb]:
+        """Enclosures of the eigenvalues of the ball matrix J, the Jacobian at ``theta`` (Rump's method,
+        valid for every matrix in the ball; ValueError if they are not isolated). A box spectrum
+        overrides this with a tighter enclosure."""
+        return list(acb_mat(J).eig(algorithm="rump"))
+
     # ----------------------------------------------------------------- convenient scalars
     @property
     def a(self) -> arb:

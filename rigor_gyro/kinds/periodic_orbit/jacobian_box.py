@@ -35,12 +35,12 @@ direct enclosure.
 """
 from __future__ import annotations
 
-from flint import arb, arb_mat, arb_series
+from flint import acb, acb_mat, arb, arb_mat, arb_series
 
 from ...core.balls import series_coefficients, series_length
 from .flow import PARAMETER_NAMES, RelayParams
 
-__all__ = ["augmented_matrix", "centred_jacobian", "jacobian_by_exponential"]
+__all__ = ["augmented_matrix", "centred_jacobian", "eigen_coordinate_multipliers", "jacobian_by_exponential"]
 
 
 def _entries(P) -> list[list]:
@@ -175,3 +175,31 @@ def centred_jacobian(P: RelayParams, theta: arb) -> arb_mat | None:
     for dJ, dev in terms:
         J = J + dJ * dev
     return J if _finite(J) else None
+
+
+def eigen_coordinate_multipliers(P: RelayParams, theta: arb) -> list[acb] | None:
+    """The eigenvalues of J(theta, P) for every theta in the ball and every P in the balls, from the
+    centred form taken in the centre's eigenvector coordinates: K = V^{-1} J V with V an exact point
+    matrix (the midpoints of the centre's eigenvector enclosures) and V^{-1} enclosed, so
+    K_box = V^{-1} J(centre) V + sum_k (V^{-1} dJ_k V) dev_k contains V^{-1} J V for every member, whose
+    eigenvalues are J's; Rump's method on K_box then encloses the eigenvalues of every matrix in it.
+
+    Why: J's entries move with n far more than its eigenvalues (measured on n in 50 +- 0.2: J's
+    radius 0.26, the moduli move by 1e-5); in eigenvector coordinates that motion is mostly off the
+    diagonal, which moves the eigenvalues only to second order, and the ball K_box is 65 times narrower.
+    None if an eigen-decomposition or the inverse fails (the caller keeps Rump's method on J)."""
+    parts = _centred_terms(P, theta)
+    if parts is None:
+        return None
+    Jc, terms = parts
+    try:
+        _, R = acb_mat(Jc).eig(right=True, algorithm="rump")
+        V = acb_mat([[acb(R[i, j].real.mid(), R[i, j].imag.mid()) for j in range(4)] for i in range(4)])
+        Vi = V.inv()
+        K = Vi * acb_mat(Jc) * V
+        for dJ, dev in terms:
+            K = K + (Vi * acb_mat(dJ) * V) * acb(dev)
+        eig = list(K.eig(algorithm="rump"))
+    except (ValueError, ZeroDivisionError):
+        return None
+    return eig if len(eig) == 4 and all(z.is_finite() for z in eig) else None
