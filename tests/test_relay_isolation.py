@@ -456,3 +456,42 @@ def test_a_ball_straddling_the_real_axis_is_made_real_only_when_its_conjugate_me
         assert sum(1 for w in v.multipliers if w.contains(z)) == 1, (z, v.multipliers)
     for z, m in zip(v.multipliers, v.moduli):
         assert m.overlaps(abs(z))
+
+
+# --------------------------------------------------------------------------- analyse (mutmut survivors)
+
+def _relay_model(**options):
+    import dataclasses
+    from rigor_gyro import load_scene
+    from rigor_gyro.kinds import kind_module
+    scene = load_scene("roitenberg1947")
+    scene = dataclasses.replace(scene, options=dict(scene.options, **options))
+    return kind_module("periodic_orbit").validate(scene)
+
+
+def test_a_finite_search_range_reaches_t_max_and_claims_no_more():
+    """T_max = 1/3 has no exact ball: the search must end at an exact point at or above it (mutmut: the
+    ball's lower end left (that point, 1/3] unsearched while the claim said (0, T_max])."""
+    with working_precision(128):
+        an = claims.analyse(_relay_model(T_max="1/3"))
+        assert an.T_search.rad() == 0 and an.T_search - arb(fmpq(1, 3)) >= 0    # exact, at or above 1/3
+    assert an.covers_all is False and not an.problem
+    assert any(v.kind == "genuine" and 0.1381 < float(v.theta.mid()) < 0.1382 for v in an.roots)
+
+
+def test_a_t_max_beyond_the_tail_point_searches_all_of_the_half_line():
+    with working_precision(128):
+        an = claims.analyse(_relay_model(T_max="10"))
+    assert an.covers_all is True and an.T_tail is not None and an.T_search is an.T_tail
+    assert an.T_tail < 10
+
+
+@pytest.mark.parametrize("moments", [[0, 0, 0, 1, 1], [0, 0, 0, 0, 0], [1, 0, 0, 0, 1]])
+def test_a_failed_moment_identity_stops_the_analysis_as_a_bug(monkeypatch, moments):
+    """e1^T M^j e = 0 for j <= 3 and != 0 for j = 4 hold for every parameter (exactly): a failure means
+    the model is not the one the search assumes, and nothing may be searched or claimed."""
+    monkeypatch.setattr(claims, "moment_zero_orders", lambda P: [fmpq(m) for m in moments])
+    with working_precision(128):
+        an = claims.analyse(_relay_model())
+    assert an.problem and "moment identities" in an.problem and "a bug" in an.problem
+    assert an.roots == [] and not an.covers_all

@@ -151,7 +151,8 @@ class BoxSpectrum(Spectrum):
         """Enclosures of J's eigenvalues for every member: Rump's method on the ball matrix J and on
         the centred form in the centre's eigenvector coordinates
         (:func:`.jacobian_box.eigen_coordinate_multipliers`), the narrower of the two (a float compares
-        the widths; both are enclosures). ValueError if neither isolates the four."""
+        the widths; both are enclosures). ``theta`` must be the ball J was computed at (the second
+        enclosure is rebuilt from it and the box, not from J). ValueError if neither isolates the four."""
         candidates = []
         try:
             candidates.append(super().multipliers(J, theta))

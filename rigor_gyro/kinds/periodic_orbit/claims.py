@@ -304,7 +304,7 @@ def _multipliers(sp: Spectrum, v: RootVerdict) -> None:
     P = sp.P
     liou = -((-(1 / ball(P.tau) + 1 / ball(P.sigma))) * v.theta).exp()
     det = J.det()
-    if not (prod.real.overlaps(liou) and det.overlaps(liou)):
+    if not (det.is_finite() and prod.real.overlaps(liou) and det.overlaps(liou)):   # (a NaN ball overlaps anything)
         raise AssertionError(f"Liouville check failed: prod {prod}, det {det}, expected {liou}: a bug")
     v.jacobian_note = (f"det = product of multipliers = {_fmt(det, 10)} contains -exp(-(1/tau+1/sigma) theta*) "
                        f"= {_fmt(liou, 10)} (Liouville check)")
