@@ -495,3 +495,14 @@ def test_a_failed_moment_identity_stops_the_analysis_as_a_bug(monkeypatch, momen
         an = claims.analyse(_relay_model())
     assert an.problem and "moment identities" in an.problem and "a bug" in an.problem
     assert an.roots == [] and not an.covers_all
+
+
+def test_a_search_range_shorter_than_the_default_start_is_still_searched_from_below():
+    """T_max = 1/1000 is below four times the default start of the near-zero interval (2^-7 here): the
+    start is halved until the range holds it (mutmut: that loop was never entered by the tests)."""
+    with working_precision(128):
+        an = claims.analyse(_relay_model(T_max="1/1000"))
+        assert an.theta_min is not None and 4 * an.theta_min <= an.T_search
+        assert an.T_search - arb(fmpq(1, 1000)) >= 0
+    assert not an.problem and an.covers_all is False
+    assert [v for v in an.roots if v.kind == "genuine"] == []       # theta* = 0.138 is beyond the range
