@@ -506,3 +506,48 @@ def test_a_search_range_shorter_than_the_default_start_is_still_searched_from_be
         assert an.T_search - arb(fmpq(1, 1000)) >= 0
     assert not an.problem and an.covers_all is False
     assert [v for v in an.roots if v.kind == "genuine"] == []       # theta* = 0.138 is beyond the range
+
+
+def _box_spectrum_factory(model, name, lo, hi):
+    """A BoxSpectrum over ``name`` in [lo, hi] (the other parameters as in the model), and the box's
+    midpoint model, as boxes.evaluate_box builds them."""
+    import dataclasses
+    from rigor_gyro.core.balls import interval
+    from rigor_gyro.kinds.periodic_orbit.boxes import BoxSpectrum
+    from rigor_gyro.kinds.periodic_orbit.flow import PARAMETER_NAMES, RelayParams
+    P = model.params
+    lo, hi = (fmpq(x.numerator, x.denominator) for x in (lo, hi))
+    Pb = RelayParams(**{k: interval(lo, hi) if k == name else arb(getattr(P, k)) for k in PARAMETER_NAMES})
+    Pmid = dataclasses.replace(P, **{name: (lo + hi) / 2})
+    return (lambda: BoxSpectrum(Pb, Pmid)), dataclasses.replace(model, params=Pmid, paper={})
+
+
+def test_a_box_analysis_neither_reads_nor_writes_the_point_cache():
+    """The memo of decided root pieces (model.decided) is keyed by the search range, not by the
+    parameters: a box must never take a point's pieces, nor leave its own for a point. And every
+    enclosure of a box analysis is over the box."""
+    import dataclasses
+
+    class Forbidden(dict):
+        def get(self, *a):
+            raise AssertionError("a box analysis read the point cache")
+
+        def __setitem__(self, *a):
+            raise AssertionError("a box analysis wrote the point cache")
+
+    base = _relay_model(T_max="1/3")
+    from fractions import Fraction
+    factory, boxed = _box_spectrum_factory(base, "n", Fraction("49.99"), Fraction("50.01"))
+    boxed = dataclasses.replace(boxed, decided=Forbidden())
+    with working_precision(128):
+        an = claims.analyse(boxed, spectrum=factory)
+        assert not an.problem and an.roots
+        # the genuine orbit's theta*, x(0) and multipliers at the guard precision come from a spectrum
+        # of the whole box too, never the midpoint's (mutmut: `fine = Spectrum(P)` proved a box stable
+        # from its midpoint alone)
+        from rigor_gyro.kinds.periodic_orbit.boxes import BoxSpectrum
+        assert isinstance(an.sp_fine, BoxSpectrum)
+        genuine = [v for v in an.roots if v.kind == "genuine"]
+        assert genuine and all(len(v.moduli) == 4 for v in genuine)
+        point = claims.analyse(base)
+    assert len(base.decided) == 1 and not point.problem          # a point analysis does keep its pieces
