@@ -551,3 +551,44 @@ def test_a_box_analysis_neither_reads_nor_writes_the_point_cache():
         assert genuine and all(len(v.moduli) == 4 for v in genuine)
         point = claims.analyse(base)
     assert len(base.decided) == 1 and not point.problem          # a point analysis does keep its pieces
+
+
+# --------------------------------------------------------------------------- attempt (mutmut survivors)
+
+def _crafted_attempt(monkeypatch, roots, covers_all=True, problem=""):
+    """attempt() on an analysis given here (its root verdicts, no unknown piece; exact dyadic points, as
+    the certificate's witnesses need)."""
+    def fake(model, spectrum=None, phase=None):
+        return claims.Analysis(sp=object(), theta_min=arb("0.0078125"), T_tail=arb("0.625"), T_search=arb("0.625"),
+                               covers_all=covers_all, pieces=len(roots), roots=roots, problem=problem)
+    monkeypatch.setattr(claims, "analyse", fake)
+    with working_precision(64):
+        a = claims.attempt(_relay_model(), ["half_period", "orbit_genuine", "initial_point", "stable"], 64)
+    return {c.id: c.status.value for c in a.claims}
+
+
+def test_a_root_left_unclassified_forbids_refuting_the_orbit(monkeypatch):
+    """All of (0, oo) searched, no undecided piece, one root spurious and one not classified: that root
+    may be the orbit, so neither orbit_genuine nor stable is refuted (mutmut: `complete` as 'no unknown
+    piece OR no undecided root', or with the undecided list dropped, refuted the orbit's existence)."""
+    roots = [RootVerdict(arb("0.0625"), [arb(0)] * 5, "spurious", "beta < 0 at t = 1/32", witness_t=arb("0.03125")),
+             RootVerdict(arb("0.125"), [arb(0)] * 5, "undecided", "beta'(0) of no certain sign")]
+    status = _crafted_attempt(monkeypatch, roots)
+    assert status == {"half_period": "inconclusive", "orbit_genuine": "inconclusive",
+                      "initial_point": "inconclusive", "stable": "inconclusive"}
+
+
+def test_every_root_spurious_over_all_of_the_half_line_refutes_the_orbit(monkeypatch):
+    roots = [RootVerdict(arb("0.0625"), [arb(0)] * 5, "spurious", "beta < 0 at t = 1/32", witness_t=arb("0.03125"))]
+    status = _crafted_attempt(monkeypatch, roots)
+    assert status == {"half_period": "proved", "orbit_genuine": "refuted", "initial_point": "refuted",
+                      "stable": "refuted"}
+    assert _crafted_attempt(monkeypatch, roots, covers_all=False)["orbit_genuine"] == "inconclusive"
+
+
+def test_an_analysis_with_a_problem_decides_nothing(monkeypatch):
+    """A problem (a failed bug check, a tail bound not certified) makes every claim inconclusive even
+    when the spectrum exists (mutmut: `sp is None and problem` went on to decide the claims)."""
+    roots = [RootVerdict(arb("0.0625"), [arb(0)] * 5, "spurious", "beta < 0 at t = 1/32", witness_t=arb("0.03125"))]
+    status = _crafted_attempt(monkeypatch, roots, problem="moment identities fail: a bug")
+    assert set(status.values()) == {"inconclusive"}
