@@ -564,6 +564,10 @@ def _crafted_attempt(monkeypatch, roots, covers_all=True, problem=""):
     monkeypatch.setattr(claims, "analyse", fake)
     with working_precision(64):
         a = claims.attempt(_relay_model(), ["half_period", "orbit_genuine", "initial_point", "stable"], 64)
+    for c in a.claims:          # a refutation carries its certificate: the search of all of (0, oo)
+        if c.status.value == "refuted":
+            assert c.counterexample and c.counterexample.get("searched") == "(0, oo)", (c.id, c.counterexample)
+            assert [r["theta"] for r in c.counterexample["roots"]] == [["0.0625", "0.0625"]]
     return {c.id: c.status.value for c in a.claims}
 
 
