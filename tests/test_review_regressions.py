@@ -492,10 +492,13 @@ def test_stability_needs_every_modulus_certainly_below_1(monkeypatch):
         z1 = arb(1, arb("1e-12"))
         z4 = liou / (z1 * arb("0.5") * arb("0.25"))
         J = arb_mat([[z1, 0, 0, 0], [0, arb("0.5"), 0, 0], [0, 0, arb("0.25"), 0], [0, 0, 0, z4]])
-        monkeypatch.setattr(relay_claims, "half_period_jacobian", lambda sp, th, x0: J)
+        from rigor_gyro.kinds.periodic_orbit.flow import Spectrum
 
-        class Sp:
-            pass
+        class Sp:                                   # the point spectrum's eigenvalue method on J
+            multipliers = Spectrum.multipliers
+
+            def jacobian(self, th, x0):
+                return J
         sp = Sp()
         sp.P = P
         v = relay_claims.RootVerdict(theta, [arb(0)] * 5, "genuine", "")
