@@ -122,10 +122,10 @@ def test_disjoint_enclosures_are_a_bug_not_a_tighter_jacobian(monkeypatch):
         theta = interval(_q(F("0.1381313")), _q(F("0.1381359")))
         real = jacobian_box.centred_jacobian(Pb, theta)
         shifted = arb_mat([[real[i, j] + (1 if (i, j) == (2, 1) else 0) for j in range(4)] for i in range(4)])
-        monkeypatch.setattr(boxes, "centred_jacobian", lambda P, t: shifted)
+        monkeypatch.setattr(boxes, "centred_jacobian", lambda P, t, parts=None: shifted)
         with pytest.raises(AssertionError, match="disjoint"):
             sp.jacobian(theta, x0_at(sp, theta))
-        monkeypatch.setattr(boxes, "centred_jacobian", lambda P, t: None)
+        monkeypatch.setattr(boxes, "centred_jacobian", lambda P, t, parts=None: None)
         direct = half_period_jacobian(sp, theta, x0_at(sp, theta))
         got = sp.jacobian(theta, x0_at(sp, theta))
         assert all(got[i, j].mid() == direct[i, j].mid() and got[i, j].rad() == direct[i, j].rad()

@@ -70,7 +70,7 @@ from ...core.family_roots import newton_family_root, newton_family_root_complex,
 from ...core.polyroots import isolate_polynomial
 from .. import box_outcomes, require_box_claims
 from .claims import CLAIMS, attempt
-from .jacobian_box import centred_jacobian, eigen_coordinate_multipliers
+from .jacobian_box import centred_jacobian, centred_terms, eigen_coordinate_multipliers
 from .flow import AMPLITUDE_PARAMETERS, PARAMETER_NAMES, amplitude_similarity, DegenerateSpectrum, NearZeroSeries, RelayParams, Spectrum, nutation_cubic
 
 __all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "BoxSpectrum", "validate_box", "evaluate_box"]
@@ -127,6 +127,7 @@ class BoxSpectrum(Spectrum):
                           [z, z, z, z, -1 / P.sigma]])
         # near theta = 0 the spectral terms cancel on a box: g from its power series there
         self.near_zero = NearZeroSeries(self.M, self.e, S)
+        self._centred = None        # (theta, centred_terms at theta): see _centred_terms
 
     def jacobian(self, theta: arb, x0) -> arb_mat:
         """The half-period Jacobian for every parameter in the box and every theta in the ball: the
@@ -135,7 +136,8 @@ class BoxSpectrum(Spectrum):
         direct one about 12 times wider on a box of n in 50 +- 0.01). Disjoint entries would mean one
         enclosure is wrong: AssertionError."""
         direct = super().jacobian(theta, x0)
-        centred = centred_jacobian(self.P, theta)
+        parts = self._centred_terms(theta)
+        centred = centred_jacobian(self.P, theta, parts) if parts is not None else None
         if centred is None:
             return direct
         out = arb_mat(4, 4)
@@ -146,6 +148,13 @@ class BoxSpectrum(Spectrum):
                     raise AssertionError(f"the Jacobian's direct and centred enclosures are disjoint at ({i}, {j}): {a}, {b}: a bug")
                 out[i, j] = a.intersection(b) if a.is_finite() else b
         return out
+
+    def _centred_terms(self, theta: arb):
+        """:func:`.jacobian_box.centred_terms` at this box and ``theta``, computed once for the Jacobian
+        and the multipliers of the same orbit (the same ball object)."""
+        if self._centred is None or self._centred[0] is not theta:
+            self._centred = (theta, centred_terms(self.P, theta))
+        return self._centred[1]
 
     def multipliers(self, J: arb_mat, theta: arb) -> list[acb]:
         """Enclosures of J's eigenvalues for every member: Rump's method on the ball matrix J and on
@@ -158,7 +167,8 @@ class BoxSpectrum(Spectrum):
             candidates.append(super().multipliers(J, theta))
         except ValueError:
             pass
-        other = eigen_coordinate_multipliers(self.P, theta)
+        parts = self._centred_terms(theta)
+        other = eigen_coordinate_multipliers(self.P, theta, parts) if parts is not None else None
         if other is not None:
             candidates.append(other)
         if not candidates:

@@ -40,7 +40,7 @@ from flint import acb, acb_mat, arb, arb_mat, arb_series
 from ...core.balls import series_coefficients, series_length
 from .flow import PARAMETER_NAMES, RelayParams
 
-__all__ = ["augmented_matrix", "centred_jacobian", "eigen_coordinate_multipliers", "jacobian_by_exponential"]
+__all__ = ["augmented_matrix", "centred_jacobian", "centred_terms", "eigen_coordinate_multipliers", "jacobian_by_exponential"]
 
 
 def _entries(P) -> list[list]:
@@ -78,11 +78,26 @@ def _parts(E: arb_mat):
     return _block(E, 0, 5, 0, 5), _block(E, 0, 5, 5, 6)
 
 
+def _identity(n: int) -> arb_mat:
+    return arb_mat(n, n, [1 if i == j else 0 for i in range(n) for j in range(n)])
+
+
+def _frechet_exp(X: arb_mat, D: arb_mat) -> arb_mat:
+    """The Frechet derivative L(X, D) of exp: the upper right block of exp([[X, D], [0, X]])."""
+    n = X.nrows()
+    big = arb_mat(2 * n, 2 * n)
+    for i in range(n):
+        for j in range(n):
+            big[i, j] = big[n + i, n + j] = X[i, j]
+            big[i, n + j] = D[i, j]
+    return _block(big.exp(), 0, n, n, 2 * n)
+
+
 def _orbit(N: arb_mat, E: arb_mat):
     """(Phi, x0, f) from N and E = exp(N theta), or None if I + Phi may be singular."""
     Phi, w = _parts(E)
     try:
-        x0 = -(arb_mat(5, 5, [1 if i == j else 0 for i in range(5) for j in range(5)]) + Phi).solve(w, algorithm="precond")
+        x0 = -(_identity(5) + Phi).solve(w, algorithm="precond")
     except ZeroDivisionError:
         return None
     M, eS = _parts(N)
@@ -103,7 +118,7 @@ def jacobian_by_exponential(P: RelayParams, theta: arb) -> arb_mat | None:
     (no mean-value form: used at the centre, where the balls are points). None as in the module docstring."""
     N = augmented_matrix(P)
     orbit = _orbit(N, (N * theta).exp())
-    if orbit is None or not _finite(orbit[2]) or not orbit[2][0, 0].is_finite() or orbit[2][0, 0].contains(0):
+    if orbit is None or not _finite(orbit[2]) or orbit[2][0, 0].contains(0):
         return None
     return _jacobian(orbit[0], orbit[2])
 
@@ -111,9 +126,8 @@ def jacobian_by_exponential(P: RelayParams, theta: arb) -> arb_mat | None:
 def _derivative(N, E, dN, dE, Phi, x0, f) -> arb_mat:
     """dJ for the direction in which N moves by dN and exp(N theta) by dE (the chain rule of the module
     docstring)."""
-    I5 = arb_mat(5, 5, [1 if i == j else 0 for i in range(5) for j in range(5)])
     dPhi, dw = _parts(dE)
-    dx0 = -(I5 + Phi).solve(dPhi * x0 + dw, algorithm="precond")
+    dx0 = -(_identity(5) + Phi).solve(dPhi * x0 + dw, algorithm="precond")
     M, _ = _parts(N)
     dM, deS = _parts(dN)
     df = -(dM * x0) - M * dx0 + deS
@@ -130,8 +144,9 @@ def _finite(A: arb_mat) -> bool:
     return all(A[i, j].is_finite() for i in range(A.nrows()) for j in range(A.ncols()))
 
 
-def _centred_terms(P: RelayParams, theta: arb):
-    """(J at the centre, [(dJ over the box, deviation ball) per direction]) or None (module docstring)."""
+def centred_terms(P: RelayParams, theta: arb):
+    """(J at the centre, [(dJ over the box, deviation ball) per direction]) or None (module docstring):
+    what :func:`centred_jacobian` and :func:`eigen_coordinate_multipliers` are built from."""
     centre = RelayParams(**{k: arb(getattr(P, k).mid()) for k in PARAMETER_NAMES})
     theta_c = arb(theta.mid())
     J = jacobian_by_exponential(centre, theta_c)
@@ -153,11 +168,7 @@ def _centred_terms(P: RelayParams, theta: arb):
             if dev.is_zero():
                 continue
             dN = _parameter_derivative(P, k)
-            Z = arb_mat(6, 6)
-            X, D = N * theta, dN * theta
-            big = arb_mat([[X[i, j] if i < 6 and j < 6 else D[i, j - 6] if i < 6 else
-                            Z[i - 6, j] if j < 6 else X[i - 6, j - 6] for j in range(12)] for i in range(12)])
-            directions.append((dev, dN, _block(big.exp(), 0, 6, 6, 12)))
+            directions.append((dev, dN, _frechet_exp(N * theta, dN * theta)))
         for dev, dN, dE in directions:
             terms.append((_derivative(N, E, dN, dE, Phi, x0, f), dev))
     except ZeroDivisionError:
@@ -165,10 +176,11 @@ def _centred_terms(P: RelayParams, theta: arb):
     return J, terms
 
 
-def centred_jacobian(P: RelayParams, theta: arb) -> arb_mat | None:
+def centred_jacobian(P: RelayParams, theta: arb, parts=None) -> arb_mat | None:
     """J(theta, P) for every theta in the ball ``theta`` and every P in the parameter balls, in the
-    centred form of the module docstring; None when it cannot be formed (see there)."""
-    parts = _centred_terms(P, theta)
+    centred form of the module docstring; None when it cannot be formed (see there). ``parts``: the
+    :func:`centred_terms` of (P, theta) if already computed."""
+    parts = centred_terms(P, theta) if parts is None else parts
     if parts is None:
         return None
     J, terms = parts
@@ -177,7 +189,7 @@ def centred_jacobian(P: RelayParams, theta: arb) -> arb_mat | None:
     return J if _finite(J) else None
 
 
-def eigen_coordinate_multipliers(P: RelayParams, theta: arb) -> list[acb] | None:
+def eigen_coordinate_multipliers(P: RelayParams, theta: arb, parts=None) -> list[acb] | None:
     """The eigenvalues of J(theta, P) for every theta in the ball and every P in the balls, from the
     centred form taken in the centre's eigenvector coordinates: K = V^{-1} J V with V an exact point
     matrix (the midpoints of the centre's eigenvector enclosures) and V^{-1} enclosed, so
@@ -187,8 +199,9 @@ def eigen_coordinate_multipliers(P: RelayParams, theta: arb) -> list[acb] | None
     Why: J's entries move with n far more than its eigenvalues (measured on n in 50 +- 0.2: J's
     radius 0.26, the moduli move by 1e-5); in eigenvector coordinates that motion is mostly off the
     diagonal, which moves the eigenvalues only to second order, and the ball K_box is 65 times narrower.
-    None if an eigen-decomposition or the inverse fails (the caller keeps Rump's method on J)."""
-    parts = _centred_terms(P, theta)
+    None if an eigen-decomposition or the inverse fails (the caller keeps Rump's method on J).
+    ``parts`` as in :func:`centred_jacobian`."""
+    parts = centred_terms(P, theta) if parts is None else parts
     if parts is None:
         return None
     Jc, terms = parts
