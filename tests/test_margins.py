@@ -10,7 +10,7 @@ from flint import arb, fmpq
 from hypothesis import given, strategies as st
 
 from rigor_gyro.cli import main
-from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.balls import interval, working_precision
 from rigor_gyro.core.boxes import Box, parse_tolerance, split_parameters
 from rigor_gyro.core.errors import ParameterError, SceneError
 from rigor_gyro.core.family_roots import family_real_roots
@@ -106,6 +106,30 @@ def test_family_roots_refuse_a_double_root_and_a_zero_leading_coefficient():
     with working_precision(64):
         assert family_real_roots([arb(1), arb(-2), arb(1)], [arb("0.9"), arb("1.1")]) is None    # (x-1)^2
         assert family_real_roots([arb(-1), arb(1), arb(0).union(arb(1))], [arb(1)]) is None
+
+
+def test_the_complex_newton_image_must_lie_strictly_inside_the_candidate_in_each_coordinate():
+    """The uniqueness test of newton_family_root_complex: the image strictly inside the candidate,
+    below and above, in the real and the imaginary parts (touching or sticking out is no proof)."""
+    from rigor_gyro.core.family_roots import _inside
+    y = arb(0.5, 0.5)                                   # about [0, 1] (radii are rounded up)
+    assert _inside(arb(0.5, 0.125), y)                  # about [0.375, 0.625]
+    assert not _inside(y, y)                            # the same ends: not strictly inside
+    for mid, rad in ((0.1875, 0.3125), (0.8125, 0.3125), (0.5, 1.5)):
+        assert not _inside(arb(mid, rad), y), (mid - rad, mid + rad)     # out below, out above, around
+
+
+def test_complex_family_roots_contain_every_members_root():
+    """x^2 + c for every c in [1, 1.21]: the box found from i contains i and 1.1 i (the roots of the
+    end members), and its real part contains 0."""
+    from flint import acb
+    from rigor_gyro.core.family_roots import newton_family_root_complex
+    with working_precision(64):
+        c = interval(arb(1), arb("1.21"))
+        z = newton_family_root_complex([c, arb(0), arb(1)], acb(0, c.mid().sqrt()))
+        assert z is not None and z.real.contains(0)
+        assert z.imag.contains(arb(1)) and z.imag.contains(arb("1.1"))
+        assert newton_family_root_complex([arb(1), arb(2), arb(1)], acb("-1", "0.01")) is None     # (x+1)^2
 
 
 # ----------------------------------------------------------------------------- box decisions

@@ -99,3 +99,83 @@ def test_best_first_bisection_covers_the_interval_and_bounds_its_maximum():
         assert top >= 1 and count <= budget + 1 and len(refined) >= 1
         if target > arb(1):
             assert count < budget and top <= Fraction(10001, 10000)     # stopped because done
+
+
+
+def _tiles(pieces, lo, hi) -> bool:
+    from rigor_gyro.core.balls import exact_fraction
+    ends = sorted((exact_fraction(a), exact_fraction(b)) for a, b, _ in pieces)
+    return bool(ends) and ends[0][0] == lo and ends[-1][1] == hi and all(x[1] == y[0] for x, y in zip(ends, ends[1:]))
+
+
+def _bisection_log(refined, budget=9, **kw):
+    """Run best_first_bisection on [0, 1] with a flat bound (done never holds) and log its calls."""
+    from rigor_gyro.core.balls import exact_fraction
+    from rigor_gyro.core.subdivision import best_first_bisection
+    log = []
+
+    def bound(a, b):
+        log.append(("bound", exact_fraction(a), exact_fraction(b)))
+        return arb(1)
+
+    def refine(m):
+        log.append(("refine", exact_fraction(m)))
+    args = {} if refined is None else {"refined": refined}
+    pieces, count = best_first_bisection(arb(0), arb(1), bound, refine, lambda u: False, budget, **args)
+    return log, pieces, count
+
+
+def test_best_first_bisection_counts_every_bound_and_refines_each_piece_once_before_splitting():
+    """``count`` is the number of bounds taken (the budget's unit, at most one over it); by default the
+    whole interval is refined first; every piece is refined exactly once, at its midpoint, then bounded
+    again, before it is split; with ``refined=True`` the whole interval is split at once."""
+    from fractions import Fraction
+    for refined in (None, False, True):
+        log, pieces, count = _bisection_log(refined)
+        bounds = [e[1:] for e in log if e[0] == "bound"]
+        assert count == len(bounds) and 9 <= count <= 10 and _tiles(pieces, 0, 1)
+        refines = [e[1] for e in log if e[0] == "refine"]
+        assert len(set(refines)) == len(refines)                   # no piece refined twice
+        for i, e in enumerate(log):
+            if e[0] == "refine":                                   # the refined piece is bounded again
+                assert log[i + 1][0] == "bound" and sum(log[i + 1][1:]) / 2 == e[1]
+        # a split: the two halves bounded one after the other; the piece was refined before, except
+        # the whole interval when it was handed in as refined
+        for i in range(len(log) - 1):
+            e, f = log[i], log[i + 1]
+            if (e[0] == f[0] == "bound" and e[2] == f[1] and (f[2] - f[1]) == (e[2] - e[1])
+                    and (e[1] / (2 * (e[2] - e[1]))).denominator == 1):       # halves of one dyadic piece
+                whole, mid = (e[1], f[2]), e[2]
+                if refined is True and whole == (0, 1):
+                    assert mid not in refines
+                else:
+                    assert mid in refines and log.index(("refine", mid)) < i
+        if refined is True:
+            assert log[:3] == [("bound", 0, 1), ("bound", 0, Fraction(1, 2)), ("bound", Fraction(1, 2), 1)]
+        else:
+            assert log[:3] == [("bound", 0, 1), ("refine", Fraction(1, 2)), ("bound", 0, 1)]
+
+
+def test_best_first_bisection_stops_at_a_piece_the_precision_cannot_split():
+    """[1, 1 + 2^-63] at 64 bits has no representable midpoint strictly inside: the piece is kept whole
+    (with its bound) and the search stops after three bounds, never splitting a piece into empty ones."""
+    from fractions import Fraction
+    from rigor_gyro.core.subdivision import best_first_bisection
+    with working_precision(64):
+        lo, hi = arb(1), arb(1) + arb(2) ** -63
+        assert hi.is_exact()
+        pieces, count = best_first_bisection(lo, hi, lambda a, b: arb(1), lambda m: None, lambda u: False, 50)
+        assert count == 3 and _tiles(pieces, 1, 1 + Fraction(1, 2 ** 63)) and len(pieces) == 1
+
+
+def test_best_first_bisection_takes_infinite_bounds_and_keeps_them():
+    """A bound of +inf (a piece where the function may be unbounded) is a valid bound: the search goes
+    on, the pieces still tile the interval and the largest bound returned is +inf."""
+    from fractions import Fraction
+    from rigor_gyro.core.subdivision import best_first_bisection
+
+    def bound(a, b):                    # +inf on the pieces whose closure holds 3/10
+        return arb("inf") if a <= arb(3) / 10 <= b else arb(1)
+    pieces, count = best_first_bisection(arb(0), arb(1), bound, lambda m: None, lambda u: u.is_finite(), 12)
+    assert _tiles(pieces, 0, 1) and count <= 13
+    assert any(not u.is_finite() for _, _, u in pieces) and not pieces[0][2].is_finite()
