@@ -52,3 +52,25 @@ def test_bad_input_raises_parameter_error(bad):
 def test_float_error_names_parameter_and_fix():
     with pytest.raises(ParameterError, match=r"parameter 'eps'.*\"0.1\""):
         parse_exact(0.1, name="eps")
+
+
+def test_messages_name_the_parameter_and_suggest_the_near_key():
+    """A parse error names the parameter it is about (and only then says 'parameter'); an unknown key
+    close to a known one gets a did-you-mean, a key close to none gets none; to_fmpq is parse_exact's
+    rational as an fmpq, with the same errors."""
+    from flint import fmpq
+    from rigor_gyro.core.exact import parse_parameters, to_fmpq
+    with pytest.raises(ParameterError) as named:
+        parse_exact("1/x", "eps")
+    assert str(named.value).startswith("parameter 'eps': ")
+    with pytest.raises(ParameterError) as anonymous:
+        parse_exact("1/x")
+    assert not str(anonymous.value).startswith("parameter") and "1/x" in str(anonymous.value)
+    with pytest.raises(ParameterError, match=r"did you mean 'Omega2'\?"):
+        parse_parameters({"Omega22": "1"}, "eigenfrequencies", ["eps", "Omega2"], [])
+    with pytest.raises(ParameterError) as far:
+        parse_parameters({"zzzz": "1"}, "eigenfrequencies", ["eps", "Omega2"], [])
+    assert "did you mean" not in str(far.value) and "zzzz" in str(far.value)
+    assert to_fmpq("-7/3e2") == fmpq(-7, 300) and to_fmpq("0.25", "k") == fmpq(1, 4)
+    with pytest.raises(ParameterError, match="parameter 'k': "):
+        to_fmpq("pi", "k")          # a multiple of pi is not rational

@@ -172,8 +172,12 @@ def parse_exact(value: object, name: str | None = None) -> Exact:
 
 
 def to_fmpq(value: object, name: str | None = None) -> fmpq:
-    """Parse ``value`` with :func:`parse_exact` and return it as an ``fmpq`` (rational only)."""
-    return parse_exact(value, name).fmpq()
+    """Parse ``value`` with :func:`parse_exact` and return it as an ``fmpq``; a multiple of pi is a
+    ParameterError naming ``name``."""
+    exact = parse_exact(value, name)
+    if not exact.is_rational:
+        raise ParameterError(_where(name) + f"{exact.text!r} involves pi; expected a rational number")
+    return exact.fmpq()
 
 
 def _did_you_mean(word: str, choices) -> str:
