@@ -564,10 +564,18 @@ def _crafted_attempt(monkeypatch, roots, covers_all=True, problem=""):
     monkeypatch.setattr(claims, "analyse", fake)
     with working_precision(64):
         a = claims.attempt(_relay_model(), ["half_period", "orbit_genuine", "initial_point", "stable"], 64)
+    expected_roots = [{"theta": claims._bounds(v.theta), "spurious_because": v.reason,
+                       "witness_t": claims._bounds(v.witness_t) if v.witness_t is not None else None}
+                      for v in roots if v.kind == "spurious"]
     for c in a.claims:          # a refutation carries its certificate: the search of all of (0, oo)
         if c.status.value == "refuted":
-            assert c.counterexample and c.counterexample.get("searched") == "(0, oo)", (c.id, c.counterexample)
-            assert [r["theta"] for r in c.counterexample["roots"]] == [["0.0625", "0.0625"]]
+            assert c.counterexample == {"searched": "(0, oo)", "tail_point": ["0.625", "0.625"],
+                                        "theta_min": ["0.0078125", "0.0078125"], "roots": expected_roots}, c.id
+        if problem:
+            assert problem in c.reason
+    hp = next((c for c in a.claims if c.id == "half_period"), None)
+    if hp is not None and not problem:      # the search's size, reported with the claim
+        assert hp.details == {"pieces": len(roots), "roots": len(roots)}
     return {c.id: c.status.value for c in a.claims}
 
 
@@ -587,6 +595,9 @@ def test_every_root_spurious_over_all_of_the_half_line_refutes_the_orbit(monkeyp
     status = _crafted_attempt(monkeypatch, roots)
     assert status == {"half_period": "proved", "orbit_genuine": "refuted", "initial_point": "refuted",
                       "stable": "refuted"}
+    # a spurious root decided without a grid point (beta'(0) < 0) stores no witness point
+    two = roots + [RootVerdict(arb("0.25"), [arb(0)] * 5, "spurious", "beta'(0) < 0")]
+    assert _crafted_attempt(monkeypatch, two)["orbit_genuine"] == "refuted"
     assert _crafted_attempt(monkeypatch, roots, covers_all=False)["orbit_genuine"] == "inconclusive"
 
 
