@@ -573,6 +573,8 @@ def _crafted_attempt(monkeypatch, roots, covers_all=True, problem=""):
                                         "theta_min": ["0.0078125", "0.0078125"], "roots": expected_roots}, c.id
         if problem:
             assert problem in c.reason
+    if not problem:         # no genuine orbit: no enclosure width was asked for, none to escalate for
+        assert a.widths_met is True
     hp = next((c for c in a.claims if c.id == "half_period"), None)
     if hp is not None and not problem:      # the search's size, reported with the claim
         assert hp.details == {"pieces": len(roots), "roots": len(roots)}
@@ -607,3 +609,17 @@ def test_an_analysis_with_a_problem_decides_nothing(monkeypatch):
     roots = [RootVerdict(arb("0.0625"), [arb(0)] * 5, "spurious", "beta < 0 at t = 1/32", witness_t=arb("0.03125"))]
     status = _crafted_attempt(monkeypatch, roots, problem="moment identities fail: a bug")
     assert set(status.values()) == {"inconclusive"}
+
+
+def test_the_width_asked_of_theta_star_is_its_diameter():
+    """Option theta_width bounds the diameter 2 rad of theta*'s ball: met with a width 2.5 times the
+    radius obtained, not met with 1.5 times it (mutmut: 3 rad for 2 rad)."""
+    from fractions import Fraction
+    from rigor_gyro.core.balls import exact_fraction
+    with working_precision(64):
+        a = claims.attempt(_relay_model(), ["orbit_genuine"], 64)
+        r = exact_fraction(arb(a.quantities["theta_star"].rad()))
+        for factor, met in ((Fraction(5, 2), True), (Fraction(3, 2), False)):
+            w = r * factor
+            text = f"{w.numerator}/{w.denominator}"
+            assert claims.attempt(_relay_model(theta_width=text), ["orbit_genuine"], 64).widths_met is met, factor
