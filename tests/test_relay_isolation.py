@@ -563,7 +563,7 @@ def _crafted_attempt(monkeypatch, roots, covers_all=True, problem=""):
                                covers_all=covers_all, pieces=len(roots), roots=roots, problem=problem)
     monkeypatch.setattr(claims, "analyse", fake)
     with working_precision(64):
-        a = claims.attempt(_relay_model(), ["half_period", "orbit_genuine", "initial_point", "stable"], 64)
+        a = claims.attempt(_relay_model(), ["half_period", "orbit_genuine", "initial_point", "multipliers", "stable"], 64)
     expected_roots = [{"theta": claims._bounds(v.theta), "spurious_because": v.reason,
                        "witness_t": claims._bounds(v.witness_t) if v.witness_t is not None else None}
                       for v in roots if v.kind == "spurious"]
@@ -589,14 +589,14 @@ def test_a_root_left_unclassified_forbids_refuting_the_orbit(monkeypatch):
              RootVerdict(arb("0.125"), [arb(0)] * 5, "undecided", "beta'(0) of no certain sign")]
     status = _crafted_attempt(monkeypatch, roots)
     assert status == {"half_period": "inconclusive", "orbit_genuine": "inconclusive",
-                      "initial_point": "inconclusive", "stable": "inconclusive"}
+                      "initial_point": "inconclusive", "multipliers": "inconclusive", "stable": "inconclusive"}
 
 
 def test_every_root_spurious_over_all_of_the_half_line_refutes_the_orbit(monkeypatch):
     roots = [RootVerdict(arb("0.0625"), [arb(0)] * 5, "spurious", "beta < 0 at t = 1/32", witness_t=arb("0.03125"))]
     status = _crafted_attempt(monkeypatch, roots)
     assert status == {"half_period": "proved", "orbit_genuine": "refuted", "initial_point": "refuted",
-                      "stable": "refuted"}
+                      "multipliers": "refuted", "stable": "refuted"}
     # a spurious root decided without a grid point (beta'(0) < 0) stores no witness point
     two = roots + [RootVerdict(arb("0.25"), [arb(0)] * 5, "spurious", "beta'(0) < 0")]
     assert _crafted_attempt(monkeypatch, two)["orbit_genuine"] == "refuted"
