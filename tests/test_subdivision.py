@@ -179,3 +179,26 @@ def test_best_first_bisection_takes_infinite_bounds_and_keeps_them():
     pieces, count = best_first_bisection(arb(0), arb(1), bound, lambda m: None, lambda u: u.is_finite(), 12)
     assert _tiles(pieces, 0, 1) and count <= 13
     assert any(not u.is_finite() for _, _, u in pieces) and not pieces[0][2].is_finite()
+
+
+def test_lower_bound_on_box_counts_its_evaluations_keeps_the_budget_and_accepts_infinite_leaves():
+    """``boxes`` is the number of evaluations of f, never above ``max_pieces``, and the budget is used
+    to its end (9 = 1 + 2 * 4 splits); a leaf where f is +inf (nothing asked there) is kept as a leaf
+    and never lowers the bound; the leaves tile the box."""
+    from fractions import Fraction
+    from rigor_gyro.core.boxes import Box, tiles_by_bisection
+    from rigor_gyro.core.subdivision import lower_bound_on_box
+    calls = []
+
+    def f(b):
+        calls.append(b["x"])
+        x = b["x"]
+        # f(x) = x, asked only for x < 1/2 (a dyadic sub-box of [0, 1] other than [0, 1] lies in [1/2, 1] iff its centre is above 1/2)
+        return arb("inf") if x.mid() > arb(1) / 2 else x
+    whole = Box.of({"x": (Fraction(0), Fraction(1))})
+    with working_precision(64):
+        out = lower_bound_on_box(f, whole, "0.25", max_pieces=9)
+    assert out.boxes == len(calls) == 9 and not out.reached
+    assert len(out.leaves) == 5 and tiles_by_bisection(whole, out.leaves)
+    assert out.bound.is_finite() and out.bound <= 0 and out.bound > arb("-1e-6")
+    assert any(b.interval("x")[0] >= Fraction(1, 2) for b in out.leaves)     # the +inf leaf, kept
