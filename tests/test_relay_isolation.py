@@ -623,3 +623,53 @@ def test_the_width_asked_of_theta_star_is_its_diameter():
             w = r * factor
             text = f"{w.numerator}/{w.denominator}"
             assert claims.attempt(_relay_model(theta_width=text), ["orbit_genuine"], 64).widths_met is met, factor
+
+
+def test_every_genuine_orbit_unstable_refutes_stable_only_over_all_of_the_half_line(monkeypatch):
+    """relay_unstable (H = 1e4): every genuine orbit has a modulus certainly > 1 and (0, oo) is searched,
+    so stable is refuted, with the search and each orbit's modulus above 1 as its counterexample. The
+    same analysis restricted to (0, T] (as option T_max would) refutes nothing: a stable orbit could lie
+    beyond T (mutmut: the refutation made unconditional); every claim then left inconclusive says more
+    precision cannot help, and no decided claim says so."""
+    import dataclasses
+    from pathlib import Path
+    from rigor_gyro import load_scene
+    from fractions import Fraction
+    from rigor_gyro.certificate import Status
+    from rigor_gyro.core.balls import certainly_gt
+    model = claims.validate(load_scene(str(Path(__file__).parent / "corpus" / "relay_unstable.toml")))
+    wanted = ["half_period", "orbit_genuine", "multipliers", "stable"]
+    with working_precision(64):
+        an = claims.analyse(model)
+        assert an.covers_all and not an.unknown
+        genuine = [v for v in an.roots if v.kind == "genuine"]
+        assert genuine and all(v.stable is False for v in genuine)
+        full = {c.id: c for c in claims.attempt(model, wanted, 64).claims}
+        restricted_an = dataclasses.replace(an, covers_all=False)
+        monkeypatch.setattr(claims, "analyse", lambda m, spectrum=None, phase=None: restricted_an)
+        restricted = {c.id: c for c in claims.attempt(model, wanted, 64).claims}
+    st = full["stable"]
+    assert st.status is Status.REFUTED and st.precision_cannot_help is None
+    cx = st.counterexample
+    assert cx["searched"] == "(0, oo)" and cx["tail_point"] == claims._bounds(an.T_tail)
+    assert [o["theta"] for o in cx["orbits"]] == [claims._bounds(v.theta) for v in genuine]
+    assert all(Fraction(o["modulus_above_1"][0]) > 1 for o in cx["orbits"])
+    assert all(certainly_gt(max(v.moduli, key=lambda m: m.upper()), 1) for v in genuine)
+    assert restricted["stable"].status is Status.INCONCLUSIVE and "not searched" in restricted["stable"].reason
+    for c in restricted.values():
+        assert (c.precision_cannot_help is not None) == (c.status is Status.INCONCLUSIVE), c.id
+    assert {c.id for c in restricted.values() if c.status is Status.INCONCLUSIVE} == {"stable"}
+    assert all(c.precision_cannot_help is None for c in full.values())
+
+
+def test_a_claim_more_precision_can_decide_is_not_marked_hopeless():
+    """relay_multiplier_near_one: all of (0, oo) searched and every root classified, stability undecided
+    at 64 bits (a modulus 1e-30 from 1): more precision can decide it, so the claim must not say that
+    precision cannot help (mutmut: the T_max condition as 'complete OR restricted')."""
+    from pathlib import Path
+    from rigor_gyro import load_scene
+    from rigor_gyro.certificate import Status
+    model = claims.validate(load_scene(str(Path(__file__).parent / "corpus" / "relay_multiplier_near_one.toml")))
+    with working_precision(64):
+        out = {c.id: c for c in claims.attempt(model, ["half_period", "orbit_genuine", "stable"], 64).claims}
+    assert out["stable"].status is Status.INCONCLUSIVE and out["stable"].precision_cannot_help is None
