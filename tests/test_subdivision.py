@@ -202,3 +202,29 @@ def test_lower_bound_on_box_counts_its_evaluations_keeps_the_budget_and_accepts_
     assert len(out.leaves) == 5 and tiles_by_bisection(whole, out.leaves)
     assert out.bound.is_finite() and out.bound <= 0 and out.bound > arb("-1e-6")
     assert any(b.interval("x")[0] >= Fraction(1, 2) for b in out.leaves)     # the +inf leaf, kept
+
+
+def test_certify_positive_on_box_reports_what_it_decided_on():
+    """A refutation carries its witness point and f's certified value there (<= 0) and the leaves
+    proved so far; an inconclusive result the box it stopped on (a caller searches again from its
+    midpoint) and its reason the number of boxes evaluated; a proof the number of its leaves."""
+    from fractions import Fraction
+    from rigor_gyro.core.boxes import Box
+    from rigor_gyro.core.outcome import Status
+    from rigor_gyro.core.subdivision import certify_positive_on_box
+    whole = Box.of({"u": (Fraction(-1), Fraction(1))})
+    calls = []
+
+    def f(b):
+        calls.append(b)
+        return b["u"] * b["u"] + arb("1e-40", "1e-40")       # never certainly positive near 0
+    out = certify_positive_on_box(f, whole, max_pieces=50)
+    assert out.status is Status.INCONCLUSIVE and out.stuck is not None and out.stuck.interval("u")[0] <= 0 <= out.stuck.interval("u")[1]
+    boxes = sum(1 for b in calls if b["u"].rad() > 0)
+    assert f"undecided after {boxes} boxes" in out.reason and out.leaves
+    out = certify_positive_on_box(lambda b: b["u"] - arb("0.3"), whole, max_pieces=50)
+    assert out.status is Status.REFUTED and out.witness_value is not None and out.witness_value <= 0
+    assert out.witness_value.contains(arb(out.witness["u"].numerator) / out.witness["u"].denominator - arb("0.3"))
+    assert isinstance(out.leaves, list)
+    out = certify_positive_on_box(lambda b: b["u"] * b["u"] + 1, whole)
+    assert out.status is Status.PROVED and out.reason == f"f > 0 certified on {len(out.leaves)} boxes"
