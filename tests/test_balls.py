@@ -79,7 +79,11 @@ def test_decimal_bounds_contain_the_ball(num, den, radexp, prec):
     rman, rexp = arb(x.rad()).man_exp()
     rad = Fraction(int(rman)) * Fraction(2) ** int(rexp)
     assert Fraction(lo) <= mid - rad and mid + rad <= Fraction(hi)
-    assert Fraction(q["rad"]) >= 0
+    # the stated half-width: the exact one rounded up to 3 significant digits
+    r = Fraction(q["rad"])
+    assert rad <= r <= rad * Fraction(101, 100)
+    digits = q["rad"].lower().split("e")[0].replace(".", "").replace("-", "").strip("0")
+    assert len(digits) <= 3, q["rad"]
 
 
 def test_quantity_keeps_its_keys_and_digits_for_every_ball():
