@@ -186,6 +186,11 @@ MUTANTS = [
     ("cylinder_margin_checker_accepts", "rigor_gyro/kinds/lyapunov/check.py",
      "stored_interval(q[\"cylinder_margin_lower\"])[1] <= _lower(own)", "True",
      "the checker accepts any stored c* margin against the region's side"),
+    # mutmut over the relay attempt (issue 10, 2026-12-03)
+    ("unstable_refutation_unconditional", "rigor_gyro/kinds/periodic_orbit/claims.py",
+     "st = (Status.REFUTED, text, unstable) if exhaustive else (Status.INCONCLUSIVE, text + beyond)",
+     "st = (Status.REFUTED, text, unstable)",
+     "stability refuted from the unstable orbits found in (0, T_max], a stable one beyond unsearched"),
 ]
 
 
