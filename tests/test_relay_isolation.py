@@ -555,15 +555,18 @@ def test_a_box_analysis_neither_reads_nor_writes_the_point_cache():
 
 # --------------------------------------------------------------------------- attempt (mutmut survivors)
 
-def _crafted_attempt(monkeypatch, roots, covers_all=True, problem=""):
-    """attempt() on an analysis given here (its root verdicts, no unknown piece; exact dyadic points, as
-    the certificate's witnesses need)."""
+def _crafted_attempt(monkeypatch, roots, covers_all=True, problem="", unknown=(), keep=None):
+    """attempt() on an analysis given here (its root verdicts and undecided pieces; exact dyadic points,
+    as the certificate's witnesses need)."""
     def fake(model, spectrum=None, phase=None):
         return claims.Analysis(sp=object(), theta_min=arb("0.0078125"), T_tail=arb("0.625"), T_search=arb("0.625"),
-                               covers_all=covers_all, pieces=len(roots), roots=roots, problem=problem)
+                               covers_all=covers_all, pieces=len(roots), roots=roots, problem=problem,
+                               unknown=list(unknown))
     monkeypatch.setattr(claims, "analyse", fake)
     with working_precision(64):
         a = claims.attempt(_relay_model(), ["half_period", "orbit_genuine", "initial_point", "multipliers", "stable"], 64)
+    if keep is not None:
+        keep.append(a)
     expected_roots = [{"theta": claims._bounds(v.theta), "spurious_because": v.reason,
                        "witness_t": claims._bounds(v.witness_t) if v.witness_t is not None else None}
                       for v in roots if v.kind == "spurious"]
@@ -576,7 +579,7 @@ def _crafted_attempt(monkeypatch, roots, covers_all=True, problem=""):
     if not problem:         # no genuine orbit: no enclosure width was asked for, none to escalate for
         assert a.widths_met is True
     hp = next((c for c in a.claims if c.id == "half_period"), None)
-    if hp is not None and not problem:      # the search's size, reported with the claim
+    if hp is not None and not problem and not unknown:      # the search's size, reported with the claim
         assert hp.details == {"pieces": len(roots), "roots": len(roots)}
     return {c.id: c.status.value for c in a.claims}
 
@@ -673,3 +676,20 @@ def test_a_claim_more_precision_can_decide_is_not_marked_hopeless():
     with working_precision(64):
         out = {c.id: c for c in claims.attempt(model, ["half_period", "orbit_genuine", "stable"], 64).claims}
     assert out["stable"].status is Status.INCONCLUSIVE and out["stable"].precision_cannot_help is None
+
+
+def test_an_undecided_piece_leaves_every_claim_open_and_is_what_would_decide_them(monkeypatch):
+    """One piece of the range undecided by a piece budget: every claim inconclusive, its reason names
+    the piece, and each claim's `decides` (what the prover watches for progress between precisions) is
+    that piece (mutmut: the second undecided piece read, `decides` dropped or set on decided claims)."""
+    from rigor_gyro.core.roots import RootPiece, RootStatus
+    from rigor_gyro.core.balls import interval
+    roots = [RootVerdict(arb("0.0625"), [arb(0)] * 5, "spurious", "beta < 0 at t = 1/32", witness_t=arb("0.03125"))]
+    piece = RootPiece(arb("0.25"), arb("0.375"), RootStatus.UNKNOWN, reason="piece budget exhausted")
+    kept = []
+    status = _crafted_attempt(monkeypatch, roots, unknown=[piece], keep=kept)
+    assert set(status.values()) == {"inconclusive"}
+    want = interval(arb("0.25"), arb("0.375"))
+    for c in kept[0].claims:
+        assert "piece budget exhausted" in c.reason or c.id != "half_period"
+        assert c.decides is not None and c.decides.lower() == want.lower() and c.decides.upper() == want.upper(), c.id
