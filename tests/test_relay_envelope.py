@@ -256,3 +256,25 @@ def test_the_tail_bound_lies_below_g_beyond_its_point():
     with working_precision(64):
         gmin = min((g_coeffs(sp, arb(8) * (1 + arb(k) / 200), 1)[0] for k in range(400)), key=lambda b: b.mid())
         assert (gmin - tail_bound(sp, arb(8))).upper() < arb("0.01")
+
+
+def test_the_fifth_taylor_coefficient_bound_contains_its_value_at_every_point_of_the_piece():
+    """taylor5_leading_coefficient(X) encloses g^(5)(xi)/5! for every xi in X (what makes (0, theta_min]
+    root-free), checked at 41 points of X = [0, t] for t up to the start of the search, and for a point
+    X; never wider than the direct enclosure it is intersected with."""
+    from rigor_gyro.kinds.periodic_orbit.flow import g_coeffs, taylor5_leading_coefficient
+    with working_precision(64):
+        for name in SCENES:
+            sp = _spectrum(name)
+            for t in (arb(1) / 1024, arb(1) / 256, arb(1) / 64):
+                X = interval(arb(0), t)
+                enc = taylor5_leading_coefficient(sp, X)
+                if not enc.is_finite():         # too wide a piece (the fast nutation): it decides nothing
+                    assert t > arb(1) / 1024, name
+                    continue
+                assert enc.rad() <= g_coeffs(sp, X, 6)[5].rad() * (1 + arb("1e-6"))
+                for k in range(41):
+                    x = t * k / 40
+                    assert enc.overlaps(g_coeffs(sp, x, 6)[5]), (name, t, k)
+                point = taylor5_leading_coefficient(sp, t)
+                assert point.overlaps(g_coeffs(sp, t, 6)[5]) and point.rad() < arb("1e-10") * abs(point).upper()
