@@ -278,3 +278,40 @@ def test_the_fifth_taylor_coefficient_bound_contains_its_value_at_every_point_of
                     assert enc.overlaps(g_coeffs(sp, x, 6)[5]), (name, t, k)
                 point = taylor5_leading_coefficient(sp, t)
                 assert point.overlaps(g_coeffs(sp, t, 6)[5]) and point.rad() < arb("1e-10") * abs(point).upper()
+
+
+def test_g_coefficients_do_not_depend_on_how_many_are_asked():
+    """g_coeffs(c, n)[j] encloses the same g^(j)(c)/j! whatever n > j (mutmut: the linear term's
+    derivative dropped for n = 2, the order Newton asks for), and c_1 is g's slope (a central
+    difference agrees to 1e-6)."""
+    from rigor_gyro.kinds.periodic_orbit.flow import g_coeffs
+    with working_precision(128):
+        for name in SCENES:
+            sp = _spectrum(name)
+            for x in (arb("0.05"), arb("0.3"), arb("1.7")):
+                ref = g_coeffs(sp, x, 8)
+                for n in range(1, 8):
+                    got = g_coeffs(sp, x, n)
+                    assert len(got) == n and all(got[j].overlaps(ref[j]) for j in range(n)), (name, x, n)
+                h = arb("1e-12")
+                slope = (g_coeffs(sp, x + h, 1)[0] - g_coeffs(sp, x - h, 1)[0]) / (2 * h)
+                assert abs(slope - ref[1]) < arb("1e-6") * (1 + abs(ref[1]))
+
+
+def test_taylor_enclosure_of_a_known_function_and_its_derivatives():
+    """f = exp through taylor_enclosure: f, f', f'' over a ball contain exp at its ends and are not
+    wider than the direct enclosure; at a point they are exp itself (mutmut: j! divided instead of
+    multiplied at a point, the intersection with the direct enclosure dropped)."""
+    from math import factorial
+    from rigor_gyro.kinds.periodic_orbit.flow import taylor_enclosure
+
+    def coeffs(c, n):                       # exp^(j)(c)/j! for every c in the ball c
+        return [c.exp() / factorial(j) for j in range(n)]
+    with working_precision(64):
+        X = interval(arb("0.5"), arb("0.75"))
+        out = taylor_enclosure(coeffs, X, 8, (0, 1, 2))
+        for k, e in enumerate(out):
+            assert e.contains(arb("0.5").exp()) and e.contains(arb("0.75").exp()), k
+            assert e.rad() <= (X.exp()).rad() * (1 + arb("1e-6")), k
+        point = taylor_enclosure(coeffs, arb("0.5"), 8, (0, 1, 2))
+        assert all(p.overlaps(arb("0.5").exp()) and p.rad() < arb("1e-15") for p in point)
