@@ -65,12 +65,13 @@ def test_messages_name_the_parameter_and_suggest_the_near_key():
     assert str(named.value).startswith("parameter 'eps': ")
     with pytest.raises(ParameterError) as anonymous:
         parse_exact("1/x")
-    assert not str(anonymous.value).startswith("parameter") and "1/x" in str(anonymous.value)
+    assert str(anonymous.value).startswith("cannot read '1/x'")
     with pytest.raises(ParameterError, match=r"did you mean 'Omega2'\?"):
         parse_parameters({"Omega22": "1"}, "eigenfrequencies", ["eps", "Omega2"], [])
     with pytest.raises(ParameterError) as far:
         parse_parameters({"zzzz": "1"}, "eigenfrequencies", ["eps", "Omega2"], [])
-    assert "did you mean" not in str(far.value) and "zzzz" in str(far.value)
+    assert "unknown parameter(s) ['zzzz'] for kind 'eigenfrequencies'; expected" in str(far.value)
+    assert "did you mean" not in str(far.value)
     assert to_fmpq("-7/3e2") == fmpq(-7, 300) and to_fmpq("0.25", "k") == fmpq(1, 4)
     with pytest.raises(ParameterError, match="parameter 'k': "):
         to_fmpq("pi", "k")          # a multiple of pi is not rational
