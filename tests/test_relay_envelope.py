@@ -315,3 +315,20 @@ def test_taylor_enclosure_of_a_known_function_and_its_derivatives():
             assert e.rad() <= (X.exp()).rad() * (1 + arb("1e-6")), k
         point = taylor_enclosure(coeffs, arb("0.5"), 8, (0, 1, 2))
         assert all(p.overlaps(arb("0.5").exp()) and p.rad() < arb("1e-15") for p in point)
+
+
+def test_taylor_enclosure_falls_back_to_whichever_enclosure_is_finite():
+    """Where the Taylor form is not finite (the point coefficients NaN) the direct enclosure is
+    returned; where the direct one is not finite, the Taylor form (NaN included: it decides nothing),
+    never a missing value."""
+    from math import factorial
+    from rigor_gyro.kinds.periodic_orbit.flow import taylor_enclosure
+    nan = arb("nan")
+    with working_precision(64):
+        X = interval(arb("0.5"), arb("0.75"))
+        no_point = lambda c, n: [nan] * n if c.rad() == 0 else [c.exp() / factorial(j) for j in range(n)]
+        got = taylor_enclosure(no_point, X, 8, (0, 1))
+        assert all(g.is_finite() and g.contains(arb("0.5").exp()) for g in got)
+        nowhere = lambda c, n: [nan] * n
+        got = taylor_enclosure(nowhere, X, 8, (0, 1))
+        assert len(got) == 2 and all(isinstance(g, arb) and not g.is_finite() for g in got)
