@@ -432,3 +432,42 @@ def test_a_failed_direct_certification_without_a_lower_point_does_not_search_aga
         hit = C._lower_ratio(g, refuted, sup * 1.1)
         assert hit is not None and hit[0] < sup * 1.1 and hit[1:] == (-1.0, 0.5)
         assert C._lower_ratio(g, BoxPositivity(Status.INCONCLUSIVE, [], stuck=None), sup * 2) is None
+
+
+def test_a_psi_counterexample_lies_in_the_disc_for_every_radius_in_the_ball():
+    """psi_counterexample(g, x2, R, which) with R a wide ball (as R = min(R1, R2) over a parameter box
+    is): the point must lie in the open disc of radius R.lower(), inside the region whatever R's
+    value in the ball, with Psi certainly <= 0 there (mutmut: the disc taken at R.upper() put the
+    point outside the region for the smaller radii, a counterexample to nothing)."""
+    from rigor_gyro.core.balls import certainly_le
+    from rigor_gyro.kinds.lyapunov.model import psi_counterexample
+    g = validate(load_scene("agafonov2013")).gimbal
+    with working_precision(64):
+        x2 = arb("0.3")
+        # Psi1 = c0 + c1 x1 + c3 x3 at x2 = 0.3: c0 = 61566, |(c1, c3)| = 1437874: <= 0 on the disc's edge
+        # from R = 0.04282 on
+        R = arb("0.0429").union(arb("0.1"))
+        point = psi_counterexample(g, x2, R, 0)
+        assert point is not None
+        x1, y2, x3, val = point
+        assert y2 is x2          # x1, x3: balls around exact rationals (ball_text stores them exactly)
+        assert certainly_lt(x1 * x1 + x3 * x3, R.lower() * R.lower())
+        (c0, c1, c3), _ = g.psi_coefficients(x2)
+        assert certainly_le(val, 0) and val.overlaps(c0 + c1 * x1 + c3 * x3)
+        assert psi_counterexample(g, x2, arb("0.04"), 0) is None       # Psi1 > 0 on that whole disc
+
+
+def test_a_vdot_witness_lies_in_the_region_for_every_radius_in_the_ball():
+    """vdot_witness with R a wide ball [0.02, 0.3] (agafonov2013: Vdot < 0 is certified up to radius
+    0.0241, and a point with Vdot > 0 exists at radius 0.05): the search may only use circles inside the
+    disc of radius R.lower(), where Vdot <= 0, so it finds nothing (mutmut-style: circles of R.upper()
+    found a point with Vdot > 0 outside the region for the smaller radii); with R = 0.05 it finds one,
+    certainly inside that disc."""
+    from rigor_gyro.kinds.lyapunov.model import vdot_witness
+    g = validate(load_scene("agafonov2013")).gimbal
+    points = [arb(j) / 20 for j in range(-6, 7)]
+    with working_precision(64):
+        assert vdot_witness(g, arb("0.02").union(arb("0.3")), points) is None
+        x1, x2, x3, v = vdot_witness(g, arb("0.05"), points)
+        assert certainly_lt(x1 * x1 + x3 * x3, arb("0.0025")) and certainly_positive(v)
+        assert v.overlaps(g.vdot(x1, x2, x3))

@@ -191,6 +191,14 @@ MUTANTS = [
      "st = (Status.REFUTED, text, unstable) if exhaustive else (Status.INCONCLUSIVE, text + beyond)",
      "st = (Status.REFUTED, text, unstable)",
      "stability refuted from the unstable orbits found in (0, T_max], a stable one beyond unsearched"),
+    ("psi_counterexample_outside_region", "rigor_gyro/kinds/lyapunov/model.py",
+     "        return None\n    Rq = exact_fraction(R.lower())\n    for shrink",
+     "        return None\n    Rq = exact_fraction(R.upper())\n    for shrink",
+     "a Psi counterexample placed in the disc of the radius ball's upper end (outside the region for smaller radii)"),
+    ("vdot_witness_outside_region", "rigor_gyro/kinds/lyapunov/model.py",
+     "    Rq = exact_fraction(R.lower())\n    for x2 in x2_points:",
+     "    Rq = exact_fraction(R.upper())\n    for x2 in x2_points:",
+     "a Vdot > 0 witness searched on circles of the radius ball's upper end (outside the region for smaller radii)"),
 ]
 
 
