@@ -93,8 +93,7 @@ def test_best_first_bisection_covers_the_interval_and_bounds_its_maximum():
         refined.clear()
         pieces, count = best_first_bisection(arb(0), arb(1), bound, refined.append,
                                              lambda u: certainly_le(u, target), budget)
-        ends = sorted((exact_fraction(a), exact_fraction(b)) for a, b, _ in pieces)
-        assert ends[0][0] == 0 and ends[-1][1] == 1 and all(x[1] == y[0] for x, y in zip(ends, ends[1:]))
+        assert _tiles(pieces, 0, 1)
         top = max(exact_fraction(u) for _, _, u in pieces)
         assert top >= 1 and count <= budget + 1 and len(refined) >= 1
         if target > arb(1):
@@ -171,7 +170,6 @@ def test_best_first_bisection_stops_at_a_piece_the_precision_cannot_split():
 def test_best_first_bisection_takes_infinite_bounds_and_keeps_them():
     """A bound of +inf (a piece where the function may be unbounded) is a valid bound: the search goes
     on, the pieces still tile the interval and the largest bound returned is +inf."""
-    from fractions import Fraction
     from rigor_gyro.core.subdivision import best_first_bisection
 
     def bound(a, b):                    # +inf on the pieces whose closure holds 3/10
