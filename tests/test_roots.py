@@ -183,3 +183,37 @@ def test_a_multiple_root_is_reported_not_isolated():
     out = isolate_polynomial(p)
     assert out.poly == p and out.squarefree is False and not out.verified and "multiple root" in out.reason
     assert sorted(m for _, m in out.multiplicities) == [1, 2]
+
+
+def test_a_root_ball_ending_on_the_root_has_no_strict_sign_change(monkeypatch):
+    """The sign-change check is strict: a ball about [3, 4] whose upper end is exactly the root h of
+    (x^2 - 1)(x - h) is reported (p(lo) p(h) = 0 is no sign change), never accepted and never a crash
+    (p(h) = 0 divides nothing)."""
+    from flint import acb
+    from rigor_gyro.core import polyroots as P
+    from rigor_gyro.core.balls import exact_fraction
+    end = arb(fmpq(7, 2), fmpq(1, 2))              # Arb rounds the radius up: the ends are dyadic, not 3 and 4
+    h = exact_fraction(end.upper())
+    p = fmpq_poly([fmpq(-1), 0, 1]) * fmpq_poly([-fmpq(h.numerator, h.denominator), 1])   # roots -1, 1, h
+    assert p(fmpq(h.numerator, h.denominator)) == 0
+    r = lambda m, rad=fmpq(1, 10**6): acb(arb(m, rad))                 # noqa: E731
+    monkeypatch.setattr(P, "arb_complex_roots", lambda q: [(r(-1), 1), (r(1), 1), (acb(end), 1)])
+    monkeypatch.setattr(P, "_refine", lambda q, x: x)
+    out = isolate_polynomial(p)
+    assert not out.verified and "no exact sign change of p across" in out.reason
+
+
+def test_the_horner_series_holds_p_and_its_slope_on_a_ball_through_zero():
+    """polyroots.series_function(p) on the series X + t (X a ball through 0): the value encloses p on X
+    and the t coefficient p' on X (finite: nothing is divided by the series)."""
+    from flint import arb_series
+    from rigor_gyro.core.polyroots import series_function
+    p = fmpq_poly([fmpq(-2), fmpq(1, 3), 1])                              # x^2 + x/3 - 2
+    with working_precision(64):
+        X = arb(0, fmpq(1, 2))
+        s = series_function(p)(arb_series([X, 1], prec=2))
+        assert s[0].is_finite() and s[1].is_finite()
+        for x in (fmpq(-1, 2), fmpq(0), fmpq(1, 5), fmpq(1, 2)):
+            assert s[0].contains(arb(p(x))) and s[1].contains(arb(p.derivative()(x)))
+        const = series_function(fmpq_poly([fmpq(3), 0, 0]))(arb_series([X, 1], prec=2))
+        assert const[0].contains(3) and const[0].rad() == 0

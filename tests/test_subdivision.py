@@ -226,3 +226,48 @@ def test_certify_positive_on_box_reports_what_it_decided_on():
     assert isinstance(out.leaves, list)
     out = certify_positive_on_box(lambda b: b["u"] * b["u"] + 1, whole)
     assert out.status is Status.PROVED and out.reason == f"f > 0 certified on {len(out.leaves)} boxes"
+
+
+def _noisy(fn, rad: str):
+    """fn with every value widened by a ball of radius ``rad`` about 0: an enclosure of fn, as a
+    function evaluated with rounding error gives (point values are then balls, not points)."""
+    noise = arb(0, arb(rad))
+    return lambda x: fn(x) + noise
+
+
+def test_the_max_enclosure_holds_the_maximum_when_point_values_are_wide():
+    # the lower end of the max is f at a point, taken at its lower end: its upper end (larger than the
+    # maximum by up to the radius) would put the whole enclosure above the true maximum
+    with working_precision(64):
+        inside = enclose_max(_noisy(lambda x: x * (1 - x), "1e-6"), "0", "1", abs_tol="1e-9")   # max 1/4 at 1/2
+        assert inside.ball.contains(arb(1) / 4) and inside.ball.lower() < arb(1) / 4
+        at_end = enclose_max(_noisy(lambda x: x, "1e-6"), "0", "1", abs_tol="1e-9")              # max 1 at the end 1
+        assert at_end.ball.contains(1) and at_end.ball.lower() < 1
+        low_end = enclose_max(_noisy(lambda x: -x, "1e-6"), "0", "1", abs_tol="1e-9")            # max 0 at the end 0
+        assert low_end.ball.contains(0) and low_end.ball.lower() < 0
+
+
+def test_the_max_is_taken_over_the_interval_only():
+    # a first guess outside [lo, hi] (where -x is larger) would lift the enclosure above the maximum
+    with working_precision(64):
+        for lo, hi in (("1", "2"), ("2", "3"), ("-3", "-2")):
+            m = enclose_max(lambda x: -x, lo, hi, abs_tol="1e-12")
+            assert m.ball.contains(-arb(lo)) and m.ball.upper() < -arb(lo) + arb("1e-9")
+            assert arb(lo) <= m.argpoint <= arb(hi)
+
+
+def test_the_max_reports_its_pieces_and_whether_it_converged():
+    with working_precision(64):
+        calls = []
+
+        def f(x):
+            if x.rad() > 0:
+                calls.append(x)
+            return (3 * x).sin()
+
+        m = enclose_max(f, "-1", "2", abs_tol="1e-6")
+        assert m.converged and m.pieces == len(calls) > 1                 # a piece is one interval evaluation
+        cut = enclose_max(lambda x: (x * 7).sin(), "-1", "2", abs_tol="1e-30", max_pieces=9)
+        assert not cut.converged and cut.pieces == 9 and cut.ball.contains(1)
+        default = enclose_max(lambda x: -(x - arb("0.3")) ** 2, "-1", "2")  # the default tolerance 1e-12
+        assert default.converged and default.ball.contains(0) and default.ball.rad() < arb("1e-11")

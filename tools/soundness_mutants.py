@@ -199,6 +199,14 @@ MUTANTS = [
      "    Rq = exact_fraction(R.lower())\n    for x2 in x2_points:",
      "    Rq = exact_fraction(R.upper())\n    for x2 in x2_points:",
      "a Vdot > 0 witness searched on circles of the radius ball's upper end (outside the region for smaller radii)"),
+    ("max_lower_end_from_upper", "rigor_gyro/core/subdivision.py",
+     "    best = f(best_pt).lower()          # max >= best",
+     "    best = f(best_pt).upper()          # max >= best",
+     "the lower end of a maximum's enclosure taken from f's upper end at a point (above the maximum when f's values are wide)"),
+    ("max_first_guess_outside", "rigor_gyro/core/subdivision.py",
+     "    best_pt = ((a0 + b0) / 2).mid()\n    best = f(best_pt)",
+     "    best_pt = ((a0 - b0) / 2).mid()\n    best = f(best_pt)",
+     "enclose_max's first guess taken outside [lo, hi] (the maximum's lower end from a point not in the interval)"),
 ]
 
 
