@@ -245,6 +245,8 @@ def test_the_max_enclosure_holds_the_maximum_when_point_values_are_wide():
         assert at_end.ball.contains(1) and at_end.ball.lower() < 1
         low_end = enclose_max(_noisy(lambda x: -x, "1e-6"), "0", "1", abs_tol="1e-9")            # max 0 at the end 0
         assert low_end.ball.contains(0) and low_end.ball.lower() < 0
+        third = enclose_max(_noisy(lambda x: -(x - arb(1) / 3) ** 2, "1e-6"), "0", "1", abs_tol="1e-9")
+        assert third.ball.contains(0) and third.ball.lower() < 0                               # max 0 at 1/3, met by midpoints
 
 
 def test_the_max_is_taken_over_the_interval_only():
@@ -271,3 +273,14 @@ def test_the_max_reports_its_pieces_and_whether_it_converged():
         assert not cut.converged and cut.pieces == 9 and cut.ball.contains(1)
         default = enclose_max(lambda x: -(x - arb("0.3")) ** 2, "-1", "2")  # the default tolerance 1e-12
         assert default.converged and default.ball.contains(0) and default.ball.rad() < arb("1e-11")
+
+
+def test_the_relative_tolerance_scales_with_the_maximum_and_the_precision_stops_the_search():
+    with working_precision(64):
+        m = enclose_max(lambda x: 100 - (x - arb("0.3")) ** 2, "-1", "2", abs_tol="0", rel_tol="1e-6")
+        # converged to about rel_tol * |max| = 1e-4: not looser, and not 100 times tighter than asked
+        assert m.converged and m.ball.contains(100) and arb("1e-6") < 2 * m.ball.rad() <= arb("1e-4")
+    with working_precision(16):
+        # abs_tol 0 cannot be met: the search stops where the precision can no longer split a piece
+        cut = enclose_max(lambda x: 100 - (x - arb(1) / 3) ** 2, "-1", "2", abs_tol="0", max_pieces=20000)
+        assert not cut.converged and cut.pieces < 500 and cut.ball.contains(100)
