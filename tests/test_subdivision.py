@@ -284,3 +284,23 @@ def test_the_relative_tolerance_scales_with_the_maximum_and_the_precision_stops_
         # abs_tol 0 cannot be met: the search stops where the precision can no longer split a piece
         cut = enclose_max(lambda x: 100 - (x - arb(1) / 3) ** 2, "-1", "2", abs_tol="0", max_pieces=20000)
         assert not cut.converged and cut.pieces < 500 and cut.ball.contains(100)
+
+
+def test_positivity_counts_its_pieces_and_stops_at_its_budget():
+    """certify_positive's ``pieces`` is the number of interval evaluations of f, and the budget counts
+    the pieces done plus those waiting: (x - 1/3)^2 (touching 0) stops just below 300."""
+    with working_precision(128):
+        calls = []
+
+        def counted(g):
+            def f(x):
+                if x.rad() > 0:
+                    calls.append(x)
+                return g(x)
+            return f
+
+        r = certify_positive(counted(lambda x: (x - arb(1) / 3) ** 2 + arb("1e-3")), "-2", "2")
+        assert r.status is Status.PROVED and r.pieces == len(calls) > 1
+        calls.clear()
+        r = certify_positive(counted(lambda x: (x - arb(1) / 3) ** 2), "-2", "2", max_pieces=300)
+        assert r.status is Status.INCONCLUSIVE and r.pieces == len(calls) and 250 < r.pieces < 300
