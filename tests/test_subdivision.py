@@ -304,3 +304,13 @@ def test_positivity_counts_its_pieces_and_stops_at_its_budget():
         calls.clear()
         r = certify_positive(counted(lambda x: (x - arb(1) / 3) ** 2), "-2", "2", max_pieces=300)
         assert r.status is Status.INCONCLUSIVE and r.pieces == len(calls) and 250 < r.pieces < 300
+
+
+def test_positivity_is_refuted_at_an_end_of_the_interval_with_the_end_as_witness():
+    with working_precision(64):
+        for f, end in ((lambda x: x, 0), (lambda x: 1 - x, 1)):             # f > 0 inside, f = 0 at one end
+            r = certify_positive(f, "0", "1")
+            assert r.status is Status.REFUTED and r.witness == end and r.witness.rad() == 0
+            assert r.witness_value == 0 and r.reason == f"f(t) <= 0 at the point t = {arb(end).str(20)}"
+        r = certify_positive(lambda x: (x - arb(1) / 2) ** 2 - arb("1e-9"), "-2", "2")   # refuted at a midpoint
+        assert r.status is Status.REFUTED and r.reason == f"f(t) <= 0 at the point t = {r.witness.str(20)}"
