@@ -1,7 +1,7 @@
 """Subdivision: positivity proofs with witnesses, and certified extrema."""
 from flint import arb
 
-from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.balls import certainly_lt, working_precision
 from rigor_gyro.certificate import Status
 from rigor_gyro.core.subdivision import certify_positive, enclose_max, enclose_min, mean_value_form
 
@@ -314,3 +314,22 @@ def test_positivity_is_refuted_at_an_end_of_the_interval_with_the_end_as_witness
             assert r.witness_value == 0 and r.reason == f"f(t) <= 0 at the point t = {arb(end).str(20)}"
         r = certify_positive(lambda x: (x - arb(1) / 2) ** 2 - arb("1e-9"), "-2", "2")   # refuted at a midpoint
         assert r.status is Status.REFUTED and r.reason == f"f(t) <= 0 at the point t = {r.witness.str(20)}"
+
+
+def test_an_undecided_piece_is_reported_with_f_over_it_and_min_width_stops_the_search():
+    """INCONCLUSIVE names the undecided piece [a, b], keeps f over it (what the prover watches: a
+    narrower stuck value is progress) and says how many pieces were spent; ``min_width`` stops the
+    bisection at a piece narrower than it (before the budget or the precision would)."""
+    f = lambda x: (x - arb(1) / 3) ** 2                                   # noqa: E731 (touches 0 at 1/3)
+    with working_precision(128):
+        r = certify_positive(f, "-2", "2", max_pieces=300)
+        a, b = r.stuck
+        assert certainly_lt(a, b) and r.stuck_value is not None
+        fx = f(a.union(b))
+        assert r.stuck_value.overlaps(fx) and abs(r.stuck_value.rad() - fx.rad()) <= fx.rad() * arb("1e-6")
+        assert r.reason == (f"f not separated from 0 on [{a.str(12)}, {b.str(12)}] after {r.pieces} pieces "
+                            "(raise precision or max_pieces; f may touch 0 there)")
+        w = certify_positive(f, "-2", "2", min_width="1e-3")
+        a, b = w.stuck
+        assert w.status is Status.INCONCLUSIVE and certainly_lt(b - a, arb("1e-3")) and w.pieces < 100
+        assert not certainly_lt(b - a, arb("0.5e-3")) and abs(a - arb(1) / 3) < arb("1e-2")     # next to the touch

@@ -1,0 +1,116 @@
+"""The Lyapunov model's bounds, each against an independent evaluation: the hypot ball against its
+exact range, the cylinder bound of V against V's own Fourier coefficients on the circle, the disc
+minimum of Psi against Psi on the disc's boundary.
+
+Each bound is checked both ways: it is valid (never above what it bounds, a ball containing the
+range) and it is the bound its docstring states (within rounding), so a term dropped, scaled or
+mis-signed fails here rather than only making some proof harder."""
+import itertools
+
+import pytest
+from flint import arb
+
+from rigor_gyro.core.balls import certainly_gt, certainly_le, working_precision
+from rigor_gyro.kinds.lyapunov.claims import validate
+from rigor_gyro.kinds.lyapunov.model import cylinder_lower_bound, hypot_ball, psi_min_functions
+from rigor_gyro.scene import load_scene
+
+TINY = arb("1e-25")
+
+
+def _ends(x: arb) -> tuple[arb, arb]:
+    """(min, max) of |t| over the ball x, from its exact ends."""
+    lo, hi = x.lower(), x.upper()
+    return (arb(0) if lo <= 0 <= hi else min(abs(lo), abs(hi))), max(abs(lo), abs(hi))
+
+
+@pytest.mark.parametrize("a_mid,a_rad", [("-2", "0"), ("-0.5", "0.4"), ("0", "1e-3"), ("0.3", "2"), ("1.5", "0.25")])
+def test_hypot_ball_is_the_range_of_the_hypotenuse_over_the_balls(a_mid, a_rad):
+    with working_precision(128):
+        a = arb(a_mid, a_rad)
+        for b_mid, b_rad in (("-1", "0"), ("0", "0"), ("0.2", "0.5"), ("3", "1e-6")):
+            b = arb(b_mid, b_rad)
+            h = hypot_ball(a, b)
+            (al, au), (bl, bu) = _ends(a), _ends(b)
+            low, high = (al * al + bl * bl).sqrt(), (au * au + bu * bu).sqrt()
+            assert h.is_finite()
+            assert h.contains(low) and h.contains(high)                      # the whole range, both ends
+            slack = (high - low) * arb(2) ** -28 + TINY                     # a ball's radius has 30 bits
+            assert h.lower() > low - slack and h.upper() < high + slack       # and no more than the range
+            for x, y in itertools.product((a.lower(), a.mid(), a.upper()), (b.lower(), b.mid(), b.upper())):
+                assert h.contains((x * x + y * y).sqrt())
+
+
+@pytest.fixture(scope="module")
+def gimbal():
+    return validate(load_scene("agafonov2013")).gimbal
+
+
+def _circle_fourier(g, R: arb, x2: arb, n: int = 8):
+    """alpha, beta, gamma, delta of V(R cos th, x2, R sin th) = alpha + beta sin th + gamma cos 2th +
+    delta sin 2th, by the discrete Fourier transform of V at n >= 5 points (exact for a trigonometric
+    polynomial of degree 2): independent of the closed forms in cylinder_lower_bound."""
+    th = [2 * arb.pi() * j / n for j in range(n)]
+    v = [g.V(R * t.cos(), x2, R * t.sin()) for t in th]
+    alpha = sum(v, arb(0)) / n
+    beta = 2 * sum((vj * t.sin() for vj, t in zip(v, th)), arb(0)) / n
+    gamma = 2 * sum((vj * (2 * t).cos() for vj, t in zip(v, th)), arb(0)) / n
+    delta = 2 * sum((vj * (2 * t).sin() for vj, t in zip(v, th)), arb(0)) / n
+    cos1 = 2 * sum((vj * t.cos() for vj, t in zip(v, th)), arb(0)) / n              # no cos th term
+    return alpha, beta, gamma, delta, cos1
+
+
+@pytest.mark.parametrize("R", ["0.01", "0.0240775", "0.3"])
+def test_the_cylinder_bound_is_alpha_minus_beta_minus_hypot_of_vs_fourier_coefficients(gimbal, R):
+    g = gimbal
+    with working_precision(128):
+        Rb = arb(R)
+        lb = cylinder_lower_bound(g, Rb)
+        xs = g.c.x2_star
+        for j in (0, 1, 3, 5, 7):
+            x2 = xs * j / 7
+            alpha, beta, gamma, delta, cos1 = _circle_fourier(g, Rb, x2)
+            assert abs(cos1) < arb("1e-30")
+            ref = alpha - abs(beta) - (gamma * gamma + delta * delta).sqrt()
+            got = lb(x2)
+            assert got.overlaps(ref) and abs(got - ref) < arb("1e-25") * (1 + abs(ref)), (j, got, ref)
+            for k in range(24):                                            # a lower bound of V on the circle
+                t = 2 * arb.pi() * k / 24
+                assert certainly_le(got, g.V(Rb * t.cos(), x2, Rb * t.sin()))
+        # over an x2 piece: below V at every x2 of the piece
+        piece = xs * arb("0.5", "0.1")
+        low = lb(piece)                                                    # a ball: its lower end bounds V
+        for u in ("0.4", "0.45", "0.5", "0.6"):
+            x2 = xs * arb(u)
+            for k in range(12):
+                t = 2 * arb.pi() * k / 12
+                assert certainly_le(low.lower(), g.V(Rb * t.cos(), x2, Rb * t.sin()))
+
+
+@pytest.mark.parametrize("R", ["0.005", "0.0240775", "0.2"])
+def test_the_psi_disc_minimum_is_psi_at_the_minimising_boundary_point(gimbal, R):
+    """psi_min_functions: min over the disc of radius R of the affine Psi_i = ci0 + ci1 x1 + ci3 x3 is
+    ci0 - R |(ci1, ci3)|: never above Psi_i at a point of the boundary circle, and Psi_i at the point
+    -R (ci1, ci3)/|(ci1, ci3)| (each function reads its own triple: Psi1 the first, Psi2 the second)."""
+    g = gimbal
+    with working_precision(128):
+        Rb = arb(R)
+        fns = psi_min_functions(g, Rb)
+        xs = g.c.x2_star
+        for j in (0, 2, 6):
+            x2 = xs * j / 6
+            for which, fn in enumerate(fns):
+                c0, c1, c3 = g.psi_coefficients(x2)[which]
+                got = fn(x2)
+                norm = (c1 * c1 + c3 * c3).sqrt()
+                if c1 == 0 and c3 == 0:                                        # x2 = 0: Psi_i is constant
+                    at_min = c0
+                else:
+                    at_min = c0 + c1 * (-Rb * c1 / norm) + c3 * (-Rb * c3 / norm)
+                assert at_min.is_finite()
+                assert got.overlaps(at_min) and abs(got - at_min) < arb("1e-25") * (1 + abs(at_min)), (which, j)
+                for k in range(16):
+                    t = 2 * arb.pi() * k / 16
+                    assert not certainly_gt(got, c0 + c1 * Rb * t.cos() + c3 * Rb * t.sin())   # equal where tangent
+        assert not fns[0](xs / 3).overlaps(fns[1](xs / 3))                  # two different functions
+
