@@ -114,3 +114,36 @@ def test_the_psi_disc_minimum_is_psi_at_the_minimising_boundary_point(gimbal, R)
                     assert not certainly_gt(got, c0 + c1 * Rb * t.cos() + c3 * Rb * t.sin())   # equal where tangent
         assert not fns[0](xs / 3).overlaps(fns[1](xs / 3))                  # two different functions
 
+
+
+def _slice_centre(g, x2: arb) -> tuple[arb, arb]:
+    """The minimiser (x1, x3) of the quadratic V(., x2, .), from V's values at six points (its
+    coefficients exactly, V being quadratic in x1, x3) and the 2x2 system grad V = 0: independent of
+    the closed form mu f3/(h S), -f3/S in slice_in_region."""
+    V = lambda x1, x3: g.V(arb(x1), x2, arb(x3))                         # noqa: E731
+    v0 = V(0, 0)
+    p11, p33 = (V(1, 0) + V(-1, 0) - 2 * v0) / 2, (V(0, 1) + V(0, -1) - 2 * v0) / 2
+    l1, l3 = (V(1, 0) - V(-1, 0)) / 2, (V(0, 1) - V(0, -1)) / 2
+    p13 = V(1, 1) - v0 - l1 - l3 - p11 - p33
+    det = 4 * p11 * p33 - p13 * p13                                       # [2 p11, p13; p13, 2 p33] z = -l
+    return (-l1 * 2 * p33 + l3 * p13) / det, (-l3 * 2 * p11 + l1 * p13) / det
+
+
+def test_slice_in_region_puts_the_centre_of_the_slice_where_v_has_its_minimum(gimbal):
+    """slice_in_region(g, c, R, x2) is true just outside the centre's radius |z0| and false just inside
+    it (c above phi(x2), so the slice is not empty), with z0 the minimiser of V(., x2, .) found here
+    from V itself; and false for every R when c <= phi(x2) (an empty slice)."""
+    from rigor_gyro.kinds.lyapunov.model import slice_in_region
+    g = gimbal
+    with working_precision(128):
+        xs = g.c.x2_star
+        for j in (1, 3, 6):
+            x2 = xs * j / 7
+            z1, z3 = _slice_centre(g, x2)
+            r = (z1 * z1 + z3 * z3).sqrt()
+            assert certainly_gt(r, 0) and certainly_gt(abs(z1), 0)        # off the axes: both coordinates count
+            c = g.phi(x2) + 1
+            # |z1| / |z3| = mu B0 / (H cos x2), about 1e-5 here: z1 moves |z0| by about 1e-11 relative only
+            assert slice_in_region(g, c, r * (1 + arb("1e-15")), x2)
+            assert not slice_in_region(g, c, r * (1 - arb("1e-15")), x2)
+            assert not slice_in_region(g, g.phi(x2) - arb("1e-9"), r * 10, x2)
