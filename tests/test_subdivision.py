@@ -301,6 +301,7 @@ def test_positivity_counts_its_pieces_and_stops_at_its_budget():
 
         r = certify_positive(counted(lambda x: (x - arb(1) / 3) ** 2 + arb("1e-3")), "-2", "2")
         assert r.status is Status.PROVED and r.pieces == len(calls) > 1
+        assert r.reason == f"f > 0 certified on {r.pieces} pieces"
         calls.clear()
         r = certify_positive(counted(lambda x: (x - arb(1) / 3) ** 2), "-2", "2", max_pieces=300)
         assert r.status is Status.INCONCLUSIVE and r.pieces == len(calls) and 250 < r.pieces < 300
