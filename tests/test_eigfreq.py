@@ -245,3 +245,57 @@ def test_the_approximations_are_the_printed_formulas_12_13():
         for j, r in ref.items():
             v = approximation(j, p)
             assert certainly_lt(abs(v - arb(mpmath.nstr(r, 38))), arb("1e-30") * (1 + abs(v))), j
+
+
+#: the brackets (7)-(10) as the report states them, written out here in mpmath from the readings'
+#: text (BRACKETS[j].lo_reading / hi_reading, or the printed formula where it is the reading): the
+#: model's cancellation-free forms must be these numbers
+_INTENDED = {
+    1: ("E*W/((A-B)*W + E*((A-1)*W + A*B))",
+        "R - sqrt(R**2 - E*W/((A-B)*L*B**2))",
+        {"L": "(B*(B-1) + E)/(B*(B-1))", "R": "(E*A/(B*(A-B) + (A-1)*E) + W/(L*B**2))/2"}),
+    2: ("1/(B-1) + (D+R1)/2 - sqrt(((D+R1)/2)**2 + R1*(1/(B-1) - E*A/(B*(A-B))))",
+        "(E*A*(B-1) + W*(1+E)*(A-B))/((A-B)*(B-1)*(B + W*(1+E)))",
+        {"D": "E/(B*(B-1))", "R1": "A*B**2/((A-B)*(B-1)*W)"}),
+    3: ("B/(B-1) + (D+R2)/2 - sqrt((D+R2)**2/4 + R2*(1 - E/(B-1)))",
+        "(1+E)/(B-1) + E**2*(A-1)/((A-B)*(A-B+E*(A-1))) + (B-E)/(B + sqrt(W*(B-1)*B))",
+        {"D": "E/(B*(B-1))", "R2": "W*(B-1)/B*(B/(B-1) - E/(A-B))/(B/(B-1) - E*A/(B*(A-B)))"}),
+    4: ("B/(B-1) + (D+R2)/2 + sqrt((D+R2)**2/4 + R2*(1 - E/(B-1)))",
+        "B/(B-1) + R3 + sqrt(R3**2 + W)",
+        {"D": "E/(B*(B-1))", "R2": "W*(B-1)/B*(B/(B-1) - E/(A-B))/(B/(B-1) - E*A/(B*(A-B)))",
+         "R3": "(E/(B*(B-1)) + E**2*A*(A-1)/(B*(A-B)*((A-B)*B + E*(A-1))) + W)/2"}),
+}
+
+
+@pytest.mark.parametrize("a,b,eps,W", [("15.08", "6.154", "0.1076", "0.629"), ("20", "3", "0.05", "1.5"),
+                                       ("9", "2.5", "0.3", "0.2"), ("40", "12", "0.01", "0.03")])
+def test_the_intended_brackets_are_their_stated_formulas_in_mpmath(a, b, eps, W):
+    """bracket(j, p) (the intended reading, what the claims certify) and bracket(j, p, 'printed'), each
+    bound against its formula evaluated in mpmath at 40 digits (the printed texts are pinned to the
+    functions by test_formula_edits at the paper's parameters; here both readings at four parameter
+    sets, so a term that cancels at one point cannot hide)."""
+    import mpmath
+    from fractions import Fraction
+    from flint import fmpq
+    from rigor_gyro.kinds.eigenfrequencies.model import EDIT_FORMULAS, Params, bracket
+    mpmath.mp.dps = 40
+    vals = {k: mpmath.mpf(Fraction(x).numerator) / Fraction(x).denominator for k, x in zip("ABEW", (a, b, eps, W))}
+
+    def ev(text, defs):
+        scope = dict(vals, sqrt=mpmath.sqrt)
+        for name, body in defs.items():
+            scope[name] = eval(body, {}, scope)
+        return eval(text, {}, scope)
+
+    q = lambda x: arb(fmpq(Fraction(x).numerator, Fraction(x).denominator))     # noqa: E731
+    with working_precision(128):
+        p = Params(q(a), q(b), q(eps), q(W))
+        for j, (lo_text, hi_text, defs) in _INTENDED.items():
+            for got, text in zip(bracket(j, p), (lo_text, hi_text)):
+                r = ev(text, defs)
+                assert certainly_lt(abs(got - arb(mpmath.nstr(r, 38))), arb("1e-30") * (1 + abs(got))), (j, text)
+            for got, kind in zip(bracket(j, p, "printed"), ("lower", "upper")):
+                text, pdefs = EDIT_FORMULAS[(kind, j)]
+                pdefs = {k: v.replace("eps", "E").replace("a", "A").replace("b", "B") for k, v in pdefs.items()}
+                r = ev(text.replace("eps", "E").replace("a", "A").replace("b", "B"), pdefs)
+                assert certainly_lt(abs(got - arb(mpmath.nstr(r, 38))), arb("1e-30") * (1 + abs(got))), (j, kind)
