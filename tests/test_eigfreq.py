@@ -299,3 +299,15 @@ def test_the_intended_brackets_are_their_stated_formulas_in_mpmath(a, b, eps, W)
                 pdefs = {k: v.replace("eps", "E").replace("a", "A").replace("b", "B") for k, v in pdefs.items()}
                 r = ev(text.replace("eps", "E").replace("a", "A").replace("b", "B"), pdefs)
                 assert certainly_lt(abs(got - arb(mpmath.nstr(r, 38))), arb("1e-30") * (1 + abs(got))), (j, kind)
+
+
+def test_a_certainly_negative_radicand_is_not_real_with_its_bounds_in_the_message():
+    from rigor_gyro.kinds.eigenfrequencies.model import NotReal, _sqrt
+    with working_precision(64):
+        with pytest.raises(NotReal) as e:
+            _sqrt(arb("-2.5") + arb(0, arb("1e-12")), "(7) upper")
+        assert str(e.value) == "(7) upper: radicand in [-2.5000001, -2.4999999] is negative"
+        assert e.value.radicand.contains(arb("-2.5"))
+        _sqrt(arb(0, 1), "(7) upper")                                   # undecided: no error (Arb gives a ball
+        #                                                                 that decides nothing)
+        assert _sqrt(arb(4), "x") == 2
