@@ -211,3 +211,23 @@ def test_the_certificate_form_of_a_non_finite_ball_says_which_it_is():
     assert nan["mid"] == "nan" and unbounded["mid"] == "inf"
     assert nan["rad"] == unbounded["rad"] == "inf"
     assert set(nan) == set(unbounded) == {"lo", "hi", "mid", "rad"}
+
+
+def test_the_stored_hull_is_the_decimal_interval_for_any_sign():
+    """stored_hull(x) is exactly [lo, hi] of the certificate's decimals of x (rounded outward, so it
+    holds x), for x negative, positive and through 0; a non-finite ball is returned as it is."""
+    from fractions import Fraction
+    from flint import fmpq
+    from rigor_gyro.core.balls import decimal_bounds, exact_fraction, stored_hull
+    with working_precision(128):
+        for x in (arb(fmpq(-508, 3), fmpq(1, 10 ** 14)), arb(fmpq(508, 3), fmpq(1, 10 ** 14)), arb(0, fmpq(1, 7)),
+                  arb(fmpq(-1, 3), fmpq(1, 10 ** 30))):
+            lo, hi = decimal_bounds(x)
+            h = stored_hull(x)
+            assert h.contains(x)
+            a, b = (arb(fmpq(*Fraction(t).as_integer_ratio())) for t in (lo, hi))
+            assert h.contains(a) and h.contains(b)                        # the whole stored interval
+            width = exact_fraction(h.upper()) - exact_fraction(h.lower())
+            assert width <= (Fraction(hi) - Fraction(lo)) * (1 + Fraction(1, 2 ** 20))   # and hardly more
+        nan = arb("nan")
+        assert stored_hull(nan) is nan
