@@ -1,6 +1,6 @@
 """The Lyapunov model's bounds, each against an independent evaluation: the hypot ball against its
 exact range, the cylinder bound of V against V's own Fourier coefficients on the circle, the disc
-minimum of Psi against Psi on the disc's boundary.
+minimum of Psi against Psi on the disc's boundary, the slice centre against V's own minimiser.
 
 Each bound is checked both ways: it is valid (never above what it bounds, a ball containing the
 range) and it is the bound its docstring states (within rounding), so a term dropped, scaled or
@@ -113,7 +113,6 @@ def test_the_psi_disc_minimum_is_psi_at_the_minimising_boundary_point(gimbal, R)
                     t = 2 * arb.pi() * k / 16
                     assert not certainly_gt(got, c0 + c1 * Rb * t.cos() + c3 * Rb * t.sin())   # equal where tangent
         assert not fns[0](xs / 3).overlaps(fns[1](xs / 3))                  # two different functions
-
 
 
 def _slice_centre(g, x2: arb) -> tuple[arb, arb]:
