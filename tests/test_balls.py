@@ -231,3 +231,61 @@ def test_the_stored_hull_is_the_decimal_interval_for_any_sign():
             assert width <= (Fraction(hi) - Fraction(lo)) * (1 + Fraction(1, 2 ** 20))   # and hardly more
         nan = arb("nan")
         assert stored_hull(nan) is nan
+
+
+def test_sqrt_of_a_nonnegative_quantity_whose_ball_reaches_below_zero():
+    """sqrt_of_nonnegative: Arb's sqrt where the ball is certainly >= 0; [0, sqrt(upper)] where it
+    reaches below 0 with its upper end >= 0 (the caller knows the value is >= 0); NaN (deciding
+    nothing) for a certainly negative or non-finite ball."""
+    from rigor_gyro.core.balls import sqrt_of_nonnegative
+    with working_precision(64):
+        assert sqrt_of_nonnegative(arb(4)) == 2
+        s = sqrt_of_nonnegative(arb("0.25", "0.25"))                   # [0, 0.5]: certainly >= 0
+        assert s.contains(0) and s.contains(arb("0.5").sqrt()) and s.upper() < arb("0.7072")
+        t = sqrt_of_nonnegative(arb(0, arb("1e-10")))                  # [-1e-10, 1e-10]
+        assert t.is_finite() and t.contains(0) and t.contains(arb("1e-5")) and t.lower() > -arb("1e-13")   # union rounding
+        assert t.upper() < arb("1.0001e-5")
+        u = sqrt_of_nonnegative(arb("0.25").union(arb("0.36")))         # certainly >= 0: Arb's sqrt, not [0, ..]
+        assert u.contains(arb("0.5")) and u.contains(arb("0.6")) and u.lower() > arb("0.4999")
+        for bad in (arb(-1, arb("0.5")), arb("nan"), arb("inf"), arb(0, arb("inf"))):
+            assert sqrt_of_nonnegative(bad).is_nan()
+
+
+def test_relative_width_is_decided_with_a_one_percent_margin():
+    """rel_width_at_most(x, tol): 2 rad(x) <= 0.99 tol |x| certainly (the 1 % leaves room for the
+    decimals' outward rounding); False for a ball through 0 or a non-finite one."""
+    from rigor_gyro.core.balls import rel_width_at_most
+    with working_precision(64):
+        for sign in (1, -1):
+            x = arb(sign, arb("1e-6"))                                  # width 2e-6 (radius rounded up)
+            assert rel_width_at_most(x, "3e-6") and rel_width_at_most(x, "2.03e-6")
+            assert not rel_width_at_most(x, "2e-6") and not rel_width_at_most(x, "2.01e-6")
+        assert not rel_width_at_most(arb(0, arb("1e-6")), "1e6") and not rel_width_at_most(arb(0), "1")
+        big = arb(100, arb("1e-4"))                                     # relative width 2e-6 at |x| = 100
+        assert rel_width_at_most(big, "3e-6") and not rel_width_at_most(big, "1.9e-6")
+        assert not rel_width_at_most(arb("nan"), "1") and not rel_width_at_most(arb("inf"), "1")
+        assert rel_width_at_most(arb(5), "1e-30")                       # an exact ball has width 0
+
+
+def test_precision_and_series_length_are_checked_and_restored():
+    from flint import ctx
+    from rigor_gyro.core.balls import MAX_PREC, MIN_PREC, check_precision, series_length
+    from rigor_gyro.core.exact import ParameterError
+    assert check_precision(MIN_PREC) == MIN_PREC and check_precision(MAX_PREC) == MAX_PREC
+    for bad in (MIN_PREC - 1, MAX_PREC + 1, True, 64.0, "64"):
+        with pytest.raises(ParameterError, match=f"prec must be an integer number of bits from {MIN_PREC} to {MAX_PREC}"):
+            check_precision(bad)
+    with pytest.raises(ParameterError, match="maxprec must be"):
+        check_precision(8, "maxprec")
+    saved = ctx.cap
+    with series_length(saved + 5) as n:
+        assert n == saved + 5 and ctx.cap == saved + 5
+    with series_length(1):
+        assert ctx.cap == saved                                          # never lowered
+    with pytest.raises(RuntimeError), series_length(saved + 7):
+        raise RuntimeError
+    assert ctx.cap == saved
+    for bad in (0, -3, 2.5):
+        with pytest.raises(ParameterError, match="series length must be a positive integer"):
+            with series_length(bad):
+                pass
