@@ -228,6 +228,17 @@ def test_certify_positive_on_box_reports_what_it_decided_on():
     assert out.status is Status.PROVED and out.reason == f"f > 0 certified on {len(out.leaves)} boxes"
 
 
+def _counted(fn):
+    """fn, and the list of the intervals (balls of positive radius) it is evaluated on."""
+    calls = []
+
+    def f(x):
+        if x.rad() > 0:
+            calls.append(x)
+        return fn(x)
+    return f, calls
+
+
 def _noisy(fn, rad: str):
     """fn with every value widened by a ball of radius ``rad`` about 0: an enclosure of fn, as a
     function evaluated with rounding error gives (point values are then balls, not points)."""
@@ -260,13 +271,7 @@ def test_the_max_is_taken_over_the_interval_only():
 
 def test_the_max_reports_its_pieces_and_whether_it_converged():
     with working_precision(64):
-        calls = []
-
-        def f(x):
-            if x.rad() > 0:
-                calls.append(x)
-            return (3 * x).sin()
-
+        f, calls = _counted(lambda x: (3 * x).sin())
         m = enclose_max(f, "-1", "2", abs_tol="1e-6")
         assert m.converged and m.pieces == len(calls) > 1                 # a piece is one interval evaluation
         cut = enclose_max(lambda x: (x * 7).sin(), "-1", "2", abs_tol="1e-30", max_pieces=9)
@@ -290,20 +295,12 @@ def test_positivity_counts_its_pieces_and_stops_at_its_budget():
     """certify_positive's ``pieces`` is the number of interval evaluations of f, and the budget counts
     the pieces done plus those waiting: (x - 1/3)^2 (touching 0) stops just below 300."""
     with working_precision(128):
-        calls = []
-
-        def counted(g):
-            def f(x):
-                if x.rad() > 0:
-                    calls.append(x)
-                return g(x)
-            return f
-
-        r = certify_positive(counted(lambda x: (x - arb(1) / 3) ** 2 + arb("1e-3")), "-2", "2")
+        f, calls = _counted(lambda x: (x - arb(1) / 3) ** 2 + arb("1e-3"))
+        r = certify_positive(f, "-2", "2")
         assert r.status is Status.PROVED and r.pieces == len(calls) > 1
         assert r.reason == f"f > 0 certified on {r.pieces} pieces"
-        calls.clear()
-        r = certify_positive(counted(lambda x: (x - arb(1) / 3) ** 2), "-2", "2", max_pieces=300)
+        f, calls = _counted(lambda x: (x - arb(1) / 3) ** 2)
+        r = certify_positive(f, "-2", "2", max_pieces=300)
         assert r.status is Status.INCONCLUSIVE and r.pieces == len(calls) and 250 < r.pieces < 300
 
 

@@ -6,7 +6,8 @@ Each mutant is one textual substitution in one file. It is applied to a fresh co
 tracks, as they are in the working tree (in a temporary folder), and the README's test command runs
 there (``python -m pytest -x``, the ``ci`` hypothesis profile, with the copy first on ``sys.path``). A
 mutant is *killed* when the tests fail. The unmutated copy must pass the same tests first (otherwise the
-run stops, exit 4: a test failing there would "kill" every mutant). Prints a table (and writes it with
+run stops, exit 4: a test failing there would "kill" every mutant). ``test_rules``' check of this list's
+texts is left out of both runs (see ``RULE``). Prints a table (and writes it with
 ``--out``); exits 1 if any mutant survives.
 """
 from __future__ import annotations
@@ -25,6 +26,8 @@ ROOT = Path(__file__).resolve().parent.parent
 #: the applied mutant's text is gone, so that check would "kill" every mutant whose own test runs after
 #: it (test_sublevel, test_subdivision): it is left out of these runs (it is about this list, not soundness)
 RULE = ["--deselect", "tests/test_rules.py::test_every_named_soundness_mutant_still_applies"]
+#: the README's test command, as both the unmutated and the mutated copies run it
+PYTEST = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", *RULE]
 
 #: (name, file, original text, mutated text, what it breaks)
 MUTANTS = [
@@ -229,7 +232,7 @@ def run(names: list[str] | None, out: str | None, tests: list[str] | None = None
     # the unmutated snapshot must pass the same tests: a test that fails there (one that reads a file
     # the snapshot does not hold, say) would "kill" every mutant and the run would measure nothing
     env = dict(os.environ, PYTHONPATH=str(snapshot), HYPOTHESIS_PROFILE="ci")
-    base = subprocess.run([sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", *RULE, *(tests or [])],
+    base = subprocess.run([*PYTEST, *(tests or [])],
                           cwd=snapshot, env=env, capture_output=True, text=True)
     if base.returncode != 0:
         print("the unmutated snapshot fails its tests, so every kill would be void:\n" + base.stdout[-2000:])
@@ -249,7 +252,7 @@ def run(names: list[str] | None, out: str | None, tests: list[str] | None = None
             (Path(tmp) / path).write_text(text.replace(old, new))
             env = dict(os.environ, PYTHONPATH=tmp, HYPOTHESIS_PROFILE="ci")
             t0 = time.time()
-            r = subprocess.run([sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", *RULE, *(tests or [])], cwd=tmp,
+            r = subprocess.run([*PYTEST, *(tests or [])], cwd=tmp,
                                env=env, capture_output=True, text=True)
             secs = time.time() - t0
         killed = r.returncode != 0
