@@ -1,0 +1,383 @@
+"""The eigenfrequency checker item by item: its exact helpers (Sturm count, exact root refinement) and,
+for each claim, the forgery that only that claim's re-decision can catch.
+
+The checker's report fails as a whole for many reasons at once (an unverified quantity, a claim that
+rests on it). These tests name the item that must fail, so a weakened gate is seen even where another
+gate would also have rejected the certificate (mutmut found 276 such survivors in the checker).
+"""
+import copy
+import dataclasses
+import json
+from fractions import Fraction
+
+import pytest
+from flint import arb, fmpq, fmpq_poly
+
+from rigor_gyro import load_scene, prove_scene
+from rigor_gyro.certificate import digest
+from rigor_gyro.check import check_certificate
+from rigor_gyro.core.balls import working_precision
+from rigor_gyro.kinds.eigenfrequencies import check as eig_check
+from rigor_gyro.kinds.eigenfrequencies.check import _refine, _sign, sturm_positive_roots
+
+A, B = Fraction("15.08"), Fraction("6.154")
+#: the scenes: rudenko1976 and variants where claims are refuted or undefined
+SCENES = {
+    "rudenko1976": {},
+    "brackets_refuted": dict(eps="1.5", Omega2="5"),
+    "order_refuted": dict(a="3", b="2", eps="50", Omega2="1"),
+    "nu2_equals_nu3": dict(eps=str((A - B) * (B - 1) / (A * B - 2 * A + 1))),
+    "r2_denominator_zero": dict(eps=str(B * B * (A - B) / (A * (B - 1)))),      # brackets (9), (10) undefined
+}
+
+
+def _cert(**params):
+    scene = load_scene("rudenko1976")
+    scene = dataclasses.replace(scene, name="variant", parameters=dict(scene.parameters, **params))
+    return json.loads(json.dumps(prove_scene(scene).to_json()))
+
+
+@pytest.fixture(scope="module", params=list(SCENES))
+def cert(request):
+    return _cert(**SCENES[request.param])
+
+
+@pytest.fixture(scope="module")
+def rudenko():
+    return _cert()
+
+
+def _refix(data):
+    statuses = [c["status"] for c in data["claims"]]
+    data["verdict"] = ("refuted" if "refuted" in statuses else
+                       "proved" if all(s == "proved" for s in statuses) else "inconclusive")
+    data["integrity"] = {"sha256": digest(data)}
+    return data
+
+
+def _items(data) -> dict[str, bool]:
+    """item -> ok of the checker's report on data (the digest and verdict made consistent first)."""
+    out: dict[str, bool] = {}
+    for r in check_certificate(_refix(data)).results:
+        out[r.item] = out.get(r.item, True) and r.ok
+    return out
+
+
+def _iv(data, name) -> tuple[Fraction, Fraction]:
+    q = data["quantities"][name]
+    return Fraction(q["lo"]), Fraction(q["hi"])
+
+
+def _set(data, name, lo, hi):
+    data["quantities"][name]["lo"], data["quantities"][name]["hi"] = str(lo), str(hi)
+
+
+def _claim(data, cid):
+    return next(c for c in data["claims"] if c["id"] == cid)
+
+
+# ---------------------------------------------------------------------------- the exact helpers
+
+def test_sign_is_exact():
+    assert [_sign(fmpq(x)) for x in (-3, 0, 2)] == [-1, 0, 1]
+    assert _sign(fmpq(1, 10 ** 40)) == 1 and _sign(fmpq(-1, 10 ** 40)) == -1
+
+
+def _poly(*roots, extra=None) -> fmpq_poly:
+    p = fmpq_poly([1])
+    for r in roots:
+        r = Fraction(r)
+        p *= fmpq_poly([-fmpq(r.numerator, r.denominator), 1])
+    return p * extra if extra is not None else p
+
+
+@pytest.mark.parametrize("p, count", [
+    (_poly(1, 2, 3, 4), 4),                                   # the quartic's case
+    (_poly(Fraction(1, 3), 5, -2), 2),                        # a negative root is not counted
+    (_poly(7), 1),
+    (_poly(-7), 0),
+    (_poly(5, extra=fmpq_poly([1, 0, 1])), 1),                # x^2 + 1: no real roots
+    (fmpq_poly([5, -2, 1]), 0),                               # x^2 - 2x + 5: none
+    (_poly(1, 1, 3), 2),                                      # a double root: distinct roots counted
+    (_poly(2, 2, 2, 9, -1), 2),
+    (fmpq_poly([-2, 0, 1]), 1),                               # the sequence ends on a constant 1... times 2
+    (fmpq_poly([1, -3, 1]), 2),                               # x^2 - 3x + 1: remainder exactly 5/4
+    (fmpq_poly([-1, 1, 1]) * 4, 1),
+])
+def test_sturm_counts_the_distinct_positive_roots_exactly(p, count):
+    assert sturm_positive_roots(p) == count
+
+
+def test_sturm_counts_whatever_constant_ends_the_sequence():
+    """The last remainder of a squarefree p is a nonzero constant, of either sign and any value (1 too)."""
+    import mpmath
+    for coeffs in ([-6, 11, -6, 1], [6, -5, 1], [-1, 0, 0, 1], [2, -3, 0, 1], [-3, 7, -5, 1], [1, -3, 1],
+                   [fmpq(-1, 4), 0, 1], [3, -4, 1], [-12, 19, -8, 1]):
+        p = fmpq_poly(coeffs)
+        roots = mpmath.polyroots([float(c) for c in reversed(coeffs)], maxsteps=200, extraprec=100)
+        real = {round(float(mpmath.re(r)), 9) for r in roots if abs(mpmath.im(r)) < 1e-12 and mpmath.re(r) > 0}
+        assert sturm_positive_roots(p) == len(real), coeffs
+
+
+def test_refine_a_point_interval_is_a_root_only_if_it_is_one():
+    p = _poly(3, Fraction(1, 2))
+    assert _refine(p, Fraction(3), Fraction(3), 128) == arb(3)
+    assert _refine(p, Fraction(1, 2), Fraction(1, 2), 128) == arb(fmpq(1, 2))
+    assert _refine(p, Fraction(2), Fraction(2), 128) is None
+    assert _refine(p, Fraction(0), Fraction(0), 128) is None
+
+
+def test_refine_needs_a_strict_sign_change():
+    p = _poly(1, 3)                     # (x - 1)(x - 3): p(0) = 3, p(2) = -1, p(4) = 3
+    assert _refine(p, Fraction(1), Fraction(2), 128) is None          # an end is the root: no strict change
+    assert _refine(p, Fraction(0), Fraction(1), 128) is None
+    assert _refine(p, Fraction(0), Fraction(4), 128) is None          # two roots: no sign change
+    assert _refine(p, Fraction(4), Fraction(5), 128) is None
+    r = _refine(p, Fraction(2), Fraction(4), 128)
+    assert r is not None and r.contains(arb(3))
+    q = fmpq_poly([1, -1])              # 1 - x: p(lo) = 1 at lo = 0
+    assert _refine(q, Fraction(0), Fraction(2), 128).contains(arb(1))
+    s = fmpq_poly([-1, 1])              # x - 1: p(hi) = 1 at hi = 2
+    assert _refine(s, Fraction(0), Fraction(2), 128).contains(arb(1))
+
+
+@pytest.mark.parametrize("bits", [64, 128, 300])
+def test_refine_encloses_the_root_of_its_bracket_to_the_checkers_precision(bits):
+    """Interval Newton on [lo, hi] (never on a wider piece holding another root), to relative width
+    about 2^-bits: not looser than 2^(9 - bits), nor stopped at its start."""
+    import mpmath
+    p = _poly(1, extra=fmpq_poly([-2, 0, 1]))     # (x - 1)(x^2 - 2): roots 1, +-sqrt 2
+    with working_precision(bits):
+        r = _refine(p, Fraction(5, 4), Fraction(3, 2), bits)
+        assert r.contains(arb(2).sqrt().mid()) or r.overlaps(arb(2).sqrt())
+        assert (r * r - 2).contains(0)
+        rel = r.rad() / abs(r.mid())
+        assert rel <= arb(2) ** (9 - bits), (bits, rel)
+        assert r.lower() > 1.4 and r.upper() < 1.42
+        # the bracket is used as given: the other roots (1 below it, -sqrt 2) never enter
+        r1 = _refine(p, Fraction(9, 10), Fraction(11, 10), bits)
+        assert r1.contains(arb(1)) and r1.rad() / abs(r1.mid()) <= arb(2) ** (9 - bits)
+
+
+def test_refine_bisects_exactly_where_newton_cannot_prove_uniqueness():
+    """p' vanishes inside the bracket: the exact bisection runs (200 halvings; an exact midpoint root
+    is returned as a point) and stays on the side of the sign change."""
+    p = _poly(0, 1, 3)                 # x (x - 1)(x - 3): p' = 0 near 0.45 and 2.2
+    with working_precision(256):
+        _bisection_cases(p)
+
+
+def _bisection_cases(p):
+    r = _refine(p, Fraction(1, 4), Fraction(7, 4), 128)    # midpoint 1 is the root, exactly
+    assert r == arb(1)
+    r = _refine(p, Fraction(1, 5), Fraction(13, 10), 128)  # p(1/5) > 0 > p(13/10): the root 1, not a midpoint
+    assert r.contains(arb(1)) and r.rad() < arb(2) ** -150
+    r = _refine(p, Fraction(2, 1), Fraction(17, 5), 128)   # p' = 0 at 2.2: the root 3
+    assert r.contains(arb(3)) and r.rad() < arb(2) ** -150
+
+
+# ------------------------------------------------------------------- the checker, item by item
+
+def test_every_claim_of_a_genuine_certificate_confirms_at_its_own_item(cert):
+    items = _items(copy.deepcopy(cert))
+    assert all(items.values()), {k: v for k, v in items.items() if not v}
+    assert {c["id"] for c in cert["claims"]} | {"roots", "quantities"} <= set(items)
+
+
+def test_each_claim_with_its_status_flipped_fails_at_its_own_item(cert):
+    """proved -> refuted (no counterexample), refuted -> proved: the claim's item fails and no other."""
+    for c in cert["claims"]:
+        if c["status"] == "inconclusive":
+            continue
+        bad = copy.deepcopy(cert)
+        d = _claim(bad, c["id"])
+        d["status"] = "refuted" if c["status"] == "proved" else "proved"
+        d.pop("counterexample", None)
+        items = _items(bad)
+        assert items.get(c["id"]) is False, (c["id"], c["status"])
+        others = {k: v for k, v in items.items() if k != c["id"] and not v}
+        assert not others, (c["id"], others)
+
+
+def test_an_inconclusive_claim_claims_nothing_and_the_next_ones_are_still_checked(rudenko):
+    for i in range(len(rudenko["claims"]) - 1):
+        bad = copy.deepcopy(rudenko)
+        bad["claims"][i]["status"] = "inconclusive"
+        bad["claims"][i + 1]["status"] = "refuted"
+        items = _items(bad)
+        assert items[bad["claims"][i]["id"]] is True
+        assert items[bad["claims"][i + 1]["id"]] is False
+
+
+def test_an_unknown_claim_is_never_confirmed(rudenko):
+    bad = copy.deepcopy(rudenko)
+    bad["claims"].append(dict(bad["claims"][0], id="made_up"))
+    assert _items(bad)["made_up"] is False
+
+
+def test_omega_intervals_that_overlap_or_touch_are_rejected(rudenko):
+    lo1, hi1 = _iv(rudenko, "omega_1")
+    lo2, hi2 = _iv(rudenko, "omega_2")
+    for name, new in (("overlap", (lo1, hi1 + (hi1 - lo1))), ("touching", (hi1, hi2))):
+        bad = copy.deepcopy(rudenko)
+        _set(bad, "omega_2", *new)
+        items = _items(bad)
+        assert items.get("omega") is False, name
+        assert items["nu_ordering"] is True and items["roots"] is False and items["bracket_1"] is False, name
+
+
+def test_an_omega_interval_without_its_root_fails_at_its_name(rudenko):
+    lo, hi = _iv(rudenko, "omega_3")
+    bad = copy.deepcopy(rudenko)
+    _set(bad, "omega_3", hi + (hi - lo), hi + 2 * (hi - lo))
+    items = _items(bad)
+    assert items.get("omega_3") is False
+    assert all(items[c] is False for c in ("roots", "branches", "bracket_3", "approximations"))
+
+
+def test_omega_wider_than_rel_width_is_not_proved_to_it(rudenko):
+    """The roots claim says 'to the requested relative width': a stored interval of relative width
+    exactly rel_width passes, one of twice that does not (the width is hi - lo against rel_width |lo|)."""
+    rel = Fraction(rudenko["scene"]["options"].get("rel_width", "1e-30"))
+    for j in range(1, 5):
+        lo, hi = _iv(rudenko, f"omega_{j}")
+        for factor, ok in ((1, True), (2, False)):
+            bad = copy.deepcopy(rudenko)
+            _set(bad, f"omega_{j}", lo, lo + factor * rel * abs(lo))
+            assert _items(bad)["roots"] is ok, (j, factor)
+
+
+@pytest.mark.parametrize("tamper", ["nu4_over_nu1", "nu4_touching_nu1", "nu6_over_nu2", "nu3_moved", "nu1_moved"])
+def test_nu_intervals_that_hold_no_nu_or_the_wrong_one_are_rejected(rudenko, tamper):
+    bad = copy.deepcopy(rudenko)
+    lo1, hi1 = _iv(rudenko, "nu_1")
+    lo2, hi2 = _iv(rudenko, "nu_2")
+    lo4, hi4 = _iv(rudenko, "nu_4")
+    lo3, hi3 = _iv(rudenko, "nu_3")
+    item = "nu"
+    if tamper == "nu4_over_nu1":
+        _set(bad, "nu_4", lo1, hi1 + (hi1 - lo1))
+    elif tamper == "nu4_touching_nu1":
+        _set(bad, "nu_1", lo1, (hi1 + lo4) / 2)
+        _set(bad, "nu_4", (hi1 + lo4) / 2, hi4)
+    elif tamper == "nu6_over_nu2":
+        _set(bad, "nu_6", lo2, hi2 + (hi2 - lo2))
+    elif tamper == "nu3_moved":
+        item = "nu_3"
+        _set(bad, "nu_3", hi3 + (hi3 - lo3), hi3 + 2 * (hi3 - lo3))
+    else:
+        item = "nu_1"
+        _set(bad, "nu_1", hi1 + (hi1 - lo1), hi1 + 2 * (hi1 - lo1))
+    items = _items(bad)
+    assert items.get(item) is False, (tamper, items)
+    assert items["nu_ordering"] is False and items["roots"] is True
+
+
+def test_a_rational_nu_is_checked_against_its_exact_value():
+    data = _cert(**SCENES["order_refuted"])          # nu3 = 1/(b-1) = 1, nu5 = b/(b-1) = 2 exactly
+    assert _items(copy.deepcopy(data))["nu_ordering"] is True
+    bad = copy.deepcopy(data)
+    _set(bad, "nu_5", Fraction(2) + Fraction(1, 10 ** 40), Fraction(3))
+    assert _items(bad).get("nu_5") is False
+
+
+@pytest.mark.parametrize("drop, item", [("nu_1_lower_bound", "nu_bounds"), ("nu_6_upper_bound", "nu_bounds"),
+                                        ("bracket_1_lo", "bracket_1"), ("bracket_4_hi", "bracket_4"),
+                                        ("approx_omega_1", "approximations"),
+                                        ("approx_rel_error_4", "approximations")])
+def test_a_proved_claim_without_a_quantity_it_names_fails_at_its_item(rudenko, drop, item):
+    bad = copy.deepcopy(rudenko)
+    del bad["quantities"][drop]
+    assert _items(bad)[item] is False
+
+
+def test_nu_bounds_are_decided_on_the_checkers_own_bounds(rudenko, monkeypatch):
+    """The checker's nu_bounds verdict is its own: bounds (5) that exclude nu (here forced) fail it."""
+    real = eig_check.nu_bounds
+    for k in (1, 2, 4, 6):
+        for side in (0, 1):
+            def moved(P, k=k, side=side):
+                out = dict(real(P))
+                lo, hi = out[k]
+                out[k] = (hi + 1, hi + 2) if side == 0 else (lo - 2, lo - 1)
+                return out
+            monkeypatch.setattr(eig_check, "nu_bounds", moved)
+            bad = copy.deepcopy(rudenko)
+            for n in list(bad["quantities"]):
+                if n.endswith("_bound"):
+                    del bad["quantities"][n]
+            _claim(bad, "nu_bounds")["status"] = "proved"
+            items = _items(bad)
+            assert items["nu_bounds"] is False, (k, side)
+            _claim(bad, "nu_bounds")["status"] = "refuted"
+            assert _items(bad)["nu_bounds"] is True, (k, side)
+
+
+# ------------------------------------------------------------------ stored counterexamples
+
+@pytest.fixture(scope="module")
+def order_refuted():
+    return _cert(**SCENES["order_refuted"])
+
+
+@pytest.fixture(scope="module")
+def nu_equal():
+    return _cert(**SCENES["nu2_equals_nu3"])
+
+
+@pytest.mark.parametrize("edit", ["no_violations_key", "empty", "bogus_name", "nu7", "not_adjacent",
+                                  "left_value_wrong", "right_value_wrong", "reversed"])
+def test_a_forged_nu_ordering_violation_is_rejected(order_refuted, nu_equal, edit):
+    for data in (order_refuted, nu_equal):
+        bad = copy.deepcopy(data)
+        ce = _claim(bad, "nu_ordering")["counterexample"]
+        v = ce["violations"][0]
+        if edit == "no_violations_key":
+            ce.pop("violations")
+        elif edit == "empty":
+            ce["violations"] = []
+        elif edit == "bogus_name":
+            v["left"] = "nu0"
+        elif edit == "nu7":
+            v["right"] = "nu7"
+        elif edit == "not_adjacent":
+            v["right"] = "nu" + str(int(v["right"][2]) + 1)
+            v.pop("right_value")
+        elif edit == "left_value_wrong":
+            v["left_value"] = ["100", "101"]
+        elif edit == "right_value_wrong":
+            v["right_value"] = ["-3", "-2"]
+        else:
+            v["left"], v["right"] = v["right"], v["left"]
+            v["left_value"], v["right_value"] = v["right_value"], v["left_value"]
+        assert _items(bad)["nu_ordering"] is False, (edit, data["scene"]["parameters"])
+
+
+def test_an_exact_equality_is_only_accepted_where_it_holds(nu_equal, order_refuted):
+    """'exactly_equal' is re-decided in rational arithmetic: on a violation by inequality it is false."""
+    v = _claim(nu_equal, "nu_ordering")["counterexample"]["violations"]
+    assert any("exactly_equal" in x for x in v)
+    bad = copy.deepcopy(order_refuted)
+    for x in _claim(bad, "nu_ordering")["counterexample"]["violations"]:
+        x["exactly_equal"] = "forged"
+    assert _items(bad)["nu_ordering"] is False
+
+
+@pytest.mark.parametrize("edit", ["inside_root", "omega_0", "omega_5", "value_elsewhere", "no_outside_key"])
+def test_a_forged_branch_counterexample_is_rejected(edit):
+    data = _cert(**SCENES["brackets_refuted"])
+    bad = copy.deepcopy(data)
+    ce = _claim(bad, "branches")["counterexample"]
+    items = ce["outside"]
+    named = {o["root"] for o in items}
+    if edit == "inside_root":
+        j = next(j for j in range(1, 5) if f"omega_{j}" not in named)
+        q = data["quantities"][f"omega_{j}"]
+        items.append({"root": f"omega_{j}", "value": [q["lo"], q["hi"]]})
+    elif edit in ("omega_0", "omega_5"):
+        items[0]["root"] = edit
+    elif edit == "value_elsewhere":
+        items[0]["value"] = ["1000", "1001"]
+    else:
+        ce.pop("outside")
+    assert _items(bad)["branches"] is False, edit
