@@ -1,0 +1,573 @@
+"""The Lyapunov checker item by item: its helpers (covers, ranges, re-bounded maxima, stated bounds,
+the equilibria's isolation pieces) against exact answers, and for each claim the forgery that only
+that claim's re-decision can catch.
+
+``tests/test_check.py`` rejects altered certificates as a whole; a report fails for many reasons at
+once there, so a weakened gate is not seen where another gate also rejects. These tests name the item
+that must fail, and test the helpers directly, so that a mutant of the checker is caught in seconds.
+"""
+import copy
+import dataclasses
+import json
+from fractions import Fraction
+
+import pytest
+from flint import arb, fmpq
+
+from rigor_gyro import load_scene, prove_scene
+from rigor_gyro.certificate import digest
+from rigor_gyro.check import check_certificate
+from rigor_gyro.core.balls import exact_endpoints, working_precision
+from rigor_gyro.kinds.lyapunov import check as lc
+
+
+def _cert(**params):
+    scene = load_scene("agafonov2013")
+    if params:
+        scene = dataclasses.replace(scene, name="variant", parameters=dict(scene.parameters, **params))
+    return json.loads(json.dumps(prove_scene(scene).to_json()))
+
+
+@pytest.fixture(scope="module")
+def agafonov():
+    return _cert()
+
+
+@pytest.fixture(scope="module")
+def refuted():
+    """Every kind of refutation at once: (18) violated, Vdot > 0 and V <= 0 at points, (16) empty."""
+    return _cert(H="10", a="1e4", mu="0.01", k="0.1")
+
+
+def _refix(data):
+    statuses = [c["status"] for c in data["claims"]]
+    data["verdict"] = ("refuted" if "refuted" in statuses else
+                       "proved" if all(s == "proved" for s in statuses) else "inconclusive")
+    data["integrity"] = {"sha256": digest(data)}
+    return data
+
+
+def _items(data) -> dict[str, bool]:
+    """item -> ok of the checker's report on data (the digest and verdict made consistent first)."""
+    out: dict[str, bool] = {}
+    for r in check_certificate(_refix(data)).results:
+        out[r.item] = out.get(r.item, True) and r.ok
+    return out
+
+
+def _claim(data, cid):
+    return next(c for c in data["claims"] if c["id"] == cid)
+
+
+def _q(text) -> arb:
+    f = Fraction(text)
+    return arb(fmpq(f.numerator, f.denominator))
+
+
+# ------------------------------------------------------------------------------ the helpers
+
+def test_pieces_cover_a_range_only_without_a_gap_and_past_both_ends():
+    c = lc._covers
+    assert not c([], arb(0), arb(1))
+    assert c([["0", "1"]], arb(0), arb(1))
+    assert c([["1/2", "1"], ["0", "1/2"]], arb(0), arb(1))                 # any order
+    assert c([["0", "3/4"], ["1/4", "1"]], arb(0), arb(1))                 # overlaps allowed
+    assert c([["0", "3/4"], ["1/8", "1/4"], ["1/2", "1"]], arb(0), arb(1))  # a piece inside another
+    assert not c([["0", "1/2"], ["3/4", "1"]], arb(0), arb(1))             # a gap
+    assert not c([["0", "3/4"], ["1/8", "1/4"], ["7/8", "1"]], arb(0), arb(1))   # reach, not the last end
+    assert not c([["1/10", "1"]], arb(0), arb(1))                          # starts late
+    assert not c([["0", "9/10"]], arb(0), arb(1))                          # ends early
+    assert not c([["0", "1/2"], ["1/2", "9/10"]], arb(0), arb(1))
+    assert c([["-1", "2"]], arb(0), arb(1))
+    # the range is the balls' outer ends: [0, 1] does not cover 1 +- 1e-10
+    assert not c([["0", "1"]], arb(0), arb(1, 1e-10))
+    assert not c([["0", "1"]], arb(0, 1e-10), arb(1))
+    assert c([["-1/1000", "1001/1000"]], arb(0, 1e-10), arb(1, 1e-10))
+
+
+def test_a_point_is_within_a_range_only_if_it_certainly_meets_it():
+    w = lc._within
+    assert w(arb("0.5"), arb(0), arb(1))
+    assert w(arb(0), arb(0), arb(1)) and w(arb(1), arb(0), arb(1))          # the ends belong to it
+    assert w(_q("3/2").union(_q("1/2")), arb(0), arb(1))                   # a ball reaching into it
+    assert not w(arb("1.5"), arb(0), arb(1)) and not w(arb("-0.5"), arb(0), arb(1))
+    assert not w(arb("nan"), arb(0), arb(1)) and not w(arb("0.5"), arb(0), arb("inf"))
+    assert not w(arb("0.5"), arb("nan"), arb(1))
+    # the certain range is [lo's upper end, hi's lower end]: a point inside lo's ball is not in it
+    assert not w(arb(0), arb(0, 1e-3), arb(1))
+    assert not w(arb(1), arb(0), arb(1, 1e-3))
+    assert w(arb("0.002"), arb(0, 1e-3), arb(1))
+    assert w(arb("0.998"), arb(0), arb(1, 1e-3))
+
+
+def test_max_upper_is_the_largest_upper_end_over_the_pieces():
+    f = lambda X: X * X          # noqa: E731
+    near = lambda x, v: v <= x < v + arb("1e-6")      # noqa: E731   an upper end: at or a hair above
+
+    for pieces in ([["0", "1"], ["-3", "-2"], ["1", "2"]], [["1", "2"], ["-3", "-2"]], [["-3", "-2"], ["1", "2"]]):
+        assert near(lc._max_upper(f, pieces), 9), pieces           # whatever the order
+    assert near(lc._max_upper(f, [["-1", "0"], ["1", "2"], ["0", "1"]]), 4)
+    assert near(lc._max_upper(lambda X: -X, [["1", "2"], ["3", "4"]]), -1)
+    assert lc._max_upper(f, []) is None
+    # an infinite bound on any piece is the answer (nothing can be bounded there)
+    g = lambda X: arb("inf") if X.contains(arb(5)) else X     # noqa: E731
+    for pieces in ([["0", "1"], ["4", "6"], ["1", "2"]], [["4", "6"], ["0", "1"]]):
+        assert not lc._max_upper(g, pieces).is_finite()
+
+
+def test_refined_upper_tightens_only_a_bound_a_hair_above_its_target_and_stays_a_bound():
+    """f = 1 + 1e-9 x (1 - x) over [0, 1]: arb bounds it by 1 + 1e-9, its maximum is 1 + 2.5e-10."""
+    f = lambda X: 1 + arb("1e-9") * X * (1 - X)      # noqa: E731
+    X = arb(0).union(arb(1))
+    u = f(X).upper()
+    true_max = 1 + arb("2.5e-10")
+    target = 1 + arb("3e-10")
+    assert lc._refined_upper(f, X, None) == u                 # no target: f(X)'s upper end
+    assert lc._refined_upper(f, X, target, levels=0) == u
+    r = lc._refined_upper(f, X, target)
+    assert r < u and r >= true_max                             # tighter, and still an upper bound
+    assert r <= target, "ten levels of bisection bring the bound under the target"
+    r3 = lc._refined_upper(f, X, target, levels=3)
+    assert r <= r3 < u and r3 >= true_max
+    # a target far below (not a hair): no search, the plain bound
+    assert lc._refined_upper(f, X, arb("0.5")) == u
+    # a bound already below the target is returned as it is
+    assert lc._refined_upper(f, X, arb(2)) == u
+    # a point ball cannot be bisected
+    assert lc._refined_upper(f, arb("0.5"), arb(1)) == f(arb("0.5")).upper()
+    # an infinite bound stays infinite
+    assert not lc._refined_upper(lambda X: arb("inf") + X, X, target).is_finite()
+
+
+def test_refined_upper_keeps_the_larger_half_and_never_returns_below_the_maximum():
+    """A bound that is tight on one half only: the maximum of the two halves' bounds is kept."""
+    for peak in ("0.1", "0.3", "0.7", "0.9"):
+        p = arb(peak)
+        f = lambda X, p=p: 1 + arb("1e-9") * (1 - (X - p) * (X - p))      # noqa: E731   max 1 + 1e-9 at x = peak
+        X = arb(0).union(arb(1))
+        r = lc._refined_upper(f, X, 1 + arb("1.001e-9"))
+        assert r >= 1 + arb("1e-9"), peak
+        assert r < f(X).upper(), peak
+
+
+def test_tighter_intersects_two_enclosures_and_drops_a_nan_one():
+    calls = []
+
+    def f(X):
+        calls.append(X)
+        return arb(1, 0.5) if len(calls) % 2 else arb("1.2", 0.5)     # [0.5, 1.5] here, [0.7, 1.7] at prec
+    t = lc._tighter(f, arb(0), 64)
+    lo, hi = exact_endpoints(t)
+    assert Fraction(7, 10) - Fraction(1, 10 ** 6) < lo <= Fraction(7, 10) and Fraction(3, 2) <= hi < Fraction(3, 2) + Fraction(1, 10 ** 6)
+    one, two, five = arb(1, 0.5), arb(2, 0.5), arb(5, 0.1)
+    nan_at_prec = iter([one, arb("nan")])
+    assert lc._tighter(lambda X: next(nan_at_prec), arb(0), 64) is one
+    nan_here = iter([arb("nan"), two])
+    assert lc._tighter(lambda X: next(nan_here), arb(0), 64) is two
+    inf_here = iter([arb("inf"), two])
+    assert lc._tighter(lambda X: next(inf_here), arb(0), 64) is two
+    # two enclosures that miss each other (a wrong one): the one at the checker's precision
+    apart = iter([one, five])
+    assert lc._tighter(lambda X: next(apart), arb(0), 64) is one
+
+
+def test_tighter_is_evaluated_at_the_given_precision():
+    seen = []
+    with working_precision(200):
+        lc._tighter(lambda X: seen.append(__import__("flint").ctx.prec) or X, arb(1), 64)
+    assert seen == [200, 64]
+
+
+def test_box_lower_ends_keep_the_larger_lower_end_of_the_two_precisions():
+    from rigor_gyro.core.boxes import Box
+    boxes = [Box.of({"u": (0, 1)}), Box.of({"u": (1, 2)}), Box.of({"u": (2, 3)}), Box.of({"u": (3, 4)})]
+    values = {64: [arb(1, 0.5), arb("nan"), arb(3, 1), arb("-inf")],
+              128: [arb(1, 0.25), arb(2, 1), arb("nan"), arb(-5)]}
+
+    def make():
+        from flint import ctx
+        prec = ctx.prec
+        return lambda d: values[prec][int(float(d["u"].mid()))]
+    with working_precision(128):
+        out = lc._box_lower_ends(make, boxes, 64)
+    lower = lambda x: x.lower()           # noqa: E731   an exact point (or -inf, nan)
+    assert out[0] == lower(values[128][0]) and out[0] > lower(values[64][0])      # the larger one
+    assert out[1] == lower(values[128][1])                                        # the one that is not NaN
+    assert out[2] == lower(values[64][2])
+    assert out[3] == arb(-5)                                                      # -inf < -5
+
+
+def test_a_positive_end_is_certainly_positive_or_plus_infinity():
+    p = lc._positive_end
+    assert p(arb("inf")) and p(arb("1e-30")) and p(arb(3))
+    assert not p(arb(0)) and not p(arb(-1)) and not p(arb("-inf")) and not p(arb("nan"))
+    assert not p(arb(0, 1e-10)) and not p(arb("1e-11", 1e-10))
+
+
+def test_same_number_compares_stored_texts_exactly():
+    s = lc._same_number
+    assert s("0.5", "1/2") and s("0.0231818251722", "0.0231818251722") and s("-2", "-2/1")
+    assert not s("0.5", "0.50000000000000000001") and not s("1", "-1")
+    assert not s(None, "1") and not s("1", None) and not s("abc", "abc") and not s("1/0", "1/0")
+    assert not s(0.5, 0.5)                       # a float is not a stored number
+
+
+def test_a_stated_bound_is_at_or_above_the_checkers_bound():
+    b = arb(2).union(arb(3))
+    up = exact_endpoints(b)[1]              # a hair above 3 (the union's radius is rounded up)
+    s = lc._states_a_bound
+    assert s(f"{up.numerator}/{up.denominator}", b) and s("3.0001", b) and s("7/2", b)
+    assert not s(f"{up.numerator - 1}/{up.denominator}", b) and not s("2.9999999", b) and not s("2", b)
+    assert not s("10", arb("nan")) and not s("10", arb("inf"))
+    assert not s(None, b) and not s("three", b) and not s("1/0", b)
+
+
+def test_all_positive_needs_every_piece():
+    assert lc._all_positive(lambda X: X, [["1", "2"], ["1/2", "3"]])
+    assert not lc._all_positive(lambda X: X, [["1", "2"], ["0", "3"]])
+    assert not lc._all_positive(lambda X: X, [["-1", "2"], ["1", "3"]])
+    assert not lc._all_positive(lambda X: X - 1, [["1", "2"]])
+    assert lc._all_positive(lambda X: X, [])
+
+
+def test_face_level_is_the_smaller_face_when_certain_else_the_hull():
+    class G:
+        def __init__(self, a, b):
+            self.a, self.b = a, b
+
+        def phi(self, x):
+            return self.a if x > 0 else self.b
+    xs = arb(1)
+    low, high = arb(1, 0.1), arb(5, 0.1)
+    assert lc._face_level(G(low, high), xs) is low
+    assert lc._face_level(G(high, low), xs) is low
+    a, b = arb(1, 0.5), arb("1.2", 0.5)
+    h = lc._face_level(G(a, b), xs)
+    assert h.contains(a) and h.contains(b)
+    h = lc._face_level(G(b, a), xs)
+    assert h.contains(a) and h.contains(b)
+    # touching ends (the upper end of one is the lower end of the other): that one, not the hull
+    a, b = arb(2), arb(2)
+    assert lc._face_level(G(a, b), xs) is a and lc._face_level(G(b, a), xs) is b
+
+
+def _pieces(cuts, kinds):
+    """Isolation pieces [cuts[i], cuts[i+1]] as the certificate stores them."""
+    out = []
+    for (a, b), k in zip(zip(cuts, cuts[1:]), kinds):
+        out.append({"lo": [a, a], "hi": [b, b], "kind": k})
+    return out
+
+
+def test_decided_roots_need_contiguous_exact_pieces_over_minus_pi_to_pi_each_decided():
+    pi = arb.pi()
+    fn = lambda x: x * x - 1       # noqa: E731   roots -1, 1
+    cuts = ["-4", "-3/2", "-1/2", "1/2", "3/2", "4"]
+    good = _pieces(cuts, ["empty", "unique", "empty", "unique", "empty"])
+    roots = lc._decided_roots(fn, good, pi)
+    assert [r[2].contains(arb(s)) for r, s in zip(roots, (-1, 1))] == [True, True] and len(roots) == 2
+    assert lc._decided_roots(fn, [], pi) is None
+    assert lc._decided_roots(fn, _pieces(["-3", "-3/2", "-1/2", "1/2", "3/2", "4"], ["empty", "unique", "empty",
+                                                                                       "unique", "empty"]), pi) is None
+    assert lc._decided_roots(fn, _pieces(["-4", "-3/2", "-1/2", "1/2", "3/2", "3"], ["empty", "unique", "empty",
+                                                                                       "unique", "empty"]), pi) is None
+    gap = copy.deepcopy(good)
+    gap[2]["lo"] = ["-2/5", "-2/5"]
+    assert lc._decided_roots(fn, gap, pi) is None
+    wide = copy.deepcopy(good)
+    wide[1]["hi"] = wide[2]["lo"] = ["-1/2", "-2/5"]           # a cut that is not an exact point
+    assert lc._decided_roots(fn, wide, pi) is None
+    for i, kind in ((1, "empty"), (0, "unique"), (2, "maybe")):
+        bad = copy.deepcopy(good)
+        bad[i]["kind"] = kind
+        assert lc._decided_roots(fn, bad, pi) is None, (i, kind)
+    # an empty piece on which fn's enclosure straddles 0 is decided by Newton (no root there) ...
+    line = lambda x: 3 * x - 2 * x + 10      # noqa: E731   x + 10 > 0 on [-4, 4]; its enclosure [-10, 30]
+    assert lc._decided_roots(line, _pieces(["-4", "4"], ["empty"]), pi) == []
+    # ... and one Newton cannot decide (f' through 0) is not decided: no root-free claim stands on it
+    wavy = lambda x: (x * x - 1) * (x * x - 1) + arb("0.01")   # noqa: E731   no real root, min 0.01 at +-1
+    assert lc._decided_roots(wavy, _pieces(["-4", "4"], ["empty"]), pi) is None
+
+
+# ------------------------------------------------------------------- the checker, item by item
+
+def test_every_claim_of_the_builtin_certificate_confirms_at_its_own_item(agafonov):
+    items = _items(copy.deepcopy(agafonov))
+    assert all(items.values()), {k: v for k, v in items.items() if not v}
+    assert {c["id"] for c in agafonov["claims"]} | {"quantities"} <= set(items)
+
+
+def test_a_refuted_certificate_confirms_every_counterexample(refuted):
+    items = _items(copy.deepcopy(refuted))
+    assert all(items.values()), {k: v for k, v in items.items() if not v}
+    statuses = {c["id"]: c["status"] for c in refuted["claims"]}
+    assert {k for k, v in statuses.items() if v == "refuted"} == {
+        "damping_condition", "vdot_nonpositive", "v_positive", "largest_sublevel", "best_mu", "best_mu_direct"}
+
+
+@pytest.mark.parametrize("which", ["agafonov", "refuted"])
+def test_each_claim_with_its_status_flipped_is_not_confirmed(agafonov, refuted, which):
+    """proved -> refuted (no counterexample), refuted -> proved: the claim is not confirmed (its own item
+    fails, or the data of its missing counterexample cannot be checked) and the report fails."""
+    cert = agafonov if which == "agafonov" else refuted
+    for c in cert["claims"]:
+        if c["status"] == "inconclusive":
+            continue
+        bad = copy.deepcopy(cert)
+        d = _claim(bad, c["id"])
+        d["status"] = "refuted" if c["status"] == "proved" else "proved"
+        d.pop("counterexample", None)
+        items = _items(bad)
+        assert items.get(c["id"]) is not True, (c["id"], c["status"])
+        assert items.get(c["id"]) is False or items.get("data") is False, (c["id"], items)
+
+
+def test_an_inconclusive_claim_claims_nothing(agafonov):
+    for c in agafonov["claims"]:
+        bad = copy.deepcopy(agafonov)
+        _claim(bad, c["id"])["status"] = "inconclusive"
+        assert _items(bad)[c["id"]] is True, c["id"]
+
+
+def test_an_unknown_claim_is_never_confirmed(agafonov):
+    bad = copy.deepcopy(agafonov)
+    bad["claims"].append(dict(bad["claims"][0], id="made_up"))
+    assert _items(bad)["made_up"] is False
+
+
+def _drop(pieces, i=None):
+    """The pieces with one removed (the middle one by default): a gap in the cover."""
+    i = len(pieces) // 2 if i is None else i
+    return pieces[:i] + pieces[i + 1:]
+
+
+# (label, the alteration, the items that must fail)
+FORGERIES = [
+    ("m cover gap", lambda d: d["witnesses"]["constants"]["m"].update(cover=_drop(d["witnesses"]["constants"]["m"]["cover"])),
+     ["constants"]),
+    ("M cover gap", lambda d: d["witnesses"]["constants"]["M"].update(cover=_drop(d["witnesses"]["constants"]["M"]["cover"], 0)),
+     ["constants"]),
+    ("m point beyond x2*", lambda d: d["witnesses"]["constants"]["m"].update(point=["3/2", "3/2"]), ["constants"]),
+    ("M point beyond x2*", lambda d: d["witnesses"]["constants"]["M"].update(point=["-1/10", "-1/10"]), ["constants"]),
+    ("m stored lower", lambda d: d["quantities"]["m"].update(hi=d["quantities"]["m"]["lo"],
+                                                             lo=str(Fraction(d["quantities"]["m"]["lo"]) * Fraction(999, 1000))),
+     ["m"]),
+    ("Psi1 piece dropped", lambda d: d["witnesses"]["vdot_nonpositive"].update(Psi1=_drop(d["witnesses"]["vdot_nonpositive"]["Psi1"])),
+     ["vdot_nonpositive"]),
+    ("Psi2 piece dropped", lambda d: d["witnesses"]["vdot_nonpositive"].update(Psi2=[["0", d["witnesses"]["vdot_nonpositive"]["Psi2"][0][1]]]),
+     ["vdot_nonpositive"]),
+    ("S piece dropped", lambda d: d["witnesses"]["v_positive"].update(S=[["1/10", d["witnesses"]["v_positive"]["S"][0][1]]]),
+     ["v_positive"]),
+    ("f/x piece short", lambda d: d["witnesses"]["v_positive"].update(f_over_x=[["0", "1/10"]]), ["v_positive"]),
+    ("psi piece short", lambda d: d["witnesses"]["v_positive"].update(psi=[["0", "1/10"]]), ["v_positive"]),
+    ("cylinder gap", lambda d: d["witnesses"]["invariant_estimate"].update(
+        cylinder=_drop(d["witnesses"]["invariant_estimate"]["cylinder"])), ["invariant_estimate"]),
+    ("c_set above c*", lambda d: _claim(d, "invariant_estimate")["details"].update(c_set="1000"),
+     ["invariant_estimate"]),
+    ("direct box dropped", lambda d: d["witnesses"]["vdot_direct"].update(boxes=_drop(d["witnesses"]["vdot_direct"]["boxes"])),
+     ["vdot_direct"]),
+    ("direct R doubled", lambda d: d["witnesses"]["vdot_direct"].update(R=str(2 * Fraction(d["witnesses"]["vdot_direct"]["R"]))),
+     ["vdot_direct"]),
+    ("sublevel box dropped", lambda d: d["witnesses"]["largest_sublevel"].update(
+        boxes=_drop(d["witnesses"]["largest_sublevel"]["boxes"])), ["largest_sublevel"]),
+    ("c_max_upper lowered", lambda d: _claim(d, "largest_sublevel")["details"].update(c_max_upper="23.4"),
+     ["largest_sublevel"]),
+    ("binds vdot", lambda d: _claim(d, "largest_sublevel")["details"].update(binds="vdot"), ["largest_sublevel"]),
+    ("equilibrium stability", lambda d: _claim(d, "equilibria")["details"]["equilibria"][0].update(stability="unstable"),
+     ["equilibria"]),
+    ("equilibrium dropped", lambda d: _claim(d, "equilibria")["details"]["equilibria"].pop(), ["equilibria"]),
+    ("equilibrium piece undecided", lambda d: d["witnesses"]["equilibria"]["pieces"]["f"][0].update(kind="empty"),
+     ["equilibria"]),
+    ("mu_best outside (16)", lambda d: _claim(d, "best_mu")["details"].update(mu_best="0.001"),
+     ["best_mu"]),
+    ("R_max doubled", lambda d: _claim(d, "best_mu")["details"].update(R_max="0.048"), ["best_mu"]),
+    ("R_sup bound stated low", lambda d: _claim(d, "best_mu")["details"].update(R_sup_upper_bound="0.024077"),
+     ["best_mu"]),
+    ("best_mu gap stated low", lambda d: _claim(d, "best_mu")["details"].update(relative_gap="1e-9"), ["best_mu"]),
+    ("mu pieces gap", lambda d: d["witnesses"]["best_mu"].update(mu_pieces=_drop(d["witnesses"]["best_mu"]["mu_pieces"])),
+     ["best_mu"]),
+    # R_sup at mu_best is reported, not part of the claim: its enclosure is left unverified
+    ("r_sup cover gap", lambda d: d["witnesses"]["best_mu"].update(r_sup_cover=_drop(d["witnesses"]["best_mu"]["r_sup_cover"])),
+     ["quantities"]),
+    ("Psi at R_max gap", lambda d: d["witnesses"]["best_mu"]["vdot_at_R_max"].update(
+        Psi1=_drop(d["witnesses"]["best_mu"]["vdot_at_R_max"]["Psi1"])), ["best_mu"]),
+    ("mu_direct details differ", lambda d: _claim(d, "best_mu_direct")["details"].update(mu_direct="0.0231818251723"),
+     ["best_mu_direct"]),
+    ("R_direct_max details differ", lambda d: _claim(d, "best_mu_direct")["details"].update(R_direct_max="0.027872340"),
+     ["best_mu_direct"]),
+    ("direct mu box dropped", lambda d: d["witnesses"]["best_mu_direct"].update(
+        boxes=_drop(d["witnesses"]["best_mu_direct"]["boxes"])), ["best_mu_direct"]),
+    ("direct mu pieces gap", lambda d: d["witnesses"]["best_mu_direct"].update(
+        mu_pieces=_drop(d["witnesses"]["best_mu_direct"]["mu_pieces"])), ["best_mu_direct"]),
+    ("direct points unreadable", lambda d: d["witnesses"]["best_mu_direct"].update(points=[["x", "y"]]),
+     ["best_mu_direct"]),
+    ("direct sup stated low", lambda d: _claim(d, "best_mu_direct")["details"].update(R_direct_sup_upper_bound="0.0278723"),
+     ["best_mu_direct"]),
+    ("direct gap stated low", lambda d: _claim(d, "best_mu_direct")["details"].update(relative_gap="1e-9"),
+     ["best_mu_direct"]),
+    ("direct mu outside (16)", lambda d: (d["witnesses"]["best_mu_direct"].update(mu="0.001"),
+                                          _claim(d, "best_mu_direct")["details"].update(mu_direct="0.001")),
+     ["best_mu_direct"]),
+]
+
+
+@pytest.mark.parametrize("label, alter, failing", FORGERIES, ids=[f[0] for f in FORGERIES])
+def test_a_forged_witness_fails_at_its_claims_item(agafonov, label, alter, failing):
+    bad = copy.deepcopy(agafonov)
+    alter(bad)
+    items = _items(bad)
+    for item in failing:
+        assert items.get(item) is False, (label, item, {k: v for k, v in items.items() if not v})
+
+
+@pytest.mark.parametrize("name", ["A0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R", "R_used", "damping_margin",
+                                  "c_star_face", "c_set", "extent_x1", "extent_x3", "extent_x1_axis", "extent_x3_axis",
+                                  "mu_best", "R_max", "R_sup_at_mu_best", "R_direct", "mu_direct", "R_direct_max",
+                                  "face_level"])
+def test_a_stored_enclosure_moved_off_its_value_fails_at_its_name(agafonov, name):
+    bad = copy.deepcopy(agafonov)
+    q = bad["quantities"][name]
+    lo, hi = Fraction(q["lo"]), Fraction(q["hi"])
+    w = max(hi - lo, abs(hi) * Fraction(1, 10 ** 12))
+    q["lo"], q["hi"] = str(hi + w), str(hi + 2 * w)
+    items = _items(bad)
+    assert items.get(name) is False or items["quantities"] is False, (name, items)
+
+
+@pytest.mark.parametrize("name", ["R_sup_upper_bound", "R_direct_sup_upper_bound", "R_direct_upper",
+                                  "R_max_relative_gap", "R_direct_max_relative_gap", "R_direct_relative_gap"])
+def test_a_stored_bound_below_the_checkers_bound_fails_at_its_name(agafonov, name):
+    bad = copy.deepcopy(agafonov)
+    q = bad["quantities"][name]
+    lo = Fraction(q["lo"])
+    q["lo"] = q["hi"] = str(lo - abs(lo) / 10)
+    assert _items(bad).get(name) is False
+
+
+@pytest.mark.parametrize("name", ["c_max_lower", "c_max_upper", "vdot_level_lower", "vdot_level_upper"])
+def test_a_sublevel_bound_that_is_not_its_stated_decimal_is_rejected(agafonov, name):
+    bad = copy.deepcopy(agafonov)
+    q = bad["quantities"][name]
+    q["hi"] = str(Fraction(q["hi"]) * (1 + Fraction(1, 10 ** 6)))          # wider than a rounding
+    assert _items(bad)["largest_sublevel"] is False
+    bad = copy.deepcopy(agafonov)
+    del bad["quantities"][name]
+    assert _items(bad)["largest_sublevel"] is False
+
+
+def test_the_sublevel_bounds_are_re_derived_not_read(agafonov):
+    """Each stated bound moved (with its stored ball) the wrong way, by a little: rejected."""
+    det = lambda d: _claim(d, "largest_sublevel")["details"]      # noqa: E731
+    for name, factor in (("c_max_lower", Fraction(10001, 10000)), ("c_max_upper", Fraction(9999, 10000)),
+                         ("vdot_level_lower", Fraction(2)), ("vdot_level_upper", Fraction(1, 2))):
+        bad = copy.deepcopy(agafonov)
+        v = Fraction(det(bad)[name]) * factor
+        text = f"{float(v):.12g}"
+        det(bad)[name] = text
+        bad["quantities"][name] = {"lo": text, "hi": text, "mid": text, "rad": "0"}
+        assert _items(bad)["largest_sublevel"] is False, name
+    bad = copy.deepcopy(agafonov)
+    det(bad)["c_max_lower"] = "0"
+    bad["quantities"]["c_max_lower"] = {"lo": "0", "hi": "0", "mid": "0", "rad": "0"}
+    assert _items(bad)["largest_sublevel"] is False
+    bad = copy.deepcopy(agafonov)
+    bad["witnesses"]["largest_sublevel"]["point"]["x2"] = ["3/2", "3/2"]
+    assert _items(bad)["largest_sublevel"] is False
+    bad = copy.deepcopy(agafonov)
+    del bad["witnesses"]["largest_sublevel"]["point"]
+    assert _items(bad)["largest_sublevel"] is False
+    bad = copy.deepcopy(agafonov)
+    bad["quantities"]["face_level"] = {"lo": "1", "hi": "2", "mid": "1.5", "rad": "0.5"}
+    assert _items(bad)["largest_sublevel"] is False
+
+
+# ------------------------------------------------------------------ stored counterexamples
+
+def test_damping_refutation_is_re_derived(refuted, agafonov):
+    assert _items(copy.deepcopy(refuted))["damping_condition"] is True
+    bad = copy.deepcopy(agafonov)
+    _claim(bad, "damping_condition")["status"] = "refuted"
+    assert _items(bad)["damping_condition"] is False
+
+
+@pytest.mark.parametrize("edit", ["origin", "beyond_x2_star", "outside_the_disc"])
+def test_a_forged_vdot_counterexample_is_rejected(refuted, edit):
+    bad = copy.deepcopy(refuted)
+    ce = _claim(bad, "vdot_nonpositive")["counterexample"]
+    pt = ce["point"]
+    if edit == "origin":
+        pt["x1"] = pt["x3"] = ["0", "0"]
+    elif edit == "beyond_x2_star":
+        pt["x2"] = ["3/2", "3/2"]
+    else:
+        pt["x1"] = ["1000", "1000"]
+    assert _items(bad)["vdot_nonpositive"] is False, edit
+
+
+def test_a_psi_counterexample_is_decided_on_the_psi_it_names(refuted):
+    """At x2 = 0.3, x1 = x3 = 0 (in the region): Psi1 = 50.3 > 0, Psi2 = -1596 < 0, Vdot = 0. Labelled
+    Psi2 the point refutes the Psi test; labelled Psi1, or unlabelled (Vdot > 0 needed), it does not."""
+    for label, ok in (("Psi2", True), ("Psi1", False), (None, False)):
+        bad = copy.deepcopy(refuted)
+        ce = _claim(bad, "vdot_nonpositive")["counterexample"]
+        ce["point"] = {"x1": ["0", "0"], "x2": ["3/10", "3/10"], "x3": ["0", "0"]}
+        ce.pop("psi", None)
+        if label:
+            ce["psi"] = label
+        assert _items(bad)["vdot_nonpositive"] is ok, label
+    bad = copy.deepcopy(refuted)                  # the same point beyond the region's radius: rejected
+    ce = _claim(bad, "vdot_nonpositive")["counterexample"]
+    ce["point"] = {"x1": ["1", "1"], "x2": ["3/10", "3/10"], "x3": ["0", "0"]}
+    ce["psi"] = "Psi2"
+    assert _items(bad)["vdot_nonpositive"] is False
+
+
+@pytest.mark.parametrize("edit", ["origin", "beyond_x2_star", "v_positive_there"])
+def test_a_forged_v_counterexample_is_rejected(refuted, edit):
+    bad = copy.deepcopy(refuted)
+    pt = _claim(bad, "v_positive")["counterexample"]["point"]
+    if edit == "origin":
+        pt["x1"] = pt["x2"] = pt["x3"] = ["0", "0"]
+    elif edit == "beyond_x2_star":
+        pt["x2"] = ["100", "100"]
+    else:
+        pt["x1"] = ["1000", "1000"]
+    assert _items(bad)["v_positive"] is False, edit
+
+
+def test_a_forged_sublevel_refutation_is_rejected(refuted, agafonov):
+    assert _items(copy.deepcopy(refuted))["largest_sublevel"] is True
+    bad = copy.deepcopy(agafonov)
+    c = _claim(bad, "largest_sublevel")
+    c["status"] = "refuted"
+    c["counterexample"] = {"where": "faces"}            # phi(+-x2*) > 0 here
+    assert _items(bad)["largest_sublevel"] is False
+    for t in ("1/4", "0", "x", ""):
+        c["counterexample"] = {"where": "origin", "t_over_pi": t}     # A(0, t) > 0 at every t here
+        assert _items(copy.deepcopy(bad))["largest_sublevel"] is False, t
+
+
+def test_an_empty_mu_interval_is_re_derived(refuted, agafonov):
+    items = _items(copy.deepcopy(refuted))
+    assert items["best_mu"] is True and items["best_mu_direct"] is True
+    for cid in ("best_mu", "best_mu_direct"):
+        bad = copy.deepcopy(agafonov)
+        _claim(bad, cid)["status"] = "refuted"
+        _claim(bad, cid)["counterexample"] = {"mu_min": "1", "mu_max": "0"}
+        assert _items(bad)[cid] is False, cid
+
+
+def test_a_proved_claim_without_a_quantity_it_names_fails_at_its_item(agafonov):
+    for cid, names in lc.REQUIRED.items():
+        for name in names:
+            bad = copy.deepcopy(agafonov)
+            del bad["quantities"][name]
+            assert _items(bad)[cid] is False, (cid, name)
+
+
+def test_every_stored_quantity_is_verified_and_an_extra_one_is_not(agafonov):
+    bad = copy.deepcopy(agafonov)
+    bad["quantities"]["made_up"] = {"lo": "1", "hi": "2", "mid": "1.5", "rad": "0.5"}
+    items = _items(bad)
+    assert items["quantities"] is False
+    assert all(v for k, v in items.items() if k != "quantities")
