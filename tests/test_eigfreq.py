@@ -311,3 +311,16 @@ def test_a_certainly_negative_radicand_is_not_real_with_its_bounds_in_the_messag
         _sqrt(arb(0, 1), "(7) upper")                                   # undecided: no error (Arb gives a ball
         #                                                                 that decides nothing)
         assert _sqrt(arb(4), "x") == 2
+
+
+def test_any_positive_hz_scale_is_accepted_and_scales_the_frequencies():
+    """hz_scale > 0 is the whole domain condition (a scale below 1 too): freq_hz_j = hz_scale sqrt(omega_j)."""
+    import dataclasses
+    base = load_scene("rudenko1976")
+    for s in ("0.5", "1", "617.5"):
+        scene = dataclasses.replace(base, parameters=dict(base.parameters, hz_scale=s))
+        c = prove_scene(scene)
+        assert c.verdict is Status.PROVED, s
+        for j in range(1, 5):
+            want = arb(s) * c.quantities[f"omega_{j}"].sqrt()
+            assert c.quantities[f"freq_hz_{j}"].overlaps(want) and c.quantities[f"freq_hz_{j}"].rad() < 1e-20 * want, (s, j)
