@@ -234,7 +234,7 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
     paper, formulas = [], formula_table()
     if model.paper:
         with phase("paper audit"):
-            paper = audit_paper(model, balls, omegas, nus, Q)
+            paper = audit_paper(model, balls, omegas)
     return Attempt(claims, quantities, paper, formulas, notes, widths_met, phase_seconds=phase.seconds,
                    width_quantities=tuple(k for k in quantities if k.startswith(("omega_", "freq_hz_"))
                                           and not rel_width_at_most(quantities[k], model.rel_width.fmpq())))

@@ -258,7 +258,7 @@ def _number_row(rid: str, printed: str, s: arb, w_printed: arb, w_read: arb | No
     return _at_paper_scale(row, printed, w_read, inner, hull)
 
 
-def audit(model, p: Params, omegas: list[arb], nus: dict[int, arb], Q) -> list[AuditRow]:
+def audit(model, p: Params, omegas: list[arb]) -> list[AuditRow]:
     """Audit rows for every number the paper prints in its example (needs ``hz_scale``)."""
     rows: list[AuditRow] = []
     paper = model.paper
