@@ -1,6 +1,6 @@
 """Re-run mutmut's survivors, each in a fresh process.
 
-    python tools/mutmut_fresh.py MUTMUT_DIR OUT.jsonl [--first TEST_FILE ...] [MUTANT ...]
+    python tools/mutmut_fresh.py MUTMUT_DIR OUT.jsonl [--only] [--first TEST_FILE ...] [MUTANT ...]
 
 Why: mutmut 3 runs each mutant in a process forked from one that has already imported the test
 modules, so work done at import time (module-level certificates, caches filled during collection)
@@ -12,8 +12,10 @@ with ``MUTANT_UNDER_TEST`` set, inside MUTMUT_DIR/mutants, and appends one JSON 
 OUT.jsonl: {"name", "verdict": killed | survived | timeout, "by": the first failing test, "tests",
 "s"}. Mutants already in OUT.jsonl are skipped (the run resumes). Default: every mutant ``mutmut
 results`` lists as survived. ``--first TEST_FILE`` runs that whole file first for every mutant (a
-test file written after mutmut's stats run, which ``tests-for-mutant`` does not know). Asserts
-nothing; a killed verdict needs a failing test, as in mutmut.
+test file written after mutmut's stats run, which ``tests-for-mutant`` does not know); with
+``--only``, those files are all that runs (a quick pass over many survivors with the fast files
+aimed at them: a "survived" then means "not killed by these files"). Asserts nothing; a killed
+verdict needs a failing test, as in mutmut.
 """
 from __future__ import annotations
 
@@ -35,9 +37,11 @@ def survivors(root: str) -> list[str]:
     return [line.split(":")[0].strip() for line in r.stdout.splitlines() if line.strip().endswith("survived")]
 
 
-def run_one(root: str, name: str, first: list[str] = ()) -> dict:
-    r = subprocess.run(["mutmut", "tests-for-mutant", name], cwd=root, capture_output=True, text=True, check=True)
-    tests = [t.strip() for t in r.stdout.splitlines() if t.strip().startswith("tests/")]
+def run_one(root: str, name: str, first: list[str] = (), only: bool = False) -> dict:
+    tests = []
+    if not only:
+        r = subprocess.run(["mutmut", "tests-for-mutant", name], cwd=root, capture_output=True, text=True, check=True)
+        tests = [t.strip() for t in r.stdout.splitlines() if t.strip().startswith("tests/")]
     tests = [t for t in tests if t.split("::")[0] not in first] + list(first)
     files = list(first) + sorted({t.split("::")[0] for t in tests if t not in first},
                                  key=lambda f: ORDER.index(f) if f in ORDER else len(ORDER))
@@ -64,6 +68,8 @@ def main() -> int:
         print(__doc__)
         return 2
     root, out, rest = sys.argv[1], sys.argv[2], sys.argv[3:]
+    only = rest[:1] == ["--only"]
+    rest = rest[1:] if only else rest
     first = []
     while rest[:1] == ["--first"] and len(rest) >= 2:
         first.append(rest[1])
@@ -76,7 +82,7 @@ def main() -> int:
     for name in names:
         if name in done:
             continue
-        rec = run_one(root, name, first)
+        rec = run_one(root, name, first, only)
         print(json.dumps(rec), flush=True)
         with open(out, "a") as fh:
             fh.write(json.dumps(rec) + "\n")
