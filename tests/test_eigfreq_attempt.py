@@ -95,6 +95,24 @@ def test_a_root_at_or_below_zero_refutes_the_roots_claim(model, monkeypatch, roo
     assert "omega_1" in att.quantities and _claim(att, "branches").status is Status.INCONCLUSIVE
 
 
+def test_only_the_roots_certainly_at_or_below_zero_are_the_counterexample(model, monkeypatch):
+    """Roots -1, 2, 3, 4 with the root 2 blurred to straddle 0: refuted by -1 alone (the blurred root
+    is certainly <= 1 but not <= 0, and is no counterexample)."""
+    real_iso = ec.isolate_polynomial
+
+    def blurred(p, rel_tol=None):
+        out = real_iso(p, rel_tol=rel_tol)
+        if p.degree() == 4:
+            out.real[1] = arb(0, 1e-10) + arb("1e-12")
+        return out
+    monkeypatch.setattr(ec, "isolate_polynomial", blurred)
+    att = _run(model, monkeypatch, _poly(-1, 2, 3, 4))
+    r = _claim(att, "roots")
+    assert r.status is Status.REFUTED
+    (lo, hi), = r.counterexample["nonpositive_roots"]
+    assert Fraction(lo) <= -1 <= Fraction(hi)
+
+
 def test_a_root_of_undecided_sign_leaves_the_roots_claim_open(model, monkeypatch):
     """A root within the isolation's width of 0 (here exactly 0, with Arb's ball kept wide): neither
     certainly <= 0 nor certainly > 0."""
@@ -177,6 +195,21 @@ def test_the_nu_block_runs_for_the_claims_that_need_it_only(model, monkeypatch):
         att = _run(model, monkeypatch, wanted=wanted)
         assert [c.id for c in att.claims] == wanted
         assert all(c.status is Status.PROVED for c in att.claims), wanted
+
+
+def test_an_empty_branch_refutes_the_branches_asked_alone():
+    """nu2 = nu3 exactly (a rational eps): the branch (nu2, nu3) of omega_2 is empty, decided in rational
+    arithmetic by the nu block, which must run when the branches are asked for alone."""
+    import dataclasses
+    a, b = Fraction("15.08"), Fraction("6.154")
+    base = load_scene("rudenko1976")
+    scene = dataclasses.replace(base, parameters=dict(base.parameters, eps=str((a - b) * (b - 1) / (a * b - 2 * a + 1))),
+                                claims_only=["branches"])
+    m = ec.validate(scene)
+    with working_precision(128):
+        att = ec.attempt(m, ["branches"], 128)
+    (c,) = att.claims
+    assert c.status is Status.REFUTED and any(o["root"] == "omega_2" for o in c.counterexample["outside"])
 
 
 def test_isolate_polynomial_is_what_the_claims_see():
