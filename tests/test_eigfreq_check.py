@@ -381,3 +381,21 @@ def test_a_forged_branch_counterexample_is_rejected(edit):
     else:
         ce.pop("outside")
     assert _items(bad)["branches"] is False, edit
+
+
+def test_a_stored_quantity_off_its_value_fails_at_its_own_name_with_its_bounds(rudenko):
+    """Each closed-form quantity is reported under its own name, not ok, quoting the stored bounds (and
+    left unverified, so that the report fails as a whole too)."""
+    for name in ("bracket_1_lo", "bracket_3_hi", "bracket_2_slack", "nu_2_upper_bound", "approx_omega_3",
+                 "approx_rel_error_4", "freq_hz_1"):
+        if name not in rudenko["quantities"]:
+            continue
+        bad = copy.deepcopy(rudenko)
+        lo, hi = _iv(bad, name)
+        w = max(hi - lo, abs(hi) / 10 ** 12)
+        _set(bad, name, hi + w, hi + 2 * w)
+        report = check_certificate(_refix(bad))
+        rows = [r for r in report.results if r.item == name]
+        assert len(rows) == 1 and rows[0].ok is False, (name, rows)
+        assert f"stored [{hi + w}, {hi + 2 * w}] does not contain" in rows[0].message, rows[0].message
+        assert not next(r for r in report.results if r.item == "quantities").ok
