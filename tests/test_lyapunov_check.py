@@ -150,6 +150,63 @@ def test_refined_upper_keeps_the_larger_half_and_never_returns_below_the_maximum
         assert r < f(X).upper(), peak
 
 
+def test_bound_over_pieces_is_the_largest_of_each_pieces_better_precision():
+    """Each mu piece bounded at the current precision and at the certificate's: the smaller upper end
+    is kept (both are bounds); over the pieces the largest, by exact comparison; None without pieces."""
+    from flint import ctx
+
+    def bound(Mu):           # a bound that is 1e-3 looser at the current (higher) precision
+        return Mu.upper() + (arb("1e-3") if ctx.prec > 64 else arb("1e-4"))
+    with working_precision(128):
+        b = lc._bound_over_pieces(bound, [["0", "1"], ["2", "3"], ["1", "2"]], None, 64)
+        assert arb(3) + arb("1e-4") <= b < arb(3) + arb("2e-4")
+        for order in ([["2", "3"], ["0", "1"]], [["0", "1"], ["2", "3"]]):
+            b = lc._bound_over_pieces(bound, order, None, 64)
+            assert arb(3) + arb("1e-4") <= b < arb(3) + arb("2e-4"), order
+        assert lc._bound_over_pieces(bound, [], None, 64) is None
+
+        def inf_at_cert(Mu):      # infinite at the certificate's precision: the other one is kept
+            return arb("inf") if ctx.prec == 64 else Mu.upper() + 1
+        b = lc._bound_over_pieces(inf_at_cert, [["0", "1"]], None, 64)
+        assert b.is_finite() and arb(2) <= b < arb("2.001")
+
+        def inf_here(Mu):
+            return arb("inf") if ctx.prec == 128 else Mu.upper() + 1
+        b = lc._bound_over_pieces(inf_here, [["0", "1"]], None, 64)
+        assert b.is_finite() and arb(2) <= b < arb("2.001")
+
+        def inf_on_one(Mu):       # infinite on one piece at both precisions: the answer is infinite
+            return arb("inf") if Mu.contains(arb(5)) else Mu.upper()
+        for pieces in ([["0", "1"], ["4", "6"], ["1", "2"]], [["4", "6"], ["0", "1"]]):
+            assert not lc._bound_over_pieces(inf_on_one, pieces, None, 64).is_finite(), pieces
+
+
+def test_bound_over_pieces_re_bounds_a_piece_a_hair_above_the_stored_bound():
+    """f = 1 + 1e-9 mu (1 - mu) over [0, 1] is bounded by 1 + 1e-9 at once; with a stored bound of
+    1 + 3e-10 (above the true maximum 1 + 2.5e-10) the piece is bisected under it, never below the max."""
+    f = lambda Mu: (1 + arb("1e-9") * Mu * (1 - Mu)).upper()      # noqa: E731
+    with working_precision(128):
+        plain = lc._bound_over_pieces(f, [["0", "1"]], None, 64)
+        tight = lc._bound_over_pieces(f, [["0", "1"]], 1 + arb("3e-10"), 64)
+    assert tight < plain and tight >= 1 + arb("2.5e-10") and tight <= 1 + arb("3e-10")
+
+
+def test_direct_boxes_hold_needs_a_positive_radius_a_tiling_and_every_box(agafonov):
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    g = validate(load_scene("agafonov2013")).gimbal
+    w = agafonov["witnesses"]["vdot_direct"]
+    R = _q(w["R"])
+    prec = agafonov["precision_bits"]
+    with working_precision(128):
+        assert lc._direct_boxes_hold(g, R, w["boxes"], prec)
+        assert not lc._direct_boxes_hold(g, arb(0), w["boxes"], prec)
+        assert not lc._direct_boxes_hold(g, -R, w["boxes"], prec)
+        assert not lc._direct_boxes_hold(g, 2 * R, w["boxes"], prec)          # A - 2R |B| < 0 somewhere
+        assert not lc._direct_boxes_hold(g, R, _drop(w["boxes"]), prec)        # a hole in the domain
+        assert not lc._direct_boxes_hold(g, R, w["boxes"] + w["boxes"][:1], prec)   # a box twice
+        assert not lc._direct_boxes_hold(g, R, [], prec)
+
+
 def test_tighter_intersects_two_enclosures_and_drops_a_nan_one():
     calls = []
 
