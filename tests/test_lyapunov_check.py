@@ -109,6 +109,11 @@ def test_max_upper_is_the_largest_upper_end_over_the_pieces():
     assert near(lc._max_upper(f, [["-1", "0"], ["1", "2"], ["0", "1"]]), 4)
     assert near(lc._max_upper(lambda X: -X, [["1", "2"], ["3", "4"]]), -1)
     assert lc._max_upper(f, []) is None
+    # with a target a hair below a piece's bound, that piece is re-bounded (bisected) under it
+    h = lambda X: 1 + arb("1e-9") * X * (1 - X)      # noqa: E731   max 1 + 2.5e-10; arb's bound 1 + 1e-9
+    plain = lc._max_upper(h, [["0", "1"], ["-1", "-1/2"]])
+    tight = lc._max_upper(h, [["0", "1"], ["-1", "-1/2"]], 1 + arb("3e-10"))
+    assert tight < plain and 1 + arb("2.5e-10") <= tight <= 1 + arb("3e-10")
     # an infinite bound on any piece is the answer (nothing can be bounded there)
     g = lambda X: arb("inf") if X.contains(arb(5)) else X     # noqa: E731
     for pieces in ([["0", "1"], ["4", "6"], ["1", "2"]], [["4", "6"], ["0", "1"]]):
@@ -238,8 +243,9 @@ def test_tighter_is_evaluated_at_the_given_precision():
 def test_box_lower_ends_keep_the_larger_lower_end_of_the_two_precisions():
     from rigor_gyro.core.boxes import Box
     boxes = [Box.of({"u": (0, 1)}), Box.of({"u": (1, 2)}), Box.of({"u": (2, 3)}), Box.of({"u": (3, 4)})]
-    values = {64: [arb(1, 0.5), arb("nan"), arb(3, 1), arb("-inf")],
-              128: [arb(1, 0.25), arb(2, 1), arb("nan"), arb(-5)]}
+    boxes.append(Box.of({"u": (4, 5)}))
+    values = {64: [arb(1, 0.5), arb("nan"), arb(3, 1), arb("-inf"), arb(3, 0.1)],
+              128: [arb(1, 0.25), arb(2, 1), arb("nan"), arb(-5), arb(3, 0.5)]}
 
     def make():
         from flint import ctx
@@ -252,6 +258,7 @@ def test_box_lower_ends_keep_the_larger_lower_end_of_the_two_precisions():
     assert out[1] == lower(values[128][1])                                        # the one that is not NaN
     assert out[2] == lower(values[64][2])
     assert out[3] == arb(-5)                                                      # -inf < -5
+    assert out[4] == lower(values[64][4]) and out[4] > lower(values[128][4])      # the certificate's, larger
 
 
 def test_a_positive_end_is_certainly_positive_or_plus_infinity():
