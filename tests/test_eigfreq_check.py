@@ -247,7 +247,8 @@ def test_omega_wider_than_rel_width_is_not_proved_to_it(rudenko):
             assert _items(bad)["roots"] is ok, (j, factor)
 
 
-@pytest.mark.parametrize("tamper", ["nu4_over_nu1", "nu4_touching_nu1", "nu6_over_nu2", "nu3_moved", "nu1_moved"])
+@pytest.mark.parametrize("tamper", ["nu4_over_nu1", "nu4_touching_nu1", "nu6_over_nu2", "nu2_reaching_nu6", "nu3_moved",
+                                    "nu1_moved"])
 def test_nu_intervals_that_hold_no_nu_or_the_wrong_one_are_rejected(rudenko, tamper):
     bad = copy.deepcopy(rudenko)
     lo1, hi1 = _iv(rudenko, "nu_1")
@@ -262,6 +263,9 @@ def test_nu_intervals_that_hold_no_nu_or_the_wrong_one_are_rejected(rudenko, tam
         _set(bad, "nu_4", (hi1 + lo4) / 2, hi4)
     elif tamper == "nu6_over_nu2":
         _set(bad, "nu_6", lo2, hi2 + (hi2 - lo2))
+    elif tamper == "nu2_reaching_nu6":          # each still one sign change of its quadratic, but overlapping
+        lo6, hi6 = _iv(rudenko, "nu_6")
+        _set(bad, "nu_2", lo2, (lo6 + Fraction(str(rudenko["quantities"]["nu_6"]["mid"]))) / 2)
     elif tamper == "nu3_moved":
         item = "nu_3"
         _set(bad, "nu_3", hi3 + (hi3 - lo3), hi3 + 2 * (hi3 - lo3))
