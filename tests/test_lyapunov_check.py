@@ -170,6 +170,11 @@ def test_bound_over_pieces_is_the_largest_of_each_pieces_better_precision():
             assert arb(3) + arb("1e-4") <= b < arb(3) + arb("2e-4"), order
         assert lc._bound_over_pieces(bound, [], None, 64) is None
 
+        def looser_at_cert(Mu):   # now the current precision's bound is the smaller one: it is kept
+            return Mu.upper() + (arb("1e-4") if ctx.prec > 64 else arb("1e-3"))
+        b = lc._bound_over_pieces(looser_at_cert, [["0", "1"], ["2", "3"]], None, 64)
+        assert arb(3) + arb("1e-4") <= b < arb(3) + arb("2e-4")
+
         def inf_at_cert(Mu):      # infinite at the certificate's precision: the other one is kept
             return arb("inf") if ctx.prec == 64 else Mu.upper() + 1
         b = lc._bound_over_pieces(inf_at_cert, [["0", "1"]], None, 64)
