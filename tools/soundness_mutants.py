@@ -214,6 +214,22 @@ MUTANTS = [
      "    best_pt = ((a0 + b0) / 2).mid()\n    best = f(best_pt)",
      "    best_pt = ((a0 - b0) / 2).mid()\n    best = f(best_pt)",
      "enclose_max's first guess taken outside [lo, hi] (the maximum's lower end from a point not in the interval)"),
+    # mutmut over the checkers (issue 10, 2026-12-04): the steps an independent re-check rests on
+    ("checker_cover_with_a_gap", "rigor_gyro/kinds/lyapunov/check.py",
+     "        if a > reach:\n            return False", "        if False:\n            return False",
+     "the Lyapunov checker accepts stored pieces with a gap as a cover of their range"),
+    ("checker_point_range_outer_ends", "rigor_gyro/kinds/lyapunov/check.py",
+     "(xl, xh), (_, lh), (hl, _) = exact_endpoints(x), exact_endpoints(lo), exact_endpoints(hi)",
+     "(xl, xh), (lh, _), (_, hl) = exact_endpoints(x), exact_endpoints(lo), exact_endpoints(hi)",
+     "a stored point counted in a range if it meets the balls of its ends (not certainly in the range)"),
+    ("checker_max_from_one_half", "rigor_gyro/kinds/lyapunov/check.py",
+     "    best = a if (not a.is_finite() or (b.is_finite() and certainly_le(b, a))) else b",
+     "    best = a",
+     "the checker's re-bounded maximum taken from the left half of a piece only"),
+    ("eig_checker_root_without_sign_change", "rigor_gyro/kinds/eigenfrequencies/check.py",
+     "    if pa == 0 or pb == 0 or _sign(pa) == _sign(pb):\n        return None",
+     "    if pa == 0 or pb == 0:\n        return None",
+     "the eigenfrequency checker accepts a stored root interval without an exact sign change of Q"),
 ]
 
 
