@@ -306,11 +306,8 @@ def test_nu_bounds_are_decided_on_the_checkers_own_bounds(rudenko, monkeypatch):
                 out[k] = (hi + 1, hi + 2) if side == 0 else (lo - 2, lo - 1)
                 return out
             monkeypatch.setattr(eig_check, "nu_bounds", moved)
-            bad = copy.deepcopy(rudenko)
-            for n in list(bad["quantities"]):
-                if n.endswith("_bound"):
-                    del bad["quantities"][n]
-            _claim(bad, "nu_bounds")["status"] = "proved"
+            bad = copy.deepcopy(rudenko)          # the stored bounds stay (they fail at their own names):
+            _claim(bad, "nu_bounds")["status"] = "proved"     # the claim's item is its re-decision alone
             items = _items(bad)
             assert items["nu_bounds"] is False, (k, side)
             _claim(bad, "nu_bounds")["status"] = "refuted"
@@ -403,3 +400,60 @@ def test_a_stored_quantity_off_its_value_fails_at_its_own_name_with_its_bounds(r
         assert len(rows) == 1 and rows[0].ok is False, (name, rows)
         assert f"stored [{hi + w}, {hi + 2 * w}] does not contain" in rows[0].message, rows[0].message
         assert not next(r for r in report.results if r.item == "quantities").ok
+
+
+def _b(x):
+    return arb(x)
+
+
+NUS = {1: _b(1), 2: _b(2), 3: _b(3), 4: _b(4), 5: _b(5), 6: _b(6)}
+
+
+@pytest.mark.parametrize("omegas, inside, outside", [
+    ((0.5, 2.5, 4.5, 7), [True] * 4, [False] * 4),                         # each in its own branch
+    ((1.5, 2.5, 4.5, 7), [False, True, True, True], [True, False, False, False]),     # omega_1 in (nu1, nu2)
+    ((0.5, 3.5, 4.5, 7), [True, False, True, True], [False, True, False, False]),     # omega_2 in (nu3, nu4)
+    ((0.5, 1.5, 4.5, 7), [True, False, True, True], [False, True, False, False]),     # omega_2 below nu2
+    ((0.5, 2.5, 5.5, 7), [True, True, False, True], [False, False, True, False]),     # omega_3 in (nu5, nu6)
+    ((0.5, 2.5, 3.5, 7), [True, True, False, True], [False, False, True, False]),     # omega_3 below nu4
+    ((0.5, 2.5, 4.5, 5.5), [True, True, True, False], [False, False, False, True]),   # omega_4 below nu6
+    ((1, 2, 4, 6), [False] * 4, [True] * 4),                              # on the ends: outside (open branches)
+    ((-1, 2.5, 4.5, 7), [False, True, True, True], [True, False, False, False]),      # omega_1 below 0
+])
+def test_branch_sides_decide_each_end_of_each_branch(omegas, inside, outside):
+    from rigor_gyro.kinds.eigenfrequencies.check import branch_sides
+    got = branch_sides([_b(w) for w in omegas], NUS, {})
+    assert got == (inside, outside)
+
+
+def test_an_inverted_branch_holds_no_omega_on_either_side():
+    """Where the ordering fails a branch can be inverted (nu3 < nu2): a root above both ends, or below
+    both, is not inside (one end alone proves nothing), and is certainly outside."""
+    from rigor_gyro.kinds.eigenfrequencies.check import branch_sides
+    nus = {**NUS, 2: _b(3), 3: _b(2), 4: _b(5), 5: _b(4)}             # (3, 2) and (5, 4)
+    for w2, w3 in ((3.5, 5.5), (1.5, 3.5), (2.5, 4.5)):
+        inside, outside = branch_sides([_b(0.5), _b(w2), _b(w3), _b(7)], nus, {})
+        assert inside == [True, False, False, True], (w2, w3)
+        assert outside == [False, True, True, False], (w2, w3)
+
+
+def test_an_exactly_empty_branch_is_outside_and_an_undecided_one_is_neither():
+    from rigor_gyro.kinds.eigenfrequencies.check import branch_sides
+    omegas = [_b(0.5), _b(2.5), _b(4.5), _b(7)]
+    assert branch_sides(omegas, NUS, {2: True})[1] == [False, True, False, False]
+    assert branch_sides(omegas, NUS, {3: True})[1] == [False, False, True, False]
+    assert branch_sides(omegas, NUS, {2: False, 3: False})[1] == [False] * 4
+    wide = [arb(1, 0.1), arb(3, 0.1), arb(4, 0.1), arb(6, 0.1)]             # each ball through an end
+    assert branch_sides(wide, NUS, {}) == ([False] * 4, [False] * 4)
+
+
+@pytest.mark.parametrize("j", [1, 2, 3, 4])
+def test_a_refutation_naming_a_root_inside_its_branch_is_rejected(rudenko, j):
+    """In the paper's scene every omega_j is inside its branch and no branch is empty: a 'refuted' branches
+    claim naming omega_j at its true value is a forgery, whichever j."""
+    bad = copy.deepcopy(rudenko)
+    c = _claim(bad, "branches")
+    q = bad["quantities"][f"omega_{j}"]
+    c["status"] = "refuted"
+    c["counterexample"] = {"outside": [{"root": f"omega_{j}", "value": [q["lo"], q["hi"]]}]}
+    assert _items(bad)["branches"] is False

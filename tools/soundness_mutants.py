@@ -230,6 +230,16 @@ MUTANTS = [
      "    if pa == 0 or pb == 0 or _sign(pa) == _sign(pb):\n        return None",
      "    if pa == 0 or pb == 0:\n        return None",
      "the eigenfrequency checker accepts a stored root interval without an exact sign change of Q"),
+    ("eig_checker_branch_inside_on_one_end", "rigor_gyro/kinds/eigenfrequencies/check.py",
+     "inside = [certainly_lt(lo, w) and (hi is None", "inside = [certainly_lt(lo, w) or (hi is None",
+     "the eigenfrequency checker re-proves a root inside its branch from one end of the branch"),
+    ("eig_checker_branch_always_empty", "rigor_gyro/kinds/eigenfrequencies/check.py",
+     "empty = {2: nus_exactly_equal(ident[2], ident[3])", "empty = {2: nus_exactly_equal(ident[3], ident[3])",
+     "the eigenfrequency checker takes the branch (nu2, nu3) as exactly empty (any refutation naming omega_2 confirmed)"),
+    ("eig_checker_nu_bounds_one_side", "rigor_gyro/kinds/eigenfrequencies/check.py",
+     "holds = all(certainly_le(bounds[k][0], nus[k]) and certainly_le(nus[k], bounds[k][1])",
+     "holds = all(certainly_le(bounds[k][0], nus[k]) or certainly_le(nus[k], bounds[k][1])",
+     "the eigenfrequency checker confirms the bounds (5) from one side of each"),
 ]
 
 

@@ -31,7 +31,7 @@ from ...core.stored import encloses, fmpq_of, interval, meets
 from .model import (BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic, nu_bounds,
                     nu_identities, nu_quadratics, nus_exactly_equal, r2_denominator)
 
-__all__ = ["check", "sturm_positive_roots"]
+__all__ = ["branch_sides", "check", "sturm_positive_roots"]
 
 
 def _sign(x: fmpq) -> int:
@@ -77,6 +77,18 @@ def _refine(p: fmpq_poly, lo: Fraction, hi: Fraction, bits: int) -> arb | None:
         else:
             b = m
     return arb(a).union(arb(b))
+
+
+def branch_sides(omegas: list[arb], nus: dict[int, arb], empty: dict[int, bool]) -> tuple[list[bool], list[bool]]:
+    """For each omega_j, whether it is certainly strictly inside its branch (0, nu1), (nu2, nu3), (nu4, nu5),
+    (nu6, oo), and whether it is certainly outside it: on or beyond an end, or the branch exactly empty
+    (``empty[j]``: nu2 = nu3 or nu4 = nu5 decided exactly). Both False: undecided. An inverted branch
+    (lo > hi, where the nu ordering fails) holds no omega: both ends are tested, never either one."""
+    iv = [(arb(0), nus[1]), (nus[2], nus[3]), (nus[4], nus[5]), (nus[6], None)]
+    inside = [certainly_lt(lo, w) and (hi is None or certainly_lt(w, hi)) for w, (lo, hi) in zip(omegas, iv)]
+    outside = [certainly_ge(lo, w) or (hi is not None and certainly_ge(w, hi)) or empty.get(j, False)
+               for j, (w, (lo, hi)) in enumerate(zip(omegas, iv), start=1)]
+    return inside, outside
 
 
 class _Checker:
@@ -241,10 +253,7 @@ def check(model, data: dict) -> list[CheckResult]:
             say(cid, ok, "the stored violations re-derived" if ok else "a stored violation does not hold")
         elif cid == "branches":
             empty = {2: nus_exactly_equal(ident[2], ident[3]), 3: nus_exactly_equal(ident[4], ident[5])}
-            iv = [(arb(0), nus[1]), (nus[2], nus[3]), (nus[4], nus[5]), (nus[6], None)]
-            inside = [certainly_lt(lo, w) and (hi is None or certainly_lt(w, hi)) for w, (lo, hi) in zip(omegas, iv)]
-            outside = [certainly_ge(lo, w) or (hi is not None and certainly_ge(w, hi)) or empty.get(j, False)
-                       for j, (w, (lo, hi)) in enumerate(zip(omegas, iv), start=1)]
+            inside, outside = branch_sides(omegas, nus, empty)
             if proved:
                 say(cid, all(inside), "each omega_j strictly inside its branch, re-decided")
             else:
