@@ -11,7 +11,7 @@ and what is stored.
 from fractions import Fraction
 
 import pytest
-from flint import arb, fmpq, fmpq_poly
+from flint import arb, fmpq_poly
 
 from rigor_gyro.core.balls import working_precision
 from rigor_gyro.core.outcome import Status
@@ -19,20 +19,14 @@ from rigor_gyro.core.polyroots import PolynomialRoots, isolate_polynomial
 from rigor_gyro.kinds.eigenfrequencies import claims as ec
 from rigor_gyro.scene import load_scene
 
+from .forgery import poly as _poly
+
 ALL = list(ec.CLAIMS)
 
 
 @pytest.fixture(scope="module")
 def model():
     return ec.validate(load_scene("rudenko1976"))
-
-
-def _poly(*roots, extra=None) -> fmpq_poly:
-    p = fmpq_poly([1])
-    for r in roots:
-        r = Fraction(r)
-        p *= fmpq_poly([-fmpq(r.numerator, r.denominator), 1])
-    return p * extra if extra is not None else p
 
 
 def _run(model, monkeypatch, quartic=None, wanted=ALL, prec=128):

@@ -14,11 +14,12 @@ import pytest
 from flint import arb, fmpq, fmpq_poly
 
 from rigor_gyro import load_scene, prove_scene
-from rigor_gyro.certificate import digest
 from rigor_gyro.check import check_certificate
 from rigor_gyro.core.balls import working_precision
 from rigor_gyro.kinds.eigenfrequencies import check as eig_check
 from rigor_gyro.kinds.eigenfrequencies.check import _refine, _sign, sturm_positive_roots
+
+from .forgery import claim as _claim, flipped, items as _items, poly as _poly, refix as _refix
 
 A, B = Fraction("15.08"), Fraction("6.154")
 #: the scenes: rudenko1976 and variants where claims are refuted or undefined
@@ -47,22 +48,6 @@ def rudenko():
     return _cert()
 
 
-def _refix(data):
-    statuses = [c["status"] for c in data["claims"]]
-    data["verdict"] = ("refuted" if "refuted" in statuses else
-                       "proved" if all(s == "proved" for s in statuses) else "inconclusive")
-    data["integrity"] = {"sha256": digest(data)}
-    return data
-
-
-def _items(data) -> dict[str, bool]:
-    """item -> ok of the checker's report on data (the digest and verdict made consistent first)."""
-    out: dict[str, bool] = {}
-    for r in check_certificate(_refix(data)).results:
-        out[r.item] = out.get(r.item, True) and r.ok
-    return out
-
-
 def _iv(data, name) -> tuple[Fraction, Fraction]:
     q = data["quantities"][name]
     return Fraction(q["lo"]), Fraction(q["hi"])
@@ -72,23 +57,11 @@ def _set(data, name, lo, hi):
     data["quantities"][name]["lo"], data["quantities"][name]["hi"] = str(lo), str(hi)
 
 
-def _claim(data, cid):
-    return next(c for c in data["claims"] if c["id"] == cid)
-
-
 # ---------------------------------------------------------------------------- the exact helpers
 
 def test_sign_is_exact():
     assert [_sign(fmpq(x)) for x in (-3, 0, 2)] == [-1, 0, 1]
     assert _sign(fmpq(1, 10 ** 40)) == 1 and _sign(fmpq(-1, 10 ** 40)) == -1
-
-
-def _poly(*roots, extra=None) -> fmpq_poly:
-    p = fmpq_poly([1])
-    for r in roots:
-        r = Fraction(r)
-        p *= fmpq_poly([-fmpq(r.numerator, r.denominator), 1])
-    return p * extra if extra is not None else p
 
 
 @pytest.mark.parametrize("p, count", [
@@ -145,7 +118,6 @@ def test_refine_needs_a_strict_sign_change():
 def test_refine_encloses_the_root_of_its_bracket_to_the_checkers_precision(bits):
     """Interval Newton on [lo, hi] (never on a wider piece holding another root), to relative width
     about 2^-bits: not looser than 2^(9 - bits), nor stopped at its start."""
-    import mpmath
     p = _poly(1, extra=fmpq_poly([-2, 0, 1]))     # (x - 1)(x^2 - 2): roots 1, +-sqrt 2
     with working_precision(bits):
         r = _refine(p, Fraction(5, 4), Fraction(3, 2), bits)
@@ -186,17 +158,10 @@ def test_every_claim_of_a_genuine_certificate_confirms_at_its_own_item(cert):
 
 def test_each_claim_with_its_status_flipped_fails_at_its_own_item(cert):
     """proved -> refuted (no counterexample), refuted -> proved: the claim's item fails and no other."""
-    for c in cert["claims"]:
-        if c["status"] == "inconclusive":
-            continue
-        bad = copy.deepcopy(cert)
-        d = _claim(bad, c["id"])
-        d["status"] = "refuted" if c["status"] == "proved" else "proved"
-        d.pop("counterexample", None)
-        items = _items(bad)
-        assert items.get(c["id"]) is False, (c["id"], c["status"])
-        others = {k: v for k, v in items.items() if k != c["id"] and not v}
-        assert not others, (c["id"], others)
+    for cid, status, items in flipped(cert):
+        assert items.get(cid) is False, (cid, status)
+        others = {k: v for k, v in items.items() if k != cid and not v}
+        assert not others, (cid, others)
 
 
 def test_an_inconclusive_claim_claims_nothing_and_the_next_ones_are_still_checked(rudenko):

@@ -15,10 +15,10 @@ import pytest
 from flint import arb, fmpq
 
 from rigor_gyro import load_scene, prove_scene
-from rigor_gyro.certificate import digest
-from rigor_gyro.check import check_certificate
 from rigor_gyro.core.balls import exact_endpoints, working_precision
 from rigor_gyro.kinds.lyapunov import check as lc
+
+from .forgery import claim as _claim, flipped, items as _items
 
 
 def _cert(**params):
@@ -37,26 +37,6 @@ def agafonov():
 def refuted():
     """Every kind of refutation at once: (18) violated, Vdot > 0 and V <= 0 at points, (16) empty."""
     return _cert(H="10", a="1e4", mu="0.01", k="0.1")
-
-
-def _refix(data):
-    statuses = [c["status"] for c in data["claims"]]
-    data["verdict"] = ("refuted" if "refuted" in statuses else
-                       "proved" if all(s == "proved" for s in statuses) else "inconclusive")
-    data["integrity"] = {"sha256": digest(data)}
-    return data
-
-
-def _items(data) -> dict[str, bool]:
-    """item -> ok of the checker's report on data (the digest and verdict made consistent first)."""
-    out: dict[str, bool] = {}
-    for r in check_certificate(_refix(data)).results:
-        out[r.item] = out.get(r.item, True) and r.ok
-    return out
-
-
-def _claim(data, cid):
-    return next(c for c in data["claims"] if c["id"] == cid)
 
 
 def _q(text) -> arb:
@@ -379,16 +359,9 @@ def test_each_claim_with_its_status_flipped_is_not_confirmed(agafonov, refuted, 
     """proved -> refuted (no counterexample), refuted -> proved: the claim is not confirmed (its own item
     fails, or the data of its missing counterexample cannot be checked) and the report fails."""
     cert = agafonov if which == "agafonov" else refuted
-    for c in cert["claims"]:
-        if c["status"] == "inconclusive":
-            continue
-        bad = copy.deepcopy(cert)
-        d = _claim(bad, c["id"])
-        d["status"] = "refuted" if c["status"] == "proved" else "proved"
-        d.pop("counterexample", None)
-        items = _items(bad)
-        assert items.get(c["id"]) is not True, (c["id"], c["status"])
-        assert items.get(c["id"]) is False or items.get("data") is False, (c["id"], items)
+    for cid, status, items in flipped(cert):
+        assert items.get(cid) is not True, (cid, status)
+        assert items.get(cid) is False or items.get("data") is False, (cid, items)
 
 
 def test_an_inconclusive_claim_claims_nothing(agafonov):

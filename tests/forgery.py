@@ -1,0 +1,55 @@
+"""Helpers of the checker tests that forge certificates: make a forged certificate's digest and verdict
+consistent (so that only the re-decision of its claims can reject it), read the checker's report item
+by item, and build polynomials from their roots."""
+from __future__ import annotations
+
+from fractions import Fraction
+
+from flint import fmpq, fmpq_poly
+
+from rigor_gyro.certificate import digest
+from rigor_gyro.check import check_certificate
+
+
+def refix(data: dict) -> dict:
+    """The verdict recomputed from the claims' statuses and the digest from the content (in place)."""
+    statuses = [c["status"] for c in data["claims"]]
+    data["verdict"] = ("refuted" if "refuted" in statuses else
+                       "proved" if all(s == "proved" for s in statuses) else "inconclusive")
+    data["integrity"] = {"sha256": digest(data)}
+    return data
+
+
+def items(data: dict) -> dict[str, bool]:
+    """item -> ok of the checker's report on data (the digest and verdict made consistent first)."""
+    out: dict[str, bool] = {}
+    for r in check_certificate(refix(data)).results:
+        out[r.item] = out.get(r.item, True) and r.ok
+    return out
+
+
+def claim(data: dict, cid: str) -> dict:
+    return next(c for c in data["claims"] if c["id"] == cid)
+
+
+def poly(*roots, extra: fmpq_poly | None = None) -> fmpq_poly:
+    """prod (x - r) over the given rational roots, times ``extra`` if given."""
+    p = fmpq_poly([1])
+    for r in roots:
+        r = Fraction(r)
+        p *= fmpq_poly([-fmpq(r.numerator, r.denominator), 1])
+    return p * extra if extra is not None else p
+
+
+def flipped(cert: dict):
+    """For each decided claim: (its id, its status, the checker's items on a copy with that status
+    flipped, proved <-> refuted, and its counterexample removed)."""
+    import copy
+    for c in cert["claims"]:
+        if c["status"] == "inconclusive":
+            continue
+        bad = copy.deepcopy(cert)
+        d = claim(bad, c["id"])
+        d["status"] = "refuted" if c["status"] == "proved" else "proved"
+        d.pop("counterexample", None)
+        yield c["id"], c["status"], items(bad)
