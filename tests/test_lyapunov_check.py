@@ -497,30 +497,52 @@ def test_a_sublevel_bound_that_is_not_its_stated_decimal_is_rejected(agafonov, n
     assert _items(bad)["largest_sublevel"] is False
 
 
+def _sublevel_message(data) -> tuple[bool, str]:
+    from rigor_gyro.check import check_certificate
+    from .forgery import refix
+    row = next(r for r in check_certificate(refix(data)).results if r.item == "largest_sublevel")
+    return row.ok, row.message
+
+
+def _state(data, name, value: Fraction):
+    """The claim states ``value`` (12 digits) for ``name``, and the stored ball is that decimal's, as a
+    certificate stores it (a few ulps wide): only the re-derivation can reject it."""
+    text = f"{float(value):.12g}"
+    t = Fraction(text)
+    _claim(data, "largest_sublevel")["details"][name] = text
+    lo, hi = t - abs(t) / 2 ** 50, t + abs(t) / 2 ** 50
+    data["quantities"][name] = {"lo": f"{lo.numerator}/{lo.denominator}", "hi": f"{hi.numerator}/{hi.denominator}",
+                                "mid": text, "rad": "0"}
+
+
 def test_the_sublevel_bounds_are_re_derived_not_read(agafonov):
-    """Each stated bound moved (with its stored ball) the wrong way, by a little: rejected."""
+    """Each stated bound moved the wrong way (with its stored ball), the point moved, the faces' level
+    altered: rejected, each by the re-derivation of that bound (the message says which)."""
     det = lambda d: _claim(d, "largest_sublevel")["details"]      # noqa: E731
-    for name, factor in (("c_max_lower", Fraction(10001, 10000)), ("c_max_upper", Fraction(9999, 10000)),
-                         ("vdot_level_lower", Fraction(2)), ("vdot_level_upper", Fraction(1, 2))):
+    assert _sublevel_message(copy.deepcopy(agafonov))[0] is True
+    cases = [("c_max_lower", Fraction(10001, 10000), "c_max_lower is not below both parts' lower bounds"),
+             ("c_max_upper", Fraction(9999, 10000), "c_max_upper is below the re-derived upper bound"),
+             ("vdot_level_lower", Fraction(2), "the lower bound of V over {Vdot >= 0} is below"),
+             ("vdot_level_upper", Fraction(1, 2), "V at the stored point exceeds vdot_level_upper"),
+             ("c_max_lower", Fraction(0), "is not positive")]
+    for name, factor, says in cases:
         bad = copy.deepcopy(agafonov)
-        v = Fraction(det(bad)[name]) * factor
-        text = f"{float(v):.12g}"
-        det(bad)[name] = text
-        bad["quantities"][name] = {"lo": text, "hi": text, "mid": text, "rad": "0"}
-        assert _items(bad)["largest_sublevel"] is False, name
-    bad = copy.deepcopy(agafonov)
-    det(bad)["c_max_lower"] = "0"
-    bad["quantities"]["c_max_lower"] = {"lo": "0", "hi": "0", "mid": "0", "rad": "0"}
-    assert _items(bad)["largest_sublevel"] is False
-    bad = copy.deepcopy(agafonov)
-    bad["witnesses"]["largest_sublevel"]["point"]["x2"] = ["3/2", "3/2"]
-    assert _items(bad)["largest_sublevel"] is False
-    bad = copy.deepcopy(agafonov)
-    del bad["witnesses"]["largest_sublevel"]["point"]
-    assert _items(bad)["largest_sublevel"] is False
-    bad = copy.deepcopy(agafonov)
-    bad["quantities"]["face_level"] = {"lo": "1", "hi": "2", "mid": "1.5", "rad": "0.5"}
-    assert _items(bad)["largest_sublevel"] is False
+        _state(bad, name, Fraction(det(bad)[name]) * factor)
+        ok, msg = _sublevel_message(bad)
+        assert ok is False and says in msg, (name, msg)
+    for edit, says in (("x2", "the stored point is not certainly in"), ("drop", "stated without its point"),
+                       ("face", "face_level does not contain"), ("binds", "is said to bind")):
+        bad = copy.deepcopy(agafonov)
+        if edit == "x2":
+            bad["witnesses"]["largest_sublevel"]["point"]["x2"] = ["3/2", "3/2"]
+        elif edit == "drop":
+            del bad["witnesses"]["largest_sublevel"]["point"]
+        elif edit == "face":
+            bad["quantities"]["face_level"] = {"lo": "1", "hi": "2", "mid": "1.5", "rad": "0.5"}
+        else:
+            det(bad)["binds"] = "vdot"
+        ok, msg = _sublevel_message(bad)
+        assert ok is False and says in msg, (edit, msg)
 
 
 # ------------------------------------------------------------------ stored counterexamples
