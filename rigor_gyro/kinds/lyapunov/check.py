@@ -39,7 +39,7 @@ from ...core.boxes import Box, tiles_by_bisection
 from ...core.roots import RootStatus, enclose_f_df, newton_root
 from .claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
-from .equilibria import Equilibrium, classify as classify_equilibrium
+from .equilibria import Equilibrium, classify as classify_equilibrium, pi_text
 from .model import (DIRECT_DOMAIN, closed_form_constants, cylinder_lower_bound, direct_margin, mean_value_enclosure,
                     psi_min_functions, slice_extent, slice_in_region, sublevel_lower_bound, symmetric_in_x2, vdot_polar)
 
@@ -690,18 +690,18 @@ def _check_equilibria(g, pieces: dict, rows: list) -> tuple[bool, str]:
     if rf is None or rh is None:
         return False, "the stored pieces do not cover [-pi, pi] with every piece decided"
     points = []
-    zeros = [arb(fmpq_of(r)) * pi for r in g.law.zeros_over_pi()]
+    zeros = [(arb(fmpq_of(r)) * pi, r) for r in g.law.zeros_over_pi()]
     for a, b, root in rf:
-        named = [z for z in zeros if certainly_le(a, z) and certainly_le(z, b)]
+        named = [(z, r) for z, r in zeros if certainly_le(a, z) and certainly_le(z, b)]
         if len(named) == 1:
-            if certainly_le(abs(named[0]), pi * (1 + arb(2) ** -40)):
-                points.append(Equilibrium(arb(0), named[0], "f(x2) = 0"))
+            if certainly_le(abs(named[0][0]), pi * (1 + arb(2) ** -40)):
+                points.append(Equilibrium(arb(0), named[0][0], "f(x2) = 0", exact=pi_text(named[0][1])))
         elif certainly_lt(abs(root), pi):
             points.append(Equilibrium(arb(0), root, "f(x2) = 0"))
         elif not certainly_lt(pi, abs(root)):
             return False, "a root of f is not separated from |x2| = pi"
     for sgn in (1, -1):
-        points.append(Equilibrium(-g.f(sgn * pi / 2) / c.k, sgn * pi / 2, "cos x2 = 0"))
+        points.append(Equilibrium(-g.f(sgn * pi / 2) / c.k, sgn * pi / 2, "cos x2 = 0", exact=pi_text(Fraction(sgn, 2))))
     for a, b, root in rh:
         if certainly_lt(pi, abs(root)):
             continue
@@ -714,7 +714,24 @@ def _check_equilibria(g, pieces: dict, rows: list) -> tuple[bool, str]:
         classify_equilibrium(g, e)
         if e.case != r.get("case") or e.stability != r.get("stability"):
             return False, f"equilibrium at x2 = {r.get('x2')}: re-derived {e.case}, {e.stability}"
-    return True, f"{len(points)} equilibria re-derived from the stored pieces, stability re-decided"
+        if not (_stated_at(r.get("x2"), e.x2, e.exact) and _stated_at(r.get("x1"), e.x1)):
+            return False, f"equilibrium at x2 = {r.get('x2')}, x1 = {r.get('x1')}: not where it is re-derived"
+    return True, f"{len(points)} equilibria re-derived from the stored pieces, at their stated points, stability re-decided"
+
+
+def _stated_at(text, x: arb, exact: str = "") -> bool:
+    """A row's coordinate ``text`` states x: the exact text (``"pi/2"``, ``"0"``) where x is a known
+    multiple of pi, else a stored decimal or ``[lo, hi]`` enclosing the checker's ball x."""
+    if exact:
+        return text == exact
+    if not isinstance(text, str):
+        return False
+    try:
+        iv = stored_interval(text[1:-1].split(", ")) if text.startswith("[") and text.endswith("]") else \
+            (number(text), number(text))
+    except (TypeError, ValueError, ZeroDivisionError):
+        return False
+    return encloses(iv, x)
 
 
 def _pair(value) -> list[str]:

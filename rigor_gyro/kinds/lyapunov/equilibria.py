@@ -32,7 +32,7 @@ from ...core.balls import certainly_le, certainly_lt, certainly_negative, certai
 from ...core.roots import RootStatus, isolate_roots
 from .model import Dual, Gimbal
 
-__all__ = ["Equilibrium", "Equilibria", "equilibria", "classify", "RANGE_PAD", "jacobian"]
+__all__ = ["Equilibrium", "Equilibria", "equilibria", "classify", "RANGE_PAD", "jacobian", "pi_text"]
 
 #: the search range is [-(pi + RANGE_PAD), pi + RANGE_PAD]
 RANGE_PAD = Fraction(1, 64)
@@ -115,14 +115,14 @@ def equilibria(g: Gimbal) -> Equilibria:
             r = named[0]
             x2 = pi * _q(r)
             if abs(r) <= 1:
-                points.append(Equilibrium(arb(0), x2, "f(x2) = 0", exact=_pi_text(r)))
+                points.append(Equilibrium(arb(0), x2, "f(x2) = 0", exact=pi_text(r)))
         elif certainly_lt(abs(root), pi):
             points.append(Equilibrium(arb(0), root, "f(x2) = 0"))
         elif not certainly_lt(pi, abs(root)):
             problems.append(f"a root of f at {root.str(10)} is not separated from |x2| = pi")
     for sgn in (1, -1):
         x2 = sgn * pi / 2
-        points.append(Equilibrium(-g.f(x2) / c.k, x2, "cos x2 = 0", exact=_pi_text(Fraction(sgn, 2))))
+        points.append(Equilibrium(-g.f(x2) / c.k, x2, "cos x2 = 0", exact=pi_text(Fraction(sgn, 2))))
     for root in iso_h.roots:
         if certainly_lt(pi, abs(root)):
             continue
@@ -141,7 +141,8 @@ def equilibria(g: Gimbal) -> Equilibria:
     return Equilibria(points, complete, reason, {"f": _pieces_text(iso_f), "h": _pieces_text(iso_h)})
 
 
-def _pi_text(r: Fraction) -> str:
+def pi_text(r: Fraction) -> str:
+    """r pi as the report writes it: "0", "pi", "-pi/2", "2 pi/3"."""
     if r == 0:
         return "0"
     num = "pi" if abs(r.numerator) == 1 else f"{abs(r.numerator)} pi"
