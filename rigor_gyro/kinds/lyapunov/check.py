@@ -22,6 +22,10 @@ in the precision), and checks
 * c_max (the largest sublevel set): the stored (x2, t) boxes tile the domain and the model's lower bound
   of V over {Vdot >= 0} is >= the stated vdot_level_lower on each; the faces' phi(+-x2*) recomputed; Vdot > 0
   and V at the stored point re-evaluated; every stated bound compared with its exact decimal;
+* the equilibria: the stored isolation pieces of f and of k H + C0 sin x2 f(x2) are contiguous, cover
+  [-pi, pi] and are each decided (Newton); the equilibria are re-derived from them, each at its stated
+  point (x2 by its exact text or its decimal interval, x1 by its decimal interval), with its case and
+  its stability re-decided (the membership in the estimate and the eigenvalues' text are not re-checked);
 * a refuted claim's counterexample (a point where grad V . f > 0 or V <= 0, a violated inequality);
 * every stored quantity contains the checker's recomputed enclosure (bounds: the certified side).
 """
