@@ -556,6 +556,14 @@ def test_the_sublevel_bounds_are_re_derived_not_read(agafonov):
             det(bad)["binds"] = "vdot"
         ok, msg = _sublevel_message(bad)
         assert ok is False and says in msg, (edit, msg)
+    for name, text in (("c_max_lower", "abc"), ("vdot_level_lower", None), ("c_max_upper", "1/0")):
+        bad = copy.deepcopy(agafonov)
+        if text is None:
+            del det(bad)[name]
+        else:
+            det(bad)[name] = text
+        ok, msg = _sublevel_message(bad)
+        assert ok is False and "missing or not numbers" in msg, (name, msg)
 
 
 # ------------------------------------------------------------------ stored counterexamples
