@@ -367,11 +367,7 @@ def test_a_stored_quantity_off_its_value_fails_at_its_own_name_with_its_bounds(r
         assert not next(r for r in report.results if r.item == "quantities").ok
 
 
-def _b(x):
-    return arb(x)
-
-
-NUS = {1: _b(1), 2: _b(2), 3: _b(3), 4: _b(4), 5: _b(5), 6: _b(6)}
+NUS = {1: arb(1), 2: arb(2), 3: arb(3), 4: arb(4), 5: arb(5), 6: arb(6)}
 
 
 @pytest.mark.parametrize("omegas, inside, outside", [
@@ -387,7 +383,7 @@ NUS = {1: _b(1), 2: _b(2), 3: _b(3), 4: _b(4), 5: _b(5), 6: _b(6)}
 ])
 def test_branch_sides_decide_each_end_of_each_branch(omegas, inside, outside):
     from rigor_gyro.kinds.eigenfrequencies.check import branch_sides
-    got = branch_sides([_b(w) for w in omegas], NUS, {})
+    got = branch_sides([arb(w) for w in omegas], NUS, {})
     assert got == (inside, outside)
 
 
@@ -395,16 +391,16 @@ def test_an_inverted_branch_holds_no_omega_on_either_side():
     """Where the ordering fails a branch can be inverted (nu3 < nu2): a root above both ends, or below
     both, is not inside (one end alone proves nothing), and is certainly outside."""
     from rigor_gyro.kinds.eigenfrequencies.check import branch_sides
-    nus = {**NUS, 2: _b(3), 3: _b(2), 4: _b(5), 5: _b(4)}             # (3, 2) and (5, 4)
+    nus = {**NUS, 2: arb(3), 3: arb(2), 4: arb(5), 5: arb(4)}             # (3, 2) and (5, 4)
     for w2, w3 in ((3.5, 5.5), (1.5, 3.5), (2.5, 4.5)):
-        inside, outside = branch_sides([_b(0.5), _b(w2), _b(w3), _b(7)], nus, {})
+        inside, outside = branch_sides([arb(0.5), arb(w2), arb(w3), arb(7)], nus, {})
         assert inside == [True, False, False, True], (w2, w3)
         assert outside == [False, True, True, False], (w2, w3)
 
 
 def test_an_exactly_empty_branch_is_outside_and_an_undecided_one_is_neither():
     from rigor_gyro.kinds.eigenfrequencies.check import branch_sides
-    omegas = [_b(0.5), _b(2.5), _b(4.5), _b(7)]
+    omegas = [arb(0.5), arb(2.5), arb(4.5), arb(7)]
     assert branch_sides(omegas, NUS, {2: True})[1] == [False, True, False, False]
     assert branch_sides(omegas, NUS, {3: True})[1] == [False, False, True, False]
     assert branch_sides(omegas, NUS, {2: False, 3: False})[1] == [False] * 4

@@ -698,8 +698,9 @@ def _check_equilibria(g, pieces: dict, rows: list) -> tuple[bool, str]:
     for a, b, root in rf:
         named = [(z, r) for z, r in zeros if certainly_le(a, z) and certainly_le(z, b)]
         if len(named) == 1:
-            if certainly_le(abs(named[0][0]), pi * (1 + arb(2) ** -40)):
-                points.append(Equilibrium(arb(0), named[0][0], "f(x2) = 0", exact=pi_text(named[0][1])))
+            z, r = named[0]
+            if certainly_le(abs(z), pi * (1 + arb(2) ** -40)):
+                points.append(Equilibrium(arb(0), z, "f(x2) = 0", exact=pi_text(r)))
         elif certainly_lt(abs(root), pi):
             points.append(Equilibrium(arb(0), root, "f(x2) = 0"))
         elif not certainly_lt(pi, abs(root)):
