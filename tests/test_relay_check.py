@@ -22,7 +22,7 @@ from rigor_gyro.kinds import kind_module
 from rigor_gyro.kinds.periodic_orbit import check as pc
 from rigor_gyro.kinds.periodic_orbit.flow import Spectrum
 
-from .forgery import claim as _claim, flipped, items as _items, refix
+from .forgery import claim as _claim, flipped, items as _items
 
 
 def _cert(options=None, **params):
