@@ -30,7 +30,10 @@ def number(text: str) -> Fraction:
     """A stored decimal (or ``p/q``) as an exact rational; ValueError for anything else."""
     if not isinstance(text, str) or len(text) > 20000 or not _STORED.match(text.strip()):
         raise ValueError(f"not a finite stored number: {str(text)[:40]!r}")
-    return Fraction(text.strip())
+    try:
+        return Fraction(text.strip())
+    except ZeroDivisionError:
+        raise ValueError(f"a stored fraction with a zero denominator: {text[:40]!r}") from None
 
 
 def interval(q) -> tuple[Fraction, Fraction]:
