@@ -45,6 +45,13 @@ def unstable():
     return _cert(H="10000")
 
 
+@pytest.fixture(scope="module", params=["stress_relay_sigma_1e-6", "stress_relay_tau_1e-4"])
+def stiff(request):
+    """The stress catalog's stiff relays: the smallest multiplier (1e-55701, 1e-572) is 0 to the
+    eigenvalue algorithm; only the Liouville product (det J) separates it from 0."""
+    return json.loads(json.dumps(prove_scene(load_scene(request.param)).to_json()))
+
+
 @pytest.fixture(scope="module")
 def short():
     """T_max = 0.05: the half-period equation searched on (0, 0.05] only, no root there; every other
@@ -124,6 +131,9 @@ def test_a_merged_piece_is_unique_only_with_unique_parts_in_order():
         assert pc._merged_unique(G, _q(0), _q(1), [_q(2)]) == (False, None)       # a split outside the piece
         assert pc._merged_unique(G, _q(0), _q(1), [_q("1/3"), _q("1/4")]) == (False, None)   # out of order
         assert pc._merged_unique(G, _q(0), _q(3), [_q("1/3")]) == (False, None)   # a part holds two roots
+        assert pc._merged_unique(G, _q(0), _q(3), [_q(1)]) == (False, None)       # two roots, one in each part
+        ok, e = pc._merged_unique(G, _q(0), _q(1), [_q("1/4"), _q("1/3")])    # three parts: the middle holds it
+        assert not ok                                                          # the first part holds no root
 
 
 def test_envelope_root_free_needs_a_positive_bound():
@@ -206,9 +216,9 @@ def _bd0_negative(sp, theta) -> bool:
     return x0_at(sp, theta)[1] < 0
 
 
-def test_the_multipliers_are_the_stored_ones_sorted_with_the_liouville_product(roit, unstable):
+def test_the_multipliers_are_the_stored_ones_sorted_with_the_liouville_product(roit, unstable, stiff):
     from rigor_gyro.core.stored import encloses, interval as stored_interval
-    for data in (roit, unstable):
+    for data in (roit, unstable, stiff):
         q = data["quantities"]
         with working_precision(2 * data["precision_bits"]):
             sp, roots, ws = _roots(data)
@@ -228,6 +238,7 @@ def test_the_multipliers_are_the_stored_ones_sorted_with_the_liouville_product(r
             for z in m:                     # real multipliers have an exact zero imaginary part
                 if not any(z.conjugate().overlaps(w) for w in m if w is not z):
                     assert z.imag.is_zero()
+            assert mods[3] > 0 and mods[3].rad() < mods[3] * arb(2) ** -20   # the smallest: separated from 0
             for k in range(3):              # a conjugate pair: Im > 0 first
                 if m[k].conjugate().overlaps(m[k + 1]) and not m[k].imag.is_zero():
                     assert m[k].imag > 0 and m[k + 1].imag < 0
@@ -235,8 +246,8 @@ def test_the_multipliers_are_the_stored_ones_sorted_with_the_liouville_product(r
 
 # ------------------------------------------------------------------------------ whole certificates
 
-def test_the_built_in_and_refuted_certificates_confirm_item_by_item(roit, unstable, short):
-    for data in (roit, unstable, short):
+def test_the_built_in_and_refuted_certificates_confirm_item_by_item(roit, unstable, short, stiff):
+    for data in (roit, unstable, short, stiff):
         it = _items(copy.deepcopy(data))
         assert all(it.values()), {k: v for k, v in it.items() if not v}
     assert {"half_period", "orbit_genuine", "initial_point", "multipliers", "stable", "quantities",
@@ -458,3 +469,67 @@ def test_stable_is_refuted_only_when_every_genuine_orbit_has_a_modulus_above_1(u
     assert _items(bad)["stable"] is False
     forged = _forge_half_period(unstable, "a classification missing")     # the roots no longer re-verified
     assert _items(forged)["stable"] is False
+
+
+def test_a_witness_end_at_16384_bits_is_written_and_read_back_exactly():
+    """A piece's end at 16384 bits has about 4900 digits: past Python's int-to-text limit (the prover
+    crashed writing such a certificate, exit 4, before the texts were written by FLINT)."""
+    from rigor_gyro.core.balls import exact_fraction
+    from rigor_gyro.core.stored import number
+    from rigor_gyro.kinds.periodic_orbit.claims import _q as witness_text
+    with working_precision(16384):
+        x = arb(arb(fmpq(1, 3)).mid())                      # an exact dyadic point, 16384 bits of mantissa
+        assert x.rad() == 0 and exact_fraction(x).denominator.bit_length() > 16000
+        assert number(witness_text(x)) == exact_fraction(x)
+
+
+def test_the_multipliers_fall_back_to_rumps_algorithm_and_to_none(roit, monkeypatch):
+    """When one eigenvalue algorithm cannot isolate the spectrum (a ValueError) the other is used; when
+    neither can, there are no multipliers, and a proved multipliers claim is not confirmed."""
+    from flint import acb_mat
+    from rigor_gyro.core.stored import encloses, interval as stored_interval
+    refused = []
+
+    class OneAlgorithm:
+        def __init__(self, allowed):
+            self.allowed = allowed
+
+        def __call__(self, J):
+            allowed = self.allowed
+            m = acb_mat(J)
+
+            class M:
+                def eig(self, algorithm):
+                    if algorithm not in allowed:
+                        refused.append(algorithm)
+                        raise ValueError(f"{algorithm} refused")
+                    return m.eig(algorithm=algorithm)
+            return M()
+
+    q = roit["quantities"]
+    with working_precision(2 * roit["precision_bits"]):
+        sp, roots, ws = _roots(roit)
+        main = next(th for th in roots if encloses(stored_interval(q["theta_star"]), th))
+        monkeypatch.setattr(pc, "acb_mat", OneAlgorithm({"rump"}))
+        m = pc._multipliers(sp, main)
+        assert refused == ["vdhoeven_mourrain"] and m is not None
+        for j, z in enumerate(m, start=1):
+            assert encloses(stored_interval(q[f"multiplier_modulus_{j}"]), abs(z))
+        monkeypatch.setattr(pc, "acb_mat", OneAlgorithm(set()))
+        assert pc._multipliers(sp, main) is None
+    it = _items(copy.deepcopy(roit))
+    assert it["multipliers"] is False and it["stable"] is False and it["half_period"] is True
+
+
+def test_a_degenerate_spectrum_leaves_every_claim_inconclusive_and_confirms_nothing_else():
+    """-1/sigma a root of the cubic (4) (A = B = H = tau = 1, n = 5/4, sigma = 2): no closed form; the
+    prover says inconclusive, and the checker confirms exactly that."""
+    data = _cert(A="1", B="1", H="1", tau="1", sigma="2", n="5/4")
+    assert {c["status"] for c in data["claims"]} == {"inconclusive"}
+    it = _items(copy.deepcopy(data))
+    assert set(pc.REQUIRED) | {"half_period"} <= set(it) and all(it.values())
+    for cid in ("half_period", "orbit_genuine", "stable"):
+        for status in ("proved", "refuted"):
+            bad = copy.deepcopy(data)
+            _claim(bad, cid)["status"] = status
+            assert _items(bad)[cid] is False, (cid, status)

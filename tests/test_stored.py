@@ -80,7 +80,7 @@ def test_as_ball_contains_the_whole_stored_interval():
 
 
 def test_the_texts_are_exact_and_read_back():
-    assert exact_text(Fraction(1, 3)) == "1/3" and exact_text(Fraction(4, 2)) == "2"
+    assert exact_text(Fraction(1, 3)) == "1/3" and exact_text(Fraction(4, 2)) == "2" and exact_text(Fraction(-5, 7)) == "-5/7"
     with working_precision(64):
         a, b = arb(fmpq(1, 3)), arb(fmpq(2, 3))
         lo_a, hi_a = exact_endpoints(a)
@@ -89,7 +89,39 @@ def test_the_texts_are_exact_and_read_back():
         assert pieces_text([(a, b), (b, a)]) == [[str(lo_a), str(hi_b)], [str(lo_b), str(hi_a)]]
         assert [number(t) for t in ball_text(a)] == [lo_a, hi_a]
         inf_lo, inf_hi = pieces_text([(arb("-inf"), arb("inf"))])[0]
+        assert (inf_lo, inf_hi) == ("-inf", "inf")
         with pytest.raises(ValueError):                          # an infinite end is no stored number
             number(inf_lo)
         with pytest.raises(ValueError):
             number(inf_hi)
+
+
+def test_the_length_limit_is_20000_characters_and_the_message_quotes_the_text():
+    assert number("1" * 20000) == (10 ** 20000 - 1) // 9       # past Python's 4300-digit int() limit
+    with pytest.raises(ValueError, match=r"not a finite stored number: '1111"):
+        number("1" * 20001)
+    with pytest.raises(ValueError, match=r"not a finite stored number: 'nan'"):
+        number("nan")
+    with pytest.raises(ValueError, match=r"zero denominator: '3/0'"):
+        number("3/0")
+
+
+def test_numbers_past_pythons_4300_digit_limit_are_written_and_read_exactly():
+    """A certificate at 16384 bits stores dyadic pieces p/2^16384 (about 4900 digits each)."""
+    x = Fraction(3 ** 20001, 2 ** 16384)
+    assert number(exact_text(x)) == x
+    assert number(exact_text(-x)) == -x
+    assert number(exact_text(Fraction(7 ** 6000))) == 7 ** 6000
+    with working_precision(16384):
+        b = arb(fmpq(1, 3))
+        lo, hi = exact_endpoints(b)
+        assert [number(t) for t in ball_text(b)] == [lo, hi]
+    assert number("1" * 5000 + "." + "2" * 5000 + "e-3") == Fraction(int("1" * 3000) * 10**2000 + int("1" * 2000), 1) \
+        / 10**3 + Fraction(int("2" * 3000) * 10**2000 + int("2" * 2000), 10**5000) / 10**3
+
+
+@pytest.mark.parametrize("text, value", [("-0.5", Fraction(-1, 2)), ("-0", Fraction(0)), ("0.000", Fraction(0)),
+                                         ("12.5e3", Fraction(12500)), ("12.5e-3", Fraction(1, 80)),
+                                         ("-3/6", Fraction(-1, 2)), ("007", Fraction(7)), ("5e0", Fraction(5))])
+def test_the_decimal_reader_agrees_with_fraction(text, value):
+    assert number(text) == value == Fraction(text)

@@ -14,7 +14,7 @@ from __future__ import annotations
 import re
 from fractions import Fraction
 
-from flint import arb, fmpq
+from flint import arb, fmpq, fmpz
 
 from .balls import exact_endpoints
 
@@ -27,13 +27,23 @@ _STORED = re.compile(r"^-?[0-9]+(?:\.[0-9]+)?(?:e[+-]?[0-9]{1,6})?$|^-?[0-9]+/[0
 
 
 def number(text: str) -> Fraction:
-    """A stored decimal (or ``p/q``) as an exact rational; ValueError for anything else."""
+    """A stored decimal (or ``p/q``) as an exact rational; ValueError for anything else.
+
+    Digits are read by FLINT, not by ``int``: Python refuses to convert more than 4300 digits
+    (``sys.set_int_max_str_digits``), and the dyadic pieces of a certificate at 16384 bits have more."""
     if not isinstance(text, str) or len(text) > 20000 or not _STORED.match(text.strip()):
         raise ValueError(f"not a finite stored number: {str(text)[:40]!r}")
-    try:
-        return Fraction(text.strip())
-    except ZeroDivisionError:
-        raise ValueError(f"a stored fraction with a zero denominator: {text[:40]!r}") from None
+    s = text.strip()
+    if "/" in s:
+        p, q = s.split("/")
+        den = int(fmpz(q))
+        if den == 0:
+            raise ValueError(f"a stored fraction with a zero denominator: {text[:40]!r}")
+        return Fraction(int(fmpz(p)), den)
+    mant, _, exp = s.partition("e")
+    whole, _, frac = mant.partition(".")
+    n, e = int(fmpz(whole + frac)), int(exp or 0) - len(frac)
+    return Fraction(n * 10 ** e) if e >= 0 else Fraction(n, 10 ** -e)
 
 
 def interval(q) -> tuple[Fraction, Fraction]:
@@ -73,17 +83,19 @@ def as_ball(stored: tuple[Fraction, Fraction]) -> arb:
 
 
 def exact_text(x: Fraction) -> str:
-    """An exact rational as text the checker reads back (``p/q`` or an integer)."""
-    return str(x)
+    """An exact rational as text the checker reads back (``p/q`` or an integer); any number of digits
+    (written by FLINT: Python's ``str`` of an int stops at 4300 digits)."""
+    num = str(fmpz(x.numerator))
+    return num if x.denominator == 1 else f"{num}/{fmpz(x.denominator)}"
 
 
 def pieces_text(pairs) -> list[list[str]]:
     """Pieces (a, b) of balls as exact [lo, hi] texts covering them: [a.lower, b.upper]."""
     out = []
     for a, b in pairs:
-        lo = exact_endpoints(a)[0] if a.is_finite() else None
-        hi = exact_endpoints(b)[1] if b.is_finite() else None
-        out.append([exact_text(lo), exact_text(hi)])
+        lo = exact_text(exact_endpoints(a)[0]) if a.is_finite() else "-inf"   # no stored number: rejected
+        hi = exact_text(exact_endpoints(b)[1]) if b.is_finite() else "inf"
+        out.append([lo, hi])
     return out
 
 

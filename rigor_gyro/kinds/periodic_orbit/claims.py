@@ -54,6 +54,7 @@ from ...core.audit import check_printed
 from ...core.exact import Exact, option_number, parse_options, parse_parameters, require_rational
 from ...core.outcome import Claim, Status
 from ...core.roots import Isolation, RootPiece, RootStatus, enclose_f_df, merge_shared_roots, newton_root
+from ...core.stored import exact_text
 from ...core.subdivision import certify_positive
 from .. import Attempt, Phases
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table, orbit_quantities
@@ -945,7 +946,7 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
 
 def _q(x: arb) -> str:
     """An exact ball (a dyadic point) as the exact rational text a checker reads back."""
-    return str(exact_fraction(x))
+    return exact_text(exact_fraction(x))
 
 
 def _witnesses(an: Analysis) -> dict[str, Any]:
