@@ -44,4 +44,5 @@ __all__ = [
     "Status", "AuditStatus", "Claim", "AuditRow", "Certificate",
     "Scene", "load_scene", "parse_scene", "builtin_scenes", "prove_scene",
     "RigorGyroError", "ParameterError", "SceneError", "CertificationFailed",
+    "__version__",
 ]

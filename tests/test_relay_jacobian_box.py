@@ -7,7 +7,6 @@ guard that combines it with the direct enclosure.
 """
 from __future__ import annotations
 
-import dataclasses
 import itertools
 from fractions import Fraction as F
 

@@ -12,7 +12,7 @@ import pytest
 from flint import arb
 
 from rigor_gyro import load_scene, prove_scene
-from rigor_gyro.certificate import Status, digest
+from rigor_gyro.certificate import digest
 from rigor_gyro.check import check_certificate
 from rigor_gyro.core.balls import working_precision
 from rigor_gyro.core.boxes import Box, tiles_by_bisection

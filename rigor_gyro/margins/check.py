@@ -17,7 +17,6 @@ from fractions import Fraction
 from typing import Any
 
 from ..certificate import digest
-from ..core.balls import working_precision
 from ..core.boxes import Box, fraction_text, tiles_by_bisection
 from ..core.errors import RigorGyroError
 from ..scene import Scene

@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from ..certificate import digest
-from ..core.boxes import Box, fraction_text
+from ..core.boxes import fraction_text
 from ..report import write_pair
 from ..version import __version__
 from .paving import SCHEMA, Paving

@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from ..core.boxes import fraction_text, is_tolerance
-from ..core.errors import ParameterError, RigorGyroError
+from ..core.errors import ParameterError
 from ..core.exact import option_number, parse_exact
 from ..kinds import kind_module
 from ..scene import Scene
