@@ -656,3 +656,61 @@ def test_every_stored_quantity_is_verified_and_an_extra_one_is_not(agafonov):
     items = _items(bad)
     assert items["quantities"] is False
     assert all(v for k, v in items.items() if k != "quantities")
+
+
+# ------------------------------------------------------------------------------ the equilibria re-derived
+
+def _equilibria_inputs(data):
+    from rigor_gyro.kinds import kind_module
+    from rigor_gyro.scene import Scene
+    sc = data["scene"]
+    model = kind_module("lyapunov").validate(Scene(name=sc["name"], kind=sc["kind"], source="", parameters=sc["parameters"],
+                                                   claims_only=sc.get("claims_only"), options=sc.get("options") or {},
+                                                   paper={}, path=None))
+    rows = _claim(data, "equilibria")["details"]["equilibria"]
+    return model.gimbal, data["witnesses"]["equilibria"]["pieces"], rows
+
+
+def _recorded(monkeypatch) -> list:
+    """The equilibria the checker classifies, recorded as it classifies them."""
+    seen, real = [], lc.classify_equilibrium
+    monkeypatch.setattr(lc, "classify_equilibrium", lambda g, e: (seen.append(e), real(g, e))[1])
+    return seen
+
+
+def test_the_equilibria_are_re_derived_at_their_own_points(agafonov, monkeypatch):
+    """Each equilibrium the checker classifies is at the point the theory gives (x2 = j pi with x1 = 0;
+    x2 = +-pi/2 with x1 = -f(x2)/k), not merely stated there."""
+    seen = _recorded(monkeypatch)
+    g, pieces, rows = _equilibria_inputs(agafonov)
+    with working_precision(2 * agafonov["precision_bits"]):
+        ok, msg = lc._check_equilibria(g, pieces, rows)
+        assert ok, msg
+        pi, a, k = arb.pi(), g.c.a, g.c.k
+        expected = [(-1, "f(x2) = 0", arb(0)), (0, "f(x2) = 0", arb(0)), (1, "f(x2) = 0", arb(0)),
+                    (Fraction(1, 2), "cos x2 = 0", -a / k), (Fraction(-1, 2), "cos x2 = 0", a / k)]
+        assert len(seen) == len(expected) == len(rows)
+        for e, (r, case, x1) in zip(seen, expected):
+            x2 = arb(fmpq(r.numerator, r.denominator)) * pi
+            assert e.case == case and e.exact == lc.pi_text(r)
+            assert e.x2.overlaps(x2) and e.x2.rad() < arb(2) ** -100, (r, e.x2)
+            assert e.x1.overlaps(x1) and e.x1.rad() < arb(2) ** -100 * (1 + abs(x1)), (r, e.x1)
+
+
+def test_a_root_of_f_the_law_does_not_name_is_an_equilibrium_at_its_ball(agafonov, monkeypatch):
+    """A law that names only +-pi (not 0): the root at 0 is taken from its isolation, with x1 = 0 and no
+    exact text; one that names none: the roots at +-pi are not separated from |x2| = pi."""
+    g, pieces, rows = _equilibria_inputs(agafonov)
+    seen = _recorded(monkeypatch)
+    monkeypatch.setattr(type(g.law), "zeros_over_pi", lambda self: (Fraction(-1), Fraction(1)))
+    with working_precision(2 * agafonov["precision_bits"]):
+        lc._check_equilibria(g, pieces, rows)
+        at0 = [e for e in seen if e.x2.contains(0)]
+        assert len(seen) == 5 and len(at0) == 1
+        e = at0[0]
+        assert e.exact == "" and e.case == "f(x2) = 0" and e.x1.is_zero() and e.x2.rad() < arb(2) ** -50
+        monkeypatch.setattr(type(g.law), "zeros_over_pi", lambda self: ())
+        assert lc._check_equilibria(g, pieces, rows) == (False, "a root of f is not separated from |x2| = pi")
+        monkeypatch.setattr(type(g.law), "zeros_over_pi", lambda self: (Fraction(-1), Fraction(0), Fraction(1), Fraction(3)))
+        ok, msg = lc._check_equilibria(g, pieces, rows)        # a named zero outside [-pi, pi] is not an equilibrium
+        assert ok, msg
