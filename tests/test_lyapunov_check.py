@@ -714,3 +714,56 @@ def test_a_root_of_f_the_law_does_not_name_is_an_equilibrium_at_its_ball(agafono
         monkeypatch.setattr(type(g.law), "zeros_over_pi", lambda self: (Fraction(-1), Fraction(0), Fraction(1), Fraction(3)))
         ok, msg = lc._check_equilibria(g, pieces, rows)        # a named zero outside [-pi, pi] is not an equilibrium
         assert ok, msg
+
+
+@pytest.fixture(scope="module")
+def h_roots():
+    """C0 < 0 (C1 = 54.2): four more equilibria where k H + C0 sin x2 f(x2) = 0. The claim is then
+    inconclusive (the linearisation at +-pi/2 decides nothing), so the checker never re-derives it
+    through ``check``; it is tested on its own. The paper audit (slow for this law) is left out."""
+    import rigor_gyro.kinds.lyapunov.claims as claims_module
+    scene = dataclasses.replace(load_scene("agafonov2013"), name="variant", paper={}, claims_only=["equilibria"],
+                                parameters=dict(load_scene("agafonov2013").parameters, C1="54.2"))
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(claims_module, "audit_paper", lambda ctx, quantities: ([], [], []))
+        return json.loads(json.dumps(prove_scene(scene).to_json()))
+
+
+def test_the_roots_of_h_are_equilibria_at_their_own_points(h_roots, monkeypatch):
+    g, pieces, rows = _equilibria_inputs(h_roots)
+    assert [r["case"] for r in rows].count("k H + C0 sin x2 f(x2) = 0") == 4
+    seen = _recorded(monkeypatch)
+    with working_precision(2 * h_roots["precision_bits"]):
+        ok, msg = lc._check_equilibria(g, pieces, rows)
+        assert ok, msg
+        hs = [e for e in seen if e.case == "k H + C0 sin x2 f(x2) = 0"]
+        assert len(hs) == 4 and len(seen) == len(rows) == 9
+        c = g.c
+        for e in hs:
+            assert abs(e.x2) < arb.pi() and not e.x2.cos().contains(0) and e.exact == ""
+            assert abs(c.k * c.H + c.C0 * e.x2.sin() * g.f(e.x2)) < arb(2) ** -50   # a root of h
+            assert e.x1.overlaps(-g.f(e.x2) / c.k) and e.x1.rad() < arb(2) ** -50 * abs(e.x1)
+    h_rows = [i for i, r in enumerate(rows) if r["case"].startswith("k H")]
+    for edit in ({"x1": "[-223.60679775, -223.606797749]"}, {"x2": "[-2.034443937, -2.034443936]"}, {"x2": "-2.0344439"},
+                 {"x2": "pi/2"}, {"x1": None}, {"case": "f(x2) = 0"}, {"stability": "asymptotically stable"}):
+        bad = copy.deepcopy(rows)
+        bad[h_rows[0]].update(edit)
+        with working_precision(2 * h_roots["precision_bits"]):
+            assert lc._check_equilibria(g, pieces, bad)[0] is False, edit
+
+
+def test_a_root_of_h_not_separated_from_pi_or_from_cos_zero_is_not_decided(h_roots, monkeypatch):
+    """A root of h that may sit on cos x2 = 0 or on |x2| = pi decides nothing (made-up root lists: no
+    valid piece list gives one); a root certainly beyond pi is no equilibrium."""
+    g, pieces, rows = _equilibria_inputs(h_roots)
+    real = lc._decided_roots
+    with working_precision(2 * h_roots["precision_bits"]):
+        pi = arb.pi()
+        for fake in (pi / 2, pi.union(pi + arb(2) ** -300), arb(0).union(pi * arb("1.1"))):
+            monkeypatch.setattr(lc, "_decided_roots", lambda f, p, pi_, fake=fake: (
+                real(f, p, pi_) if p is pieces["f"] else [(fake, fake, fake)]))
+            assert lc._check_equilibria(g, pieces, rows) == (
+                False, "a root of h is not separated from |x2| = pi or from cos x2 = 0"), fake
+        monkeypatch.setattr(lc, "_decided_roots", lambda f, p, pi_: (
+            real(f, p, pi_) if p is pieces["f"] else [(pi * 2, pi * 2, pi * 2)]))     # outside: skipped
+        assert lc._check_equilibria(g, pieces, [r for r in rows if not r["case"].startswith("k H")])[0] is True

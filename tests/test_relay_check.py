@@ -309,6 +309,10 @@ def _forge_half_period(data, edit) -> dict:
         pcs[-1]["hi"] = str((Fraction(pcs[-1]["lo"]) + Fraction(pcs[-1]["hi"])) / 2)
     elif edit == "a gap between pieces":
         pcs[e]["lo"] = str((Fraction(pcs[e]["lo"]) + Fraction(pcs[e]["hi"])) / 2)
+    elif edit == "a gap before the last piece":
+        pcs[-1]["lo"] = str((Fraction(pcs[-1]["lo"]) + Fraction(pcs[-1]["hi"])) / 2)
+    elif edit == "an empty piece called unique, the classifications unchanged":
+        pcs[e]["kind"] = "unique"
     elif edit == "no pieces":
         pcs.clear()
     elif edit == "T beyond the pieces":
@@ -366,7 +370,8 @@ def _forge_half_period(data, edit) -> dict:
 
 HALF_PERIOD_FORGERIES = [
     "a gap at theta_min", "short of T", "a gap between pieces", "no pieces", "T beyond the pieces",
-    "theta_min before the pieces", "the tail cut short", "not all of (0, oo)", "a root called empty",
+    "theta_min before the pieces", "the tail cut short", "a gap before the last piece",
+    "an empty piece called unique, the classifications unchanged", "not all of (0, oo)", "a root called empty",
     "a root called monotone-empty", "a root called envelope-empty", "an empty piece called unique",
     "a monotone piece called unique", "an unknown piece kind", "a unique piece split in two",
     "a unique piece with a split off its root", "a classification missing", "a classification too many",
@@ -533,3 +538,57 @@ def test_a_degenerate_spectrum_leaves_every_claim_inconclusive_and_confirms_noth
             bad = copy.deepcopy(data)
             _claim(bad, cid)["status"] = status
             assert _items(bad)[cid] is False, (cid, status)
+
+
+def test_the_tail_bound_must_be_certainly_positive(roit, monkeypatch):
+    from flint import arb as _arb
+    monkeypatch.setattr(pc, "tail_bound", lambda sp, T: _arb(0, 1))          # [-1, 1]: undecided
+    assert _items(copy.deepcopy(roit))["half_period"] is False
+    monkeypatch.setattr(pc, "tail_bound", lambda sp, T: _arb(1))
+    assert _items(copy.deepcopy(roit))["half_period"] is True
+
+
+def test_a_search_that_ends_exactly_at_t_max_is_complete(short):
+    """T = T_max = 1/20 exactly (not a dyadic number: the prover's T lies above it): still the whole
+    range (0, T_max]."""
+    bad = copy.deepcopy(short)
+    w = _hp(bad)
+    assert Fraction(w["T"]) > Fraction(1, 20) >= Fraction(w["pieces"][-1]["lo"])
+    w["T"] = w["pieces"][-1]["hi"] = "1/20"
+    assert _items(bad)["half_period"] is True
+
+
+def test_a_spurious_root_relabelled_genuine_is_no_orbit(roit):
+    """theta* moved onto a spurious root relabelled genuine (with the genuine root's classification):
+    the classification fails, and so does every claim about the orbit."""
+    bad = copy.deepcopy(roit)
+    w = _hp(bad)
+    with working_precision(2 * roit["precision_bits"]):
+        sp, roots, ws = _roots(roit)
+        s = next(i for i, r in enumerate(ws) if r["kind"] == "spurious")
+        th = roots[s]
+        bad["quantities"]["theta_star"] = dict(bad["quantities"]["theta_star"], lo=th.lower().str(40, radius=False),
+                                               hi=th.upper().str(40, radius=False))
+    w["roots"][s] = dict(next(r for r in ws if r["kind"] == "genuine"))
+    it = _items(bad)
+    assert it["half_period"] is False and it["orbit_genuine"] is False and it["initial_point"] is False
+    assert it["stable"] is False and it["multipliers"] is False
+
+
+def test_multipliers_are_proved_only_with_the_main_orbits_own(unstable, monkeypatch):
+    """The four orbits of H = 10000: without the main orbit's multipliers (its eigenvalues not
+    isolated) the multipliers claim is not confirmed, even with the other three's."""
+    from rigor_gyro.core.stored import encloses, interval as stored_interval
+    real = pc._multipliers
+    s = stored_interval(unstable["quantities"]["theta_star"])
+    monkeypatch.setattr(pc, "_multipliers", lambda sp, th: None if encloses(s, th) else real(sp, th))
+    it = _items(copy.deepcopy(unstable))
+    assert it["multipliers"] is False and it["half_period"] is True
+
+
+def test_a_certificate_of_some_claims_only_confirms():
+    for only in (["half_period"], ["half_period", "stable"]):
+        scene = dataclasses.replace(load_scene("roitenberg1947"), name="variant", claims_only=only)
+        data = json.loads(json.dumps(prove_scene(scene).to_json()))
+        it = _items(data)
+        assert [c["id"] for c in data["claims"]] == only and all(it.values()) and set(only) <= set(it), it
