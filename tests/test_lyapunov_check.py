@@ -678,12 +678,12 @@ def _recorded(monkeypatch) -> list:
     return seen
 
 
-def test_the_equilibria_are_re_derived_at_their_own_points(agafonov, monkeypatch):
+def test_the_equilibria_are_re_derived_at_their_own_points(equilibria_only, monkeypatch):
     """Each equilibrium the checker classifies is at the point the theory gives (x2 = j pi with x1 = 0;
     x2 = +-pi/2 with x1 = -f(x2)/k), not merely stated there."""
     seen = _recorded(monkeypatch)
-    g, pieces, rows = _equilibria_inputs(agafonov)
-    with working_precision(2 * agafonov["precision_bits"]):
+    g, pieces, rows = _equilibria_inputs(equilibria_only)
+    with working_precision(2 * equilibria_only["precision_bits"]):
         ok, msg = lc._check_equilibria(g, pieces, rows)
         assert ok, msg
         pi, a, k = arb.pi(), g.c.a, g.c.k
@@ -697,13 +697,13 @@ def test_the_equilibria_are_re_derived_at_their_own_points(agafonov, monkeypatch
             assert e.x1.overlaps(x1) and e.x1.rad() < arb(2) ** -100 * (1 + abs(x1)), (r, e.x1)
 
 
-def test_a_root_of_f_the_law_does_not_name_is_an_equilibrium_at_its_ball(agafonov, monkeypatch):
+def test_a_root_of_f_the_law_does_not_name_is_an_equilibrium_at_its_ball(equilibria_only, monkeypatch):
     """A law that names only +-pi (not 0): the root at 0 is taken from its isolation, with x1 = 0 and no
     exact text; one that names none: the roots at +-pi are not separated from |x2| = pi."""
-    g, pieces, rows = _equilibria_inputs(agafonov)
+    g, pieces, rows = _equilibria_inputs(equilibria_only)
     seen = _recorded(monkeypatch)
     monkeypatch.setattr(type(g.law), "zeros_over_pi", lambda self: (Fraction(-1), Fraction(1)))
-    with working_precision(2 * agafonov["precision_bits"]):
+    with working_precision(2 * equilibria_only["precision_bits"]):
         lc._check_equilibria(g, pieces, rows)
         at0 = [e for e in seen if e.x2.contains(0)]
         assert len(seen) == 5 and len(at0) == 1
@@ -714,19 +714,34 @@ def test_a_root_of_f_the_law_does_not_name_is_an_equilibrium_at_its_ball(agafono
         monkeypatch.setattr(type(g.law), "zeros_over_pi", lambda self: (Fraction(-1), Fraction(0), Fraction(1), Fraction(3)))
         ok, msg = lc._check_equilibria(g, pieces, rows)        # a named zero outside [-pi, pi] is not an equilibrium
         assert ok, msg
+    it = _items(copy.deepcopy(equilibria_only))                 # the whole checker on this certificate
+    assert all(it.values()) and "equilibria" in it
+
+
+def _equilibria_only(**params) -> dict:
+    """A certificate of the equilibria claim alone (quick: no estimate, no paper audit)."""
+    import rigor_gyro.kinds.lyapunov.claims as claims_module
+    base = load_scene("agafonov2013")
+    scene = dataclasses.replace(base, name="variant", paper={}, claims_only=["equilibria"],
+                                parameters=dict(base.parameters, **params))
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(claims_module, "audit_paper", lambda ctx, quantities: ([], [], []))
+        return json.loads(json.dumps(prove_scene(scene).to_json()))
+
+
+@pytest.fixture(scope="module")
+def equilibria_only():
+    data = _equilibria_only()
+    assert _claim(data, "equilibria")["status"] == "proved"
+    return data
 
 
 @pytest.fixture(scope="module")
 def h_roots():
     """C0 < 0 (C1 = 54.2): four more equilibria where k H + C0 sin x2 f(x2) = 0. The claim is then
     inconclusive (the linearisation at +-pi/2 decides nothing), so the checker never re-derives it
-    through ``check``; it is tested on its own. The paper audit (slow for this law) is left out."""
-    import rigor_gyro.kinds.lyapunov.claims as claims_module
-    scene = dataclasses.replace(load_scene("agafonov2013"), name="variant", paper={}, claims_only=["equilibria"],
-                                parameters=dict(load_scene("agafonov2013").parameters, C1="54.2"))
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(claims_module, "audit_paper", lambda ctx, quantities: ([], [], []))
-        return json.loads(json.dumps(prove_scene(scene).to_json()))
+    through ``check``; it is tested on its own. (The paper audit, slow for this law, is left out.)"""
+    return _equilibria_only(C1="54.2")
 
 
 def test_the_roots_of_h_are_equilibria_at_their_own_points(h_roots, monkeypatch):
