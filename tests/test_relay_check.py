@@ -592,3 +592,20 @@ def test_a_certificate_of_some_claims_only_confirms():
         data = json.loads(json.dumps(prove_scene(scene).to_json()))
         it = _items(data)
         assert [c["id"] for c in data["claims"]] == only and all(it.values()) and set(only) <= set(it), it
+
+
+def test_the_checkers_functions_are_g_and_the_pole_free_g_with_the_same_signs(roit):
+    """A witness may name g itself (older certificates) or G = g K (K > 0): the checker evaluates the one
+    named, and the two have the same sign at every point where both are decided."""
+    from rigor_gyro.kinds.periodic_orbit.flow import g_coeffs, pole_free_coeffs
+    with working_precision(128):
+        sp = Spectrum(_model(roit["scene"]["parameters"]).params)
+        g, G = pc._G(sp, "g"), pc._G(sp, "pole_free")
+        for t in ("0.01", "0.05", "0.1", "0.2", "0.5"):
+            x = _q(t)
+            assert g.at(x).overlaps(g_coeffs(sp, x, 1)[0]) and g.at(x).rad() < arb(2) ** -60 * (1 + abs(g.at(x)))
+            assert G.at(x).overlaps(pole_free_coeffs(sp, x, 1)[0])
+            assert not g.at(x).overlaps(G.at(x))                  # different functions
+            assert pc._strict_sign(g.at(x)) * pc._strict_sign(G.at(x)) == 1
+            gx, dgx = g.both(_iv(t, t))
+            assert gx.overlaps(g.at(x)) and dgx.overlaps(g_coeffs(sp, x, 2)[1])
