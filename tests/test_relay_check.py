@@ -609,3 +609,46 @@ def test_the_checkers_functions_are_g_and_the_pole_free_g_with_the_same_signs(ro
             assert pc._strict_sign(g.at(x)) * pc._strict_sign(G.at(x)) == 1
             gx, dgx = g.both(_iv(t, t))
             assert gx.overlaps(g.at(x)) and dgx.overlaps(g_coeffs(sp, x, 2)[1])
+
+
+def test_the_multipliers_order_and_realness_on_a_made_up_spectrum(roit, monkeypatch):
+    """The algorithm's balls replaced by made-up ones (the Liouville product then matches none): sorted
+    by decreasing modulus, a conjugate pair with Im > 0 first, a real eigenvalue's Im set to exactly 0,
+    and a pair whose imaginary parts straddle 0 kept complex (its conjugate overlaps its twin)."""
+    from flint import acb
+    from rigor_gyro.core.stored import encloses, interval as stored_interval
+    eps = arb(0, arb(2) ** -20)                                   # [+-2^-20]: straddles 0
+
+    def fake(spectrum):
+        class M:
+            def __init__(self, J):
+                pass
+
+            def eig(self, algorithm):
+                return list(spectrum)
+        return M
+
+    q = roit["quantities"]
+    with working_precision(2 * roit["precision_bits"]):
+        sp, roots, ws = _roots(roit)
+        main = next(th for th in roots if encloses(stored_interval(q["theta_star"]), th))
+        cases = [
+            # (made-up eigenvalues, expected order of (Re, sign of Im) after sorting)
+            ([acb("0.5", "-0.1"), acb("0.9", eps), acb("0.5", "0.1"), acb("0.2", eps)],
+             [("0.9", 0), ("0.5", 1), ("0.5", -1), ("0.2", 0)]),
+            ([acb("0.9"), acb("0.5", "0.1"), acb("0.5", "-0.1"), acb("0.2")],
+             [("0.9", 0), ("0.5", 1), ("0.5", -1), ("0.2", 0)]),
+            ([acb("0.7", eps), acb("0.7", eps), acb("0.3"), acb("0.1")],     # a close pair straddling the axis
+             [("0.7", None), ("0.7", None), ("0.3", 0), ("0.1", 0)]),
+        ]
+        for spectrum, expected in cases:
+            monkeypatch.setattr(pc, "acb_mat", fake(spectrum))
+            m = pc._multipliers(sp, main)
+            for z, (re, im) in zip(m, expected):
+                assert z.real.overlaps(arb(re)) and abs(z.real - arb(re)) < arb("1e-6"), (spectrum, m)
+                if im == 0:
+                    assert z.imag.is_zero(), m                        # real: exactly 0
+                elif im is None:
+                    assert not z.imag.is_zero() and z.imag.contains(0), m   # kept a complex ball
+                else:
+                    assert (z.imag > 0) if im > 0 else (z.imag < 0), m
