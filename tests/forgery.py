@@ -1,14 +1,27 @@
-"""Helpers of the checker tests that forge certificates: make a forged certificate's digest and verdict
-consistent (so that only the re-decision of its claims can reject it), read the checker's report item
-by item, and build polynomials from their roots."""
+"""Helpers of the checker tests that forge certificates: prove a built-in scene or a variant of it, make
+a forged certificate's digest and verdict consistent (so that only the re-decision of its claims can
+reject it), read the checker's report item by item, and build polynomials from their roots."""
 from __future__ import annotations
 
+import dataclasses
+import json
 from fractions import Fraction
 
 from flint import fmpq, fmpq_poly
 
+from rigor_gyro import load_scene, prove_scene
 from rigor_gyro.certificate import digest
 from rigor_gyro.check import check_certificate
+
+
+def certificate(name: str, options: dict | None = None, **params) -> dict:
+    """The certificate (as parsed JSON) of the built-in scene ``name``, or of its variant (named
+    "variant") with the given parameters and options replaced."""
+    scene = load_scene(name)
+    if params or options:
+        scene = dataclasses.replace(scene, name="variant", parameters=dict(scene.parameters, **params),
+                                    options=dict(scene.options, **(options or {})))
+    return json.loads(json.dumps(prove_scene(scene).to_json()))
 
 
 def refix(data: dict) -> dict:

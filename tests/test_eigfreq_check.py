@@ -6,20 +6,18 @@ rests on it). These tests name the item that must fail, so a weakened gate is se
 gate would also have rejected the certificate (mutmut found 276 such survivors in the checker).
 """
 import copy
-import dataclasses
-import json
+import functools
 from fractions import Fraction
 
 import pytest
 from flint import arb, fmpq, fmpq_poly
 
-from rigor_gyro import load_scene, prove_scene
 from rigor_gyro.check import check_certificate
 from rigor_gyro.core.balls import working_precision
 from rigor_gyro.kinds.eigenfrequencies import check as eig_check
 from rigor_gyro.kinds.eigenfrequencies.check import _refine, _sign, sturm_positive_roots
 
-from .forgery import claim as _claim, flipped, items as _items, poly as _poly, refix as _refix
+from .forgery import certificate, claim as _claim, flipped, items as _items, poly as _poly, refix as _refix
 
 A, B = Fraction("15.08"), Fraction("6.154")
 #: the scenes: rudenko1976 and variants where claims are refuted or undefined
@@ -32,10 +30,7 @@ SCENES = {
 }
 
 
-def _cert(**params):
-    scene = load_scene("rudenko1976")
-    scene = dataclasses.replace(scene, name="variant", parameters=dict(scene.parameters, **params))
-    return json.loads(json.dumps(prove_scene(scene).to_json()))
+_cert = functools.partial(certificate, "rudenko1976")
 
 
 @pytest.fixture(scope="module", params=list(SCENES))

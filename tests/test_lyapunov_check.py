@@ -7,6 +7,7 @@ once there, so a weakened gate is not seen where another gate also rejects. Thes
 that must fail, and test the helpers directly, so that a mutant of the checker is caught in seconds.
 """
 import copy
+import functools
 import dataclasses
 import json
 from fractions import Fraction
@@ -18,14 +19,10 @@ from rigor_gyro import load_scene, prove_scene
 from rigor_gyro.core.balls import exact_endpoints, working_precision
 from rigor_gyro.kinds.lyapunov import check as lc
 
-from .forgery import claim as _claim, flipped, items as _items
+from .forgery import certificate, claim as _claim, flipped, items as _items
 
 
-def _cert(**params):
-    scene = load_scene("agafonov2013")
-    if params:
-        scene = dataclasses.replace(scene, name="variant", parameters=dict(scene.parameters, **params))
-    return json.loads(json.dumps(prove_scene(scene).to_json()))
+_cert = functools.partial(certificate, "agafonov2013")
 
 
 @pytest.fixture(scope="module")

@@ -8,6 +8,7 @@ reasons at once; these tests name the item that must fail. A relay certificate i
 0.1 s, so a mutant of the checker is judged in seconds.
 """
 import copy
+import functools
 import dataclasses
 import json
 from fractions import Fraction
@@ -22,15 +23,10 @@ from rigor_gyro.kinds import kind_module
 from rigor_gyro.kinds.periodic_orbit import check as pc
 from rigor_gyro.kinds.periodic_orbit.flow import Spectrum
 
-from .forgery import claim as _claim, flipped, items as _items
+from .forgery import certificate, claim as _claim, flipped, items as _items
 
 
-def _cert(options=None, **params):
-    scene = load_scene("roitenberg1947")
-    if params or options:
-        scene = dataclasses.replace(scene, name="variant", parameters=dict(scene.parameters, **params),
-                                    options=dict(scene.options, **(options or {})))
-    return json.loads(json.dumps(prove_scene(scene).to_json()))
+_cert = functools.partial(certificate, "roitenberg1947")
 
 
 @pytest.fixture(scope="module")
