@@ -289,3 +289,54 @@ def test_precision_and_series_length_are_checked_and_restored():
         with pytest.raises(ParameterError, match="series length must be a positive integer"):
             with series_length(bad):
                 pass
+
+
+def _floor_log10(q: Fraction) -> int:
+    """floor(log10 |q|) by exact comparisons with powers of ten (the reference)."""
+    q, e = abs(q), 0
+    while Fraction(10) ** e > q:
+        e -= 1
+    while Fraction(10) ** (e + 1) <= q:
+        e += 1
+    return e
+
+
+@pytest.mark.parametrize("q", [Fraction(1), Fraction(10), Fraction(21, 2), Fraction(99, 10), Fraction(1, 10),
+                               Fraction(105, 10), Fraction(11, 1), Fraction(10**20 - 1), Fraction(10**20),
+                               Fraction(1, 10**30), Fraction(1, 10**30 - 1), Fraction(1, 10**30 + 1),
+                               Fraction(3, 7), Fraction(-7, 3), Fraction(10**300 + 1, 3), Fraction(2, 10**300 + 7),
+                               Fraction(2**1000, 3**600), Fraction(3**600, 2**1000), Fraction(123456789, 10**5),
+                               Fraction(999999, 10**6), Fraction(10**6, 999999)])
+def test_exponent10_is_floor_log10_exactly(q):
+    from rigor_gyro.core.balls import exponent10
+    assert exponent10(q) == _floor_log10(q)
+
+
+def test_exponent10_just_around_every_power_of_ten():
+    from rigor_gyro.core.balls import exponent10
+    for e in range(-40, 41):
+        p = Fraction(10) ** e
+        for q in (p, p * (1 - Fraction(1, 10**25)), p * (1 + Fraction(1, 10**25)), p * Fraction(11, 10), p * Fraction(21, 2)):
+            assert exponent10(q) == _floor_log10(q), q
+
+
+def test_digits_follow_the_balls_accuracy_and_an_exact_balls_bits():
+    from rigor_gyro.core.balls import MAX_DIGITS_OUT, _digits_for
+    with working_precision(200):
+        x = arb(fmpq(1, 3)) + arb(0, arb(2) ** -100)                 # about 98 bits of accuracy
+        assert _digits_for(x) == int(x.rel_accuracy_bits() * 0.30103) + 3
+        assert _digits_for(arb(fmpq(1, 3))) == int(arb(fmpq(1, 3)).rel_accuracy_bits() * 0.30103) + 3
+        assert _digits_for(arb(0.5)) == 6                              # 1 bit: at least 6 digits
+        assert _digits_for(arb(2) ** 100 + 1) == int(101 * 0.30103) + 3    # exact, 101 bits of mantissa
+        assert _digits_for(arb(1, 0.1)) == 6                           # a wide ball: still 6
+    with working_precision(20000):
+        assert _digits_for(arb(fmpq(1, 3))) == MAX_DIGITS_OUT
+
+
+def test_decimal_bounds_of_infinite_and_nan_balls():
+    """Arb's infinite balls are [+-inf] and the points +-inf (a union with inf is [+-inf]): their
+    bounds are the texts "-inf" and "+inf"; a NaN ball's are "nan"."""
+    with working_precision(64):
+        assert decimal_bounds(arb("nan")) == ("nan", "nan")
+        for x in (arb(0, "inf"), arb("inf"), arb("-inf"), arb(1).union(arb("inf"))):
+            assert decimal_bounds(x) == ("-inf", "+inf"), x
