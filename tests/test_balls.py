@@ -340,3 +340,14 @@ def test_decimal_bounds_of_infinite_and_nan_balls():
         assert decimal_bounds(arb("nan")) == ("nan", "nan")
         for x in (arb(0, "inf"), arb("inf"), arb("-inf"), arb(1).union(arb("inf"))):
             assert decimal_bounds(x) == ("-inf", "+inf"), x
+
+
+def test_exponent10_of_huge_numerators_and_denominators_is_exact_integer_arithmetic():
+    """n and d of 400+ digits (a float of either overflows): every comparison stays in integers."""
+    from rigor_gyro.core.balls import exponent10
+    big = 10 ** 400
+    for e in range(-12, 13):
+        p = Fraction(10) ** e
+        for q in (Fraction(big * p.numerator + 1, big * p.denominator), Fraction(big * p.numerator - 1, big * p.denominator),
+                  Fraction(big * p.numerator * 3 + 7, big * p.denominator)):
+            assert exponent10(q) == _floor_log10(q), (e, float(q))
