@@ -75,3 +75,26 @@ def test_messages_name_the_parameter_and_suggest_the_near_key():
     assert to_fmpq("-7/3e2") == fmpq(-7, 300) and to_fmpq("0.25", "k") == fmpq(1, 4)
     with pytest.raises(ParameterError, match="parameter 'k': "):
         to_fmpq("pi", "k")          # a multiple of pi is not rational
+
+
+def test_the_parsers_limits_are_exactly_where_documented():
+    """1000 digits, exponent 400 and magnitudes 1e-300..1e300 are accepted; one more is refused, with a
+    message naming the parameter."""
+    from rigor_gyro.core.exact import MAX_DIGITS, MAX_MAGNITUDE
+    ok = ["1." + "0" * (MAX_DIGITS - 1), "0." + "0" * 299 + "1", "1e300", "-1e300", "1e-300", "1" + "0" * 300,
+          "1/1" + "0" * 300, "1e+300", "0.1e-299"]
+    for text in ok:
+        assert parse_exact(text, "x").rational is not None, text
+    assert parse_exact("0e400", "x").rational == 0 and parse_exact("0e-400", "x").rational == 0
+    bad = [("1" * (MAX_DIGITS + 1), "at most 1000 digits"), ("0e401", "exponent must lie in [-400, 400]"),
+           ("0e-401", "exponent must lie in [-400, 400]"), ("0e0401", "exponent must lie in [-400, 400]"),
+           ("1e301", "magnitude between 1e-300 and 1e300"), ("1.1e300", "magnitude between"),
+           ("1e-301", "magnitude between"), ("0.9e-300", "magnitude between"), ("-1e301", "magnitude between"),
+           (10 ** 301, "magnitude between"), (2 ** (4 * MAX_DIGITS + 1), "more than 1000 digits")]
+    for value, words in bad:
+        with pytest.raises(ParameterError) as e:
+            parse_exact(value, "x")
+        assert "parameter 'x'" in str(e.value) and words in str(e.value), (value, str(e.value))
+    assert parse_exact(10 ** MAX_MAGNITUDE, "x").rational == 10 ** MAX_MAGNITUDE
+    assert parse_exact(2 ** 996, "x").rational == 2 ** 996
+    assert parse_exact("0e" + "0" * 5 + "400", "x").rational == 0          # leading zeros of the exponent
