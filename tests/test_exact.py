@@ -98,3 +98,20 @@ def test_the_parsers_limits_are_exactly_where_documented():
     assert parse_exact(10 ** MAX_MAGNITUDE, "x").rational == 10 ** MAX_MAGNITUDE
     assert parse_exact(2 ** 996, "x").rational == 2 ** 996
     assert parse_exact("0e" + "0" * 5 + "400", "x").rational == 0          # leading zeros of the exponent
+
+
+@pytest.mark.parametrize("text, value, pi_power", [
+    ("+5", Fraction(5), 0), ("- 5", Fraction(-5), 0), ("+ 2/3", Fraction(2, 3), 0), ("1E5", Fraction(10**5), 0),
+    ("2*3*4", Fraction(24), 0), ("-pi/6", Fraction(-1, 6), 1), ("0.5*pi", Fraction(1, 2), 1),
+    ("2*2*2*2*2*2*2*2", Fraction(256), 0)])              # MAX_FACTORS = 8 factors
+def test_signs_exponents_and_factors_are_read_exactly(text, value, pi_power):
+    e = parse_exact(text, "x")
+    assert (e.rational, e.pi_power) == (value, pi_power)
+
+
+@pytest.mark.parametrize("text, words", [("2/pi", "rational multiples of pi"), ("pi*pi", "rational multiples of pi"),
+                                         ("2*2*2*2*2*2*2*2*2", "at most 8 factors")])
+def test_pi_in_a_denominator_or_squared_and_a_ninth_factor_are_refused(text, words):
+    with pytest.raises(ParameterError) as e:
+        parse_exact(text, "x")
+    assert words in str(e.value) and "parameter 'x'" in str(e.value)
