@@ -659,11 +659,8 @@ def test_every_stored_quantity_is_verified_and_an_extra_one_is_not(agafonov):
 
 def _equilibria_inputs(data):
     from rigor_gyro.kinds import kind_module
-    from rigor_gyro.scene import Scene
-    sc = data["scene"]
-    model = kind_module("lyapunov").validate(Scene(name=sc["name"], kind=sc["kind"], source="", parameters=sc["parameters"],
-                                                   claims_only=sc.get("claims_only"), options=sc.get("options") or {},
-                                                   paper={}, path=None))
+    scene = dataclasses.replace(load_scene("agafonov2013"), parameters=data["scene"]["parameters"])
+    model = kind_module("lyapunov").validate(scene)
     rows = _claim(data, "equilibria")["details"]["equilibria"]
     return model.gimbal, data["witnesses"]["equilibria"]["pieces"], rows
 

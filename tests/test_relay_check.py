@@ -484,6 +484,18 @@ def test_a_witness_end_at_16384_bits_is_written_and_read_back_exactly():
         assert number(witness_text(x)) == exact_fraction(x)
 
 
+def _acb_mat_whose_eig(eig):
+    """A stand-in for flint's ``acb_mat`` in the checker: ``eig(J, algorithm)`` gives the eigenvalues
+    (or raises ValueError, as Arb does when it cannot isolate them)."""
+    class Fake:
+        def __init__(self, J):
+            self.J = J
+
+        def eig(self, algorithm):
+            return eig(self.J, algorithm)
+    return Fake
+
+
 def test_the_multipliers_fall_back_to_rumps_algorithm_and_to_none(roit, monkeypatch):
     """When one eigenvalue algorithm cannot isolate the spectrum (a ValueError) the other is used; when
     neither can, there are no multipliers, and a proved multipliers claim is not confirmed."""
@@ -491,32 +503,24 @@ def test_the_multipliers_fall_back_to_rumps_algorithm_and_to_none(roit, monkeypa
     from rigor_gyro.core.stored import encloses, interval as stored_interval
     refused = []
 
-    class OneAlgorithm:
-        def __init__(self, allowed):
-            self.allowed = allowed
-
-        def __call__(self, J):
-            allowed = self.allowed
-            m = acb_mat(J)
-
-            class M:
-                def eig(self, algorithm):
-                    if algorithm not in allowed:
-                        refused.append(algorithm)
-                        raise ValueError(f"{algorithm} refused")
-                    return m.eig(algorithm=algorithm)
-            return M()
+    def only(allowed):
+        def eig(J, algorithm):
+            if algorithm not in allowed:
+                refused.append(algorithm)
+                raise ValueError(f"{algorithm} refused")
+            return acb_mat(J).eig(algorithm=algorithm)
+        return _acb_mat_whose_eig(eig)
 
     q = roit["quantities"]
     with working_precision(2 * roit["precision_bits"]):
         sp, roots, ws = _roots(roit)
         main = next(th for th in roots if encloses(stored_interval(q["theta_star"]), th))
-        monkeypatch.setattr(pc, "acb_mat", OneAlgorithm({"rump"}))
+        monkeypatch.setattr(pc, "acb_mat", only({"rump"}))
         m = pc._multipliers(sp, main)
         assert refused == ["vdhoeven_mourrain"] and m is not None
         for j, z in enumerate(m, start=1):
             assert encloses(stored_interval(q[f"multiplier_modulus_{j}"]), abs(z))
-        monkeypatch.setattr(pc, "acb_mat", OneAlgorithm(set()))
+        monkeypatch.setattr(pc, "acb_mat", only(set()))
         assert pc._multipliers(sp, main) is None
     it = _items(copy.deepcopy(roit))
     assert it["multipliers"] is False and it["stable"] is False and it["half_period"] is True
@@ -615,15 +619,6 @@ def test_the_multipliers_order_and_realness_on_a_made_up_spectrum(roit, monkeypa
     from rigor_gyro.core.stored import encloses, interval as stored_interval
     eps = arb(0, arb(2) ** -20)                                   # [+-2^-20]: straddles 0
 
-    def fake(spectrum):
-        class M:
-            def __init__(self, J):
-                pass
-
-            def eig(self, algorithm):
-                return list(spectrum)
-        return M
-
     q = roit["quantities"]
     with working_precision(2 * roit["precision_bits"]):
         sp, roots, ws = _roots(roit)
@@ -638,7 +633,7 @@ def test_the_multipliers_order_and_realness_on_a_made_up_spectrum(roit, monkeypa
              [("0.7", None), ("0.7", None), ("0.3", 0), ("0.1", 0)]),
         ]
         for spectrum, expected in cases:
-            monkeypatch.setattr(pc, "acb_mat", fake(spectrum))
+            monkeypatch.setattr(pc, "acb_mat", _acb_mat_whose_eig(lambda J, algorithm, spectrum=spectrum: list(spectrum)))
             m = pc._multipliers(sp, main)
             for z, (re, im) in zip(m, expected):
                 assert z.real.overlaps(arb(re)) and abs(z.real - arb(re)) < arb("1e-6"), (spectrum, m)

@@ -734,7 +734,7 @@ def _stated_at(text, x: arb, exact: str = "") -> bool:
     try:
         iv = stored_interval(text[1:-1].split(", ")) if text.startswith("[") and text.endswith("]") else \
             (number(text), number(text))
-    except (TypeError, ValueError, ZeroDivisionError):
+    except ValueError:                              # not a stored number, or lo > hi
         return False
     return encloses(iv, x)
 
