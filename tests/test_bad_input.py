@@ -10,6 +10,10 @@ from rigor_gyro.core.balls import working_precision
 from rigor_gyro.core.errors import ParameterError, SceneError
 from rigor_gyro.scene import Scene
 
+#: the time limit of every case: 2 s as the issue asks. Mutation runs raise it (a mutated module takes
+#: seconds to import in mutmut's folder, which is not what this battery measures).
+SECONDS = float(os.environ.get("RIGOR_GYRO_BAD_INPUT_SECONDS", "2"))
+
 EIG = {"a": "15.08", "b": "6.154", "eps": "0.1076", "Omega2": "0.629"}
 LYAP = dict(A="2", C="3.3", A1="2.2", B1="2.2", C1="2.8", A2="8.5", H="1e4", k="0.4", a="100", x2_star="pi/6",
             mu="0.02", moment="sine")
@@ -106,7 +110,7 @@ def test_bad_scene(tmp_path, capsys, case, text, word):
     out = tmp_path / "out"
     code, stdout, err, secs = _run(capsys, ["prove", str(path), "--out", str(out)])
     assert code == 2, (case, stdout, err)
-    assert secs < 2
+    assert secs < SECONDS
     assert "Traceback" not in err and len(err.strip().splitlines()) == 1, err
     # the word is looked for in the message, not in the file's path (pytest names tmp_path after the case)
     assert word in err.replace(str(path), "<scene>"), (case, err)
@@ -125,7 +129,7 @@ def test_bad_file(tmp_path, capsys, case, data):
     path = tmp_path / "s.toml"
     path.write_bytes(data)
     code, _, err, secs = _run(capsys, ["prove", str(path), "--out", str(tmp_path / "out")])
-    assert code == 2 and secs < 2 and "Traceback" not in err and not (tmp_path / "out").exists()
+    assert code == 2 and secs < SECONDS and "Traceback" not in err and not (tmp_path / "out").exists()
 
 
 ARGS = [
@@ -150,7 +154,7 @@ def test_bad_arguments(tmp_path, capsys, case, argv, word):
         code, _, err, secs = _run(capsys, argv)
     except SystemExit as e:          # argparse's usage errors exit through SystemExit
         code, err, secs = e.code, capsys.readouterr().err, 0.0
-    assert code == 2 and secs < 2, (case, err)
+    assert code == 2 and secs < SECONDS, (case, err)
     assert word in err and "Traceback" not in err, (case, err)
     assert not (tmp_path / "out").exists()
 
@@ -186,7 +190,7 @@ def test_bad_api_call(case, call, exc):
     t0 = time.perf_counter()
     with pytest.raises(exc):
         call()
-    assert time.perf_counter() - t0 < 2
+    assert time.perf_counter() - t0 < SECONDS
 
 
 def test_the_battery_has_at_least_60_cases():
