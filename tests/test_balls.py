@@ -53,6 +53,26 @@ def test_escalate_records_needed_precision_and_restores():
     assert ctx.prec == before
 
 
+def test_escalate_tries_every_doubling_up_to_maxprec_inclusive_and_passes_each_precision():
+    """Each attempt gets its precision as argument and as ctx.prec; maxprec itself is tried when it is a
+    doubling (64 -> 128 with maxprec 128), and maxprec = prec (a documented setting: --prec 16384 --maxprec
+    16384) runs once; ``done`` is False, not merely falsy, when nothing was accepted."""
+    seen = []
+
+    def attempt(p):
+        seen.append((p, ctx.prec))
+        return p
+
+    out = escalate(attempt, lambda r: False, prec=64, maxprec=128)
+    assert out.tried == [64, 128] and out.prec == 128 and out.result == 128 and out.done is False
+    assert seen == [(64, 64), (128, 128)]
+    out = escalate(attempt, lambda r: r == 256, prec=256, maxprec=256)
+    assert out.tried == [256] and out.done is True
+    from rigor_gyro.core.errors import ParameterError
+    with pytest.raises(ParameterError, match="maxprec"):
+        escalate(attempt, lambda r: True, prec=256, maxprec=128)
+
+
 def test_escalate_restores_precision_when_attempt_raises():
     before = ctx.prec
     with pytest.raises(ZeroDivisionError):

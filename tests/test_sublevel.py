@@ -14,7 +14,7 @@ from flint import arb
 from rigor_gyro import load_scene, prove_scene
 from rigor_gyro.certificate import digest
 from rigor_gyro.check import check_certificate
-from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.balls import exact_endpoints, exact_fraction, working_precision
 from rigor_gyro.core.boxes import Box, tiles_by_bisection
 from rigor_gyro.core.subdivision import lower_bound_on_box
 from rigor_gyro.kinds.lyapunov.approx import MpGimbal
@@ -353,3 +353,93 @@ def test_the_cylinder_margin_is_a_lower_bound_that_samples_of_the_side_respect(e
               ((rng.random() * 2 * mpmath.pi, (2 * rng.random() - 1) * g.xs) for _ in range(4000)))
     assert float(low) >= (1 + m) * c_hi
     assert float(low) <= (1 + m) * c_hi * 1.01
+
+
+# ------------------------------------------------------------------ the claim's helpers (mutation testing)
+
+def _gimbal(**params):
+    from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters
+    return gimbal_from_parameters(dict(load_scene("agafonov2013").parameters, **params))[0]
+
+
+def test_the_half_line_value_is_the_minimum_of_the_quadratic_over_the_half_line():
+    """_value_on_half_line (a search helper): the minimum of al + be r + ga r^2 over {A + r B <= 0} and the r
+    attaining it, against a dense scan of that half-line (and the whole line when B = 0)."""
+    from rigor_gyro.kinds.lyapunov.sublevel import _value_on_half_line
+    rng = random.Random(3)
+    for _ in range(200):
+        A, B = rng.uniform(-3, 3), rng.choice([0.0, rng.uniform(-3, 3)])
+        al, be, ga = rng.uniform(-2, 2), rng.uniform(-4, 4), rng.uniform(0.1, 3)
+        value, r = _value_on_half_line(A, B, al, be, ga)
+        # a scan of [-12, 12], the half-line's end and the parabola's vertex
+        grid = [k / 2000 for k in range(-24000, 24001)] + ([-A / B] if B else []) + [-be / (2 * ga)]
+        allowed = [x for x in grid if A + x * B <= 1e-12]
+        if not allowed:
+            assert value == float("inf")
+            continue
+        scan = min(al + be * x + ga * x * x for x in allowed)
+        assert value <= scan + 1e-12 and value >= scan - 1e-5, (A, B, al, be, ga, value, scan)
+        assert A + r * B <= 1e-9 and abs(al + be * r + ga * r * r - value) <= 1e-9
+
+
+def test_the_origin_counterexample_is_the_first_grid_point_where_A_at_x2_0_is_certainly_negative(monkeypatch):
+    """_origin_counterexample returns the first s = j/64, j = 0..64, where A(0, pi s) < 0 certainly (A not
+    containing 0), and None when there is none: on made-up A(x2, t) (the real A is never negative on the
+    paper's scenes). A depends on x2, so evaluating it anywhere but x2 = 0 is seen."""
+    from rigor_gyro.kinds.lyapunov import sublevel
+
+    def fake(law):
+        return lambda g, X, T, mu=None: (law(T) + 100 * X, arb(1))
+    cases = [(lambda T: T.cos() + arb(1) / 2, Fraction(43, 64)),         # cos t < -1/2 first at j = 43
+             (lambda T: T.cos() + arb("0.9995"), Fraction(1)),           # only at t = pi (j = n)
+             (lambda T: T.sin() + arb("0.01"), None),                   # only beyond pi: not on the grid
+             (lambda T: arb("0.5"), None),                              # positive below 1
+             (lambda T: arb(0), None),                                  # certainly <= 0, but it is 0
+             (lambda T: arb(0) * T, None)]                              # contains 0 (a ball around 0)
+    with working_precision(64):
+        for law, want in cases:
+            monkeypatch.setattr(sublevel, "vdot_polar", fake(law))
+            got = sublevel._origin_counterexample(None)
+            assert (got and got[0]) == want, (want, got)
+            if want is not None:
+                assert got[1] < 0 and got[1].overlaps(law(arb.pi() * arb(want.numerator) / want.denominator))
+
+
+def test_a_point_of_n_is_returned_only_where_vdot_is_certainly_positive():
+    """_point_of_n: asked for a radius well inside {Vdot < 0} (0.3 of the boundary along the search's ray) it
+    finds nothing; asked just beyond the boundary it returns exact rationals with |x2| <= x2* where Vdot > 0
+    (an mpmath evaluation at 40 digits, not the code's), and V's enclosure there."""
+    from rigor_gyro.kinds.lyapunov.model import vdot_polar
+    from rigor_gyro.kinds.lyapunov.sublevel import _point_of_n, _search
+    mpmath.mp.dps = 40
+    for xs in ("1/10", "pi/6"):
+        g = _gimbal(x2_star=xs)
+        mg = MpGimbal(dict(load_scene("agafonov2013").parameters, x2_star=xs))
+        with working_precision(64):
+            _, u, s, _ = _search(g)
+            A, B = vdot_polar(g, g.c.x2_star * arb(u), arb.pi() * arb(s))
+            r0 = float((-A / B).mid())
+            assert _point_of_n(g, u, s, 0.3 * r0) is None
+            (x1, x2, x3), v = _point_of_n(g, u, s, r0)
+            assert abs(x2) <= g.c.x2_star and (x1 != 0 or x3 != 0)
+            assert all(y.rad() == 0 for y in (x1, x2, x3))
+            q = [mpmath.mpf(exact_fraction(y).numerator) / exact_fraction(y).denominator for y in (x1, x2, x3)]
+            assert mg.grad_V_dot_f(*q) > 0
+            lo, hi = exact_endpoints(v)
+            assert lo <= Fraction(mpmath.nstr(mg.V(*q), 35)) * (1 + Fraction(1, 10 ** 15)) and \
+                Fraction(mpmath.nstr(mg.V(*q), 35)) * (1 - Fraction(1, 10 ** 15)) <= hi
+
+
+def test_a_face_level_below_1_is_a_level_not_a_refutation():
+    """At x2* = 1/10 the faces' level min phi(+-x2*) is 0.934: in (0, 1]. It binds, c_max is that level,
+    nothing is refuted (a refutation on 'phi <= 1' instead of 'phi <= 0' would be false here)."""
+    from rigor_gyro.kinds.lyapunov.sublevel import largest_sublevel
+    g = _gimbal(x2_star="1/10")
+    with working_precision(64):
+        r = largest_sublevel(g, 4000)
+        face = g.phi(g.c.x2_star)
+    assert 0 < face < 1
+    assert r.refutation is None and r.binding == "faces"
+    lo, hi = Fraction(r.c_lower), Fraction(r.c_upper)
+    f_lo, f_hi = exact_endpoints(face)
+    assert 0 < lo <= f_lo and f_hi <= hi and hi - lo < Fraction(1, 10 ** 9)

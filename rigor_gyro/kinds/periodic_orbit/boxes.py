@@ -107,8 +107,6 @@ class BoxSpectrum(Spectrum):
         nu = -1 / sigma
         if not certainly_nonzero(family(nu)[0]):
             raise DegenerateSpectrum("-1/sigma may be a root of the cubic (4) on this box")
-        self.cubic = None
-        self.cubic_roots = None
         S = ball(Pb.S)
         modes = [self._cubic_mode(acb(lam), 1, "real root of (4)") for lam in real]
         modes += [self._cubic_mode(z, 2, "complex pair of (4)") for z in upper]

@@ -184,8 +184,6 @@ class Spectrum:
             raise DegenerateSpectrum(f"the cubic (4) has a repeated root ({roots.reason})")
         if not roots.verified:
             raise DegenerateSpectrum(f"roots of the cubic (4) not isolated at this precision: {roots.reason}")
-        self.cubic = C
-        self.cubic_roots = roots
         S = ball(P.S)
         modes: list[Mode] = []
         for lam in roots.real:
