@@ -4,7 +4,7 @@ the formula in its docstring, the Cauchy bound of its Taylor coefficients at a b
 on a box spectrum (where g comes from that series), and a degenerate spectrum refused by name."""
 import mpmath
 import pytest
-from flint import arb, fmpq
+from flint import acb, arb, arb_mat, fmpq
 
 from rigor_gyro import load_scene
 from rigor_gyro.core.balls import exact_fraction, interval, working_precision
@@ -29,6 +29,10 @@ def _printed():
 def _mp(x: arb) -> mpmath.mpf:
     q = exact_fraction(x.mid())
     return mpmath.mpf(q.numerator) / q.denominator
+
+
+def _mp_text(x) -> str:
+    return mpmath.nstr(x, 40)
 
 
 def _rel(a: arb, b, tol: float) -> bool:
@@ -156,3 +160,26 @@ def test_a_series_the_cap_cut_gives_nan_coefficients_not_a_crash(monkeypatch):
     with working_precision(PREC):
         out = pole_free_coeffs(sp, arb("0.1"), 3)
     assert len(out) == 3 and all(x.is_nan() for x in out)
+
+
+def test_the_spectrum_is_ms_eigenvalues_and_the_multipliers_a_matrixs():
+    """eigenvalues(): 0, the cubic's roots (a complex pair as both conjugates) and -1/sigma: each contains
+    one of mpmath's eigenvalues of M (midpoints, 40 digits), and each of those is in one. multipliers(J):
+    the eigenvalues of a ball matrix J (Rump's method), each containing one of mpmath's for J's midpoint."""
+    _, sp, _, _ = _printed()
+    mpmath.mp.dps = 40
+    M = mpmath.matrix([[_mp(sp.M[i, j]) for j in range(5)] for i in range(5)])
+    ref = mpmath.eig(M)[0]
+    with working_precision(PREC):
+        got = sp.eigenvalues()
+        assert len(got) == 5 and got[0] == 0
+        for z in ref:
+            w = acb(arb(mpmath.nstr(z.real, 35)), arb(mpmath.nstr(z.imag, 35)))
+            assert sum(1 for g in got if (g - w).contains(0) or abs(g - w) < arb(10) ** -25) == 1, z
+        J = arb_mat([[arb(_mp_text(M[i, j] / 50 + (i == j))) for j in range(4)] for i in range(4)])
+        eig = sp.multipliers(J, arb("0.1"))
+        refJ = mpmath.eig(mpmath.matrix([[M[i, j] / 50 + (i == j) for j in range(4)] for i in range(4)]))[0]
+        assert len(eig) == 4
+        for z in refJ:
+            w = acb(arb(mpmath.nstr(z.real, 35)), arb(mpmath.nstr(z.imag, 35)))
+            assert any(abs(g - w) < arb(10) ** -25 for g in eig), z
