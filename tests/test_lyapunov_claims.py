@@ -27,6 +27,7 @@ VARIANTS = {
     "radius far too large (R = 0.5)": ({}, {"R": "0.5"}),
     "mu below (16) (mu = 0.01)": ({"mu": "0.01"}, {}),
     "linear law": ({"moment": "linear"}, {}),
+    "budget of 100 boxes": ({}, {"max_pieces": "100"}),
 }
 
 EXPECTED = {
@@ -43,6 +44,7 @@ EXPECTED = {
     ("radius far too large (R = 0.5)", "invariant_estimate"): "inconclusive",
     ("mu below (16) (mu = 0.01)", "v_positive"): "refuted",
     ("mu below (16) (mu = 0.01)", "best_mu"): "proved",
+    ("budget of 100 boxes", "largest_sublevel"): "inconclusive",     # best bound about -9.3: undecided, not refuted
     ("linear law", "invariant_estimate"): "proved", ("linear law", "v_positive"): "proved",
 }
 

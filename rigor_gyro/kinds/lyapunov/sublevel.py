@@ -199,9 +199,7 @@ def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
                       f"(best {best.bound.str(6)} on {best.boxes} boxes)")
         out.bound = best.bound
         return out
-    out.n_lower = decimal_bounds(best.bound, 12)[0]
-    if not certainly_positive(_q(Fraction(out.n_lower))):
-        out.n_lower = decimal_bounds(best.bound, 30)[0]
+    out.n_lower = decimal_bounds(best.bound, 12)[0]      # each end rounded to its own 12 digits: still > 0
     out.leaves, out.boxes = best.leaves, best.boxes
     n_lo = _q(Fraction(out.n_lower))
     out.c_lower = out.n_lower if certainly_le(n_lo, face.lower()) else decimal_bounds(face.lower(), 12)[0]
