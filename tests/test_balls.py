@@ -371,3 +371,19 @@ def test_exponent10_of_huge_numerators_and_denominators_is_exact_integer_arithme
         for q in (Fraction(big * p.numerator + 1, big * p.denominator), Fraction(big * p.numerator - 1, big * p.denominator),
                   Fraction(big * p.numerator * 3 + 7, big * p.denominator)):
             assert exponent10(q) == _floor_log10(q), (e, float(q))
+
+
+def test_series_coefficients_pad_with_exact_zeros_of_the_series_type():
+    """A constant gives itself and n - 1 exact zeros; a series whose last coefficients python-flint left out
+    (zeros below its precision) is padded with exact zeros of its own type (arb or acb), to exactly n."""
+    from flint import acb, acb_series, arb_series
+
+    from rigor_gyro.core.balls import series_coefficients, series_length
+    assert series_coefficients(arb(3), 4) == [3, 0, 0, 0] and len(series_coefficients(arb(3), 1)) == 1
+    c = series_coefficients(acb(2, 1), 3)
+    assert c[0] == acb(2, 1) and c[1:] == [0, 0] and all(isinstance(x, acb) for x in c)
+    with series_length(6):
+        for s, kind in ((arb_series([1, 2], prec=6), arb), (acb_series([acb(1, 1), 2], prec=6), acb)):
+            got = series_coefficients(s, 5)
+            assert len(got) == 5 and all(isinstance(x, kind) for x in got), kind
+            assert got[1] == 2 and all(x == 0 and x.rad() == 0 for x in got[2:]), kind

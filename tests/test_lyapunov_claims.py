@@ -107,7 +107,14 @@ def test_invariant_estimate_on_every_variant_and_c_star_against_mpmath():
 
 
 def test_largest_sublevel_on_every_variant():
-    _run("largest_sublevel")
+    """Which part binds is stated as the theory has it: the faces where c_max = min phi(+-x2*) (the paper's
+    x2* and 1/10), the set {Vdot >= 0} at x2* = 1.3; the stored cover has at most the boxes counted."""
+    out = _run("largest_sublevel")
+    binds = {"paper": "faces", "faces below 1 (x2* = 1/10)": "faces", "Vdot binds (x2* = 1.3)": "vdot"}
+    for variant, want in binds.items():
+        claim = next(c for c in out[variant]["claims"] if c["id"] == "largest_sublevel")
+        assert claim["details"]["binds"] == want and claim["details"]["boxes"] > 0, variant
+        assert 0 < len(out[variant]["witnesses"]["largest_sublevel"]["boxes"]) <= claim["details"]["boxes"]
 
 
 def test_equilibria_on_every_variant():
