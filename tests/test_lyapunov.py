@@ -335,6 +335,7 @@ def test_example_equilibria_are_listed_and_classified(example):
     ("psi", "0"),            # x2 = 0: V = 0 at the origin is no counterexample
     ("psi", "2"),            # beyond x2* (pi/6): outside the region
     ("psi", "inexact"),      # a witness that is not an exact point
+    ("psi", "0.0625"),       # exact, but psi > 0 there in fact: V = 0.37 > 0 at the minimiser, no counterexample
 ])
 def test_v_positive_refutes_only_at_an_exact_psi_witness_inside_the_range(monkeypatch, step, witness):
     """The refutation branch of v_positive (mutmut: its guards were untested): a subdivision 'refuted'
