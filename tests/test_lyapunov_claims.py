@@ -52,12 +52,12 @@ EXPECTED = {
 WITH = {"equilibria": ["invariant_estimate", "equilibria"]}
 
 
-def _prove(variant: str, claim: str) -> dict:
+def _prove(variant: str, claim: str, **kw) -> dict:
     params, options = VARIANTS[variant]
     scene = load_scene("agafonov2013")
     scene = dataclasses.replace(scene, name="variant", parameters=dict(scene.parameters, **params),
                                 options=dict(scene.options, **options), claims_only=WITH.get(claim, [claim]))
-    return json.loads(json.dumps(prove_scene(scene).to_json()))
+    return json.loads(json.dumps(prove_scene(scene, **kw).to_json()))
 
 
 def _confirm(variant: str, claim: str) -> dict:
@@ -156,3 +156,48 @@ def test_every_claim_at_once_matches_the_claims_one_at_a_time(variant):
     for c in whole["claims"]:
         if (variant, c["id"]) in EXPECTED:
             assert c["status"] == EXPECTED[(variant, c["id"])], (variant, c["id"], c["reason"])
+
+
+def test_equilibria_membership_in_the_estimate_is_decided_point_by_point(monkeypatch):
+    """Which equilibria lie in the estimate {V < c_set, x1^2 + x3^2 < R^2, |x2| <= x2*}: on planted
+    equilibria (the paper's scene has only the origin inside and +-pi/2 beyond x2*), each row's label is
+    the one an mpmath evaluation of V gives (40 digits), and a point straddling the disc's edge is
+    'undecided', which leaves the claim inconclusive."""
+    import mpmath
+    from flint import arb
+
+    import rigor_gyro.kinds.lyapunov.claims as C
+    from rigor_gyro.kinds.lyapunov.approx import MpGimbal
+    from rigor_gyro.kinds.lyapunov.equilibria import Equilibria, Equilibrium
+    base = _prove("paper", "equilibria")
+    inv = next(c for c in base["claims"] if c["id"] == "invariant_estimate")
+    c_set, R = Fraction(inv["details"]["c_set"]), _q(base, "R_used")
+    xs = float(Fraction(_q(base, "extent_x2")[1]))          # below x2* = pi/6 = 0.5236
+    mpmath.mp.dps = 40
+    mg = MpGimbal(load_scene("agafonov2013").parameters)
+    r = float(R[0])
+    planted = [(0.0, 0.0), (2 * r, 0.0), (0.5 * r, 0.0), (0.9 * r, 0.0), (0.0, 0.5), (0.0, 0.3), (0.01, 0.6)]
+
+    def label(x1, x2):
+        if abs(x2) > float(mpmath.pi / 6):
+            return "outside the estimate (|x2| > x2*)"
+        inside = x1 * x1 < r * r and mg.V(mpmath.mpf(x1), mpmath.mpf(x2), 0) < mpmath.mpf(c_set.numerator) / c_set.denominator
+        return "inside the estimate" if inside else "outside the estimate"
+    want = [label(x1, x2) for x1, x2 in planted]
+    assert "inside the estimate" in want and "outside the estimate" in want and xs > 0
+    assert len(set(want)) == 3
+
+    def fake(points):
+        return lambda g: Equilibria([Equilibrium(x1, x2, "planted", stability="asymptotically stable")
+                                     for x1, x2 in points], True, "", {})
+    monkeypatch.setattr(C, "equilibria", fake([(arb(x1), arb(x2)) for x1, x2 in planted]))
+    data = _prove("paper", "equilibria")
+    claim = next(c for c in data["claims"] if c["id"] == "equilibria")
+    assert claim["status"] == "proved", claim["reason"]
+    assert [row["estimate"] for row in claim["details"]["equilibria"]] == want
+    # V(x1, 0, 0) is quadratic in x1: it meets c_set at x1 = r sqrt(c_set / V(r, 0, 0)); a ball of relative
+    # radius 1e-3 there straddles the level set
+    edge = r * float(mpmath.sqrt(mpmath.mpf(c_set.numerator) / c_set.denominator / mg.V(mpmath.mpf(r), 0, 0)))
+    monkeypatch.setattr(C, "equilibria", fake([(arb(0), arb(0)), (arb(edge, edge * 1e-3), arb(0))]))
+    claim = next(c for c in _prove("paper", "equilibria", maxprec=128)["claims"] if c["id"] == "equilibria")
+    assert claim["status"] == "inconclusive" and claim["details"]["equilibria"][1]["estimate"] == "undecided"
