@@ -201,3 +201,20 @@ def test_equilibria_membership_in_the_estimate_is_decided_point_by_point(monkeyp
     monkeypatch.setattr(C, "equilibria", fake([(arb(0), arb(0)), (arb(edge, edge * 1e-3), arb(0))]))
     claim = next(c for c in _prove("paper", "equilibria", maxprec=128)["claims"] if c["id"] == "equilibria")
     assert claim["status"] == "inconclusive" and claim["details"]["equilibria"][1]["estimate"] == "undecided"
+
+
+def test_vdot_direct_states_an_upper_bound_only_at_a_point_where_vdot_is_positive(monkeypatch):
+    """A search that puts the supremum 10 % too low: A - R |B| > 0 is still certified there (below the
+    supremum), but every candidate point above it lies where Vdot < 0, so no upper bound of the supremum
+    may be stated; the checker confirms what is stated."""
+    import rigor_gyro.kinds.lyapunov.claims as C
+    real = C.direct_point_search
+
+    def low(g, *args):
+        est, u0, s0, amin = real(g, *args)
+        return 0.9 * est, u0, s0, amin
+    monkeypatch.setattr(C, "direct_point_search", low)
+    data = _prove("paper", "vdot_direct")
+    claim = next(c for c in data["claims"] if c["id"] == "vdot_direct")
+    assert claim["status"] == "proved" and "R_direct_upper" not in data["quantities"], claim["reason"]
+    assert "no upper bound" in claim["reason"] and check_certificate(data).ok
