@@ -28,6 +28,8 @@ VARIANTS = {
     "mu below (16) (mu = 0.01)": ({"mu": "0.01"}, {}),
     "linear law": ({"moment": "linear"}, {}),
     "budget of 100 boxes": ({}, {"max_pieces": "100"}),
+    "radii above 1 (k = 40, mu = 1.5)": ({"k": "40", "mu": "1.5"}, {}),
+    "(16) empty (k = 0.1)": ({"k": "0.1"}, {}),
 }
 
 EXPECTED = {
@@ -45,6 +47,9 @@ EXPECTED = {
     ("mu below (16) (mu = 0.01)", "v_positive"): "refuted",
     ("mu below (16) (mu = 0.01)", "best_mu"): "proved",
     ("budget of 100 boxes", "largest_sublevel"): "inconclusive",     # best bound about -9.3: undecided, not refuted
+    ("radii above 1 (k = 40, mu = 1.5)", "best_mu"): "proved",          # R_sup about 3: rho < 1 everywhere
+    ("radii above 1 (k = 40, mu = 1.5)", "best_mu_direct"): "proved",
+    ("(16) empty (k = 0.1)", "best_mu"): "refuted", ("(16) empty (k = 0.1)", "best_mu_direct"): "refuted",
     ("linear law", "invariant_estimate"): "proved", ("linear law", "v_positive"): "proved",
 }
 
@@ -127,7 +132,8 @@ def test_vdot_direct_on_every_variant():
 
 def test_best_mu_on_every_variant_and_R_sup_against_mpmath():
     """R_sup at the chosen mu_best contains mpmath's value there; mu_best lies inside (16)."""
-    out = _run("best_mu", ("paper", "mu below (16) (mu = 0.01)", "linear law"))
+    out = _run("best_mu", ("paper", "mu below (16) (mu = 0.01)", "linear law", "radii above 1 (k = 40, mu = 1.5)",
+                           "(16) empty (k = 0.1)"))
     for variant, data in out.items():
         claim = next(c for c in data["claims"] if c["id"] == "best_mu")
         if claim["status"] != "proved":
@@ -140,7 +146,7 @@ def test_best_mu_on_every_variant_and_R_sup_against_mpmath():
 
 
 def test_best_mu_direct_on_every_variant():
-    _run("best_mu_direct", ("paper", "linear law"))
+    _run("best_mu_direct", ("paper", "linear law", "radii above 1 (k = 40, mu = 1.5)", "(16) empty (k = 0.1)"))
 
 
 @pytest.mark.parametrize("variant", ["paper", "radius far too large (R = 0.5)"])
@@ -218,3 +224,37 @@ def test_vdot_direct_states_an_upper_bound_only_at_a_point_where_vdot_is_positiv
     claim = next(c for c in data["claims"] if c["id"] == "vdot_direct")
     assert claim["status"] == "proved" and "R_direct_upper" not in data["quantities"], claim["reason"]
     assert "no upper bound" in claim["reason"] and check_certificate(data).ok
+
+
+def test_a_decimal_inside_an_open_interval_is_inside_it():
+    """_decimal_inside: the short decimal chosen for mu lies certainly inside (lo, hi) however close mu is
+    to either end (rounded the other way, or with more digits), and there is none when no decimal of up to
+    60 digits near mu fits."""
+    from flint import arb, fmpq
+
+    from rigor_gyro.kinds.lyapunov.claims import _decimal_inside
+    lo, hi = Fraction(1, 3), Fraction(2, 3)
+    for mu in (lo + Fraction(1, 10 ** 15), hi - Fraction(1, 10 ** 15), Fraction(1, 2), lo + Fraction(1, 10 ** 40)):
+        got = _decimal_inside(mu, arb(fmpq(1, 3)), arb(fmpq(2, 3)))
+        assert got is not None and lo < Fraction(got) < hi and abs(Fraction(got) - mu) < Fraction(1, 10 ** 11), (mu, got)
+    tiny = Fraction(1, 3) + Fraction(1, 10 ** 70)
+    assert _decimal_inside(tiny, arb(fmpq(1, 3)), arb(fmpq(tiny.numerator, tiny.denominator))) is None
+
+
+def test_rho_is_infinite_where_a_disc_coefficient_is_not_positive():
+    """rho_function: where c10 (or c20) is <= 0 no disc of positive radius keeps Psi_i > 0, so rho = +inf
+    (here c10 < 0 at x2 = 0.3 for the parameters of test_lyapunov's CSTAR_CASE with mu = 0.02); elsewhere it
+    is finite and positive."""
+    from flint import arb
+
+    from rigor_gyro.core.balls import working_precision
+    from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters, rho_function
+    from tests.test_lyapunov import CSTAR_CASE
+    g, _ = gimbal_from_parameters(dict(CSTAR_CASE, mu="0.02"))
+    with working_precision(64):
+        (c10, _, _), _ = g.psi_coefficients(arb("0.3"))
+        assert c10 < 0
+        assert not rho_function(g)(arb("0.3")).is_finite()
+        g2, _ = gimbal_from_parameters(dict(CSTAR_CASE, mu="0.016"))
+        r = rho_function(g2)(arb("0.3"))
+        assert r.is_finite() and r > 0
