@@ -31,7 +31,8 @@ import signal
 import sys
 import tempfile
 
-TIMEOUT_S = 120
+#: seconds before a mutant counts as a timeout (environment: MUTMUT_INPROC_TIMEOUT)
+TIMEOUT_S = int(os.environ.get("MUTMUT_INPROC_TIMEOUT", "120"))
 
 
 class _Timeout(Exception):
