@@ -43,6 +43,8 @@ EXPECTED = {
     ("origin refutes c_max (k = 0.2)", "largest_sublevel"): "refuted",
     ("faces refute c_max (H = 3000)", "largest_sublevel"): "refuted",
     ("radius far too large (R = 0.5)", "vdot_nonpositive"): "refuted",
+    ("origin refutes c_max (k = 0.2)", "vdot_direct"): "inconclusive",
+    ("mu below (16) (mu = 0.01)", "vdot_direct"): "inconclusive",
     ("radius far too large (R = 0.5)", "invariant_estimate"): "inconclusive",
     ("mu below (16) (mu = 0.01)", "v_positive"): "refuted",
     ("mu below (16) (mu = 0.01)", "best_mu"): "proved",
@@ -127,7 +129,12 @@ def test_equilibria_on_every_variant():
 
 
 def test_vdot_direct_on_every_variant():
-    _run("vdot_direct", ("paper", "faces below 1 (x2* = 1/10)", "Vdot binds (x2* = 1.3)", "linear law"))
+    """Where A(0, t) < 0 for some t (k = 0.2) or min A is about -1e-34 (mu = 0.01) no radius can be certified:
+    inconclusive, never a radius."""
+    out = _run("vdot_direct", ("paper", "faces below 1 (x2* = 1/10)", "Vdot binds (x2* = 1.3)", "linear law",
+                               "origin refutes c_max (k = 0.2)", "mu below (16) (mu = 0.01)"))
+    for variant in ("origin refutes c_max (k = 0.2)", "mu below (16) (mu = 0.01)"):
+        assert "R_direct" not in out[variant]["quantities"], variant
 
 
 def test_best_mu_on_every_variant_and_R_sup_against_mpmath():
