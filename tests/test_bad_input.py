@@ -53,6 +53,7 @@ SCENES = [
     ("A0 <= C0", scene("lyap", {"A2": "0", "C1": "0"}), "A0 > C0"),
     ("x2_star = pi/2", scene("lyap", {"x2_star": "pi/2"}), "x2_star"),
     ("x2_star = 0", scene("lyap", {"x2_star": "0"}), "x2_star"),
+    ("x2_star = 0 pi", scene("lyap", {"x2_star": "0*pi"}), "x2_star"),
     ("k = 0", scene("lyap", {"k": "0"}), "'k'"),
     ("mu < 0", scene("lyap", {"mu": "-1"}), "'mu'"),
     ("H = 0", scene("lyap", {"H": "0"}), "'H'"),
