@@ -265,3 +265,16 @@ def test_rho_is_infinite_where_a_disc_coefficient_is_not_positive():
         g2, _ = gimbal_from_parameters(dict(CSTAR_CASE, mu="0.016"))
         r = rho_function(g2)(arb("0.3"))
         assert r.is_finite() and r > 0
+
+
+def test_x2_star_is_admissible_exactly_below_pi_over_2():
+    """The domain condition 0 < x2* < pi/2, decided exactly: 49 pi/100 and 1.5707 are admissible, pi/2 and
+    1.5708 (just above pi/2 = 1.570796...) are not, whether x2* is written with pi or as a decimal."""
+    from rigor_gyro.core.errors import ParameterError
+    from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters
+    base = load_scene("agafonov2013").parameters
+    for ok in ("49*pi/100", "1.5707", "pi/3", "1/1000"):
+        gimbal_from_parameters(dict(base, x2_star=ok))
+    for bad in ("pi/2", "1.5708", "51*pi/100", "0*pi", "-1/1000"):
+        with pytest.raises(ParameterError, match="x2_star"):
+            gimbal_from_parameters(dict(base, x2_star=bad))
