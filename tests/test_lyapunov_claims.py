@@ -30,6 +30,7 @@ VARIANTS = {
     "budget of 100 boxes": ({}, {"max_pieces": "100"}),
     "radii above 1 (k = 40, mu = 1.5)": ({"k": "40", "mu": "1.5"}, {}),
     "(16) empty (k = 0.1)": ({"k": "0.1"}, {}),
+    "budget of 4 pieces": ({}, {"max_pieces": "4"}),
 }
 
 EXPECTED = {
@@ -52,11 +53,15 @@ EXPECTED = {
     ("radii above 1 (k = 40, mu = 1.5)", "best_mu"): "proved",          # R_sup about 3: rho < 1 everywhere
     ("radii above 1 (k = 40, mu = 1.5)", "best_mu_direct"): "proved",
     ("(16) empty (k = 0.1)", "best_mu"): "refuted", ("(16) empty (k = 0.1)", "best_mu_direct"): "refuted",
+    ("paper", "constants"): "proved", ("paper", "damping_condition"): "proved",
+    ("budget of 4 pieces", "constants"): "inconclusive",      # m and M not to the requested width on 4 pieces
+    ("budget of 4 pieces", "damping_condition"): "proved",    # decided on the wider m, M all the same
+    ("(16) empty (k = 0.1)", "damping_condition"): "refuted",
     ("linear law", "invariant_estimate"): "proved", ("linear law", "v_positive"): "proved",
 }
 
 #: the claims a proof of CLAIM also asks for (the equilibria's membership needs the estimate)
-WITH = {"equilibria": ["invariant_estimate", "equilibria"]}
+WITH = {"equilibria": ["invariant_estimate", "equilibria"], "constants": ["constants", "damping_condition"]}
 
 
 def _prove(variant: str, claim: str, **kw) -> dict:
@@ -84,6 +89,21 @@ def _q(data: dict, name: str) -> Fraction:
 
 def _run(claim: str, variants=tuple(VARIANTS)):
     return {v: _confirm(v, claim) for v in variants}
+
+
+def test_constants_and_damping_on_every_variant_and_against_mpmath():
+    """m, M, p, k_min, R1, R2 (claim constants) contain mpmath's values where proved; not converged on 4
+    pieces they are inconclusive, never proved; the damping condition k > p A0/H is decided either way."""
+    out = _run("constants", ("paper", "budget of 4 pieces", "(16) empty (k = 0.1)", "linear law"))
+    for variant in ("paper", "linear law"):
+        params = dict(load_scene("agafonov2013").parameters, **VARIANTS[variant][0])
+        ref = mp_values(tuple(sorted(params.items())))
+        for name in ("m", "M", "p", "k_min", "R1", "R2"):
+            assert contains_ref(as_ball(interval(out[variant]["quantities"][name])), ref[name]), (variant, name)
+    for variant, data in out.items():
+        damping = next(c for c in data["claims"] if c["id"] == "damping_condition")
+        want = (EXPECTED.get((variant, "damping_condition")) or "proved")
+        assert damping["status"] == want, (variant, damping["reason"])
 
 
 def test_v_positive_on_every_variant():
