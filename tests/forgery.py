@@ -14,14 +14,17 @@ from rigor_gyro.certificate import digest
 from rigor_gyro.check import check_certificate
 
 
-def certificate(name: str, options: dict | None = None, **params) -> dict:
+def certificate(name: str, options: dict | None = None, *, claims_only: list[str] | None = None,
+                prove: dict | None = None, **params) -> dict:
     """The certificate (as parsed JSON) of the built-in scene ``name``, or of its variant (named
-    "variant") with the given parameters and options replaced."""
+    "variant") with the given parameters and options replaced and, with ``claims_only``, only those
+    claims asked; ``prove``: keyword arguments of ``prove_scene`` (``maxprec``, ...)."""
     scene = load_scene(name)
-    if params or options:
+    if params or options or claims_only:
         scene = dataclasses.replace(scene, name="variant", parameters=dict(scene.parameters, **params),
-                                    options=dict(scene.options, **(options or {})))
-    return json.loads(json.dumps(prove_scene(scene).to_json()))
+                                    options=dict(scene.options, **(options or {})),
+                                    claims_only=claims_only or scene.claims_only)
+    return json.loads(json.dumps(prove_scene(scene, **(prove or {})).to_json()))
 
 
 def refix(data: dict) -> dict:

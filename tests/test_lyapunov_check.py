@@ -7,8 +7,8 @@ once there, so a weakened gate is not seen where another gate also rejects. Thes
 that must fail, and test the helpers directly, so that a mutant of the checker is caught in seconds.
 """
 import copy
-import functools
 import dataclasses
+import functools
 import json
 from fractions import Fraction
 

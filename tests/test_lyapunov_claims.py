@@ -5,15 +5,23 @@ quantities against mpmath (50 digits), and every status the checker re-derives.
 One claim at a time costs 0.1-0.3 s, so this file is the quick net under the claims' decision code
 (``kinds/lyapunov/claims.py``, ``sublevel.py``): mutation runs use it, and each test builds what it
 checks afresh (no cached proof)."""
-import dataclasses
-import json
 from fractions import Fraction
 
+import mpmath
 import pytest
+from flint import arb, fmpq
 
-from rigor_gyro import load_scene, prove_scene
+import rigor_gyro.kinds.lyapunov.claims as C
+from rigor_gyro import load_scene
 from rigor_gyro.check import check_certificate
+from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.errors import ParameterError
 from rigor_gyro.core.stored import as_ball, interval
+from rigor_gyro.kinds.lyapunov.approx import MpGimbal
+from rigor_gyro.kinds.lyapunov.equilibria import Equilibria, Equilibrium
+
+from tests.forgery import certificate
+from tests.test_lyapunov import CSTAR_CASE
 from tests.test_properties_lyapunov import contains_ref, mp_values
 
 #: planted variants of the paper's scene (parameters changed, scene options) and, per claim, the outcome
@@ -64,12 +72,9 @@ EXPECTED = {
 WITH = {"equilibria": ["invariant_estimate", "equilibria"], "constants": ["constants", "damping_condition"]}
 
 
-def _prove(variant: str, claim: str, **kw) -> dict:
+def _prove(variant: str, claim: str, **prove) -> dict:
     params, options = VARIANTS[variant]
-    scene = load_scene("agafonov2013")
-    scene = dataclasses.replace(scene, name="variant", parameters=dict(scene.parameters, **params),
-                                options=dict(scene.options, **options), claims_only=WITH.get(claim, [claim]))
-    return json.loads(json.dumps(prove_scene(scene, **kw).to_json()))
+    return certificate("agafonov2013", options, claims_only=WITH.get(claim, [claim]), prove=prove, **params)
 
 
 def _confirm(variant: str, claim: str) -> dict:
@@ -181,10 +186,7 @@ def test_every_claim_at_once_matches_the_claims_one_at_a_time(variant):
     """The orchestration (``attempt``): proving every claim together gives each claim the status it gets
     alone (the shared memo of constants changes nothing), and the checker confirms the whole."""
     params, options = VARIANTS[variant]
-    scene = load_scene("agafonov2013")
-    scene = dataclasses.replace(scene, name="variant", parameters=dict(scene.parameters, **params),
-                                options=dict(scene.options, **options))
-    whole = json.loads(json.dumps(prove_scene(scene).to_json()))
+    whole = certificate("agafonov2013", options, **params)
     assert check_certificate(whole).ok
     for c in whole["claims"]:
         if (variant, c["id"]) in EXPECTED:
@@ -196,12 +198,7 @@ def test_equilibria_membership_in_the_estimate_is_decided_point_by_point(monkeyp
     equilibria (the paper's scene has only the origin inside and +-pi/2 beyond x2*), each row's label is
     the one an mpmath evaluation of V gives (40 digits), and a point straddling the disc's edge is
     'undecided', which leaves the claim inconclusive."""
-    import mpmath
-    from flint import arb
 
-    import rigor_gyro.kinds.lyapunov.claims as C
-    from rigor_gyro.kinds.lyapunov.approx import MpGimbal
-    from rigor_gyro.kinds.lyapunov.equilibria import Equilibria, Equilibrium
     base = _prove("paper", "equilibria")
     inv = next(c for c in base["claims"] if c["id"] == "invariant_estimate")
     c_set, R = Fraction(inv["details"]["c_set"]), _q(base, "R_used")
@@ -240,7 +237,6 @@ def test_vdot_direct_states_an_upper_bound_only_at_a_point_where_vdot_is_positiv
     """A search that puts the supremum 10 % too low: A - R |B| > 0 is still certified there (below the
     supremum), but every candidate point above it lies where Vdot < 0, so no upper bound of the supremum
     may be stated; the checker confirms what is stated."""
-    import rigor_gyro.kinds.lyapunov.claims as C
     real = C.direct_point_search
 
     def low(g, *args):
@@ -257,44 +253,36 @@ def test_a_decimal_inside_an_open_interval_is_inside_it():
     """_decimal_inside: the short decimal chosen for mu lies certainly inside (lo, hi) however close mu is
     to either end (rounded the other way, or with more digits), and there is none when no decimal of up to
     60 digits near mu fits."""
-    from flint import arb, fmpq
 
-    from rigor_gyro.kinds.lyapunov.claims import _decimal_inside
     lo, hi = Fraction(1, 3), Fraction(2, 3)
     for mu in (lo + Fraction(1, 10 ** 15), hi - Fraction(1, 10 ** 15), Fraction(1, 2), lo + Fraction(1, 10 ** 40)):
-        got = _decimal_inside(mu, arb(fmpq(1, 3)), arb(fmpq(2, 3)))
+        got = C._decimal_inside(mu, arb(fmpq(1, 3)), arb(fmpq(2, 3)))
         assert got is not None and lo < Fraction(got) < hi and abs(Fraction(got) - mu) < Fraction(1, 10 ** 11), (mu, got)
     tiny = Fraction(1, 3) + Fraction(1, 10 ** 70)
-    assert _decimal_inside(tiny, arb(fmpq(1, 3)), arb(fmpq(tiny.numerator, tiny.denominator))) is None
+    assert C._decimal_inside(tiny, arb(fmpq(1, 3)), arb(fmpq(tiny.numerator, tiny.denominator))) is None
 
 
 def test_rho_is_infinite_where_a_disc_coefficient_is_not_positive():
     """rho_function: where c10 (or c20) is <= 0 no disc of positive radius keeps Psi_i > 0, so rho = +inf
     (here c10 < 0 at x2 = 0.3 for the parameters of test_lyapunov's CSTAR_CASE with mu = 0.02); elsewhere it
     is finite and positive."""
-    from flint import arb
 
-    from rigor_gyro.core.balls import working_precision
-    from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters, rho_function
-    from tests.test_lyapunov import CSTAR_CASE
-    g, _ = gimbal_from_parameters(dict(CSTAR_CASE, mu="0.02"))
+    g, _ = C.gimbal_from_parameters(dict(CSTAR_CASE, mu="0.02"))
     with working_precision(64):
         (c10, _, _), _ = g.psi_coefficients(arb("0.3"))
         assert c10 < 0
-        assert not rho_function(g)(arb("0.3")).is_finite()
-        g2, _ = gimbal_from_parameters(dict(CSTAR_CASE, mu="0.016"))
-        r = rho_function(g2)(arb("0.3"))
+        assert not C.rho_function(g)(arb("0.3")).is_finite()
+        g2, _ = C.gimbal_from_parameters(dict(CSTAR_CASE, mu="0.016"))
+        r = C.rho_function(g2)(arb("0.3"))
         assert r.is_finite() and r > 0
 
 
 def test_x2_star_is_admissible_exactly_below_pi_over_2():
     """The domain condition 0 < x2* < pi/2, decided exactly: 49 pi/100 and 1.5707 are admissible, pi/2 and
     1.5708 (just above pi/2 = 1.570796...) are not, whether x2* is written with pi or as a decimal."""
-    from rigor_gyro.core.errors import ParameterError
-    from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters
     base = load_scene("agafonov2013").parameters
     for ok in ("49*pi/100", "1.5707", "pi/3", "1/1000"):
-        gimbal_from_parameters(dict(base, x2_star=ok))
+        C.gimbal_from_parameters(dict(base, x2_star=ok))
     for bad in ("pi/2", "1.5708", "51*pi/100", "0*pi", "-1/1000"):
         with pytest.raises(ParameterError, match="x2_star"):
-            gimbal_from_parameters(dict(base, x2_star=bad))
+            C.gimbal_from_parameters(dict(base, x2_star=bad))

@@ -8,8 +8,8 @@ reasons at once; these tests name the item that must fail. A relay certificate i
 0.1 s, so a mutant of the checker is judged in seconds.
 """
 import copy
-import functools
 import dataclasses
+import functools
 import json
 from fractions import Fraction
 from math import comb

@@ -31,10 +31,6 @@ def _mp(x: arb) -> mpmath.mpf:
     return mpmath.mpf(q.numerator) / q.denominator
 
 
-def _mp_text(x) -> str:
-    return mpmath.nstr(x, 40)
-
-
 def _rel(a: arb, b, tol: float) -> bool:
     return abs(_mp(a) - b) <= tol * abs(b)
 
@@ -176,7 +172,7 @@ def test_the_spectrum_is_ms_eigenvalues_and_the_multipliers_a_matrixs():
         for z in ref:
             w = acb(arb(mpmath.nstr(z.real, 35)), arb(mpmath.nstr(z.imag, 35)))
             assert sum(1 for g in got if (g - w).contains(0) or abs(g - w) < arb(10) ** -25) == 1, z
-        J = arb_mat([[arb(_mp_text(M[i, j] / 50 + (i == j))) for j in range(4)] for i in range(4)])
+        J = arb_mat([[arb(mpmath.nstr(M[i, j] / 50 + (i == j), 40)) for j in range(4)] for i in range(4)])
         eig = sp.multipliers(J, arb("0.1"))
         refJ = mpmath.eig(mpmath.matrix([[M[i, j] / 50 + (i == j) for j in range(4)] for i in range(4)]))[0]
         assert len(eig) == 4
