@@ -1,0 +1,157 @@
+"""The paving checker (rigor_gyro.margins.check) check by check.
+
+Each alteration of a genuine paving (resealed, so the digest holds) must fail exactly the check that is
+there for it, with its message; genuine pavings with proved, refuted and undecided sub-boxes, point
+proofs, and an edge that is never split are confirmed. (tests/test_margins.py asks only that a tampered
+paving is rejected somewhere: with several checks failing at once, any one of them weakened went
+unnoticed; see proofs/mutation.md section 13.)
+"""
+import json
+
+import pytest
+
+from rigor_gyro.certificate import digest
+from rigor_gyro.check import check_certificate
+from rigor_gyro.margins.paving import box_scene, pave
+from rigor_gyro.margins.report import paving_json
+from rigor_gyro.scene import Scene, load_scene, parse_scene
+from tests.test_margins import RUDENKO_BOX
+
+
+def _paving(text: str) -> dict:
+    return paving_json(pave(box_scene(parse_scene(text))))
+
+
+def _proved():
+    """Two claims, each proved on every sub-box."""
+    return _paving(RUDENKO_BOX.replace('only = [', 'only = ["bracket_1", "bracket_2"] #'))
+
+
+def _refuted():
+    """bracket (8) fails on every sub-box; seven point proofs, each refuted."""
+    return _paving(RUDENKO_BOX.replace('"[0.1, 0.12]"', '"0.1076"').replace('"0.625 +- 0.025"', '"[0.001, 0.005]"')
+                   .replace('only = [', 'only = ["bracket_2"] #'))
+
+
+def _undecided():
+    """The bounds (5) undecided on every sub-box at resolution 1/2; the point proofs prove them."""
+    return _paving(RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #').replace('"1/16"', '"1/2"'))
+
+
+def _mixed():
+    """bracket (8) proved on some sub-boxes, undecided on others."""
+    return _paving(RUDENKO_BOX.replace('"[0.1, 0.12]"', '"0.1076"').replace('"0.625 +- 0.025"', '"[0.001, 0.2]"')
+                   .replace('only = [', 'only = ["bracket_2"] #'))
+
+
+def _reseal(data: dict) -> dict:
+    data = json.loads(json.dumps(data))
+    data.pop("integrity", None)
+    data["integrity"] = {"sha256": digest(data)}
+    return data
+
+
+def _failures(data: dict) -> list[tuple[str, str]]:
+    return [(r.item, r.message) for r in check_certificate(data).results if not r.ok]
+
+
+def test_genuine_pavings_with_every_kind_of_sub_box_are_confirmed():
+    for make, statuses, points in [(_proved, {"proved"}, set()), (_refuted, {"refuted"}, {("refuted", "refuted")}),
+                                   (_undecided, {"undecided"}, {("undecided", "proved")}),
+                                   (_mixed, {"proved", "undecided"}, {("undecided", "proved")})]:
+        data = make()
+        assert {b["status"] for c in data["claims"] for b in c["boxes"]} == statuses, make.__name__
+        assert {(p["box_outcome"], p["status"]) for c in data["claims"] for p in c["points"]} == points
+        report = check_certificate(data)
+        assert report.ok, (make.__name__, report.first_failure)
+        messages = [r.message for r in report.results]
+        assert "every decided sub-box re-evaluated" in messages
+        assert any(m.endswith("point proofs re-run") for m in messages)
+
+
+def test_a_paving_with_an_edge_never_split_is_confirmed():
+    """S is an amplitude parameter of the relay kind: never split, so the sub-boxes are the leaves of a
+    bisection tree along H alone (a checker that also splits S would not find them)."""
+    base = load_scene("roitenberg1947")
+    s = Scene(name="frozen", kind=base.kind, source="test",
+              parameters={**base.parameters, "S": "[0.14, 0.16]", "H": "[9000, 9650]"},
+              claims_only=["stable"], options={"box_resolution": "1/4"})
+    data = paving_json(pave(box_scene(s)))
+    c = data["claims"][0]
+    assert data["settings"]["unsplit"] == ["S"] and len(c["boxes"]) > 2     # H split twice at least
+    assert {tuple(b["box"]["S"]) for b in c["boxes"]} == {("7/50", "4/25")}
+    assert _failures(data) == []
+
+
+def _claim(data, i=0):
+    return data["claims"][i]
+
+
+def _last_proved(claim):
+    statuses = [b["status"] for b in claim["boxes"]]
+    i = len(statuses) - 1 - statuses[::-1].index("proved")
+    assert "undecided" in statuses[:i]
+    return claim["boxes"][i]
+
+
+ALTERATIONS = {
+    # name: (paving, change, the failing checks as (item, a fragment of the message))
+    "scene source, not resealed": (_proved, lambda d: d["scene"].update(source="another source"),
+                                   [("integrity", "digest does not match")]),
+    "a box scene no longer": (_proved, lambda d: d["scene"]["parameters"].update(eps="[0.12, 0.1]"),
+                              [("scene", "not a valid box scene")]),
+    "box": (_proved, lambda d: d["box"]["eps"].__setitem__(1, "1/8"), [("box", "re-derived")]),
+    "settings": (_proved, lambda d: d["settings"].update(max_boxes=7), [("settings", "re-derived")]),
+    "claims reordered": (_proved, lambda d: d["claims"].reverse(), [("claims", "claims")]),
+    "statement": (_proved, lambda d: _claim(d).update(statement=_claim(d)["statement"] + " Also for eps = 1."),
+                  [("bracket_1", "not the kind's box statement")]),
+    "unknown sub-box status": (_proved, lambda d: _claim(d)["boxes"][0].update(status="maybe"),
+                               [("bracket_1", "unknown sub-box status")]),
+    "the last proved sub-box relabelled refuted": (       # after undecided ones: each decided box is re-evaluated
+        _mixed, lambda d: _last_proved(_claim(d)).update(status="refuted"),
+        [("bracket_2", "volume fractions"), ("bracket_2", "stored refuted, re-evaluated proved"),
+         ("bracket_2", "not the midpoints"), ("bracket_2", "but the sub-boxes give 'refuted'"),
+         ("verdict", "verdict")]),
+    "a proved sub-box dropped": (_mixed, lambda d: _claim(d)["boxes"].remove(_last_proved(_claim(d))),
+                                 [("bracket_2", "do not tile"), ("bracket_2", "volume fractions")]),
+    "volume fraction": (_mixed, lambda d: _claim(d)["volume_fraction"].update(proved="1/3"),
+                        [("bracket_2", "volume fractions")]),
+    "a point's status": (_refuted, lambda d: _claim(d)["points"][2].update(status="inconclusive"),
+                         [("bracket_2", "stored inconclusive, re-proved refuted")]),
+    "a point moved": (_undecided, lambda d: _claim(d)["points"][0]["point"].update(eps="11/100"),
+                      [("nu_bounds", "not the midpoints")]),
+    "a point dropped": (_refuted, lambda d: _claim(d)["points"].pop(), [("bracket_2", "not the midpoints")]),
+    "a refuted claim relabelled inconclusive": (_refuted, lambda d: _claim(d).update(status="inconclusive"),
+                                                [("bracket_2", "but the sub-boxes give 'refuted'")]),
+    "an undecided claim relabelled proved": (_undecided, lambda d: _claim(d).update(status="proved"),
+                                             [("nu_bounds", "but the sub-boxes give 'inconclusive'")]),
+    "a mixed claim relabelled proved": (_mixed, lambda d: _claim(d).update(status="proved"),
+                                        [("bracket_2", "but the sub-boxes give 'inconclusive'")]),
+    "verdict proved for refuted": (_refuted, lambda d: d.update(verdict="proved"), [("verdict", "verdict")]),
+    "verdict refuted for proved": (_proved, lambda d: d.update(verdict="refuted"), [("verdict", "verdict")]),
+    "verdict proved for inconclusive": (_undecided, lambda d: d.update(verdict="proved"), [("verdict", "verdict")]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(ALTERATIONS))
+def test_each_alteration_fails_exactly_its_own_check(name):
+    make, change, expected = ALTERATIONS[name]
+    data = json.loads(json.dumps(make()))
+    change(data)
+    if name.endswith("not resealed"):
+        got = _failures(data)
+    else:
+        got = _failures(_reseal(data))
+        assert not any(item == "integrity" for item, _ in got)
+    assert len(got) == len(expected), got
+    for (item, message), (want_item, fragment) in zip(got, expected):
+        assert item == want_item and fragment in message, (got, expected)
+
+
+def test_an_unknown_status_in_one_claim_leaves_the_next_claim_checked():
+    data = _proved()
+    _claim(data)["boxes"][0]["status"] = "maybe"
+    results = check_certificate(_reseal(data)).results
+    second = [r for r in results if r.item == "bracket_2"]
+    assert second and all(r.ok for r in second)
+    assert any(r.message == "every decided sub-box re-evaluated" for r in second)
