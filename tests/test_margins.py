@@ -46,7 +46,14 @@ def test_tolerances_parse_exactly():
     assert parse_tolerance("0.15 +- 0.01", "S") == (Fraction(14, 100), Fraction(16, 100))
     assert parse_tolerance("1/3 +/- 1/6", "x") == (Fraction(1, 6), Fraction(1, 2))
     assert parse_tolerance("[2, 2]", "x") == (2, 2)
+    assert parse_tolerance("2 +- 0", "x") == (2, 2)          # a zero radius is a point, like [2, 2]
     assert parse_tolerance("0.15", "S") is None
+
+
+def test_a_degenerate_edge_does_not_count_in_the_volume():
+    box = Box.of({"a": (Fraction(1), Fraction(1)), "b": (Fraction(0), Fraction(2)), "c": (Fraction(1, 3), Fraction(1))})
+    assert box.volume() == Fraction(4, 3)
+    assert Box.of({"a": (Fraction(1), Fraction(1))}).volume() == 1
 
 
 @pytest.mark.parametrize("text", ["[0.2, 0.1]", "0.1 +- -0.01", "[pi, 4]", "[1, 2, 3]", "[1,]", "[x, 2]",
