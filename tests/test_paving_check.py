@@ -155,3 +155,12 @@ def test_an_unknown_status_in_one_claim_leaves_the_next_claim_checked():
     second = [r for r in results if r.item == "bracket_2"]
     assert second and all(r.ok for r in second)
     assert any(r.message == "every decided sub-box re-evaluated" for r in second)
+
+
+def test_a_paving_whose_data_cannot_be_read_fails_at_data():
+    data = _proved()
+    del _claim(data)["boxes"][0]["box"]
+    report = check_certificate(_reseal(data), "p.json")
+    assert report.file == "p.json" and 0 < report.seconds < 60
+    assert [(r.item, r.ok) for r in report.results][-1] == ("data", False)
+    assert "cannot be checked: KeyError" in report.results[-1].message
