@@ -726,3 +726,27 @@ def test_a_relay_box_in_n_decides_a_spurious_root_by_a_point_of_beta_below_zero(
         out = relay_box(m, Box.of({"n": (Fraction(48), Fraction(193, 4))}), ["half_period", "orbit_genuine"])
     assert out["half_period"][0] == "proved", out["half_period"][1]
     assert out["orbit_genuine"][0] == "proved"
+
+
+def test_even_in_evaluates_a_box_and_its_mirror_image_once_and_gives_both_the_same_ball():
+    from rigor_gyro.core.boxes import even_in
+    calls = []
+
+    def f(balls):                        # even in u; records what it was asked
+        calls.append({k: (v.mid(), v.rad()) for k, v in balls.items()})
+        return balls["u"] * balls["u"] + balls["v"]
+
+    g = even_in(f, "u")
+    with working_precision(64):
+        box = {"u": arb("-0.75", "0.25"), "v": arb("2", "0.5")}
+        mirror = {"u": arb("0.75", "0.25"), "v": arb("2", "0.5")}
+        a, b = g(box), g(mirror)
+        assert len(calls) == 1 and calls[0]["u"][0] > 0          # evaluated once, at the image with u >= 0
+        assert a is b and a.contains(arb("0.25") + arb("1.5")) and a.contains(arb(1) + arb("2.5"))
+        other = g({"u": arb("0.75", "0.25"), "v": arb("3", "0.5")})     # another v: a new evaluation
+        assert len(calls) == 2 and other.contains(arb("3.5625"))
+        nan = {"u": arb("nan"), "v": arb("1")}
+        g(nan), g(nan)                                              # non-finite: passed on as it is, never kept
+        assert len(calls) == 4
+        zero = g({"u": arb("0", "0.5"), "v": arb("1")})             # midpoint 0: not mirrored
+        assert calls[-1]["u"][0] == 0 and zero.contains(arb(1))
