@@ -295,6 +295,37 @@ MUTANTS = [
     ("near_zero_tail_constant_shrunk", "rigor_gyro/kinds/periodic_orbit/flow.py",
      "self.tail = (2 * arb.pi() ** 2 / 3) * abs(S)", "self.tail = (2 * arb.pi() ** 2 / 4) * abs(S)",
      "a constant of the near-zero series' tail bound shrunk (2 pi^2/3 -> 2 pi^2/4)"),
+    # issue 10, 2026-12-05 (second session): mutmut survivors of the margins layer and the checker's own
+    # gates, each letting a false statement through on some input and none killed before this session
+    ("paving_check_point_status_unread", "rigor_gyro/margins/check.py",
+     '            if got != p["status"]:', '            if False:',
+     "the paving checker re-runs a stored point proof but never compares its status with the stored one"),
+    ("paving_check_tiles_ignore_frozen", "rigor_gyro/margins/check.py",
+     "    return tiles_by_bisection(whole, boxes, frozen)", "    return tiles_by_bisection(whole, boxes)",
+     "the paving checker rebuilds the bisection tree splitting edges the paving never splits"),
+    ("paving_check_skips_after_undecided", "rigor_gyro/margins/check.py",
+     '            if s == "undecided":\n                continue', '            if s == "undecided":\n                break',
+     "the paving checker stops re-evaluating decided sub-boxes at the first undecided one"),
+    ("threshold_ends_swapped", "rigor_gyro/margins/threshold.py",
+     '    p, r = (lo_q, hi_q) if ends[lo_q] == "proved" else (hi_q, lo_q)', "    p, r = (hi_q, lo_q)",
+     "a threshold search takes its lower end for the refuted one: 'proved at' a refuted point when the "
+     "claim is proved below"),
+    ("threshold_bracket_one_end_twice", "rigor_gyro/margins/threshold.py",
+     '"bracket": [fraction_text(b[0]), fraction_text(b[1])] if b else None,',
+     '"bracket": [fraction_text(b[1]), fraction_text(b[1])] if b else None,',
+     "the threshold file's bracket written with its upper end twice"),
+    ("scan_domain_checked_off_the_ends", "rigor_gyro/margins/scan.py",
+     "    for x in (values[0], values[-1]):", "    for x in (values[1], values[-1]):",
+     "a scan checks the second point's domain instead of the first end's (proofs start outside the domain)"),
+    ("check_gate_unknown_status_passes", "rigor_gyro/check.py",
+     '        add(CheckResult("claims", False, f"unknown status(es) {bad_status}"))',
+     '        add(CheckResult("claims", True, f"unknown status(es) {bad_status}"))',
+     "the checker's gate on claim statuses passes an unknown status"),
+    ("check_gate_refuted_verdict_unread", "rigor_gyro/check.py",
+     '    verdict = ("refuted" if "refuted" in statuses else',
+     '    verdict = ("refuted" if "refuted" in statuses and False else',
+     "the checker re-derives a verdict without its refuted case (a refuted certificate relabelled "
+     "inconclusive passes)"),
 ]
 
 
