@@ -164,3 +164,23 @@ def test_a_paving_whose_data_cannot_be_read_fails_at_data():
     assert report.file == "p.json" and 0 < report.seconds < 60
     assert [(r.item, r.ok) for r in report.results][-1] == ("data", False)
     assert "cannot be checked: KeyError" in report.results[-1].message
+
+
+def test_a_pavings_counters_and_budget_are_what_it_did():
+    data = _undecided()                     # resolution 1/2: the whole box, 2 halves, 4 quarters
+    assert (data["boxes_evaluated"], data["levels"], data["budget_exhausted"]) == (7, 3, False)
+    short = _paving(RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #')
+                    .replace('box_resolution = "1/16"', 'box_resolution = "1/16"\nmax_boxes = "7"'))
+    assert short["budget_exhausted"] is True and short["boxes_evaluated"] <= 7
+    assert _failures(short) == []
+
+
+def test_a_degenerate_edge_is_a_point_of_every_proof():
+    """eps = [0.1076, 0.1076]: a point, not an edge of the box, and every point proof takes eps there."""
+    data = _paving(RUDENKO_BOX.replace('"[0.1, 0.12]"', '"[0.1076, 0.1076]"').replace('"0.625 +- 0.025"', '"[0.001, 0.005]"')
+                   .replace('only = [', 'only = ["bracket_2"] #'))
+    c = _claim(data)
+    assert c["status"] == "refuted" and c["points"]
+    assert all(p["point"]["eps"] == "269/2500" for p in c["points"])
+    assert list(data["box"]) == ["Omega2"] and data["point_parameters"]["eps"] == "269/2500"
+    assert _failures(data) == []
