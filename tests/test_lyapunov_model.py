@@ -146,3 +146,103 @@ def test_slice_in_region_puts_the_centre_of_the_slice_where_v_has_its_minimum(gi
             assert slice_in_region(g, c, r * (1 + arb("1e-15")), x2)
             assert not slice_in_region(g, c, r * (1 - arb("1e-15")), x2)
             assert not slice_in_region(g, g.phi(x2) - arb("1e-9"), r * 10, x2)
+
+
+# ------------------------------------------------------------------ V and Vdot along a ray, their monomials
+
+_RAYS = [("0", "0.1"), ("0.2", "0.35"), ("-0.4", "0.8"), ("0.5", "0.5"), ("0.05", "0.97")]     # (x2/x2*, t/pi)
+
+
+def _ray_values(g, fn, x2, t, rs):
+    return [fn(r * t.cos(), x2, r * t.sin()) for r in rs]
+
+
+def test_v_polar_and_vdot_polar_are_v_and_vdot_along_every_ray(gimbal):
+    """V(r cos t, x2, r sin t) = alpha + beta r + gamma r^2 and Vdot = -r^2 (A + r B) for every r: the
+    coefficients read back from V and Vdot themselves at r = -1, 0, 1, and checked at r = 2, -3, 1/7."""
+    from rigor_gyro.kinds.lyapunov.model import v_polar, vdot_polar
+    g = gimbal
+    with working_precision(128):
+        for u, s in _RAYS:
+            x2, t = g.c.x2_star * arb(u), arb.pi() * arb(s)
+            vm, v0, vp = _ray_values(g, g.V, x2, t, [arb(-1), arb(0), arb(1)])
+            alpha, beta, gamma = v_polar(g, x2, t)
+            for mine, ref in ((alpha, v0), (beta, (vp - vm) / 2), (gamma, (vp + vm) / 2 - v0)):
+                assert mine.overlaps(ref) and abs(mine - ref).upper() < arb("1e-25") * (1 + abs(ref).upper())
+            dm, dp = _ray_values(g, g.vdot, x2, t, [arb(-1), arb(1)])
+            A, B = vdot_polar(g, x2, t)
+            assert A.overlaps(-(dp + dm) / 2) and B.overlaps((dm - dp) / 2)
+            for r in (arb(2), arb(-3), arb(1) / 7):
+                assert g.V(r * t.cos(), x2, r * t.sin()).overlaps(alpha + beta * r + gamma * r * r)
+                assert g.vdot(r * t.cos(), x2, r * t.sin()).overlaps(-r * r * (A + r * B))
+
+
+def test_vdot_monomials_sum_to_vdot_off_their_nodes(gimbal):
+    g = gimbal
+    with working_precision(128):
+        for u in ("0", "0.3", "-0.9"):
+            x2 = g.c.x2_star * arb(u)
+            mono = g.vdot_monomials(x2)
+            for x1, x3 in ((arb("0.3"), arb("-0.7")), (arb("-1.25"), arb("0.5")), (arb("2.5"), arb("3"))):
+                powers = {"1": arb(1), "x1": x1, "x3": x3, "x1^2": x1 ** 2, "x1x3": x1 * x3, "x3^2": x3 ** 2,
+                          "x1^3": x1 ** 3, "x1^2x3": x1 ** 2 * x3, "x1x3^2": x1 * x3 ** 2, "x3^3": x3 ** 3}
+                total = sum((mono[k] * p for k, p in powers.items()), arb(0))
+                direct = g.vdot(x1, x2, x3)
+                assert total.overlaps(direct) and abs(total - direct).upper() < arb("1e-20")
+
+
+@pytest.mark.parametrize("k", ["0.4", "0.2"])          # the paper's k; k = 0.2, where A(0, t) < 0
+def test_the_sublevel_lower_bound_is_below_v_on_the_half_line_of_vdot_ge_0_and_tight_there(k):
+    """On tiny (u, s) boxes, the bound's lower end is at most the minimum of V over the half-line
+    {r : Vdot(r cos t, x2, r sin t) >= 0} at the box's centre (from V's and Vdot's own values along the ray,
+    the minimum of the quadratic clamped to the half-line in mpmath) and within 1e-5 of it where the
+    bound is that minimum (A > 0, or the vertex on the half-line): a term dropped or scaled in either
+    branch of the bound shows here."""
+    import dataclasses
+
+    import mpmath
+    from rigor_gyro.kinds.lyapunov.model import sublevel_lower_bound
+    scene = load_scene("agafonov2013")
+    g = validate(dataclasses.replace(scene, parameters=dict(scene.parameters, k=k))).gimbal
+    f = sublevel_lower_bound(g)
+    seen = set()
+    with working_precision(128), mpmath.workdps(40):
+        for i, j in itertools.product(range(1, 12, 2), range(1, 24, 3)):
+            u, s = arb(i) / 12, arb(j) / 24
+            box = {"u": arb(u.mid(), arb("1e-9")), "s": arb(s.mid(), arb("1e-9"))}
+            bound = f(box)
+            x2, t = g.c.x2_star * u, arb.pi() * s
+            vm, v0, vp = _ray_values(g, g.V, x2, t, [arb(-1), arb(0), arb(1)])
+            dm, dp = _ray_values(g, g.vdot, x2, t, [arb(-1), arb(1)])
+            al, be, ga = (mpmath.mpf(x.mid().str(40, radius=False)) for x in (v0, (vp - vm) / 2, (vp + vm) / 2 - v0))
+            A, B = (mpmath.mpf(x.mid().str(40, radius=False)) for x in (-(dp + dm) / 2, (dm - dp) / 2))
+            if B == 0 and A > 0:
+                continue
+            r = -be / (2 * ga)                       # the vertex, clamped to {r : r B <= -A}
+            edge = -A / B
+            clamped = (B > 0 and r > edge) or (B < 0 and r < edge)
+            r = edge if clamped else r
+            true_min = al + be * r + ga * r * r
+            low = mpmath.mpf(bound.lower().str(40, radius=False))
+            assert low <= true_min + mpmath.mpf("1e-20"), (i, j, low, true_min)
+            if A > 0 or not clamped:
+                seen.add(clamped)
+                assert true_min - low < mpmath.mpf("1e-5") * (1 + abs(true_min)), (i, j, low, true_min)
+    assert seen == ({True} if k == "0.4" else {False, True})     # k = 0.2: both branches tight somewhere
+
+
+def test_the_faces_minimiser_is_where_v_takes_phi_and_v_is_larger_around_it(gimbal):
+    """phi(x2) = min V(., x2, .) and phi_minimiser(x2) is where: V there equals phi, and V is larger at
+    points 1e-3 away in x1 and in x3 (V is a convex quadratic in (x1, x3)); the minimiser feeds the
+    'inside' flag of c*'s face bound (proofs/mutation.md section 12's gap)."""
+    g = gimbal
+    with working_precision(128):
+        for u in ("0.1", "0.5", "1", "-0.7"):
+            x2 = g.c.x2_star * arb(u)
+            m1, m3 = g.phi_minimiser(x2)
+            phi = g.phi(x2)
+            at = g.V(m1, x2, m3)
+            assert at.overlaps(phi) and abs(at - phi).upper() < arb("1e-25")
+            h = arb("1e-3")
+            for d1, d3 in ((h, 0), (-h, 0), (0, h), (0, -h), (h, h)):
+                assert certainly_gt(g.V(m1 + d1, x2, m3 + d3), phi)

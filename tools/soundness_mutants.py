@@ -326,6 +326,12 @@ MUTANTS = [
      '    verdict = ("refuted" if "refuted" in statuses and False else',
      "the checker re-derives a verdict without its refuted case (a refuted certificate relabelled "
      "inconclusive passes)"),
+    ("sublevel_vertex_bound_raised", "rigor_gyro/kinds/lyapunov/model.py",
+     "        return a - b * b / (4 * glo)", "        return a - b * b / (5 * glo)",
+     "the lower bound of V over {Vdot >= 0} at the quadratic's vertex raised (b^2/4g -> b^2/5g): c_max too high"),
+    ("v_polar_gamma_scaled", "rigor_gyro/kinds/lyapunov/model.py",
+     "g.S(x2) * st * st) / 2)", "g.S(x2) * st * st) / 3)",
+     "V's r^2 coefficient along a ray scaled by 2/3 (V along every ray misstated)"),
 ]
 
 
