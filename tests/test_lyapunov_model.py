@@ -229,6 +229,23 @@ def test_the_sublevel_lower_bound_is_below_v_on_the_half_line_of_vdot_ge_0_and_t
                 seen.add(clamped)
                 assert true_min - low < mpmath.mpf("1e-5") * (1 + abs(true_min)), (i, j, low, true_min)
     assert seen == ({True} if k == "0.4" else {False, True})     # k = 0.2: both branches tight somewhere
+    with working_precision(128), mpmath.workdps(40):               # wide boxes: below V at points inside
+        for i, j in itertools.product(range(6), range(6)):
+            box = {"u": arb(i) / 6 + arb(1) / 12 + arb(0, arb(1) / 12), "s": arb(j) / 6 + arb(1) / 12 + arb(0, arb(1) / 12)}
+            low = f(box).lower()
+            for du, ds in itertools.product((-1, 0, 1), repeat=2):
+                u, s = box["u"].mid() + arb(du) / 13, box["s"].mid() + arb(ds) / 13
+                x2, t = g.c.x2_star * u, arb.pi() * s
+                vm, v0, vp = _ray_values(g, g.V, x2, t, [arb(-1), arb(0), arb(1)])
+                dm, dp = _ray_values(g, g.vdot, x2, t, [arb(-1), arb(1)])
+                al, be, ga = (x.mid() for x in (v0, (vp - vm) / 2, (vp + vm) / 2 - v0))
+                A, B = (x.mid() for x in (-(dp + dm) / 2, (dm - dp) / 2))
+                if B == 0:
+                    continue
+                r = -be / (2 * ga)
+                edge = -A / B
+                r = edge if ((B > 0 and r > edge) or (B < 0 and r < edge)) else r
+                assert low <= al + be * r + ga * r * r + arb("1e-20"), (i, j, du, ds)
 
 
 def test_the_faces_minimiser_is_where_v_takes_phi_and_v_is_larger_around_it(gimbal):
@@ -246,3 +263,40 @@ def test_the_faces_minimiser_is_where_v_takes_phi_and_v_is_larger_around_it(gimb
             h = arb("1e-3")
             for d1, d3 in ((h, 0), (-h, 0), (0, h), (0, -h), (h, h)):
                 assert certainly_gt(g.V(m1 + d1, x2, m3 + d3), phi)
+
+
+def test_dual_numbers_carry_the_derivative_of_every_operation():
+    """Each Dual rule against mpmath's numerical derivative of the same expression at 30 digits."""
+    import mpmath
+    from rigor_gyro.kinds.lyapunov.model import Dual, sin_cos
+    exprs = [
+        (lambda x: -x + 3, lambda x: -x + 3), (lambda x: 2 - x, lambda x: 2 - x), (lambda x: x - 5, lambda x: x - 5),
+        (lambda x: x * x * 3, lambda x: 3 * x * x), (lambda x: (x + 1) / (x * x + 2), lambda x: (x + 1) / (x * x + 2)),
+        (lambda x: 7 / x, lambda x: 7 / x), (lambda x: x / 4, lambda x: x / 4), (lambda x: x ** 2, lambda x: x ** 2),
+        (lambda x: x.sin() * x.cos(), lambda x: mpmath.sin(x) * mpmath.cos(x)),
+        (lambda x: (x * x + 1).sqrt(), lambda x: mpmath.sqrt(x * x + 1)),
+        (lambda x: sin_cos(x)[0] - sin_cos(x)[1], lambda x: mpmath.sin(x) - mpmath.cos(x)),
+        (lambda x: (x - 2 * x) * x, lambda x: -x * x),
+    ]
+    with working_precision(128), mpmath.workdps(30):
+        for x0 in ("0.3", "-1.7", "2.5"):
+            for seed in (1, 3):
+                for mine, ref in exprs:
+                    d = mine(Dual(arb(x0), arb(seed)))
+                    want_v = ref(mpmath.mpf(x0))
+                    want_d = seed * mpmath.diff(ref, mpmath.mpf(x0))
+                    for got, want in ((d.v, want_v), (d.d, want_d)):
+                        assert abs(mpmath.mpf(got.mid().str(30, radius=False)) - want) < mpmath.mpf("1e-20"), (x0, seed)
+
+
+def test_vdot_polar_over_a_mu_ball_contains_it_at_every_mu_of_the_ball(gimbal):
+    from rigor_gyro.kinds.lyapunov.model import vdot_polar
+    g = gimbal
+    with working_precision(128):
+        mu = arb("0.03", "0.01")
+        for u, s in _RAYS:
+            x2, t = g.c.x2_star * arb(u), arb.pi() * arb(s)
+            A, B = vdot_polar(g, x2, t, mu)
+            for m in ("0.02", "0.025", "0.03", "0.04"):
+                Am, Bm = vdot_polar(g.with_mu(arb(m)), x2, t)
+                assert A.contains(Am) and B.contains(Bm), (u, s, m)
