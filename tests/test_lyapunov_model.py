@@ -300,3 +300,37 @@ def test_vdot_polar_over_a_mu_ball_contains_it_at_every_mu_of_the_ball(gimbal):
             for m in ("0.02", "0.025", "0.03", "0.04"):
                 Am, Bm = vdot_polar(g.with_mu(arb(m)), x2, t)
                 assert A.contains(Am) and B.contains(Bm), (u, s, m)
+
+
+def test_slice_extents_are_the_ellipses_own_from_v_itself(gimbal):
+    """max |x1| and max |x3| over {V(., x2, .) < c}: from V's own values (the quadratic form's gradient and
+    Hessian at six points, the ellipse's centre and axes solved in mpmath), at points (the direct form)
+    and on tiny balls (the mean-value form), and 0 where c < phi(x2)."""
+    import mpmath
+    from rigor_gyro.kinds.lyapunov.model import slice_extent
+    g = gimbal
+    with working_precision(128), mpmath.workdps(40):
+        c = g.phi(g.c.x2_star) * arb("1.5")
+        mp = lambda x: mpmath.mpf(x.mid().str(40, radius=False))      # noqa: E731
+        for u in ("0.05", "0.4", "0.8", "-0.6"):
+            x2 = g.c.x2_star * arb(u)
+            V = lambda a, b: mp(g.V(arb(a), x2, arb(b)))               # noqa: E731
+            v0 = V(0, 0)
+            g1, g3 = (V(1, 0) - V(-1, 0)) / 2, (V(0, 1) - V(0, -1)) / 2
+            q11, q33 = V(1, 0) + V(-1, 0) - 2 * v0, V(0, 1) + V(0, -1) - 2 * v0
+            q13 = V(1, 1) - v0 - g1 - g3 - (q11 + q33) / 2
+            Q = mpmath.matrix([[q11, q13], [q13, q33]])
+            z0 = -(Q ** -1) * mpmath.matrix([g1, g3])
+            vmin = v0 + (g1 * z0[0] + g3 * z0[1]) / 2
+            Qi = Q ** -1
+            level = mp(c) - vmin
+            assert level > 0
+            want = {"x1": abs(z0[0]) + mpmath.sqrt(2 * level * Qi[0, 0]),
+                    "x3": abs(z0[1]) + mpmath.sqrt(2 * level * Qi[1, 1])}
+            for axis in ("x1", "x3"):
+                e = slice_extent(g, c, axis)
+                at = e(x2)
+                assert abs(mp(at) - want[axis]) < mpmath.mpf("1e-20") * (1 + want[axis]), (u, axis)
+                ball = e(arb(x2.mid(), arb("1e-10")))
+                assert ball.upper() >= at.upper() and mp(ball) - want[axis] < mpmath.mpf("1e-6"), (u, axis)
+                assert slice_extent(g, g.phi(x2) - arb("0.1"), axis)(x2) == 0          # an empty slice
