@@ -332,6 +332,11 @@ MUTANTS = [
     ("v_polar_gamma_scaled", "rigor_gyro/kinds/lyapunov/model.py",
      "g.S(x2) * st * st) / 2)", "g.S(x2) * st * st) / 3)",
      "V's r^2 coefficient along a ray scaled by 2/3 (V along every ray misstated)"),
+    ("slice_extent_x1_scaled", "rigor_gyro/kinds/lyapunov/model.py",
+     "sqrt_of_nonnegative(2 * d * (S + mu * mu) / S)) / (g.c.H * x2.cos() / g.c.B0)",
+     "sqrt_of_nonnegative(2 * d * (S + mu * mu) / S)) * (g.c.H * x2.cos() / g.c.B0)",
+     "the invariant set's x1 extent multiplied by h instead of divided (a wrong certified extent; the "
+     "checker shares the formula)"),
 ]
 
 
