@@ -334,3 +334,20 @@ def test_slice_extents_are_the_ellipses_own_from_v_itself(gimbal):
                 ball = e(arb(x2.mid(), arb("1e-10")))
                 assert ball.upper() >= at.upper() and mp(ball) - want[axis] < mpmath.mpf("1e-6"), (u, axis)
                 assert slice_extent(g, g.phi(x2) - arb("0.1"), axis)(x2) == 0          # an empty slice
+
+
+@pytest.mark.parametrize("params", [{}, {"mu": "0.3"}, {"k": "0.1", "mu": "0.005"}])
+def test_psi_is_the_faces_minimum_of_v_up_to_a_positive_factor(params):
+    """v_positive rests on psi: phi(x2) = min V(., x2, .) and psi have the same sign because
+    phi S = K psi G with one constant K > 0 for all x2 (G, S > 0): checked at eight x2 to 1e-20, so a term
+    of psi changed shows as a ratio that moves."""
+    import dataclasses
+    scene = load_scene("agafonov2013")
+    g = validate(dataclasses.replace(scene, parameters=dict(scene.parameters, **params))).gimbal
+    with working_precision(128):
+        ratios = []
+        for u in ("0.05", "0.2", "0.35", "0.5", "0.65", "0.8", "0.95", "-0.7"):
+            x2 = g.c.x2_star * arb(u)
+            ratios.append(g.phi(x2) * g.S(x2) / (g.psi(x2) * g.G(x2)))
+        assert all(certainly_gt(r, 0) for r in ratios)
+        assert all(abs(r / ratios[0] - 1).upper() < arb("1e-20") for r in ratios)

@@ -337,6 +337,11 @@ MUTANTS = [
      "sqrt_of_nonnegative(2 * d * (S + mu * mu) / S)) * (g.c.H * x2.cos() / g.c.B0)",
      "the invariant set's x1 extent multiplied by h instead of divided (a wrong certified extent; the "
      "checker shares the formula)"),
+    ("psi_mu_term_scaled", "rigor_gyro/kinds/lyapunov/model.py",
+     "(c.mu * c.H - self.q(x2)) + c.mu ** 2 * (self.f1(x2) - c.mu)",
+     "(c.mu * c.H - self.q(x2)) + c.mu * 2 * (self.f1(x2) - c.mu)",
+     "psi's mu^2 term written 2 mu: v_positive decided on a function without the sign of V's minimum "
+     "(the checker shares psi)"),
 ]
 
 
