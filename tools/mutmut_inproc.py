@@ -126,8 +126,8 @@ def _module_runner(dotted: str, substrings: list[str]):
         for m in marks:
             if m.name == "parametrize":
                 names = [a.strip() for a in m.args[0].split(",")] if isinstance(m.args[0], str) else list(m.args[0])
-                rows = [v if len(names) > 1 else (v,) for v in m.args[1]]
-                rows = [tuple(r.values) if hasattr(r, "values") else r for r in rows]
+                rows = [tuple(v.values) if hasattr(v, "values") else v if len(names) > 1 else (v,)
+                        for v in m.args[1]]     # pytest.param(...) unwrapped
                 grids.append([dict(zip(names, r)) for r in rows])
         for combo in itertools.product(*grids):
             calls.append((fn, {k: v for d in combo for k, v in d.items()}))
