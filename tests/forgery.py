@@ -1,8 +1,9 @@
 """Helpers of the checker tests that forge certificates: prove a built-in scene or a variant of it, make
-a forged certificate's digest and verdict consistent (so that only the re-decision of its claims can
-reject it), read the checker's report item by item, and build polynomials from their roots."""
+a forged certificate's digest (and verdict) consistent (so that only the re-decision of its claims can
+reject it), read the checker's report item by item or as its failures, and build polynomials from their roots."""
 from __future__ import annotations
 
+import copy
 import dataclasses
 import json
 from fractions import Fraction
@@ -34,6 +35,18 @@ def refix(data: dict) -> dict:
                        "proved" if all(s == "proved" for s in statuses) else "inconclusive")
     data["integrity"] = {"sha256": digest(data)}
     return data
+
+
+def reseal(data: dict) -> dict:
+    """A copy of data with the digest recomputed from its content (the verdict left as it is)."""
+    data = copy.deepcopy(data)
+    data["integrity"] = {"sha256": digest(data)}
+    return data
+
+
+def failures(data: dict) -> list[tuple[str, str]]:
+    """(item, message) of every check the checker's report on data fails, in order."""
+    return [(r.item, r.message) for r in check_certificate(data).results if not r.ok]
 
 
 def items(data: dict) -> dict[str, bool]:

@@ -9,21 +9,10 @@ import copy
 
 import pytest
 
-from rigor_gyro.certificate import digest
 from rigor_gyro.check import CertificateError, check_certificate
 from rigor_gyro.kinds.eigenfrequencies import CLAIMS
 
-from .forgery import certificate
-
-
-def _reseal(data):
-    data = copy.deepcopy(data)
-    data["integrity"] = {"sha256": digest(data)}
-    return data
-
-
-def _failures(data):
-    return [(r.item, r.message) for r in check_certificate(data).results if not r.ok]
+from .forgery import certificate, failures as _failures, reseal as _reseal
 
 
 def _one_claim():

@@ -198,7 +198,6 @@ def test_equilibria_membership_in_the_estimate_is_decided_point_by_point(monkeyp
     equilibria (the paper's scene has only the origin inside and +-pi/2 beyond x2*), each row's label is
     the one an mpmath evaluation of V gives (40 digits), and a point straddling the disc's edge is
     'undecided', which leaves the claim inconclusive."""
-
     base = _prove("paper", "equilibria")
     inv = next(c for c in base["claims"] if c["id"] == "invariant_estimate")
     c_set, R = Fraction(inv["details"]["c_set"]), _q(base, "R_used")
@@ -253,7 +252,6 @@ def test_a_decimal_inside_an_open_interval_is_inside_it():
     """_decimal_inside: the short decimal chosen for mu lies certainly inside (lo, hi) however close mu is
     to either end (rounded the other way, or with more digits), and there is none when no decimal of up to
     60 digits near mu fits."""
-
     lo, hi = Fraction(1, 3), Fraction(2, 3)
     for mu in (lo + Fraction(1, 10 ** 15), hi - Fraction(1, 10 ** 15), Fraction(1, 2), lo + Fraction(1, 10 ** 40)):
         got = C._decimal_inside(mu, arb(fmpq(1, 3)), arb(fmpq(2, 3)))
@@ -266,7 +264,6 @@ def test_rho_is_infinite_where_a_disc_coefficient_is_not_positive():
     """rho_function: where c10 (or c20) is <= 0 no disc of positive radius keeps Psi_i > 0, so rho = +inf
     (here c10 < 0 at x2 = 0.3 for the parameters of test_lyapunov's CSTAR_CASE with mu = 0.02); elsewhere it
     is finite and positive."""
-
     g, _ = C.gimbal_from_parameters(dict(CSTAR_CASE, mu="0.02"))
     with working_precision(64):
         (c10, _, _), _ = g.psi_coefficients(arb("0.3"))

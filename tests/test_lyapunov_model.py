@@ -153,8 +153,22 @@ def test_slice_in_region_puts_the_centre_of_the_slice_where_v_has_its_minimum(gi
 _RAYS = [("0", "0.1"), ("0.2", "0.35"), ("-0.4", "0.8"), ("0.5", "0.5"), ("0.05", "0.97")]     # (x2/x2*, t/pi)
 
 
-def _ray_values(g, fn, x2, t, rs):
-    return [fn(r * t.cos(), x2, r * t.sin()) for r in rs]
+def _ray(g, x2, t):
+    """(alpha, beta, gamma, A, B) with V = alpha + beta r + gamma r^2 and Vdot = -r^2 (A + r B) along the ray
+    (r cos t, x2, r sin t), read from V at r = -1, 0, 1 and Vdot at r = -1, 1 (not from the model's closed
+    forms)."""
+    vm, v0, vp = (g.V(r * t.cos(), x2, r * t.sin()) for r in (arb(-1), arb(0), arb(1)))
+    dm, dp = (g.vdot(r * t.cos(), x2, r * t.sin()) for r in (arb(-1), arb(1)))
+    return v0, (vp - vm) / 2, (vp + vm) / 2 - v0, -(dp + dm) / 2, (dm - dp) / 2
+
+
+def _half_line_min(alpha, beta, gamma, A, B):
+    """(min of alpha + beta r + gamma r^2 over {r : r B <= -A}, whether the vertex was clamped to its end);
+    for numbers (mpf, or exact arb midpoints), B != 0."""
+    r, edge = -beta / (2 * gamma), -A / B
+    clamped = (B > 0 and r > edge) or (B < 0 and r < edge)
+    r = edge if clamped else r
+    return alpha + beta * r + gamma * r * r, clamped
 
 
 def test_v_polar_and_vdot_polar_are_v_and_vdot_along_every_ray(gimbal):
@@ -165,13 +179,12 @@ def test_v_polar_and_vdot_polar_are_v_and_vdot_along_every_ray(gimbal):
     with working_precision(128):
         for u, s in _RAYS:
             x2, t = g.c.x2_star * arb(u), arb.pi() * arb(s)
-            vm, v0, vp = _ray_values(g, g.V, x2, t, [arb(-1), arb(0), arb(1)])
+            ref = _ray(g, x2, t)
             alpha, beta, gamma = v_polar(g, x2, t)
-            for mine, ref in ((alpha, v0), (beta, (vp - vm) / 2), (gamma, (vp + vm) / 2 - v0)):
-                assert mine.overlaps(ref) and abs(mine - ref).upper() < arb("1e-25") * (1 + abs(ref).upper())
-            dm, dp = _ray_values(g, g.vdot, x2, t, [arb(-1), arb(1)])
+            for mine, want in zip((alpha, beta, gamma), ref):
+                assert mine.overlaps(want) and abs(mine - want).upper() < arb("1e-25") * (1 + abs(want).upper())
             A, B = vdot_polar(g, x2, t)
-            assert A.overlaps(-(dp + dm) / 2) and B.overlaps((dm - dp) / 2)
+            assert A.overlaps(ref[3]) and B.overlaps(ref[4])
             for r in (arb(2), arb(-3), arb(1) / 7):
                 assert g.V(r * t.cos(), x2, r * t.sin()).overlaps(alpha + beta * r + gamma * r * r)
                 assert g.vdot(r * t.cos(), x2, r * t.sin()).overlaps(-r * r * (A + r * B))
@@ -212,17 +225,10 @@ def test_the_sublevel_lower_bound_is_below_v_on_the_half_line_of_vdot_ge_0_and_t
             box = {"u": arb(u.mid(), arb("1e-9")), "s": arb(s.mid(), arb("1e-9"))}
             bound = f(box)
             x2, t = g.c.x2_star * u, arb.pi() * s
-            vm, v0, vp = _ray_values(g, g.V, x2, t, [arb(-1), arb(0), arb(1)])
-            dm, dp = _ray_values(g, g.vdot, x2, t, [arb(-1), arb(1)])
-            al, be, ga = (mpmath.mpf(x.mid().str(40, radius=False)) for x in (v0, (vp - vm) / 2, (vp + vm) / 2 - v0))
-            A, B = (mpmath.mpf(x.mid().str(40, radius=False)) for x in (-(dp + dm) / 2, (dm - dp) / 2))
-            if B == 0 and A > 0:
+            al, be, ga, A, B = (mpmath.mpf(x.mid().str(40, radius=False)) for x in _ray(g, x2, t))
+            if B == 0:
                 continue
-            r = -be / (2 * ga)                       # the vertex, clamped to {r : r B <= -A}
-            edge = -A / B
-            clamped = (B > 0 and r > edge) or (B < 0 and r < edge)
-            r = edge if clamped else r
-            true_min = al + be * r + ga * r * r
+            true_min, clamped = _half_line_min(al, be, ga, A, B)
             low = mpmath.mpf(bound.lower().str(40, radius=False))
             assert low <= true_min + mpmath.mpf("1e-20"), (i, j, low, true_min)
             if A > 0 or not clamped:
@@ -236,16 +242,10 @@ def test_the_sublevel_lower_bound_is_below_v_on_the_half_line_of_vdot_ge_0_and_t
             for du, ds in itertools.product((-1, 0, 1), repeat=2):
                 u, s = box["u"].mid() + arb(du) / 13, box["s"].mid() + arb(ds) / 13
                 x2, t = g.c.x2_star * u, arb.pi() * s
-                vm, v0, vp = _ray_values(g, g.V, x2, t, [arb(-1), arb(0), arb(1)])
-                dm, dp = _ray_values(g, g.vdot, x2, t, [arb(-1), arb(1)])
-                al, be, ga = (x.mid() for x in (v0, (vp - vm) / 2, (vp + vm) / 2 - v0))
-                A, B = (x.mid() for x in (-(dp + dm) / 2, (dm - dp) / 2))
+                al, be, ga, A, B = (x.mid() for x in _ray(g, x2, t))
                 if B == 0:
                     continue
-                r = -be / (2 * ga)
-                edge = -A / B
-                r = edge if ((B > 0 and r > edge) or (B < 0 and r < edge)) else r
-                assert low <= al + be * r + ga * r * r + arb("1e-20"), (i, j, du, ds)
+                assert low <= _half_line_min(al, be, ga, A, B)[0] + arb("1e-20"), (i, j, du, ds)
 
 
 def test_the_faces_minimiser_is_where_v_takes_phi_and_v_is_larger_around_it(gimbal):

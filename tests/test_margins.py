@@ -23,6 +23,8 @@ from rigor_gyro.margins.threshold import find_threshold
 from rigor_gyro.prover import prove_scene
 from rigor_gyro.scene import Scene, load_scene, parse_scene
 
+from .forgery import reseal
+
 RUDENKO_BOX = """
 name = "rudenko_box"
 kind = "eigenfrequencies"
@@ -344,14 +346,6 @@ def _paving_data():
     return paving_json(pave(box_scene(parse_scene(text))))
 
 
-def _reseal(data):
-    from rigor_gyro.certificate import digest
-    data = json.loads(json.dumps(data))
-    data.pop("integrity", None)
-    data["integrity"] = {"sha256": digest(data)}
-    return data
-
-
 def test_a_paving_is_confirmed_by_the_checker():
     from rigor_gyro.check import check_certificate
     report = check_certificate(_paving_data())
@@ -387,7 +381,7 @@ def test_a_tampered_paving_is_rejected_even_with_a_fixed_digest(tamper):
                                                                 "Omega2": "5/8"}, "status": "refuted", "reason": "",
                             "precision_bits": 64})
         c["status"] = data["verdict"] = "refuted"
-    assert not check_certificate(_reseal(data)).ok
+    assert not check_certificate(reseal(data)).ok
     assert not check_certificate(data).ok          # the digest alone already rejects it
 
 

@@ -10,11 +10,11 @@ import json
 
 import pytest
 
-from rigor_gyro.certificate import digest
 from rigor_gyro.check import check_certificate
 from rigor_gyro.margins.paving import box_scene, pave
 from rigor_gyro.margins.report import paving_json
 from rigor_gyro.scene import Scene, load_scene, parse_scene
+from tests.forgery import failures as _failures, reseal as _reseal
 from tests.test_margins import RUDENKO_BOX
 
 
@@ -42,17 +42,6 @@ def _mixed():
     """bracket (8) proved on some sub-boxes, undecided on others."""
     return _paving(RUDENKO_BOX.replace('"[0.1, 0.12]"', '"0.1076"').replace('"0.625 +- 0.025"', '"[0.001, 0.2]"')
                    .replace('only = [', 'only = ["bracket_2"] #'))
-
-
-def _reseal(data: dict) -> dict:
-    data = json.loads(json.dumps(data))
-    data.pop("integrity", None)
-    data["integrity"] = {"sha256": digest(data)}
-    return data
-
-
-def _failures(data: dict) -> list[tuple[str, str]]:
-    return [(r.item, r.message) for r in check_certificate(data).results if not r.ok]
 
 
 def test_genuine_pavings_with_every_kind_of_sub_box_are_confirmed():
