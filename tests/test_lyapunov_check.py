@@ -19,7 +19,7 @@ from rigor_gyro import load_scene, prove_scene
 from rigor_gyro.core.balls import exact_endpoints, working_precision
 from rigor_gyro.kinds.lyapunov import check as lc
 
-from .forgery import certificate, claim as _claim, flipped, items as _items
+from .forgery import certificate, claim as _claim, failures as _failures, flipped, items as _items
 
 
 _cert = functools.partial(certificate, "agafonov2013")
@@ -653,6 +653,41 @@ def test_every_stored_quantity_is_verified_and_an_extra_one_is_not(agafonov):
     items = _items(bad)
     assert items["quantities"] is False
     assert all(v for k, v in items.items() if k != "quantities")
+
+
+def _unverified(data) -> str:
+    return next((m for item, m in _failures(data) if item == "quantities"), "")
+
+
+@pytest.mark.parametrize("lo, hi", [("0", "1/10"), ("4/10", "5/10"), ("3/10", "35/100")],
+                         ids=["below the root", "above the root", "short of the root"])
+def test_the_x2_axis_extent_is_verified_only_as_a_segment_through_the_root_of_mu_F_equal_c(agafonov, lo, hi):
+    """On the x2 axis the set is {mu F(x2) < c_set}: its end is the root of mu F = c_set (0.360 here, below
+    x2* = pi/6). A stored segment is confirmed only when it starts below that root and ends above it."""
+    q = agafonov["quantities"]["extent_x2_axis"]
+    assert Fraction(q["lo"]) < Fraction(q["hi"]) < Fraction(37, 100) and "extent_x2_axis" not in _unverified(agafonov)
+    bad = copy.deepcopy(agafonov)
+    bad["quantities"]["extent_x2_axis"].update(lo=lo, hi=hi)
+    assert "extent_x2_axis" in _unverified(bad)
+    wide = copy.deepcopy(agafonov)      # a looser segment that still brackets the root is a true statement
+    wide["quantities"]["extent_x2_axis"].update(lo="0", hi="1/2")
+    assert "extent_x2_axis" not in _unverified(wide)
+
+
+def test_without_a_verified_slice_point_the_x2_extent_is_confirmed_only_down_to_zero(agafonov):
+    """The x2 extent's lower end comes from a stored slice point of the set, else from the verified axis
+    segment, else it is 0: a stored extent that starts above 0 with neither is not confirmed."""
+    def forged(point_ok: bool, axis: bool) -> dict:
+        bad = copy.deepcopy(agafonov)
+        bad["quantities"]["extent_x2"].update(lo="3/10", hi="2")       # true (it contains pi/6) but loose
+        if not point_ok:
+            bad["witnesses"]["invariant_estimate"]["extent_x2"]["point"] = ["3/2", "3/2"]     # beyond x2*
+        if not axis:
+            del bad["quantities"]["extent_x2_axis"]
+        return bad
+    assert _items(forged(True, False)).get("extent_x2") is not False          # the point bounds it below
+    assert _items(forged(False, True)).get("extent_x2") is not False          # the axis end, 0.360 > 3/10
+    assert _items(forged(False, False))["extent_x2"] is False                 # nothing certifies an end above 0
 
 
 # ------------------------------------------------------------------------------ the equilibria re-derived

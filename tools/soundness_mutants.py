@@ -342,6 +342,16 @@ MUTANTS = [
      "(c.mu * c.H - self.q(x2)) + c.mu * 2 * (self.f1(x2) - c.mu)",
      "psi's mu^2 term written 2 mu: v_positive decided on a function without the sign of V's minimum "
      "(the checker shares psi)"),
+    ("check_x2_extent_floor_raised", "rigor_gyro/kinds/lyapunov/check.py",
+     "                           else arb(0))",
+     "                           else arb(1))",
+     "the checker's x2 extent bounded below by 1 with no verified slice point: a stored extent of the "
+     "invariant set starting above what anything certifies is confirmed"),
+    ("check_x2_axis_root_unbracketed", "rigor_gyro/kinds/lyapunov/check.py",
+     "root_in = certainly_le(lo_b, xs) and \\",
+     "root_in = certainly_le(lo_b, xs) or \\",
+     "the x2 axis segment confirmed on lo <= x2* alone: a segment that misses the root of mu F = c_set "
+     "(the set's end on the axis) is confirmed"),
 ]
 
 
