@@ -6,6 +6,7 @@ Each bound is checked both ways: it is valid (never above what it bounds, a ball
 range) and it is the bound its docstring states (within rounding), so a term dropped, scaled or
 mis-signed fails here rather than only making some proof harder."""
 import itertools
+from fractions import Fraction
 
 import pytest
 from flint import arb
@@ -351,3 +352,170 @@ def test_psi_is_the_faces_minimum_of_v_up_to_a_positive_factor(params):
             ratios.append(g.phi(x2) * g.S(x2) / (g.psi(x2) * g.G(x2)))
         assert all(certainly_gt(r, 0) for r in ratios)
         assert all(abs(r / ratios[0] - 1).upper() < arb("1e-20") for r in ratios)
+
+
+# ------------------------------------------------------------------------------ constants and Vdot <= 0, directly
+# (the claims tests reach these through whole proofs, minutes a mutant under mutmut; these take a second)
+
+def _g_and_mp(params: dict):
+    import dataclasses
+    import mpmath
+    from rigor_gyro.kinds.lyapunov.approx import MpGimbal
+    scene = load_scene("agafonov2013")
+    full = dict(scene.parameters, **params)
+    with mpmath.workdps(50):
+        mg = MpGimbal(full)
+    return validate(dataclasses.replace(scene, parameters=full)).gimbal, mg, full
+
+
+def _has(x: arb, ref) -> bool:
+    """x contains the 50-digit reference (widened by 1e-40 relative for the reference's own error)."""
+    import mpmath
+    with working_precision(256):
+        r = arb(mpmath.nstr(ref, 50))
+        return (x + arb(0, 1e-40) * (1 + abs(r))).contains(r)
+
+
+@pytest.mark.parametrize("params, m, M", [({}, "1.7", "150"), ({}, "30", "100"), ({"C1": "54.2"}, "2.5", "90"),
+                                          ({"k": "40", "mu": "1.5"}, "0.9", "3"), ({"moment": "linear"}, "110", "95")],
+                         ids=["paper, M binds", "paper, A0 m/cos^2 binds", "C0 < 0", "radii above 1", "linear"])
+def test_closed_form_constants_are_the_printed_formulas_for_every_m_and_M_of_their_balls(params, m, M):
+    """p = max(M, A0 m / cos^2 x2*), k_min = p A0/H, (16) = (p/H, k/A0), R1 (13), R2 (14), R = min: each ball
+    contains the float side's mpmath transcription of the paper's formula (``approx._r12``) at 50 digits, at
+    both ends of an m ball and an M ball (the result is valid for every m, M in them)."""
+    import mpmath
+    from rigor_gyro.kinds.lyapunov.approx import _r12
+    from rigor_gyro.kinds.lyapunov.model import closed_form_constants
+    g, mg, _ = _g_and_mp(params)
+    m_lo, M_lo = arb(m), arb(M)
+    with working_precision(128):
+        mb, Mb = m_lo.union(m_lo * arb("1.001")), M_lo.union(M_lo * arb("1.001"))
+        K = closed_form_constants(g, mb, Mb)
+    with mpmath.workdps(50):
+        cs2 = mpmath.cos(mg.xs) ** 2
+        for scale in ("1", "1.001"):
+            mm, MM = mpmath.mpf(m) * mpmath.mpf(scale), mpmath.mpf(M) * mpmath.mpf(scale)
+            pA = mg.A0 * mm / cs2
+            p = max(MM, pA)
+            ref = {"A0": mg.A0, "B0": mg.B0, "C0": mg.C0, "m": mm, "M": MM, "A0_m_over_cos2": pA, "p": p,
+                   "k_min": p * mg.A0 / mg.H, "mu_min": p / mg.H, "mu_max": mg.k / mg.A0,
+                   "R2_base": mg.mu * mg.H * cs2 - mm * mg.A0}
+            r12 = _r12(mg, mm)
+            ref.update(R1=r12["R1"], R2=r12["R2"], R=r12["R"])
+            for name, value in ref.items():
+                assert _has(K[name], value), (name, scale, K[name], value)
+    assert set(K) == set(ref)
+
+
+def _pi_over_6() -> Fraction:
+    import mpmath
+    with mpmath.workdps(50):
+        return Fraction(mpmath.nstr(mpmath.pi / 6, 45))
+
+
+def _r_sup(params) -> float:
+    from rigor_gyro.kinds.lyapunov.approx import float_constants
+    return float_constants(dict(load_scene("agafonov2013").parameters, **params), with_best_mu=False)["R_sup"]
+
+
+def _radius(params, scale: str) -> arb:
+    from flint import fmpq
+    r = Fraction(_r_sup(params)).limit_denominator(10 ** 12) * Fraction(scale)
+    return arb(fmpq(r.numerator, r.denominator))
+
+
+@pytest.mark.parametrize("scale", ["0.9", "0.5"])
+def test_vdot_nonpositive_is_proved_below_r_sup_on_pieces_covering_the_x2_range(scale):
+    """Below the supremum of the Psi radius (the float side's R_sup = 0.023988 on the paper's scene) both disc
+    minima are certified > 0 on pieces that tile [-x2*, x2*]: the pieces are recorded and counted, and the
+    disc minimum of Psi1, Psi2 is positive at the pieces' ends in mpmath too."""
+    import mpmath
+    from rigor_gyro.core.outcome import Status
+    from rigor_gyro.kinds.lyapunov.model import certify_vdot_nonpositive
+    g, mg, _ = _g_and_mp({})
+    R = _radius({}, scale)
+    record: dict = {}
+    with working_precision(64):
+        v = certify_vdot_nonpositive(g, g.c.x2_star, R, "R", 20000, record)
+    assert v.status is Status.PROVED, v.reason
+    assert set(record) == {"Psi1", "Psi2"} and v.details == {"pieces": v.pieces}
+    assert v.pieces >= len(record["Psi1"]) + len(record["Psi2"]) and v.witness is None and v.counterexample is None
+    xs = _pi_over_6()
+    for name, pieces in record.items():
+        ends = [(Fraction(a), Fraction(b)) for a, b in pieces]
+        assert ends[0][0] <= -xs and ends[-1][1] >= xs and all(b >= c for (_, b), (c, _) in zip(ends, ends[1:]))
+        with mpmath.workdps(50):
+            i = 0 if name == "Psi1" else 1
+            r = mpmath.mpf(mpmath.nstr(mpmath.mpf(R.mid().str(30, radius=False)), 30))
+            for a, _ in ends:
+                c0, c1, c3 = mg.psi_true(mpmath.mpf(a.numerator) / a.denominator)[i]
+                assert c0 - r * mpmath.hypot(c1, c3) > 0, (name, a)
+    assert "certified > 0 on" in v.reason and "x2 pieces of [-x2*, x2*]" in v.reason
+
+
+@pytest.mark.parametrize("params, scale", [({}, "1.1"), ({}, "3"), ({"mu": "0.01"}, "1"), ({"k": "0.2"}, "1")],
+                         ids=["just above R_sup", "far above", "mu below (16)", "k = 0.2"])
+def test_vdot_nonpositive_is_refuted_only_at_a_point_of_the_region_where_vdot_is_positive(params, scale):
+    """The refuting point: balls x1, x3 (about exact rationals) with x1^2 + x3^2 < R^2 and |x2| <= x2* over
+    the whole balls, and grad V . f > 0 there in mpmath (the float side's own gradient of V along (2)), inside
+    the stated ball."""
+    import mpmath
+    from rigor_gyro.core.outcome import Status
+    from rigor_gyro.kinds.lyapunov.model import certify_vdot_nonpositive
+    g, mg, _ = _g_and_mp(params)
+    R = _radius(params, scale) if _r_sup(params) > 0 else arb("0.01")
+    with working_precision(64):
+        v = certify_vdot_nonpositive(g, g.c.x2_star, R, "R", 20000, {})
+    assert v.status is Status.REFUTED, v.reason
+    x1, x2, x3, val = v.witness
+    with working_precision(256):
+        assert (x1 * x1 + x3 * x3 < R * R) and abs(x2) <= g.c.x2_star
+    with mpmath.workdps(50):
+        pt = [mpmath.mpf(x.mid().str(60, radius=False)) for x in (x1, x2, x3)]
+        ref = mg.grad_V_dot_f(*pt)
+        assert ref > 0 and _has(val, ref), (ref, val)
+    assert v.counterexample["point"]["x1"] and v.counterexample["radius"] and "> 0 at the point" in v.reason
+
+
+def test_a_psi_counterexample_refutes_the_test_at_a_certified_point_when_no_vdot_point_is_found(monkeypatch):
+    """With the Vdot search finding nothing, R above R_sup is refuted on Psi alone: a point of the open disc
+    where the named Psi (the float side's mpmath coefficients) is <= 0, the value inside the stated ball;
+    with a budget too small to decide and R below R_sup, nothing is refuted."""
+    import mpmath
+    from rigor_gyro.core.outcome import Status
+    from rigor_gyro.kinds.lyapunov import model as M
+    g, mg, _ = _g_and_mp({})
+    monkeypatch.setattr(M, "vdot_witness", lambda *a, **k: None)
+    R = _radius({}, "1.1")
+    with working_precision(64):
+        v = M.certify_vdot_nonpositive(g, g.c.x2_star, R, "R", 20000, {})
+    assert v.status is Status.REFUTED and v.witness is None, v.reason
+    name = v.counterexample["psi"]
+    assert name in ("Psi1", "Psi2") and f"{name} = " in v.reason and "<= 0 at the point" in v.reason
+    ends = {k: (Fraction(s[0]), Fraction(s[1])) for k, s in v.counterexample["point"].items()}
+    far = {k: max(abs(a), abs(b)) for k, (a, b) in ends.items()}          # the whole ball in the region
+    assert far["x1"] ** 2 + far["x3"] ** 2 < Fraction(R.lower().str(40, radius=False)) ** 2
+    assert far["x2"] <= _pi_over_6()
+    pt = {k: (a + b) / 2 for k, (a, b) in ends.items()}
+    with mpmath.workdps(50):
+        c0, c1, c3 = mg.psi_true(mpmath.mpf(pt["x2"].numerator) / pt["x2"].denominator)[0 if name == "Psi1" else 1]
+        x1 = mpmath.mpf(pt["x1"].numerator) / pt["x1"].denominator
+        x3 = mpmath.mpf(pt["x3"].numerator) / pt["x3"].denominator
+        ref = c0 + c1 * x1 + c3 * x3
+        assert ref <= 0 and _has(arb(v.counterexample["value"].strip("[]").split(",")[0]).union(
+            arb(v.counterexample["value"].strip("[]").split(",")[-1])), ref)
+    with working_precision(64):
+        small = M.certify_vdot_nonpositive(g, g.c.x2_star, _radius({}, "0.999"), "R", 3, {})
+    assert small.status is Status.INCONCLUSIVE and "no point with certified Vdot > 0 found" in small.reason
+    assert small.decides is not None
+
+
+@pytest.mark.parametrize("R", ["0", "-0.01", "nan", "0 +/- 0.001", "inf"])
+def test_a_radius_not_certainly_positive_and_finite_decides_nothing(R):
+    from rigor_gyro.core.outcome import Status
+    from rigor_gyro.kinds.lyapunov.model import certify_vdot_nonpositive
+    g, _, _ = _g_and_mp({})
+    with working_precision(64):
+        v = certify_vdot_nonpositive(g, g.c.x2_star, arb(R), "R = min(R1, R2)", 20000, {})
+    assert v.status is Status.INCONCLUSIVE and v.pieces == 0 and "is not certainly a positive radius" in v.reason
+    assert v.reason.startswith("R = min(R1, R2) = ")
