@@ -14,7 +14,7 @@ from flint import arb, fmpq
 import rigor_gyro.kinds.lyapunov.claims as C
 from rigor_gyro import load_scene
 from rigor_gyro.check import check_certificate
-from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.balls import certainly_lt, working_precision
 from rigor_gyro.core.errors import ParameterError
 from rigor_gyro.core.stored import as_ball, interval
 from rigor_gyro.kinds.lyapunov.approx import MpGimbal
@@ -272,6 +272,35 @@ def test_rho_is_infinite_where_a_disc_coefficient_is_not_positive():
         g2, _ = C.gimbal_from_parameters(dict(CSTAR_CASE, mu="0.016"))
         r = C.rho_function(g2)(arb("0.3"))
         assert r.is_finite() and r > 0
+
+
+@pytest.mark.parametrize("params, where", [
+    ({}, "end"), ({"x2_star": "1/10"}, "end"), ({"x2_star": "1.3"}, "end"),
+    ({"x2_star": "1", "k": "4"}, "inside"), ({"x2_star": "1.4", "mu": "0.1", "k": "40"}, "inside"),
+    ({"mu": "0.01"}, "none"), ({"C1": "54.2"}, "none")],
+    ids=["paper", "x2* = 1/10", "x2* = 1.3", "peak at 0.813", "peak at 1.253", "mu = 0.01", "C0 < 0"])
+def test_the_r_sup_search_finds_the_float_sides_r_sup_and_where_it_is_attained(params, where):
+    """_r_sup_search (a float heuristic choosing mu_best and the bound's points) against the float side's own
+    R_sup(mu) = min over x2 of ci0/|(ci1, ci3)| in mpmath: the same value to 1e-9 and the same x2, at the end
+    x2* (returned as the ball x2* itself), at an interior peak (refined by the golden steps to 1e-6, an exact
+    point), or 0 where some ci0 <= 0 (no disc)."""
+    from rigor_gyro.kinds.lyapunov.approx import FloatGimbal, _r_sup
+    full = dict(load_scene("agafonov2013").parameters, **params)
+    g, _ = C.gimbal_from_parameters(full)
+    with working_precision(64):
+        est, at = C._r_sup_search(g, g.c.x2_star)
+        xs = g.c.x2_star
+    with mpmath.workdps(30):
+        mg = MpGimbal(full)
+        ref, x = _r_sup(mg, FloatGimbal(full), mg.mu)
+    if where == "none":
+        assert ref == 0 and est == 0.0
+        return
+    assert abs(est / float(ref) - 1) < 1e-9, (est, ref)
+    if where == "end":
+        assert at is xs or (at.overlaps(xs) and at.rad() <= xs.rad()), at
+    else:
+        assert at.rad() == 0 and abs(float(at) - float(x)) < 1e-6 and certainly_lt(at, xs), (at, x)
 
 
 def test_x2_star_is_admissible_exactly_below_pi_over_2():

@@ -126,8 +126,8 @@ def _module_runner(dotted: str, substrings: list[str]):
         for m in marks:
             if m.name == "parametrize":
                 names = [a.strip() for a in m.args[0].split(",")] if isinstance(m.args[0], str) else list(m.args[0])
-                rows = [tuple(v.values) if hasattr(v, "values") else v if len(names) > 1 else (v,)
-                        for v in m.args[1]]     # pytest.param(...) unwrapped
+                rows = [tuple(v.values) if type(v).__name__ == "ParameterSet" else v if len(names) > 1 else (v,)
+                        for v in m.args[1]]     # pytest.param(...) unwrapped (a dict has .values too)
                 grids.append([dict(zip(names, r)) for r in rows])
         for combo in itertools.product(*grids):
             calls.append((fn, {k: v for d in combo for k, v in d.items()}))
