@@ -519,3 +519,29 @@ def test_a_radius_not_certainly_positive_and_finite_decides_nothing(R):
         v = certify_vdot_nonpositive(g, g.c.x2_star, arb(R), "R = min(R1, R2)", 20000, {})
     assert v.status is Status.INCONCLUSIVE and v.pieces == 0 and "is not certainly a positive radius" in v.reason
     assert v.reason.startswith("R = min(R1, R2) = ")
+
+
+@pytest.mark.parametrize("params", [{}, {"moment": "linear"}, {"C1": "54.2"}, {"moment": "linear", "x2_star": "1.3"}],
+                         ids=["sine", "linear (no closed form)", "sine, C0 < 0", "linear, x2* = 1.3"])
+def test_q_encloses_f2_over_2DG_at_points_and_over_balls_through_zero(params):
+    """q = f^2 / (2 D G), whose maximum is M: at exact points, over balls away from 0 (the mean-value form),
+    over balls touching or straddling 0 (the removable singularity, q(0) = a) it contains the float side's
+    mpmath q (closed form for the sine law, quadrature for the linear one) at every sample of the ball,
+    and it is tight on a tiny ball."""
+    import mpmath
+    g, mg, _ = _g_and_mp(params)
+    xs = float(mpmath.mpf(mg.xs))
+    balls = [("0", "0"), ("0", "0.2"), ("-0.1", "0.1"), ("-0.3", "-0.1"), ("0.1", "0.3"), ("0.25", "0.26"),
+             (str(xs * 0.9), str(xs)), ("0.001", "0.001"), ("0.3", "0.3")]
+    with working_precision(64):
+        for lo, hi in balls:
+            X = arb(lo).union(arb(hi))
+            Q = g.q(X)
+            assert Q.is_finite(), (lo, hi)
+            with mpmath.workdps(40):
+                for j in range(9):
+                    x = mpmath.mpf(lo) + (mpmath.mpf(hi) - mpmath.mpf(lo)) * j / 8
+                    ref = mpmath.mpf(mg.a) if x == 0 else mg.q(abs(x))
+                    assert _has(Q, ref), (params, lo, hi, x, Q, ref)
+        tiny = g.q(arb("0.3").union(arb("0.3") + arb("1e-12")))
+        assert tiny.rad() < arb("1e-8") * abs(tiny), tiny
