@@ -373,7 +373,7 @@ def _has(x: arb, ref) -> bool:
     import mpmath
     with working_precision(256):
         r = arb(mpmath.nstr(ref, 50))
-        return (x + arb(0, 1e-40) * (1 + abs(r))).contains(r)
+        return x.is_finite() and (x + arb(0, 1e-40) * (1 + abs(r))).contains(r)     # a NaN ball "contains" all
 
 
 @pytest.mark.parametrize("params, m, M", [({}, "1.7", "150"), ({}, "30", "100"), ({"C1": "54.2"}, "2.5", "90"),
@@ -545,3 +545,76 @@ def test_q_encloses_f2_over_2DG_at_points_and_over_balls_through_zero(params):
                     assert _has(Q, ref), (params, lo, hi, x, Q, ref)
         tiny = g.q(arb("0.3").union(arb("0.3") + arb("1e-12")))
         assert tiny.rad() < arb("1e-8") * abs(tiny), tiny
+        point = g.q(arb("0.25"))                # an exact point away from 0: f^2/(2 D G) itself, tight
+        assert point.rad() < arb("1e-15") * abs(point), point
+
+
+def test_an_undecided_vdot_test_below_r_sup_is_never_refuted():
+    """R = 0.99 R_sup with 3 pieces: the disc minima stay undecided, and the point search (on x2 = j x2*/8,
+    |j| <= 8: only points of the region) finds nothing, because Vdot <= 0 on the whole region. One step
+    beyond, at x2 = 9 x2*/8, Vdot > 0 on the same circles: a search reaching past x2* would refute falsely."""
+    from rigor_gyro.core.outcome import Status
+    from rigor_gyro.kinds.lyapunov import model as M
+    g, _, _ = _g_and_mp({})
+    R = _radius({}, "0.99")
+    with working_precision(64):
+        v = M.certify_vdot_nonpositive(g, g.c.x2_star, R, "R", 3, {})
+        beyond = M.exact_fraction(g.c.x2_star.lower()) * Fraction(9, 8)
+        from flint import fmpq
+        assert M.vdot_witness(g, R, [arb(fmpq(beyond.numerator, beyond.denominator))]) is not None
+    assert v.status is Status.INCONCLUSIVE and v.witness is None and v.counterexample is None, v.reason
+    assert "no point with certified Vdot > 0 found" in v.reason
+
+
+@pytest.mark.parametrize("params", [{}, {"moment": "linear"}, {"C1": "54.2"}], ids=["sine", "linear", "C0 < 0"])
+def test_the_quotients_of_m_and_the_psi_forms_against_the_float_sides_mpmath(params):
+    """|cos f'|/D and cos f'/D (whose maxima give m), -Psi1 x1^2 - Psi2 x3^2 from the derived coefficients
+    (= grad V . f) and from the coefficients as printed in (8) (Psi2's x3 term with sin 2x2): each ball
+    contains the float side's mpmath value at exact points and at every sample of a ball."""
+    import mpmath
+    g, mg, _ = _g_and_mp(params)
+    with working_precision(64):
+        for lo, hi in (("0.3", "0.3"), ("-0.4", "-0.4"), ("0.1", "0.2"), ("-0.05", "0.05")):
+            X = arb(lo).union(arb(hi))
+            mq, ms = g.m_quotient(X), g.m_signed(X)
+            with mpmath.workdps(40):
+                for j in range(5):
+                    x = mpmath.mpf(lo) + (mpmath.mpf(hi) - mpmath.mpf(lo)) * j / 4
+                    assert _has(mq, mg.m_quotient(x)), (lo, hi, x)
+                    assert _has(ms, mpmath.cos(x) * mg.df(x) / mg.D(x)), (lo, hi, x)
+        for x1, x2, x3 in (("0.01", "0.3", "-0.02"), ("-0.5", "-0.2", "0.7"), ("2", "0.45", "1.5")):
+            b = [arb(v) for v in (x1, x2, x3)]
+            exact = g.vdot_psi(*b)
+            printed = g.vdot_psi(*b, printed=True)
+            with mpmath.workdps(40):
+                p = [mpmath.mpf(v) for v in (x1, x2, x3)]
+                assert _has(exact, mg.vdot_psi(*p)) and _has(exact, mg.grad_V_dot_f(*p)), (x1, x2, x3)
+                assert _has(printed, mg.vdot_psi(*p, printed=True)), (x1, x2, x3)
+                assert abs(mg.vdot_psi(*p, printed=True) - mg.vdot_psi(*p)) > 1e-6 * abs(mg.vdot_psi(*p))
+
+
+@pytest.mark.parametrize("u, s", [(("0.5", "0.6"), ("0.2", "0.3")), (("0.1", "0.3"), ("0.6", "0.65")),
+                                  (("-0.9", "-0.7"), ("0.05", "0.15")), (("0.95", "1"), ("0.4", "0.5"))])
+def test_the_direct_margin_over_a_box_contains_a_minus_r_abs_b_at_every_point_of_it(u, s):
+    """direct_margin's box function (the direct form intersected with a mean-value form centred at the box's
+    midpoint) against A - R |B| at 25 points of the box, each evaluated on its own; and it is not looser
+    than the direct form."""
+    from rigor_gyro.core.boxes import Box
+    from rigor_gyro.kinds.lyapunov.model import direct_margin, vdot_polar
+    g, _, _ = _g_and_mp({})
+    R = arb("0.02")
+    with working_precision(64):
+        box = Box.of({"u": tuple(Fraction(x) for x in u), "s": tuple(Fraction(x) for x in s)})
+        balls = {"u": box.ball("u"), "s": box.ball("s")}
+        F = direct_margin(g, R)(balls)
+        A, B = vdot_polar(g, g.c.x2_star * balls["u"], arb.pi() * balls["s"])
+        direct = A - R * abs(B)
+        assert F.is_finite() and F.upper() <= direct.upper() and F.lower() >= direct.lower()
+        for i, j in itertools.product(range(5), range(5)):
+            uu = Fraction(u[0]) + (Fraction(u[1]) - Fraction(u[0])) * i / 4
+            ss = Fraction(s[0]) + (Fraction(s[1]) - Fraction(s[0])) * j / 4
+            from flint import fmpq
+            a, b = vdot_polar(g, g.c.x2_star * arb(fmpq(uu.numerator, uu.denominator)),
+                              arb.pi() * arb(fmpq(ss.numerator, ss.denominator)))
+            pt = a - R * abs(b)
+            assert F.lower() <= pt.upper() and pt.lower() <= F.upper(), (uu, ss, F, pt)   # meets each point's ball

@@ -207,7 +207,7 @@ def widened(x: arb, rel_tol: str) -> arb:
 
 def contains_ref(ball: arb, ref: str, rel_tol: str = MPMATH_REL_TOL) -> bool:
     with working_precision(CHECK_PREC):
-        return widened(ball, rel_tol).contains(arb(ref))
+        return ball.is_finite() and widened(ball, rel_tol).contains(arb(ref))     # a NaN ball "contains" all
 
 
 @functools.lru_cache(maxsize=256)

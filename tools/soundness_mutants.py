@@ -352,6 +352,11 @@ MUTANTS = [
      "root_in = certainly_le(lo_b, xs) or \\",
      "the x2 axis segment confirmed on lo <= x2* alone: a segment that misses the root of mu F = c_set "
      "(the set's end on the axis) is confirmed"),
+    ("direct_margin_centre_off_the_box", "rigor_gyro/kinds/lyapunov/model.py",
+     "        um, sm = arb(U.mid()), arb(S.mid())",
+     "        um, sm = arb(0), arb(S.mid())",
+     "the direct test's mean-value form centred at u = 0, off the box: the derivative is bounded over the box "
+     "only, so the form is no enclosure and a box can be certified positive where A - R|B| is not"),
 ]
 
 
