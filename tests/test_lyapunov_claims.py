@@ -275,10 +275,10 @@ def test_rho_is_infinite_where_a_disc_coefficient_is_not_positive():
 
 
 @pytest.mark.parametrize("params, where", [
-    ({}, "end"), ({"x2_star": "1/10"}, "end"), ({"x2_star": "1.3"}, "end"),
+    ({}, "end"), ({"x2_star": "1/10"}, "end"), ({"x2_star": "1.3"}, "end"), ({"k": "40", "mu": "1.5"}, "end"),
     ({"x2_star": "1", "k": "4"}, "inside"), ({"x2_star": "1.4", "mu": "0.1", "k": "40"}, "inside"),
     ({"mu": "0.01"}, "none"), ({"C1": "54.2"}, "none")],
-    ids=["paper", "x2* = 1/10", "x2* = 1.3", "peak at 0.813", "peak at 1.253", "mu = 0.01", "C0 < 0"])
+    ids=["paper", "x2* = 1/10", "x2* = 1.3", "R_sup = 2.83 > 1", "peak at 0.813", "peak at 1.253", "mu = 0.01", "C0 < 0"])
 def test_the_r_sup_search_finds_the_float_sides_r_sup_and_where_it_is_attained(params, where):
     """_r_sup_search (a float heuristic choosing mu_best and the bound's points) against the float side's own
     R_sup(mu) = min over x2 of ci0/|(ci1, ci3)| in mpmath: the same value to 1e-9 and the same x2, at the end
