@@ -70,6 +70,7 @@ def test_a_paving_with_an_edge_never_split_is_confirmed():
     assert data["settings"]["unsplit"] == ["S"] and len(c["boxes"]) > 2     # H split twice at least
     assert {tuple(b["box"]["S"]) for b in c["boxes"]} == {("7/50", "4/25")}
     assert _failures(data) == []
+    assert any(ln.startswith("Not split: S (the box claims do not depend on it") for ln in _report_lines(data))
 
 
 def _claim(data, i=0):
@@ -98,13 +99,17 @@ ALTERATIONS = {
                                [("bracket_1", "unknown sub-box status")]),
     "the last proved sub-box relabelled refuted": (       # after undecided ones: each decided box is re-evaluated
         _mixed, lambda d: _last_proved(_claim(d)).update(status="refuted"),
-        [("bracket_2", "volume fractions"), ("bracket_2", "stored refuted, re-evaluated proved"),
+        [("bracket_2", "volume fractions or sub-box counts"), ("bracket_2", "stored refuted, re-evaluated proved"),
          ("bracket_2", "not the midpoints"), ("bracket_2", "but the sub-boxes give 'refuted'"),
          ("verdict", "verdict")]),
     "a proved sub-box dropped": (_mixed, lambda d: _claim(d)["boxes"].remove(_last_proved(_claim(d))),
-                                 [("bracket_2", "do not tile"), ("bracket_2", "volume fractions")]),
+                                 [("bracket_2", "do not tile"), ("bracket_2", "volume fractions or sub-box counts")]),
     "volume fraction": (_mixed, lambda d: _claim(d)["volume_fraction"].update(proved="1/3"),
-                        [("bracket_2", "volume fractions")]),
+                        [("bracket_2", "volume fractions or sub-box counts")]),
+    "a sub-box count": (_mixed, lambda d: _claim(d)["sub_boxes"].update(proved=_claim(d)["sub_boxes"]["proved"] + 1),
+                        [("bracket_2", "volume fractions or sub-box counts")]),
+    "a decimal volume fraction": (_mixed, lambda d: _claim(d)["volume_fraction_decimal"].update(proved="1"),
+                                  [("bracket_2", "volume fractions or sub-box counts")]),
     "a point's status": (_refuted, lambda d: _claim(d)["points"][2].update(status="inconclusive"),
                          [("bracket_2", "stored inconclusive, re-proved refuted")]),
     "a point moved": (_undecided, lambda d: _claim(d)["points"][0]["point"].update(eps="11/100"),
@@ -173,3 +178,55 @@ def test_a_degenerate_edge_is_a_point_of_every_proof():
     assert all(p["point"]["eps"] == "269/2500" for p in c["points"])
     assert list(data["box"]) == ["Omega2"] and data["point_parameters"]["eps"] == "269/2500"
     assert _failures(data) == []
+
+
+def _report_lines(data: dict) -> list[str]:
+    from rigor_gyro.margins.report import render_paving
+    return render_paving(data).splitlines()
+
+
+@pytest.mark.parametrize("make", [_proved, _refuted, _undecided, _mixed], ids=["proved", "refuted", "undecided", "mixed"])
+def test_the_report_states_what_the_paving_holds_answer_first(make):
+    """The Markdown report: the verdict and the box first, then per claim its status, its volume fractions
+    and sub-box counts (the data's own, which the checker re-derives), the first certified counterexample
+    with how many points were re-proved refuted, the undecided sub-boxes' midpoints by outcome, and the
+    settings with the budget."""
+    data = make()
+    lines = _report_lines(data)
+    assert lines[0].startswith(f"# {data['scene']['name']}: {data['verdict'].upper()} over the box ")
+    for k, (lo, hi) in data["box"].items():
+        assert f"{k} in [" in lines[0]
+    for c in data["claims"]:
+        v, n = c["volume_fraction_decimal"], c["sub_boxes"]
+        assert n == {k: sum(1 for b in c["boxes"] if b["status"] == k) for k in ("proved", "refuted", "undecided")}
+        row = (f"| {c['id']} | **{c['status']}** | {v['proved']} | {v['refuted']} | {v['undecided']} | "
+               f"{n['proved']}/{n['refuted']}/{n['undecided']} |")
+        assert row in lines, (row, lines)
+        assert f"## {c['id']}: {c['status']}" in lines
+        refuted = [p for p in c["points"] if p["status"] == "refuted"]
+        ce = [ln for ln in lines if ln.startswith("- certified counterexample")]
+        if refuted:
+            first = refuted[0]
+            assert len(ce) == 1 and f"({len(refuted)} point(s) re-proved refuted; the first): " in ce[0]
+            shown = [f"{k} = {val}" for k, val in first["point"].items() if k in data["box"]]
+            assert shown and ", ".join(shown) in ce[0] and ce[0].endswith(f": {first['reason']}")
+        else:
+            assert not ce
+        und = [p for p in c["points"] if p["box_outcome"] == "undecided"]
+        mid = [ln for ln in lines if ln.startswith("- the midpoints of")]
+        if und:
+            counts = ", ".join(f"{s}: {sum(1 for p in und if p['status'] == s)}" for s in ("proved", "refuted", "inconclusive"))
+            assert mid == [f"- the midpoints of {len(und)} undecided sub-box(es), proved point by point: {counts}"]
+        else:
+            assert not mid
+    settings = next(ln for ln in lines if ln.startswith("Settings:"))
+    assert f"{data['boxes_evaluated']} boxes evaluated in {data['levels']} levels." in settings
+    assert "budget was exhausted" not in settings
+
+
+def test_the_report_says_when_the_budget_ran_out_and_which_edges_were_not_split():
+    short = _paving(RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #')
+                    .replace('box_resolution = "1/16"', 'box_resolution = "1/16"\nmax_boxes = "7"'))
+    assert any(ln.startswith("Settings:") and ln.endswith("levels; the box budget was exhausted.")
+               for ln in _report_lines(short))
+    assert not any(ln.startswith("Not split:") for ln in _report_lines(short))

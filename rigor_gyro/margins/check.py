@@ -3,7 +3,7 @@
 Checked: the digest; the scene re-validated as a box scene (domain on the whole box, the claims, the
 settings); per claim, that the stored sub-boxes are exactly the leaves of a bisection tree of the
 whole box under the paving's split rule (so they tile it: no gap, no overlap), the volume fractions
-recomputed exactly, every proved and refuted sub-box re-evaluated on its own balls with the kind's box
+recomputed exactly (with the decimals and sub-box counts the report prints), every proved and refuted sub-box re-evaluated on its own balls with the kind's box
 rigour at the stored precision, every stored point proof re-run by the point prover, and the claim's
 status and the verdict re-derived by the rules of :mod:`.paving`. An undecided sub-box claims nothing.
 
@@ -37,6 +37,7 @@ def CheckResult(item: str, ok: bool, message: str) -> tuple[str, bool, str]:
 def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     """The checks of a paving certificate, as (item, ok, message) triples (see the module docstring)."""
     from .paving import boxes_module, box_scene, evaluate_task, point_task
+    from .report import decimal_text
     out: list = []
     add = out.append
     ok = isinstance(data.get("integrity"), dict) and data["integrity"].get("sha256") == digest(data)
@@ -75,8 +76,12 @@ def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
         total = bs.box.volume()
         vol = {k: sum((b.volume() for b, s in boxes if s == k), Fraction(0)) / total
                for k in ("proved", "refuted", "undecided")}
-        add(CheckResult(cid, c["volume_fraction"] == {k: fraction_text(v) for k, v in vol.items()},
-                        "volume fractions recomputed"))
+        # the exact fractions, the decimals the report prints and the sub-box counts, each re-derived
+        numbers = (c["volume_fraction"] == {k: fraction_text(v) for k, v in vol.items()}
+                   and c.get("volume_fraction_decimal") == {k: decimal_text(v) for k, v in vol.items()}
+                   and c.get("sub_boxes") == {k: sum(1 for _, s in boxes if s == k) for k in vol})
+        add(CheckResult(cid, numbers, "volume fractions (exact and decimal) and sub-box counts recomputed" if numbers
+                        else "the stored volume fractions or sub-box counts are not the sub-boxes' own"))
         bad = []
         for b, s in boxes:
             if s == "undecided":

@@ -19,10 +19,12 @@ from ..report import write_pair
 from ..version import __version__
 from .paving import SCHEMA, Paving
 
-__all__ = ["paving_json", "render_paving", "write_paving"]
+__all__ = ["decimal_text", "paving_json", "render_paving", "write_paving"]
 
 
-def _dec(q: Fraction, digits: int = 6) -> str:
+def decimal_text(q: Fraction, digits: int = 6) -> str:
+    """A volume fraction or an end for reading (``digits`` significant digits; the exact value is stored
+    beside it). The paving checker re-derives it."""
     return f"{float(q):.{digits}g}"
 
 
@@ -34,7 +36,7 @@ def paving_json(p: Paving) -> dict[str, Any]:
         claims.append({
             "id": c.id, "statement": c.statement, "status": c.status,
             "volume_fraction": {k: fraction_text(v) for k, v in vol.items()},
-            "volume_fraction_decimal": {k: _dec(v) for k, v in vol.items()},
+            "volume_fraction_decimal": {k: decimal_text(v) for k, v in vol.items()},
             "sub_boxes": {k: sum(1 for _, s in c.boxes if s == k) for k in ("proved", "refuted", "undecided")},
             "reasons": dict(sorted(c.reasons.items())),
             "points": c.points,
@@ -59,7 +61,8 @@ def paving_json(p: Paving) -> dict[str, Any]:
 
 def render_paving(data: dict[str, Any]) -> str:
     """The report: the answer first (verdict per claim with its volume fractions), then the settings."""
-    box = ", ".join(f"{k} in [{_dec(Fraction(v[0]), 10)}, {_dec(Fraction(v[1]), 10)}]" for k, v in data["box"].items())
+    box = ", ".join(f"{k} in [{decimal_text(Fraction(v[0]), 10)}, {decimal_text(Fraction(v[1]), 10)}]"
+                    for k, v in data["box"].items())
     out = [f"# {data['scene']['name']}: {data['verdict'].upper()} over the box {box}", ""]
     out.append("| claim | over the whole box | proved volume | refuted volume | undecided volume | sub-boxes (p/r/u) |")
     out.append("|---|---|---|---|---|---|")
