@@ -75,6 +75,10 @@ SCENES = [
     ("max_pieces not an integer", scene("lyap", extra='[options]\nmax_pieces = "1.5"\n'), "max_pieces"),
     ("max_pieces too large", scene("lyap", extra='[options]\nmax_pieces = "2000000"\n'), "max_pieces"),
     ("R = 0", scene("lyap", extra='[options]\nR = "0"\n'), "'R'"),
+    ("R too large", scene("lyap", extra='[options]\nR = "2e6"\n'), "'R'"),
+    ("max_pieces = 0", scene("lyap", extra='[options]\nmax_pieces = "0"\n'), "max_pieces"),
+    ("rel_width = 0 (lyapunov)", scene("lyap", extra='[options]\nrel_width = "0"\n'), "option 'rel_width' = '0'"),
+    ("rel_width > 1 (lyapunov)", scene("lyap", extra='[options]\nrel_width = "2"\n'), "0 < rel_width <= 1"),
     ("boolean option", scene(extra="[options]\nrel_width = true\n"), "rel_width"),
     ("unknown option", scene(extra='[options]\nrelwidth = "1e-3"\n'), "rel_width"),
     ("unknown option: the kind is named", scene(extra='[options]\nrelwidth = "1e-3"\n'), "kind 'eigenfrequencies'"),
@@ -196,3 +200,16 @@ def test_bad_api_call(case, call, exc):
 
 def test_the_battery_has_at_least_60_cases():
     assert len(SCENES) + len(FILES) + len(ARGS) + len(API) + 1 >= 60
+
+
+def test_the_lyapunov_options_at_their_limits_are_accepted_and_kept():
+    """The other side of the option cases above: rel_width = 1, R = 1e6, max_pieces = 1 are valid, and the
+    model keeps what was written (R is the radius every claim then uses)."""
+    from fractions import Fraction
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    from rigor_gyro.scene import parse_scene
+    m = validate(parse_scene(scene("lyap", extra='[options]\nrel_width = "1"\nR = "1e6"\nmax_pieces = "1"\n')))
+    q = lambda x: Fraction(int(x.p), int(x.q))      # noqa: E731 (an fmpq as an exact Fraction)
+    assert (q(m.rel_width), q(m.R_option), m.max_pieces) == (1, 10 ** 6, 1)
+    assert m.text == {k: str(v) for k, v in LYAP.items()} and m.params["k"].rational == Fraction(2, 5)
+    assert m.paper == {}
