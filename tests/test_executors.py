@@ -18,8 +18,10 @@ def _task(i: int, j: int) -> tuple[int, int, int]:
 
 def test_default_workers_are_the_cores_this_process_may_use():
     assert X.default_workers() == len(os.sched_getaffinity(0)) >= 1
-    assert X.make_executor().workers == X.default_workers()
-    assert X.make_executor(3).workers == 3
+    with X.make_executor() as ex:
+        assert ex.workers == X.default_workers()
+    with X.make_executor(3) as ex:
+        assert ex.workers == 3
 
 
 @pytest.mark.parametrize("workers", [0, 1, "1", -2])

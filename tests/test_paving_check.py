@@ -93,6 +93,8 @@ ALTERATIONS = {
     "box": (_proved, lambda d: d["box"]["eps"].__setitem__(1, "1/8"), [("box", "re-derived")]),
     "settings": (_proved, lambda d: d["settings"].update(max_boxes=7), [("settings", "re-derived")]),
     "claims reordered": (_proved, lambda d: d["claims"].reverse(), [("claims", "claims")]),
+    "a point claim listed as not decided over boxes": (_proved, lambda d: d["not_box_claims"].append("roots"),
+                                                       [("claims", "not decided over boxes are")]),
     "statement": (_proved, lambda d: _claim(d).update(statement=_claim(d)["statement"] + " Also for eps = 1."),
                   [("bracket_1", "not the kind's box statement")]),
     "unknown sub-box status": (_proved, lambda d: _claim(d)["boxes"][0].update(status="maybe"),
@@ -194,8 +196,10 @@ def test_the_report_states_what_the_paving_holds_answer_first(make):
     data = make()
     lines = _report_lines(data)
     assert lines[0].startswith(f"# {data['scene']['name']}: {data['verdict'].upper()} over the box ")
+    from fractions import Fraction
+    from rigor_gyro.margins.report import decimal_text
     for k, (lo, hi) in data["box"].items():
-        assert f"{k} in [" in lines[0]
+        assert f"{k} in [{decimal_text(Fraction(lo), 10)}, {decimal_text(Fraction(hi), 10)}]" in lines[0]
     for c in data["claims"]:
         v, n = c["volume_fraction_decimal"], c["sub_boxes"]
         assert n == {k: sum(1 for b in c["boxes"] if b["status"] == k) for k in ("proved", "refuted", "undecided")}
@@ -230,3 +234,21 @@ def test_the_report_says_when_the_budget_ran_out_and_which_edges_were_not_split(
     assert any(ln.startswith("Settings:") and ln.endswith("levels; the box budget was exhausted.")
                for ln in _report_lines(short))
     assert not any(ln.startswith("Not split:") for ln in _report_lines(short))
+
+
+def test_the_paving_files_are_the_data_as_written_and_the_timings_beside_them(tmp_path):
+    """write_paving: the JSON file is the data itself (one-space indent, non-ASCII kept, a final newline),
+    the Markdown is the report, and the wall time goes to timings/<name>.json, never into the pair. The
+    decimals for reading have six significant digits (the exact fractions sit beside them)."""
+    from fractions import Fraction
+    from rigor_gyro.margins.report import decimal_text, render_paving, write_paving
+    assert [decimal_text(Fraction(1, 3)), decimal_text(Fraction(2, 3), 10), decimal_text(Fraction(1))] == \
+        ["0.333333", "0.6666666667", "1"]
+    p = pave(box_scene(parse_scene(RUDENKO_BOX.replace('only = [', 'only = ["bracket_1"] #'))))
+    jpath, mpath = write_paving(p, tmp_path)
+    data = paving_json(p)
+    assert jpath.read_text(encoding="utf-8") == json.dumps(data, indent=1, ensure_ascii=False) + "\n"
+    assert mpath.read_text(encoding="utf-8") == render_paving(data)
+    timings = json.loads((tmp_path / "timings" / jpath.name).read_text())
+    assert set(timings) == {"total_s", "executor"} and timings["executor"] == p.executor
+    assert timings["total_s"] == round(p.seconds, 3) and "total_s" not in jpath.read_text()

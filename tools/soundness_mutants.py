@@ -345,8 +345,8 @@ MUTANTS = [
     ("check_x2_extent_floor_raised", "rigor_gyro/kinds/lyapunov/check.py",
      "                           else arb(0))",
      "                           else arb(1))",
-     "the checker's x2 extent bounded below by 1 with no verified slice point: a stored extent of the "
-     "invariant set starting above what anything certifies is confirmed"),
+     "with no verified slice point the checker's x2 extent is the hull of 1 and x2* instead of [0, x2*]: a "
+     "stored extent of the invariant set starting above 0, which nothing certifies, is confirmed"),
     ("check_x2_axis_root_unbracketed", "rigor_gyro/kinds/lyapunov/check.py",
      "root_in = certainly_le(lo_b, xs) and \\",
      "root_in = certainly_le(lo_b, xs) or \\",
