@@ -244,10 +244,12 @@ def test_the_paving_files_are_the_data_as_written_and_the_timings_beside_them(tm
     from rigor_gyro.margins.report import decimal_text, render_paving, write_paving
     assert [decimal_text(Fraction(1, 3)), decimal_text(Fraction(2, 3), 10), decimal_text(Fraction(1))] == \
         ["0.333333", "0.6666666667", "1"]
-    p = pave(box_scene(parse_scene(RUDENKO_BOX.replace('only = [', 'only = ["bracket_1"] #'))))
+    text = RUDENKO_BOX.replace('only = [', 'only = ["bracket_1"] #').replace("the issue's example", "Руденко (1976)")
+    p = pave(box_scene(parse_scene(text)))          # a source in Cyrillic: written as it is, not \u-escaped
     jpath, mpath = write_paving(p, tmp_path)
     data = paving_json(p)
     assert jpath.read_text(encoding="utf-8") == json.dumps(data, indent=1, ensure_ascii=False) + "\n"
+    assert "Руденко" in jpath.read_text(encoding="utf-8") and "Руденко" in data["scene"]["source"]
     assert mpath.read_text(encoding="utf-8") == render_paving(data)
     timings = json.loads((tmp_path / "timings" / jpath.name).read_text())
     assert set(timings) == {"total_s", "executor"} and timings["executor"] == p.executor
