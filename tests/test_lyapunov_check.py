@@ -690,6 +690,26 @@ def test_without_a_verified_slice_point_the_x2_extent_is_confirmed_only_down_to_
     assert _items(forged(False, False))["extent_x2"] is False                 # nothing certifies an end above 0
 
 
+@pytest.fixture(scope="module")
+def cylinder_binds():
+    """R = 0.002: the cylinder x1^2 + x3^2 = R^2 (V about 1.857 there), not the faces (23.43), bounds c*."""
+    return _cert({"R": "0.002"}, claims_only=["invariant_estimate"])
+
+
+def test_where_the_cylinder_binds_c_set_is_confirmed_only_below_the_cylinders_lower_bound(cylinder_binds):
+    """c* is the minimum of V over the cylinder, bounded below piece by piece (1.8570311168 at the lowest
+    piece; the pieces' upper ends reach 1.8570342). The stored c_set, just below, is confirmed with
+    everything else; a c_set of 1.857033, above the certified bound but below the pieces' upper ends, is
+    not: the bound is each piece's lower end."""
+    data = cylinder_binds
+    assert _claim(data, "invariant_estimate")["status"] == "proved"
+    assert Fraction(data["quantities"]["c_star"]["hi"]) < Fraction(5) < Fraction(data["quantities"]["c_star_face"]["lo"])
+    assert all(_items(data).values()), _failures(data)
+    bad = copy.deepcopy(data)
+    _claim(bad, "invariant_estimate")["details"]["c_set"] = "1.857033"
+    assert _items(bad)["invariant_estimate"] is False
+
+
 # ------------------------------------------------------------------------------ the equilibria re-derived
 
 def _equilibria_inputs(data):

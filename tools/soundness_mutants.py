@@ -357,6 +357,11 @@ MUTANTS = [
      "        um, sm = arb(0), arb(S.mid())",
      "the direct test's mean-value form centred at u = 0, off the box: the derivative is bounded over the box "
      "only, so the form is no enclosure and a box can be certified positive where A - R|B| is not"),
+    ("check_cylinder_bound_upper_ends", "rigor_gyro/kinds/lyapunov/check.py",
+     "                v = lb(_b(p)).lower()",
+     "                v = lb(_b(p)).upper()",
+     "the Lyapunov checker bounds V on the cylinder by each piece's upper end: where the cylinder binds, a "
+     "c_set above the certified lower bound of c* is confirmed"),
 ]
 
 
