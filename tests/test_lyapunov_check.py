@@ -710,6 +710,15 @@ def test_where_the_cylinder_binds_c_set_is_confirmed_only_below_the_cylinders_lo
     assert _items(bad)["invariant_estimate"] is False
 
 
+@pytest.mark.parametrize("end, value", [("hi", "1.9"), ("lo", "1.86")], ids=["upper end lowered", "lower end raised"])
+def test_c_star_is_verified_only_when_both_ends_hold(cylinder_binds, end, value):
+    """The stored c* = [1.857, 3.75] (the cylinder's certified lower bound, V's smallest sample on it): an
+    upper end below the samples, or a lower end above the certified bound, leaves c* unverified."""
+    bad = copy.deepcopy(cylinder_binds)
+    bad["quantities"]["c_star"][end] = value
+    assert "'c_star'" in _unverified(bad)
+
+
 # ------------------------------------------------------------------------------ the equilibria re-derived
 
 def _equilibria_inputs(data):
