@@ -3,8 +3,9 @@
 Checked: the digest; the scene re-validated as a box scene (domain on the whole box, the claims, the
 settings); per claim, that the stored sub-boxes are exactly the leaves of a bisection tree of the
 whole box under the paving's split rule (so they tile it: no gap, no overlap), the volume fractions
-recomputed exactly (with the decimals and sub-box counts the report prints), every proved and refuted sub-box re-evaluated on its own balls with the kind's box
-rigour at the stored precision, every stored point proof re-run by the point prover, and the claim's
+recomputed exactly (with the decimals and sub-box counts the report prints), every proved and refuted
+sub-box re-evaluated on its own balls with the kind's box rigour at the stored precision, every stored
+point proof re-run by the point prover, the claims not decided over boxes re-derived, and the claim's
 status and the verdict re-derived by the rules of :mod:`.paving`. An undecided sub-box claims nothing.
 Not checked: what describes the run rather than the box (the boxes evaluated, the levels, the budget
 flag, the texts of the reasons a sub-box stayed undecided); the report prints them as such.
