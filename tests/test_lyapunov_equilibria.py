@@ -22,6 +22,7 @@ from rigor_gyro.kinds.lyapunov import equilibria as E
 from rigor_gyro.kinds.lyapunov.approx import MpGimbal
 from rigor_gyro.kinds.lyapunov.claims import validate
 from rigor_gyro.scene import load_scene
+from tests.test_properties_lyapunov import contains_mp
 
 F_CASE, COS_CASE, H_CASE = "f(x2) = 0", "cos x2 = 0", "k H + C0 sin x2 f(x2) = 0"
 
@@ -104,13 +105,6 @@ def reference(variant: str) -> list[tuple]:
         return out
 
 
-def _contains(x: arb, ref) -> bool:
-    """The ball contains the 50-digit reference value (widened by 1e-40 relative: the reference's error)."""
-    with working_precision(256):
-        r = arb(mpmath.nstr(ref, 50))
-        return x.is_finite() and (x + arb(0, 1e-40 * (1 + abs(float(ref))))).contains(r)   # NaN "contains" all
-
-
 def _found(variant: str):
     """The search run afresh (a few milliseconds; no module fixture, so a mutant of it is what runs)."""
     g = _gimbal(_params(variant))
@@ -129,10 +123,10 @@ def test_every_equilibrium_is_found_once_with_its_case_and_its_point(variant):
     assert eq.reason == "every piece of [-P, P] decided for f and for h"
     assert len(eq.points) == len(ref), (variant, [(p.case, p.x2.str(6)) for p in eq.points])
     for case, x2, x1, _ in ref:
-        hits = [p for p in eq.points if p.case == case and _contains(p.x2, x2)]
+        hits = [p for p in eq.points if p.case == case and contains_mp(p.x2, x2)]
         assert len(hits) == 1, (variant, case, x2)
         p = hits[0]
-        assert _contains(p.x1, x1), (variant, case, x2, p.x1)
+        assert contains_mp(p.x1, x1), (variant, case, x2, p.x1)
         assert p.x2.rad() < arb(2) ** -40 and p.x1.rad() < arb(2) ** -40 * (1 + abs(p.x1)), (variant, p)
 
 
@@ -160,10 +154,10 @@ def test_each_stability_agrees_with_the_eigenvalues_in_mpmath(variant):
     variant, g, eq = _found(variant)
     for case, x2, x1, ev in reference(variant):
         re_max = max(mpmath.re(z) for z in ev)
-        p = next(p for p in eq.points if p.case == case and _contains(p.x2, x2))
+        p = next(p for p in eq.points if p.case == case and contains_mp(p.x2, x2))
         assert len(p.eigenvalues) == 3, (variant, case)
         for z in ev:        # each reference eigenvalue in one of the balls (the linearisation at the point)
-            assert any(_contains(w.real, mpmath.re(z)) and _contains(w.imag, mpmath.im(z)) for w in p.eigenvalues), \
+            assert any(contains_mp(w.real, mpmath.re(z)) and contains_mp(w.imag, mpmath.im(z)) for w in p.eigenvalues), \
                 (variant, case, x2, z, p.eigenvalues)
         if p.stability == "asymptotically stable":
             assert re_max < -mpmath.mpf(10) ** -30, (variant, case, x2, re_max)
@@ -308,7 +302,7 @@ def test_the_jacobian_is_the_derivative_of_the_vector_field():
                         q[j] = t
                         return mg.rhs3(*q)[i]
                     ref = mpmath.diff(along, p[j])
-                    assert _contains(J[i][j], ref), (i, j, J[i][j], ref)
+                    assert contains_mp(J[i][j], ref), (i, j, J[i][j], ref)
 
 
 def _classified(matrix) -> E.Equilibrium:

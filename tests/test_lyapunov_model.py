@@ -5,16 +5,26 @@ minimum of Psi against Psi on the disc's boundary, the slice centre against V's 
 Each bound is checked both ways: it is valid (never above what it bounds, a ball containing the
 range) and it is the bound its docstring states (within rounding), so a term dropped, scaled or
 mis-signed fails here rather than only making some proof harder."""
+import dataclasses
 import itertools
 from fractions import Fraction
 
+import mpmath
 import pytest
-from flint import arb
+from flint import arb, fmpq
 
 from rigor_gyro.core.balls import certainly_gt, certainly_le, working_precision
+from rigor_gyro.core.boxes import Box
+from rigor_gyro.core.outcome import Status
+from rigor_gyro.kinds.lyapunov import model as M
+from rigor_gyro.kinds.lyapunov.approx import MpGimbal, _r12, float_constants
 from rigor_gyro.kinds.lyapunov.claims import validate
-from rigor_gyro.kinds.lyapunov.model import cylinder_lower_bound, hypot_ball, psi_min_functions
+from rigor_gyro.kinds.lyapunov.model import (Dual, certify_vdot_nonpositive, closed_form_constants,
+                                             cylinder_lower_bound, direct_margin, hypot_ball, psi_min_functions,
+                                             sin_cos, slice_extent, slice_in_region, sublevel_lower_bound, v_polar,
+                                             vdot_polar)
 from rigor_gyro.scene import load_scene
+from tests.test_properties_lyapunov import contains_mp
 
 TINY = arb("1e-25")
 
@@ -133,7 +143,6 @@ def test_slice_in_region_puts_the_centre_of_the_slice_where_v_has_its_minimum(gi
     """slice_in_region(g, c, R, x2) is true just outside the centre's radius |z0| and false just inside
     it (c above phi(x2), so the slice is not empty), with z0 the minimiser of V(., x2, .) found here
     from V itself; and false for every R when c <= phi(x2) (an empty slice)."""
-    from rigor_gyro.kinds.lyapunov.model import slice_in_region
     g = gimbal
     with working_precision(128):
         xs = g.c.x2_star
@@ -175,7 +184,6 @@ def _half_line_min(alpha, beta, gamma, A, B):
 def test_v_polar_and_vdot_polar_are_v_and_vdot_along_every_ray(gimbal):
     """V(r cos t, x2, r sin t) = alpha + beta r + gamma r^2 and Vdot = -r^2 (A + r B) for every r: the
     coefficients read back from V and Vdot themselves at r = -1, 0, 1, and checked at r = 2, -3, 1/7."""
-    from rigor_gyro.kinds.lyapunov.model import v_polar, vdot_polar
     g = gimbal
     with working_precision(128):
         for u, s in _RAYS:
@@ -212,10 +220,7 @@ def test_the_sublevel_lower_bound_is_below_v_on_the_half_line_of_vdot_ge_0_and_t
     the minimum of the quadratic clamped to the half-line in mpmath) and within 1e-5 of it where the
     bound is that minimum (A > 0, or the vertex on the half-line): a term dropped or scaled in either
     branch of the bound shows here."""
-    import dataclasses
 
-    import mpmath
-    from rigor_gyro.kinds.lyapunov.model import sublevel_lower_bound
     scene = load_scene("agafonov2013")
     g = validate(dataclasses.replace(scene, parameters=dict(scene.parameters, k=k))).gimbal
     f = sublevel_lower_bound(g)
@@ -268,8 +273,6 @@ def test_the_faces_minimiser_is_where_v_takes_phi_and_v_is_larger_around_it(gimb
 
 def test_dual_numbers_carry_the_derivative_of_every_operation():
     """Each Dual rule against mpmath's numerical derivative of the same expression at 30 digits."""
-    import mpmath
-    from rigor_gyro.kinds.lyapunov.model import Dual, sin_cos
     exprs = [
         (lambda x: -x + 3, lambda x: -x + 3), (lambda x: 2 - x, lambda x: 2 - x), (lambda x: x - 5, lambda x: x - 5),
         (lambda x: x * x * 3, lambda x: 3 * x * x), (lambda x: (x + 1) / (x * x + 2), lambda x: (x + 1) / (x * x + 2)),
@@ -291,7 +294,6 @@ def test_dual_numbers_carry_the_derivative_of_every_operation():
 
 
 def test_vdot_polar_over_a_mu_ball_contains_it_at_every_mu_of_the_ball(gimbal):
-    from rigor_gyro.kinds.lyapunov.model import vdot_polar
     g = gimbal
     with working_precision(128):
         mu = arb("0.03", "0.01")
@@ -307,8 +309,6 @@ def test_slice_extents_are_the_ellipses_own_from_v_itself(gimbal):
     """max |x1| and max |x3| over {V(., x2, .) < c}: from V's own values (the quadratic form's gradient and
     Hessian at six points, the ellipse's centre and axes solved in mpmath), at points (the direct form)
     and on tiny balls (the mean-value form), and 0 where c < phi(x2)."""
-    import mpmath
-    from rigor_gyro.kinds.lyapunov.model import slice_extent
     g = gimbal
     with working_precision(128), mpmath.workdps(40):
         c = g.phi(g.c.x2_star) * arb("1.5")
@@ -342,7 +342,6 @@ def test_psi_is_the_faces_minimum_of_v_up_to_a_positive_factor(params):
     """v_positive rests on psi: phi(x2) = min V(., x2, .) and psi have the same sign because
     phi S = K psi G with one constant K > 0 for all x2 (G, S > 0): checked at eight x2 to 1e-20, so a term
     of psi changed shows as a ratio that moves."""
-    import dataclasses
     scene = load_scene("agafonov2013")
     g = validate(dataclasses.replace(scene, parameters=dict(scene.parameters, **params))).gimbal
     with working_precision(128):
@@ -358,22 +357,11 @@ def test_psi_is_the_faces_minimum_of_v_up_to_a_positive_factor(params):
 # (the claims tests reach these through whole proofs, minutes a mutant under mutmut; these take a second)
 
 def _g_and_mp(params: dict):
-    import dataclasses
-    import mpmath
-    from rigor_gyro.kinds.lyapunov.approx import MpGimbal
     scene = load_scene("agafonov2013")
     full = dict(scene.parameters, **params)
     with mpmath.workdps(50):
         mg = MpGimbal(full)
     return validate(dataclasses.replace(scene, parameters=full)).gimbal, mg, full
-
-
-def _has(x: arb, ref) -> bool:
-    """x contains the 50-digit reference (widened by 1e-40 relative for the reference's own error)."""
-    import mpmath
-    with working_precision(256):
-        r = arb(mpmath.nstr(ref, 50))
-        return x.is_finite() and (x + arb(0, 1e-40) * (1 + abs(r))).contains(r)     # a NaN ball "contains" all
 
 
 @pytest.mark.parametrize("params, m, M", [({}, "1.7", "150"), ({}, "30", "100"), ({"C1": "54.2"}, "2.5", "90"),
@@ -383,9 +371,6 @@ def test_closed_form_constants_are_the_printed_formulas_for_every_m_and_M_of_the
     """p = max(M, A0 m / cos^2 x2*), k_min = p A0/H, (16) = (p/H, k/A0), R1 (13), R2 (14), R = min: each ball
     contains the float side's mpmath transcription of the paper's formula (``approx._r12``) at 50 digits, at
     both ends of an m ball and an M ball (the result is valid for every m, M in them)."""
-    import mpmath
-    from rigor_gyro.kinds.lyapunov.approx import _r12
-    from rigor_gyro.kinds.lyapunov.model import closed_form_constants
     g, mg, _ = _g_and_mp(params)
     m_lo, M_lo = arb(m), arb(M)
     with working_precision(128):
@@ -403,23 +388,20 @@ def test_closed_form_constants_are_the_printed_formulas_for_every_m_and_M_of_the
             r12 = _r12(mg, mm)
             ref.update(R1=r12["R1"], R2=r12["R2"], R=r12["R"])
             for name, value in ref.items():
-                assert _has(K[name], value), (name, scale, K[name], value)
+                assert contains_mp(K[name], value), (name, scale, K[name], value)
     assert set(K) == set(ref)
 
 
 def _pi_over_6() -> Fraction:
-    import mpmath
     with mpmath.workdps(50):
         return Fraction(mpmath.nstr(mpmath.pi / 6, 45))
 
 
 def _r_sup(params) -> float:
-    from rigor_gyro.kinds.lyapunov.approx import float_constants
     return float_constants(dict(load_scene("agafonov2013").parameters, **params), with_best_mu=False)["R_sup"]
 
 
 def _radius(params, scale: str) -> arb:
-    from flint import fmpq
     r = Fraction(_r_sup(params)).limit_denominator(10 ** 12) * Fraction(scale)
     return arb(fmpq(r.numerator, r.denominator))
 
@@ -429,9 +411,6 @@ def test_vdot_nonpositive_is_proved_below_r_sup_on_pieces_covering_the_x2_range(
     """Below the supremum of the Psi radius (the float side's R_sup = 0.023988 on the paper's scene) both disc
     minima are certified > 0 on pieces that tile [-x2*, x2*]: the pieces are recorded and counted, and the
     disc minimum of Psi1, Psi2 is positive at the pieces' ends in mpmath too."""
-    import mpmath
-    from rigor_gyro.core.outcome import Status
-    from rigor_gyro.kinds.lyapunov.model import certify_vdot_nonpositive
     g, mg, _ = _g_and_mp({})
     R = _radius({}, scale)
     record: dict = {}
@@ -461,9 +440,6 @@ def test_vdot_nonpositive_is_refuted_only_at_a_point_of_the_region_where_vdot_is
     """The refuting point: balls x1, x3 (about exact rationals) with x1^2 + x3^2 < R^2 and |x2| <= x2* over
     the whole balls, and grad V . f > 0 there in mpmath (the float side's own gradient of V along (2)), inside
     the stated ball."""
-    import mpmath
-    from rigor_gyro.core.outcome import Status
-    from rigor_gyro.kinds.lyapunov.model import certify_vdot_nonpositive
     g, mg, _ = _g_and_mp(params)
     R = _radius(params, scale) if _r_sup(params) > 0 else arb("0.01")
     with working_precision(64):
@@ -475,7 +451,7 @@ def test_vdot_nonpositive_is_refuted_only_at_a_point_of_the_region_where_vdot_is
     with mpmath.workdps(50):
         pt = [mpmath.mpf(x.mid().str(60, radius=False)) for x in (x1, x2, x3)]
         ref = mg.grad_V_dot_f(*pt)
-        assert ref > 0 and _has(val, ref), (ref, val)
+        assert ref > 0 and contains_mp(val, ref), (ref, val)
     assert v.counterexample["point"]["x1"] and v.counterexample["radius"] and "> 0 at the point" in v.reason
 
 
@@ -483,9 +459,6 @@ def test_a_psi_counterexample_refutes_the_test_at_a_certified_point_when_no_vdot
     """With the Vdot search finding nothing, R above R_sup is refuted on Psi alone: a point of the open disc
     where the named Psi (the float side's mpmath coefficients) is <= 0, the value inside the stated ball;
     with a budget too small to decide and R below R_sup, nothing is refuted."""
-    import mpmath
-    from rigor_gyro.core.outcome import Status
-    from rigor_gyro.kinds.lyapunov import model as M
     g, mg, _ = _g_and_mp({})
     monkeypatch.setattr(M, "vdot_witness", lambda *a, **k: None)
     R = _radius({}, "1.1")
@@ -504,7 +477,7 @@ def test_a_psi_counterexample_refutes_the_test_at_a_certified_point_when_no_vdot
         x1 = mpmath.mpf(pt["x1"].numerator) / pt["x1"].denominator
         x3 = mpmath.mpf(pt["x3"].numerator) / pt["x3"].denominator
         ref = c0 + c1 * x1 + c3 * x3
-        assert ref <= 0 and _has(arb(v.counterexample["value"].strip("[]").split(",")[0]).union(
+        assert ref <= 0 and contains_mp(arb(v.counterexample["value"].strip("[]").split(",")[0]).union(
             arb(v.counterexample["value"].strip("[]").split(",")[-1])), ref)
     with working_precision(64):
         small = M.certify_vdot_nonpositive(g, g.c.x2_star, _radius({}, "0.999"), "R", 3, {})
@@ -514,8 +487,6 @@ def test_a_psi_counterexample_refutes_the_test_at_a_certified_point_when_no_vdot
 
 @pytest.mark.parametrize("R", ["0", "-0.01", "nan", "0 +/- 0.001", "inf"])
 def test_a_radius_not_certainly_positive_and_finite_decides_nothing(R):
-    from rigor_gyro.core.outcome import Status
-    from rigor_gyro.kinds.lyapunov.model import certify_vdot_nonpositive
     g, _, _ = _g_and_mp({})
     with working_precision(64):
         v = certify_vdot_nonpositive(g, g.c.x2_star, arb(R), "R = min(R1, R2)", 20000, {})
@@ -530,7 +501,6 @@ def test_q_encloses_f2_over_2DG_at_points_and_over_balls_through_zero(params):
     over balls touching or straddling 0 (the removable singularity, q(0) = a) it contains the float side's
     mpmath q (closed form for the sine law, quadrature for the linear one) at every sample of the ball,
     and it is tight on a tiny ball."""
-    import mpmath
     g, mg, _ = _g_and_mp(params)
     xs = float(mpmath.mpf(mg.xs))
     balls = [("0", "0"), ("0", "0.2"), ("-0.1", "0.1"), ("-0.3", "-0.1"), ("0.1", "0.3"), ("0.25", "0.26"),
@@ -544,7 +514,7 @@ def test_q_encloses_f2_over_2DG_at_points_and_over_balls_through_zero(params):
                 for j in range(9):
                     x = mpmath.mpf(lo) + (mpmath.mpf(hi) - mpmath.mpf(lo)) * j / 8
                     ref = mpmath.mpf(mg.a) if x == 0 else mg.q(abs(x))
-                    assert _has(Q, ref), (params, lo, hi, x, Q, ref)
+                    assert contains_mp(Q, ref), (params, lo, hi, x, Q, ref)
         tiny = g.q(arb("0.3").union(arb("0.3") + arb("1e-12")))
         assert tiny.rad() < arb("1e-8") * abs(tiny), tiny
         point = g.q(arb("0.25"))                # an exact point away from 0: f^2/(2 D G) itself, tight
@@ -555,14 +525,11 @@ def test_an_undecided_vdot_test_below_r_sup_is_never_refuted():
     """R = 0.99 R_sup with 3 pieces: the disc minima stay undecided, and the point search (on x2 = j x2*/8,
     |j| <= 8: only points of the region) finds nothing, because Vdot <= 0 on the whole region. One step
     beyond, at x2 = 9 x2*/8, Vdot > 0 on the same circles: a search reaching past x2* would refute falsely."""
-    from rigor_gyro.core.outcome import Status
-    from rigor_gyro.kinds.lyapunov import model as M
     g, _, _ = _g_and_mp({})
     R = _radius({}, "0.99")
     with working_precision(64):
         v = M.certify_vdot_nonpositive(g, g.c.x2_star, R, "R", 3, {})
         beyond = M.exact_fraction(g.c.x2_star.lower()) * Fraction(9, 8)
-        from flint import fmpq
         assert M.vdot_witness(g, R, [arb(fmpq(beyond.numerator, beyond.denominator))]) is not None
     assert v.status is Status.INCONCLUSIVE and v.witness is None and v.counterexample is None, v.reason
     assert "no point with certified Vdot > 0 found" in v.reason
@@ -573,7 +540,6 @@ def test_the_quotients_of_m_and_the_psi_forms_against_the_float_sides_mpmath(par
     """|cos f'|/D and cos f'/D (whose maxima give m), -Psi1 x1^2 - Psi2 x3^2 from the derived coefficients
     (= grad V . f) and from the coefficients as printed in (8) (Psi2's x3 term with sin 2x2): each ball
     contains the float side's mpmath value at exact points and at every sample of a ball."""
-    import mpmath
     g, mg, _ = _g_and_mp(params)
     with working_precision(64):
         for lo, hi in (("0.3", "0.3"), ("-0.4", "-0.4"), ("0.1", "0.2"), ("-0.05", "0.05")):
@@ -582,16 +548,16 @@ def test_the_quotients_of_m_and_the_psi_forms_against_the_float_sides_mpmath(par
             with mpmath.workdps(40):
                 for j in range(5):
                     x = mpmath.mpf(lo) + (mpmath.mpf(hi) - mpmath.mpf(lo)) * j / 4
-                    assert _has(mq, mg.m_quotient(x)), (lo, hi, x)
-                    assert _has(ms, mpmath.cos(x) * mg.df(x) / mg.D(x)), (lo, hi, x)
+                    assert contains_mp(mq, mg.m_quotient(x)), (lo, hi, x)
+                    assert contains_mp(ms, mpmath.cos(x) * mg.df(x) / mg.D(x)), (lo, hi, x)
         for x1, x2, x3 in (("0.01", "0.3", "-0.02"), ("-0.5", "-0.2", "0.7"), ("2", "0.45", "1.5")):
             b = [arb(v) for v in (x1, x2, x3)]
             exact = g.vdot_psi(*b)
             printed = g.vdot_psi(*b, printed=True)
             with mpmath.workdps(40):
                 p = [mpmath.mpf(v) for v in (x1, x2, x3)]
-                assert _has(exact, mg.vdot_psi(*p)) and _has(exact, mg.grad_V_dot_f(*p)), (x1, x2, x3)
-                assert _has(printed, mg.vdot_psi(*p, printed=True)), (x1, x2, x3)
+                assert contains_mp(exact, mg.vdot_psi(*p)) and contains_mp(exact, mg.grad_V_dot_f(*p)), (x1, x2, x3)
+                assert contains_mp(printed, mg.vdot_psi(*p, printed=True)), (x1, x2, x3)
                 assert abs(mg.vdot_psi(*p, printed=True) - mg.vdot_psi(*p)) > 1e-6 * abs(mg.vdot_psi(*p))
 
 
@@ -603,8 +569,6 @@ def test_the_direct_margin_over_a_box_contains_a_minus_r_abs_b_at_every_point_of
     midpoint) against A - R |B| at 25 points of the box, each evaluated on its own. The boxes are ones where
     the direct form is not certainly positive and B has one sign (both signs), so the centred form is what
     is returned: strictly narrower than the direct one."""
-    from rigor_gyro.core.boxes import Box
-    from rigor_gyro.kinds.lyapunov.model import direct_margin, vdot_polar
     g, _, _ = _g_and_mp({})
     R = arb("0.02")
     with working_precision(64):
@@ -618,7 +582,6 @@ def test_the_direct_margin_over_a_box_contains_a_minus_r_abs_b_at_every_point_of
         for i, j in itertools.product(range(5), range(5)):
             uu = Fraction(u[0]) + (Fraction(u[1]) - Fraction(u[0])) * i / 4
             ss = Fraction(s[0]) + (Fraction(s[1]) - Fraction(s[0])) * j / 4
-            from flint import fmpq
             a, b = vdot_polar(g, g.c.x2_star * arb(fmpq(uu.numerator, uu.denominator)),
                               arb.pi() * arb(fmpq(ss.numerator, ss.denominator)))
             pt = a - R * abs(b)

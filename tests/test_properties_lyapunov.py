@@ -210,6 +210,14 @@ def contains_ref(ball: arb, ref: str, rel_tol: str = MPMATH_REL_TOL) -> bool:
         return ball.is_finite() and widened(ball, rel_tol).contains(arb(ref))     # a NaN ball "contains" all
 
 
+def contains_mp(ball: arb, ref) -> bool:
+    """ball contains the mpmath number ref, computed at 50 digits (widened by 1e-40 relative for ref's own
+    error). A NaN ball "contains" every number in Arb: it never passes here."""
+    with working_precision(256):
+        r = arb(mpmath.nstr(ref, 50))
+        return ball.is_finite() and (ball + arb(0, 1e-40) * (1 + abs(r))).contains(r)
+
+
 @functools.lru_cache(maxsize=256)
 def float_R(params: tuple) -> float:
     return float(float_constants(dict(params), with_best_mu=False)["R"])

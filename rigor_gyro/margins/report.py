@@ -19,7 +19,7 @@ from ..report import write_pair
 from ..version import __version__
 from .paving import SCHEMA, Paving
 
-__all__ = ["decimal_text", "paving_json", "render_paving", "write_paving"]
+__all__ = ["claim_numbers", "decimal_text", "paving_json", "render_paving", "write_paving"]
 
 
 def decimal_text(q: Fraction, digits: int = 6) -> str:
@@ -28,16 +28,22 @@ def decimal_text(q: Fraction, digits: int = 6) -> str:
     return f"{float(q):.{digits}g}"
 
 
+def claim_numbers(vol: dict[str, Fraction], statuses: list[str]) -> dict[str, dict]:
+    """The numbers a paving states for a claim: its volume fractions (exact, and for reading) and its
+    sub-box counts, from the fractions ``vol`` and each sub-box's status. The paving checker re-derives
+    them with this function from its own volumes."""
+    return {"volume_fraction": {k: fraction_text(v) for k, v in vol.items()},
+            "volume_fraction_decimal": {k: decimal_text(v) for k, v in vol.items()},
+            "sub_boxes": {k: sum(1 for s in statuses if s == k) for k in ("proved", "refuted", "undecided")}}
+
+
 def paving_json(p: Paving) -> dict[str, Any]:
     bs = p.bs
     claims = []
     for c in p.claims:
-        vol = c.volume(bs.box)
         claims.append({
             "id": c.id, "statement": c.statement, "status": c.status,
-            "volume_fraction": {k: fraction_text(v) for k, v in vol.items()},
-            "volume_fraction_decimal": {k: decimal_text(v) for k, v in vol.items()},
-            "sub_boxes": {k: sum(1 for _, s in c.boxes if s == k) for k in ("proved", "refuted", "undecided")},
+            **claim_numbers(c.volume(bs.box), [s for _, s in c.boxes]),
             "reasons": dict(sorted(c.reasons.items())),
             "points": c.points,
             "boxes": [{"box": b.to_json(), "status": s} for b, s in c.boxes],
