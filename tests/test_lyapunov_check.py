@@ -178,6 +178,71 @@ def test_bound_over_pieces_re_bounds_a_piece_a_hair_above_the_stored_bound():
     assert tight < plain and tight >= 1 + arb("2.5e-10") and tight <= 1 + arb("3e-10")
 
 
+def test_the_cylinder_samples_lie_on_the_cylinder_and_in_range():
+    """Each sample point possibly lies on x1^2 + x3^2 = R^2 (its balls are float cosines times R) with
+    |x2| <= x2*, at three heights 0, x2*/2, x2* and 32 distinct angles each."""
+    with working_precision(128):
+        R, xs = _q("0.002"), arb.pi() / 6
+        pts = lc.cylinder_points(R, xs)
+        assert len(pts) == 96
+        for x1, x2, x3 in pts:
+            assert abs(x1 * x1 + x3 * x3 - R * R) < R * R * arb("1e-15")
+            assert x2 >= 0 and not (abs(x2) > xs)
+        assert sorted({float(p[1].mid()) for p in pts}) == [0.0, float((xs / 2).mid()), float(xs.mid())]
+        assert len({(float(p[0].mid()), float(p[2].mid())) for p in pts}) == 32
+
+
+def test_inside_16_needs_mu_certainly_between_both_ends():
+    K = {"mu_min": arb(1) + arb(0, 1e-3), "mu_max": arb(2) + arb(0, 1e-3)}
+    for mu, inside in (("3/2", True), ("1/2", False), ("5/2", False), ("1", False), ("2", False),
+                       ("10005/10000", False), ("20011/10000", False), ("1002/1000", True), ("1998/1000", True)):
+        assert lc._inside_16(K, _q(mu)) is inside, mu
+    assert lc._inside_16(K, _q("3/2") + arb(0, 1)) is False          # a ball reaching beyond both ends
+
+
+def test_the_mu_pieces_must_cover_16_out_to_its_ends_outer_bounds():
+    """(16) = (mu_min, mu_max) with ball ends: the pieces must reach mu_min's lower end and mu_max's upper
+    end; stopping inside either ball leaves values of mu that may lie in (16) unbounded."""
+    K = {"mu_min": _q("1") + arb(0, 1e-3), "mu_max": _q("2") + arb(0, 1e-3)}
+    ok = [["998/1000", "3/2"], ["3/2", "2002/1000"]]
+    assert lc._covers_16(ok, K)
+    assert not lc._covers_16([["1", "3/2"], ["3/2", "2002/1000"]], K)           # from mu_min's midpoint
+    assert not lc._covers_16([["998/1000", "3/2"], ["3/2", "2"]], K)            # to mu_max's midpoint
+    assert not lc._covers_16([["998/1000", "3/2"], ["3/2", "20005/10000"]], K)  # inside mu_max's ball
+    assert not lc._covers_16([["998/1000", "14/10"], ["3/2", "2002/1000"]], K)  # a gap
+    assert not lc._covers_16([], K)
+
+
+def test_r_sup_piece_upper_is_1_over_the_largest_rho_lower_in_range_rounded_up(agafonov):
+    """Over a mu piece of the built-in certificate: 1 / max of rho_lower at the stored x2 points, its upper
+    end (not its lower: 1/L is a ball of a few ulps), at or above 1 / rho at the best point for each mu of
+    the piece; points beyond x2* skipped (rho is larger there); +inf with no point in range; 0 where a
+    point's rho_lower is +inf (no disc at all)."""
+    from rigor_gyro.kinds.lyapunov.claims import rho_function, rho_lower, validate
+    wb = agafonov["witnesses"]["best_mu"]
+    with working_precision(128):            # the checker's (2 x 64 bits): the points at x2* are in range there
+        g = validate(load_scene("agafonov2013")).gimbal
+        xs = g.c.x2_star
+        points = [lc._b(t) for t in wb["x2_points"]]
+        assert all(lc._within(abs(x), arb(0), xs) for x in points)
+        for piece in wb["mu_pieces"][:: max(1, len(wb["mu_pieces"]) // 4)]:
+            Mu = _q(piece[0]).union(_q(piece[1]))
+            L = max((rho_lower(g, x, Mu) for x in points), key=lambda v: exact_endpoints(v)[0])
+            inv = 1 / L
+            assert not inv.rad().is_zero()              # the rounding direction matters here
+            u = lc.r_sup_piece_upper(g, xs, points, Mu)
+            assert u.rad().is_zero() and u == inv.upper(), (piece, u, inv)
+            for m in (_q(piece[0]), _q(piece[1]), Mu.mid()):
+                f = exact_endpoints(m)[0]
+                rho = rho_function(g.with_mu(fmpq(f.numerator, f.denominator)))
+                top = max((rho(x) for x in points), key=lambda v: v.mid())
+                assert not (u < 1 / top), piece          # R_sup(m) <= 1 / rho(x2, m) <= u
+            beyond = points + [arb(3) / 2, -arb(3) / 2, xs * (1 + arb(2) ** -20)]
+            assert lc.r_sup_piece_upper(g, xs, beyond, Mu) == u
+            assert lc.r_sup_piece_upper(g, xs, [arb(3) / 2], Mu) == arb("inf")
+            assert lc.r_sup_piece_upper(g, xs, [], Mu) == arb("inf")
+
+
 def test_direct_boxes_hold_needs_a_positive_radius_a_tiling_and_every_box(agafonov):
     from rigor_gyro.kinds.lyapunov.claims import validate
     g = validate(load_scene("agafonov2013")).gimbal
@@ -382,21 +447,23 @@ def _drop(pieces, i=None):
 
 # (label, the alteration, the items that must fail)
 FORGERIES = [
+    # without re-verified constants nothing that rests on them is confirmed (the damping condition (18), (16))
     ("m cover gap", lambda d: d["witnesses"]["constants"]["m"].update(cover=_drop(d["witnesses"]["constants"]["m"]["cover"])),
-     ["constants"]),
+     ["constants", "damping_condition", "best_mu", "best_mu_direct"]),
     ("M cover gap", lambda d: d["witnesses"]["constants"]["M"].update(cover=_drop(d["witnesses"]["constants"]["M"]["cover"], 0)),
-     ["constants"]),
+     ["constants", "damping_condition", "best_mu", "best_mu_direct"]),
     ("m point beyond x2*", lambda d: d["witnesses"]["constants"]["m"].update(point=["3/2", "3/2"]), ["constants"]),
     ("M point beyond x2*", lambda d: d["witnesses"]["constants"]["M"].update(point=["-1/10", "-1/10"]), ["constants"]),
     ("m stored lower", lambda d: d["quantities"]["m"].update(hi=d["quantities"]["m"]["lo"],
                                                              lo=str(Fraction(d["quantities"]["m"]["lo"]) * Fraction(999, 1000))),
      ["m"]),
     ("Psi1 piece dropped", lambda d: d["witnesses"]["vdot_nonpositive"].update(Psi1=_drop(d["witnesses"]["vdot_nonpositive"]["Psi1"])),
-     ["vdot_nonpositive"]),
+     ["vdot_nonpositive", "invariant_estimate"]),
     ("Psi2 piece dropped", lambda d: d["witnesses"]["vdot_nonpositive"].update(Psi2=[["0", d["witnesses"]["vdot_nonpositive"]["Psi2"][0][1]]]),
      ["vdot_nonpositive"]),
+    # the invariant estimate rests on Vdot <= 0 and V > 0: with either unconfirmed, so is it
     ("S piece dropped", lambda d: d["witnesses"]["v_positive"].update(S=[["1/10", d["witnesses"]["v_positive"]["S"][0][1]]]),
-     ["v_positive"]),
+     ["v_positive", "invariant_estimate"]),
     ("f/x piece short", lambda d: d["witnesses"]["v_positive"].update(f_over_x=[["0", "1/10"]]), ["v_positive"]),
     ("psi piece short", lambda d: d["witnesses"]["v_positive"].update(psi=[["0", "1/10"]]), ["v_positive"]),
     ("cylinder gap", lambda d: d["witnesses"]["invariant_estimate"].update(
@@ -436,6 +503,11 @@ FORGERIES = [
     ("R_sup bound stated low", lambda d: _claim(d, "best_mu")["details"].update(R_sup_upper_bound="0.024077"),
      ["best_mu"]),
     ("best_mu gap stated low", lambda d: _claim(d, "best_mu")["details"].update(relative_gap="1e-9"), ["best_mu"]),
+    # rho beyond x2* is larger (over 600 at x2 = 3/2 on every mu piece, against 41.5 at most inside): a point
+    # there would bound R_sup by 0.0017, far below its value 0.02407; the checker takes only points of [-x2*, x2*]
+    ("R_sup point beyond x2*", lambda d: (d["witnesses"]["best_mu"]["x2_points"].append(["3/2", "3/2"]),
+                                          _claim(d, "best_mu")["details"].update(R_sup_upper_bound="0.005")),
+     ["best_mu"]),
     ("mu pieces gap", lambda d: d["witnesses"]["best_mu"].update(mu_pieces=_drop(d["witnesses"]["best_mu"]["mu_pieces"])),
      ["best_mu"]),
     # R_sup at mu_best is reported, not part of the claim: its enclosure is left unverified
@@ -472,6 +544,16 @@ def test_a_forged_witness_fails_at_its_claims_item(agafonov, label, alter, faili
         assert items.get(item) is False, (label, item, {k: v for k, v in items.items() if not v})
 
 
+def test_a_proved_claim_without_its_witness_is_not_confirmed(agafonov):
+    """Each witness removed: the claim it backs fails at its item (nothing is confirmed by default)."""
+    for name in agafonov["witnesses"]:
+        bad = copy.deepcopy(agafonov)
+        del bad["witnesses"][name]
+        backed = ["constants", "damping_condition", "best_mu", "best_mu_direct"] if name == "constants" else [name]
+        items = _items(bad)
+        assert all(items[c] is False for c in backed), (name, items)
+
+
 @pytest.mark.parametrize("name", ["A0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R", "R_used", "damping_margin",
                                   "c_star_face", "c_set", "extent_x1", "extent_x3", "extent_x1_axis", "extent_x3_axis",
                                   "mu_best", "R_max", "R_sup_at_mu_best", "R_direct", "mu_direct", "R_direct_max",
@@ -494,6 +576,38 @@ def test_a_stored_bound_below_the_checkers_bound_fails_at_its_name(agafonov, nam
     lo = Fraction(q["lo"])
     q["lo"] = q["hi"] = str(lo - abs(lo) / 10)
     assert _items(bad).get(name) is False
+
+
+def test_r_direct_upper_needs_a_point_where_vdot_is_certainly_positive(agafonov):
+    """R_direct_upper bounds the direct test's supremum radius by the radius of a stored point with Vdot > 0.
+    The point moved halfway to the axis (radius 0.0121, inside the disc where Vdot < 0 is proved) and the
+    bound lowered to 0.0121 (false: the direct test holds up to 0.02417): not confirmed; the point moved
+    beyond x2* likewise."""
+    assert "R_direct_upper" not in _unverified(copy.deepcopy(agafonov))
+    for edit in ("inside the disc", "beyond x2*"):
+        bad = copy.deepcopy(agafonov)
+        pt = bad["witnesses"]["vdot_direct"]["point"]
+        if edit == "inside the disc":
+            for k in ("x1", "x3"):
+                pt[k] = [str(Fraction(e) / 2) for e in pt[k]]
+            q = bad["quantities"]["R_direct_upper"]
+            q["lo"] = q["hi"] = q["mid"] = "0.0121"
+        else:
+            pt["x2"] = ["-3/2", "-3/2"]
+        assert "R_direct_upper" in _unverified(bad), edit
+
+
+def test_the_cylinder_margin_is_confirmed_up_to_the_checkers_bound_and_not_above(agafonov):
+    """cylinder_margin_lower bounds min over the cylinder of V / c* - 1 from below (0.7272 here, the faces
+    binding): raised by 1 % it is no longer confirmed; lowered (a weaker true bound) it still is."""
+    assert "cylinder_margin_lower" not in _unverified(copy.deepcopy(agafonov))
+    for factor, confirmed in ((Fraction(101, 100), False), (Fraction(1, 2), True), (Fraction(-1), True)):
+        bad = copy.deepcopy(agafonov)
+        q = bad["quantities"]["cylinder_margin_lower"]
+        q["lo"], q["hi"] = (str(Fraction(q[k]) * factor) for k in ("lo", "hi"))
+        if factor < 0:
+            q["lo"], q["hi"] = q["hi"], q["lo"]
+        assert ("cylinder_margin_lower" not in _unverified(bad)) is confirmed, factor
 
 
 @pytest.mark.parametrize("name", ["c_max_lower", "c_max_upper", "vdot_level_lower", "vdot_level_upper"])
@@ -565,6 +679,19 @@ def test_the_sublevel_bounds_are_re_derived_not_read(agafonov):
 
 # ------------------------------------------------------------------ stored counterexamples
 
+def test_a_largest_sublevel_refutation_at_the_faces_needs_phi_at_most_zero(refuted, agafonov):
+    """The refuted scene's faces have phi(+-x2*) = -240988 <= 0: confirmed. Stated for the built-in scene
+    (phi = 23.4) or with x2* = 1/20 (phi = 0.234, positive but small): rejected."""
+    assert _claim(refuted, "largest_sublevel")["counterexample"]["where"] == "faces"
+    assert _items(copy.deepcopy(refuted))["largest_sublevel"] is True
+    for x2_star in ("pi/6", "1/20"):
+        bad = copy.deepcopy(agafonov)
+        bad["scene"]["parameters"]["x2_star"] = x2_star
+        c = _claim(bad, "largest_sublevel")
+        c["status"], c["counterexample"] = "refuted", {"where": "faces"}
+        assert _items(bad)["largest_sublevel"] is False, x2_star
+
+
 def test_damping_refutation_is_re_derived(refuted, agafonov):
     assert _items(copy.deepcopy(refuted))["damping_condition"] is True
     bad = copy.deepcopy(agafonov)
@@ -584,6 +711,30 @@ def test_a_forged_vdot_counterexample_is_rejected(refuted, edit):
     else:
         pt["x1"] = ["1000", "1000"]
     assert _items(bad)["vdot_nonpositive"] is False, edit
+
+
+def test_psi_at_a_point_is_each_psi_of_the_vdot_form():
+    """Psi1 and Psi2 at points with x1, x3 != 0 (every term counts) contain the float side's mpmath Psi,
+    written without balls (approx.MpGimbal.psi_true), and Vdot = -Psi1 x1^2 - Psi2 x3^2 holds."""
+    import mpmath
+    from rigor_gyro.kinds.lyapunov.approx import AGAFONOV2013, MpGimbal
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    from .test_properties_lyapunov import contains_mp
+    for params in (dict(AGAFONOV2013), dict(AGAFONOV2013, H="10", a="1e4", mu="0.01", k="0.1")):
+        scene = dataclasses.replace(load_scene("agafonov2013"), parameters=params)
+        g = validate(scene).gimbal
+        mg = MpGimbal(params)
+        with mpmath.workdps(60):
+            for x1, x2, x3 in (("3/2", "3/10", "-7/4"), ("-1/3", "-1/2", "5/2"), ("40", "1/10", "-30")):
+                X = [_q(v) for v in (x1, x2, x3)]
+                M = [mpmath.mpf(Fraction(v).numerator) / Fraction(v).denominator for v in (x1, x2, x3)]
+                ref = mg.psi_true(M[1])
+                for which, (c0, c1, c3) in zip(("Psi1", "Psi2"), ref):
+                    got = lc.psi_at_point(g, which, *X)
+                    assert contains_mp(got, c0 + c1 * M[0] + c3 * M[2]), (params, which, x1, x2, x3)
+                vdot = -(ref[0][0] + ref[0][1] * M[0] + ref[0][2] * M[2]) * M[0] ** 2 \
+                    - (ref[1][0] + ref[1][1] * M[0] + ref[1][2] * M[2]) * M[2] ** 2
+                assert contains_mp(g.vdot(*X), vdot)
 
 
 def test_a_psi_counterexample_is_decided_on_the_psi_it_names(refuted):
@@ -656,11 +807,18 @@ def test_every_stored_quantity_is_verified_and_an_extra_one_is_not(agafonov):
 
 
 def _unverified(data) -> str:
-    return next((m for item, m in _failures(data) if item == "quantities"), "")
+    """The checker's message on the stored quantities it could not verify ("" if it verified them all). The
+    checker must have run to its last item: a certificate it could not read verifies nothing, and "" from
+    it would pass a test that a quantity is confirmed."""
+    from rigor_gyro.check import check_certificate
+    from .forgery import refix
+    rows = {r.item: r for r in check_certificate(refix(copy.deepcopy(data))).results}
+    assert "quantities" in rows, {k: r.message for k, r in rows.items() if not r.ok}
+    return "" if rows["quantities"].ok else rows["quantities"].message
 
 
-@pytest.mark.parametrize("lo, hi", [("0", "1/10"), ("4/10", "5/10"), ("3/10", "35/100")],
-                         ids=["below the root", "above the root", "short of the root"])
+@pytest.mark.parametrize("lo, hi", [("0", "1/10"), ("4/10", "5/10"), ("3/10", "35/100"), ("1/2", "6/10")],
+                         ids=["below the root", "above the root", "short of the root", "around x2*, above the root"])
 def test_the_x2_axis_extent_is_verified_only_as_a_segment_through_the_root_of_mu_F_equal_c(agafonov, lo, hi):
     """On the x2 axis the set is {mu F(x2) < c_set}: its end is the root of mu F = c_set (0.360 here, below
     x2* = pi/6). A stored segment is confirmed only when it starts below that root and ends above it."""
@@ -672,6 +830,20 @@ def test_the_x2_axis_extent_is_verified_only_as_a_segment_through_the_root_of_mu
     wide = copy.deepcopy(agafonov)      # a looser segment that still brackets the root is a true statement
     wide["quantities"]["extent_x2_axis"].update(lo="0", hi="1/2")
     assert "extent_x2_axis" not in _unverified(wide)
+
+
+def test_the_x2_extent_ends_below_x2_star_only_where_the_stored_pieces_beyond_cover_the_rest(agafonov):
+    """The stored x2 extent ends where the stored pieces ``beyond`` start (phi > c_set on each of them, up
+    to x2*), a hair below x2* = pi/6: with a piece dropped (a gap), or the first one dropped (the pieces
+    start later), the stored extent is not confirmed."""
+    q = agafonov["quantities"]["extent_x2"]
+    xs = Fraction(75458536011251609, 144115188075855872)       # one of the stored piece ends, just above pi/6
+    assert Fraction(q["hi"]) < xs and "'extent_x2'" not in _unverified(copy.deepcopy(agafonov))
+    for edit in ("gap", "later"):
+        bad = copy.deepcopy(agafonov)
+        w = bad["witnesses"]["invariant_estimate"]["extent_x2"]
+        w["beyond"] = _drop(w["beyond"]) if edit == "gap" else w["beyond"][1:]
+        assert "'extent_x2'" in _unverified(bad), edit
 
 
 def test_without_a_verified_slice_point_the_x2_extent_is_confirmed_only_down_to_zero(agafonov):
@@ -686,7 +858,7 @@ def test_without_a_verified_slice_point_the_x2_extent_is_confirmed_only_down_to_
             del bad["quantities"]["extent_x2_axis"]
         return bad
     for ok in (forged(True, False), forged(False, True)):   # the point bounds it below; the axis end 0.360 > 3/10
-        assert _items(ok).get("extent_x2") is not False and "'extent_x2'" not in _unverified(ok)
+        assert _items(ok).get("extent_x2", True) is True and "'extent_x2'" not in _unverified(ok)
     assert _items(forged(False, False))["extent_x2"] is False                 # nothing certifies an end above 0
 
 
@@ -710,12 +882,15 @@ def test_where_the_cylinder_binds_c_set_is_confirmed_only_below_the_cylinders_lo
     assert _items(bad)["invariant_estimate"] is False
 
 
-@pytest.mark.parametrize("end, value", [("hi", "1.9"), ("lo", "1.86")], ids=["upper end lowered", "lower end raised"])
+@pytest.mark.parametrize("end, value", [("hi", "1.9"), ("hi", "0.998"), ("lo", "1.86")],
+                         ids=["upper end lowered", "upper end 0.2 % low", "lower end raised"])
 def test_c_star_is_verified_only_when_both_ends_hold(cylinder_binds, end, value):
     """The stored c* = [1.857, 3.75] (the cylinder's certified lower bound, V's smallest sample on it): an
-    upper end below the samples, or a lower end above the certified bound, leaves c* unverified."""
+    upper end below the samples (far below, or 0.2 % below: samples taken off the cylinder would reach
+    that), or a lower end above the certified bound, leaves c* unverified."""
     bad = copy.deepcopy(cylinder_binds)
-    bad["quantities"]["c_star"][end] = value
+    q = bad["quantities"]["c_star"]
+    q[end] = str(Fraction(q[end]) * Fraction(value)) if value == "0.998" else value
     assert "'c_star'" in _unverified(bad)
 
 

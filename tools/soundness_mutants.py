@@ -163,7 +163,7 @@ MUTANTS = [
      "    if not certainly_le(abs(arb(u)), 1):\n        return arb(\"inf\")\n    X, T",
      "    X, T", "a point with |x2| > x2* allowed to bound the radius"),
     ("direct_checker_skips_mu_cover", "rigor_gyro/kinds/lyapunov/check.py",
-     "        if pts and _covers(wbd.get(\"mu_pieces\", []), K[\"mu_min\"].lower(), K[\"mu_max\"].upper()):",
+     "        if pts and _covers_16(wbd.get(\"mu_pieces\", []), K):",
      "        if pts:", "the checker accepts mu pieces that do not cover (16)"),
     ("direct_checker_at_scene_mu", "rigor_gyro/kinds/lyapunov/check.py",
      "        at_mu = _direct_boxes_hold(g.with_mu(mu_d), Rdm,", "        at_mu = _direct_boxes_hold(g, Rdm,",
@@ -362,6 +362,58 @@ MUTANTS = [
      "                v = lb(_b(p)).upper()",
      "the Lyapunov checker bounds V on the cylinder by each piece's upper end: where the cylinder binds, a "
      "c_set above the certified lower bound of c* is confirmed"),
+    ("check_r_sup_point_beyond_range", "rigor_gyro/kinds/lyapunov/check.py",
+     "        if not _within(abs(x), arb(0), xs):\n            continue",
+     "        if False:\n            continue",
+     "the Lyapunov checker bounds R_sup over (16) with stored x2 points beyond x2* too, where rho is larger: "
+     "an upper bound of R_sup far below its value is confirmed"),
+    ("check_r_sup_rounded_down", "rigor_gyro/kinds/lyapunov/check.py",
+     '    return (1 / L).upper() if certainly_positive(L) else arb("inf")',
+     '    return (1 / L).lower() if certainly_positive(L) else arb("inf")',
+     "the checker's bound of R_sup on a mu piece, 1 / rho_lower, rounded down (the lower end of its ball)"),
+    ("check_mu_cover_short_of_mu_max", "rigor_gyro/kinds/lyapunov/check.py",
+     '    return _covers(pieces, K["mu_min"].lower(), K["mu_max"].upper())',
+     '    return _covers(pieces, K["mu_min"].lower(), K["mu_max"].lower())',
+     "mu pieces ending inside mu_max's ball accepted as a cover of (16): values of mu that may lie in (16) left "
+     "unbounded"),
+    ("check_direct_point_vdot_possibly", "rigor_gyro/kinds/lyapunov/check.py",
+     "if certainly_le(abs(x2), xs) and certainly_positive(g.vdot(x1, x2, x3)):",
+     "if certainly_le(abs(x2), xs) or certainly_positive(g.vdot(x1, x2, x3)):",
+     "R_direct_upper confirmed from a stored point where Vdot > 0 is not certain (or beyond x2*): a bound of "
+     "the direct test's radius below its certified value is confirmed"),
+    ("check_damping_without_constants", "rigor_gyro/kinds/lyapunov/check.py",
+     '            if K is None:\n                say(cid, False, "needs the re-verified constants")',
+     '            if K is None:\n                say(cid, True, "needs the re-verified constants")',
+     "the damping condition confirmed when the constants it compares could not be re-verified"),
+    ("check_faces_refutation_below_one", "rigor_gyro/kinds/lyapunov/check.py",
+     "certainly_le(_face_level(g, xs), 0)", "certainly_le(_face_level(g, xs), 1)",
+     "a refutation of the largest sublevel set at the faces confirmed where phi(+-x2*) is positive (up to 1)"),
+    ("check_psi_point_x1_sign", "rigor_gyro/kinds/lyapunov/check.py",
+     "    return c0 + c1 * x1 + c3 * x3", "    return c0 - c1 * x1 + c3 * x3",
+     "a Psi counterexample decided on Psi with its x1 term's sign flipped: a refutation of a true Vdot <= 0 "
+     "can be confirmed"),
+    ("check_sublevel_confirmed_by_default", "rigor_gyro/kinds/lyapunov/check.py",
+     'sub_ok, sub_msg = False, "no stored boxes"', 'sub_ok, sub_msg = True, "no stored boxes"',
+     "a proved largest sublevel set without its witness confirmed"),
+    ("check_cylinder_samples_beyond_range", "rigor_gyro/kinds/lyapunov/check.py",
+     "for x2 in (arb(0), xs / 2, xs) for j in range(32)]", "for x2 in (arb(0), xs * 2, xs) for j in range(32)]",
+     "the upper end of c* from V sampled at |x2| = 2 x2*, beyond the cylinder piece c* is the minimum over"),
+    ("check_x2_axis_capped_on_mu_over_F", "rigor_gyro/kinds/lyapunov/check.py",
+     "capped = certainly_lt(c.mu * g.F(xs), cl)", "capped = certainly_lt(c.mu / g.F(xs), cl)",
+     "the x2 axis segment taken as capped at x2* on a wrong test: a segment around x2*, above the root of "
+     "mu F = c_set, is confirmed"),
+    ("check_cylinder_margin_on_a_product", "rigor_gyro/kinds/lyapunov/check.py",
+     "own = (cyl / cs_up - 1).lower()", "own = (cyl * cs_up - 1).lower()",
+     "the checker's bound of the cylinder margin min V / c* - 1 computed as cyl c* - 1: a margin far above the "
+     "true one is confirmed"),
+    ("check_x2_extent_beyond_on_either", "rigor_gyro/kinds/lyapunov/check.py",
+     "if _covers(beyond, start, xs) and _all_positive(", "if _covers(beyond, start, xs) or _all_positive(",
+     "the x2 extent ended below x2* when the pieces beyond do not cover the rest: an extent of the set that "
+     "is too short is confirmed"),
+    ("check_invariant_without_vdot", "rigor_gyro/kinds/lyapunov/check.py",
+     'proved = vdot_ok and v_ok and ic.get("status") == "proved"',
+     'proved = vdot_ok and v_ok or ic.get("status") == "proved"',
+     "the invariant estimate confirmed when Vdot <= 0 or V > 0, which it rests on, is not"),
 ]
 
 

@@ -218,6 +218,47 @@ def _direct_boxes_hold(g, R: arb, stored_boxes, cert_prec: int) -> bool:
                                                                  cert_prec)))
 
 
+def cylinder_points(R: arb, xs: arb) -> list[tuple[arb, arb, arb]]:
+    """96 points (x1, x2, x3) of the cylinder x1^2 + x3^2 = R^2, |x2| <= x2*: 32 angles at x2 = 0, x2*/2,
+    x2*. V's smallest value there bounds c* (V's minimum over that cylinder piece) from above; a point off
+    the cylinder or beyond x2* would not."""
+    return [(R * arb(math.cos(2 * math.pi * j / 32)), x2, R * arb(math.sin(2 * math.pi * j / 32)))
+            for x2 in (arb(0), xs / 2, xs) for j in range(32)]
+
+
+def _inside_16(K: dict, mu: arb) -> bool:
+    """mu lies certainly inside (16), mu_min < mu < mu_max (``K``: the checker's constants)."""
+    return certainly_lt(K["mu_min"], mu) and certainly_lt(mu, K["mu_max"])
+
+
+def _covers_16(pieces, K: dict) -> bool:
+    """The stored mu pieces cover all of (16): from mu_min's lower end to mu_max's upper end (a bound over
+    (16) must hold wherever its ends may lie)."""
+    return _covers(pieces, K["mu_min"].lower(), K["mu_max"].upper())
+
+
+def psi_at_point(g, which: str, x1: arb, x2: arb, x3: arb) -> arb:
+    """Psi1 (``which`` "Psi1") or else Psi2 at the point: ci0(x2) + ci1(x2) x1 + ci3(x2) x3, the factor of
+    -x1^2 (Psi1) or -x3^2 (Psi2) in Vdot = -Psi1 x1^2 - Psi2 x3^2. An enclosure at the current precision."""
+    c0, c1, c3 = g.psi_coefficients(x2)[0 if which == "Psi1" else 1]
+    return c0 + c1 * x1 + c3 * x3
+
+
+def r_sup_piece_upper(g, xs: arb, points: list[arb], Mu: arb) -> arb:
+    """An upper bound (an exact point) of R_sup(mu) for every mu in the ball ``Mu``: 1 / the largest lower
+    bound of rho(x2, mu) at the ``points`` x2 of [-x2*, x2*] (R_sup <= 1 / rho(x2) at any x2 of the range;
+    a point beyond it proves nothing and is skipped), rounded up; +inf when no point gives a positive bound.
+    Precision: the current one. Fails when: never raises for finite balls."""
+    L = arb(0)
+    for x in points:
+        if not _within(abs(x), arb(0), xs):
+            continue            # outside the range: proves nothing
+        v = rho_lower(g, x, Mu)
+        if not v.is_finite() or (L.is_finite() and certainly_gt(v, L)):
+            L = v               # exact comparison: arb's max of two balls widens
+    return (1 / L).upper() if certainly_positive(L) else arb("inf")
+
+
 def _all_positive(f, pieces) -> bool:
     return all(certainly_positive(f(_b(p))) for p in pieces)
 
@@ -330,8 +371,7 @@ def check(model, data: dict) -> list[CheckResult]:
                 cyl = v if cyl is None else cyl.min(v)
         if cyl is not None:
             lower = face.lower().min(cyl) if inside else cyl
-            samples = [g.V(R * arb(math.cos(2 * math.pi * j / 32)), x2, R * arb(math.sin(2 * math.pi * j / 32)))
-                       for x2 in (arb(0), xs / 2, xs) for j in range(32)]
+            samples = [g.V(*p) for p in cylinder_points(R, xs)]
             upper = samples[0]
             for s in samples[1:]:
                 upper = upper.min(s)
@@ -413,7 +453,7 @@ def check(model, data: dict) -> list[CheckResult]:
         gb = g.with_mu(mu_b)
         contains("mu_best", arb(mu_b))
         contains("R_max", R_max)
-        inside16 = certainly_lt(K["mu_min"], arb(mu_b)) and certainly_lt(arb(mu_b), K["mu_max"])
+        inside16 = _inside_16(K, arb(mu_b))
         at_R_max = vdot_holds(gb, R_max, wb["vdot_at_R_max"])
         rho = rho_function(gb)
         if _covers(wb["r_sup_cover"], arb(0), xs):
@@ -422,18 +462,10 @@ def check(model, data: dict) -> list[CheckResult]:
             low = rho(point).lower() if _within(abs(point), arb(0), xs) else arb(0)
             contains("R_sup_at_mu_best", (1 / top).union(1 / low) if certainly_positive(low) else arb("nan"))
         U = None
-        def piece_upper(Mu: arb) -> arb:
-            """An upper bound of R_sup over the mu ball Mu: 1 / the largest rho_lower at the points."""
-            L = arb(0)
-            for x in (_b(t) for t in wb["x2_points"]):
-                if not _within(abs(x), arb(0), xs):
-                    continue            # outside the range: proves nothing
-                v = rho_lower(g, x, Mu)
-                if not v.is_finite() or (L.is_finite() and certainly_gt(v, L)):
-                    L = v               # exact comparison: arb's max of two balls widens
-            return (1 / L).upper() if certainly_positive(L) else arb("inf")
-        if _covers(wb["mu_pieces"], K["mu_min"].lower(), K["mu_max"].upper()):
-            U = _bound_over_pieces(piece_upper, wb["mu_pieces"], _stored_hi("R_sup_upper_bound"), cert_prec)
+        x2_points = [_b(t) for t in wb["x2_points"]]
+        if _covers_16(wb["mu_pieces"], K):
+            U = _bound_over_pieces(lambda Mu: r_sup_piece_upper(g, xs, x2_points, Mu), wb["mu_pieces"],
+                                   _stored_hi("R_sup_upper_bound"), cert_prec)
         if U is not None and U.is_finite():
             upper_bound_holds("R_sup_upper_bound", U)
             upper_bound_holds("R_max_relative_gap", (U - R_max) / R_max)
@@ -470,14 +502,14 @@ def check(model, data: dict) -> list[CheckResult]:
         same = _same_number(dd.get("mu_direct"), wbd["mu"]) and _same_number(dd.get("R_direct_max"), wbd["R"])
         contains("mu_direct", arb(mu_d))
         contains("R_direct_max", Rdm)
-        inside16 = certainly_lt(K["mu_min"], arb(mu_d)) and certainly_lt(arb(mu_d), K["mu_max"])
+        inside16 = _inside_16(K, arb(mu_d))
         at_mu = _direct_boxes_hold(g.with_mu(mu_d), Rdm, wbd.get("boxes", []), cert_prec)
         Ud = None
         try:
             pts = [(fmpq_of(number(u)), fmpq_of(number(t))) for u, t in wbd.get("points", [])]
         except (TypeError, ValueError, ZeroDivisionError):
             pts = []
-        if pts and _covers(wbd.get("mu_pieces", []), K["mu_min"].lower(), K["mu_max"].upper()):
+        if pts and _covers_16(wbd.get("mu_pieces", []), K):
             Ud = _bound_over_pieces(lambda Mu: direct_piece_upper(g, Mu, pts), wbd["mu_pieces"],
                                     _stored_hi("R_direct_sup_upper_bound"), cert_prec)
         stated = False
@@ -528,8 +560,7 @@ def check(model, data: dict) -> list[CheckResult]:
                 x1, x2, x3 = (_b(_pair(pt[k])) for k in ("x1", "x2", "x3"))
                 in_region = (R is not None and certainly_le(abs(x2), xs) and certainly_lt(x1 * x1 + x3 * x3, R * R))
                 if "psi" in ce:          # the statement's Psi test fails at the point
-                    c0, c1, c3 = g.psi_coefficients(x2)[0 if ce["psi"] == "Psi1" else 1]
-                    ok = in_region and certainly_le(c0 + c1 * x1 + c3 * x3, 0)
+                    ok = in_region and certainly_le(psi_at_point(g, ce["psi"], x1, x2, x3), 0)
                     say(cid, ok, f"{ce['psi']} <= 0 at the stored point of the region, re-evaluated")
                 else:
                     ok = in_region and certainly_positive(g.vdot(x1, x2, x3))
