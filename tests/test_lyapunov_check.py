@@ -178,6 +178,24 @@ def test_bound_over_pieces_re_bounds_a_piece_a_hair_above_the_stored_bound():
     assert tight < plain and tight >= 1 + arb("2.5e-10") and tight <= 1 + arb("3e-10")
 
 
+def test_the_faces_minimiser_is_inside_the_disc_only_when_certainly_closer_than_R():
+    """(m1, m3) = (5.6e-8, -0.0057735) on the paper's scene, (2.80, -577.36) on the refuted one (there m1
+    matters: m1^2 = 7.8 against a window of 6.7 at 1e-5 relative): inside for R a hair above the
+    distance, outside a hair below."""
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    with working_precision(128):
+        for params, hair in (({}, "1e-2"), (dict(H="10", a="1e4", mu="0.01", k="0.1"), "1e-5")):
+            scene = load_scene("agafonov2013")
+            g = validate(dataclasses.replace(scene, parameters=dict(scene.parameters, **params))).gimbal
+            xs = g.c.x2_star
+            m1, m3 = g.phi_minimiser(xs)
+            rr = (m1 * m1 + m3 * m3).sqrt()
+            assert rr.rad() < rr * arb("1e-20")
+            assert lc.faces_minimiser_inside(g, xs, (rr * (1 + arb(hair))).upper())
+            assert not lc.faces_minimiser_inside(g, xs, (rr * (1 - arb(hair))).lower())
+            assert not lc.faces_minimiser_inside(g, xs, rr.mid() + arb(0, 1e-30))     # not certain
+
+
 def test_the_cylinder_samples_lie_on_the_cylinder_and_in_range():
     """Each sample point possibly lies on x1^2 + x3^2 = R^2 (its balls are float cosines times R) with
     |x2| <= x2*, at three heights 0, x2*/2, x2* and 32 distinct angles each."""
@@ -239,6 +257,8 @@ def test_r_sup_piece_upper_is_1_over_the_largest_rho_lower_in_range_rounded_up(a
                 assert not (u < 1 / top), piece          # R_sup(m) <= 1 / rho(x2, m) <= u
             beyond = points + [arb(3) / 2, -arb(3) / 2, xs * (1 + arb(2) ** -20)]
             assert lc.r_sup_piece_upper(g, xs, beyond, Mu) == u
+            assert lc.r_sup_piece_upper(g, xs, points[::-1], Mu) == u        # the largest, wherever it is
+            assert lc.r_sup_piece_upper(g, xs, points[1::2] + points[::2], Mu) == u
             assert lc.r_sup_piece_upper(g, xs, [arb(3) / 2], Mu) == arb("inf")
             assert lc.r_sup_piece_upper(g, xs, [], Mu) == arb("inf")
 
@@ -770,6 +790,12 @@ def test_a_forged_v_counterexample_is_rejected(refuted, edit):
 
 def test_a_forged_sublevel_refutation_is_rejected(refuted, agafonov):
     assert _items(copy.deepcopy(refuted))["largest_sublevel"] is True
+    # the refuted scene also has Vdot > 0 arbitrarily near the origin: at x2 = 0 both Psi1 (-0.012) and
+    # Psi2 (-1875) are negative, so A(0, t) < 0 at every t; a refutation stated there is confirmed too
+    for t in ("1/4", "0", "1/2", "7/10"):
+        alt = copy.deepcopy(refuted)
+        _claim(alt, "largest_sublevel")["counterexample"] = {"where": "origin", "x2": "0", "t_over_pi": t}
+        assert _items(alt)["largest_sublevel"] is True, t
     bad = copy.deepcopy(agafonov)
     c = _claim(bad, "largest_sublevel")
     c["status"] = "refuted"
@@ -830,6 +856,18 @@ def test_the_x2_axis_extent_is_verified_only_as_a_segment_through_the_root_of_mu
     wide = copy.deepcopy(agafonov)      # a looser segment that still brackets the root is a true statement
     wide["quantities"]["extent_x2_axis"].update(lo="0", hi="1/2")
     assert "extent_x2_axis" not in _unverified(wide)
+
+
+@pytest.mark.parametrize("axis", ["x1", "x3"])
+def test_an_extent_is_bounded_above_only_over_a_cover_of_0_to_x2_star(agafonov, axis):
+    """The x1 (x3) extent's upper end is the largest bound of the slice extent over the stored cover of
+    [0, x2*]: a cover with a gap, or short of x2*, bounds nothing, and the stored extent is not confirmed."""
+    for edit in ("gap", "short"):
+        bad = copy.deepcopy(agafonov)
+        w = bad["witnesses"]["invariant_estimate"][f"extent_{axis}"]
+        last = max(range(len(w["cover"])), key=lambda i: Fraction(w["cover"][i][1]))      # the piece ending at x2*
+        w["cover"] = _drop(w["cover"]) if edit == "gap" else _drop(w["cover"], last)
+        assert f"'extent_{axis}'" in _unverified(bad), edit
 
 
 def test_the_x2_extent_ends_below_x2_star_only_where_the_stored_pieces_beyond_cover_the_rest(agafonov):

@@ -218,6 +218,14 @@ def _direct_boxes_hold(g, R: arb, stored_boxes, cert_prec: int) -> bool:
                                                                  cert_prec)))
 
 
+def faces_minimiser_inside(g, xs: arb, R: arb) -> bool:
+    """The point (m1, m3) where V is smallest on the face x2 = x2* lies certainly inside the disc
+    x1^2 + x3^2 < R^2 (then the faces' closed form phi(x2*) is V's minimum over the face piece of the
+    region, and it bounds c* from above as well as below)."""
+    m1, m3 = g.phi_minimiser(xs)
+    return certainly_lt(m1 ** 2 + m3 ** 2, R ** 2)
+
+
 def cylinder_points(R: arb, xs: arb) -> list[tuple[arb, arb, arb]]:
     """96 points (x1, x2, x3) of the cylinder x1^2 + x3^2 = R^2, |x2| <= x2*: 32 angles at x2 = 0, x2*/2,
     x2*. V's smallest value there bounds c* (V's minimum over that cylinder piece) from above; a point off
@@ -361,8 +369,7 @@ def check(model, data: dict) -> list[CheckResult]:
     # {V < c_set} and its extents only when the claim is proved (they need Vdot <= 0 and V > 0)
     if wi and R is not None:
         face = g.phi(xs)
-        m1, m3 = g.phi_minimiser(xs)
-        inside = certainly_lt(m1 ** 2 + m3 ** 2, R ** 2)
+        inside = faces_minimiser_inside(g, xs, R)
         lb = cylinder_lower_bound(g, R)
         cyl = None
         if _covers(wi["cylinder"], arb(0), xs):
