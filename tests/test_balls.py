@@ -244,7 +244,7 @@ def test_the_stored_hull_is_the_decimal_interval_for_any_sign():
                   arb(fmpq(-1, 3), fmpq(1, 10 ** 30))):
             lo, hi = decimal_bounds(x)
             h = stored_hull(x)
-            assert h.contains(x)
+            assert h.is_finite() and h.contains(x)
             a, b = (arb(fmpq(*Fraction(t).as_integer_ratio())) for t in (lo, hi))
             assert h.contains(a) and h.contains(b)                        # the whole stored interval
             width = exact_fraction(h.upper()) - exact_fraction(h.lower())
@@ -261,12 +261,12 @@ def test_sqrt_of_a_nonnegative_quantity_whose_ball_reaches_below_zero():
     with working_precision(64):
         assert sqrt_of_nonnegative(arb(4)) == 2
         s = sqrt_of_nonnegative(arb("0.25", "0.25"))                   # [0, 0.5]: certainly >= 0
-        assert s.contains(0) and s.contains(arb("0.5").sqrt()) and s.upper() < arb("0.7072")
+        assert s.is_finite() and s.contains(0) and s.contains(arb("0.5").sqrt()) and s.upper() < arb("0.7072")
         t = sqrt_of_nonnegative(arb(0, arb("1e-10")))                  # [-1e-10, 1e-10]
         assert t.is_finite() and t.contains(0) and t.contains(arb("1e-5")) and t.lower() > -arb("1e-13")   # union rounding
         assert t.upper() < arb("1.0001e-5")
         u = sqrt_of_nonnegative(arb("0.25").union(arb("0.36")))         # certainly >= 0: Arb's sqrt, not [0, ..]
-        assert u.contains(arb("0.5")) and u.contains(arb("0.6")) and u.lower() > arb("0.4999")
+        assert u.is_finite() and u.contains(arb("0.5")) and u.contains(arb("0.6")) and u.lower() > arb("0.4999")
         for bad in (arb(-1, arb("0.5")), arb("nan"), arb("inf"), arb(0, arb("inf"))):
             assert sqrt_of_nonnegative(bad).is_nan()
 

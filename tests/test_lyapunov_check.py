@@ -479,6 +479,8 @@ FORGERIES = [
      ["m"]),
     ("Psi1 piece dropped", lambda d: d["witnesses"]["vdot_nonpositive"].update(Psi1=_drop(d["witnesses"]["vdot_nonpositive"]["Psi1"])),
      ["vdot_nonpositive", "invariant_estimate"]),
+    ("Psi1 only over [0, x2*]", lambda d: d["witnesses"]["vdot_nonpositive"].update(
+        Psi1=[["0", d["witnesses"]["vdot_nonpositive"]["Psi1"][-1][1]]]), ["vdot_nonpositive", "invariant_estimate"]),
     ("Psi2 piece dropped", lambda d: d["witnesses"]["vdot_nonpositive"].update(Psi2=[["0", d["witnesses"]["vdot_nonpositive"]["Psi2"][0][1]]]),
      ["vdot_nonpositive"]),
     # the invariant estimate rests on Vdot <= 0 and V > 0: with either unconfirmed, so is it
@@ -533,6 +535,8 @@ FORGERIES = [
     # R_sup at mu_best is reported, not part of the claim: its enclosure is left unverified
     ("r_sup cover gap", lambda d: d["witnesses"]["best_mu"].update(r_sup_cover=_drop(d["witnesses"]["best_mu"]["r_sup_cover"])),
      ["quantities"]),
+    ("r_sup cover from above 0", lambda d: d["witnesses"]["best_mu"].update(r_sup_cover=[
+        p for p in d["witnesses"]["best_mu"]["r_sup_cover"] if Fraction(p[0]) > 0]), ["quantities"]),
     ("Psi at R_max gap", lambda d: d["witnesses"]["best_mu"]["vdot_at_R_max"].update(
         Psi1=_drop(d["witnesses"]["best_mu"]["vdot_at_R_max"]["Psi1"])), ["best_mu"]),
     ("mu_direct details differ", lambda d: _claim(d, "best_mu_direct")["details"].update(mu_direct="0.0231818251723"),

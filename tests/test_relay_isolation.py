@@ -49,7 +49,7 @@ def _check_against_roots(pieces, roots):
         assert not any(p.status is RootStatus.EMPTY and p.lo < r < p.hi for p in holders), \
             f"a piece called root-free holds the root {r}"
         unique = [p for p in holders if p.status is RootStatus.UNIQUE]
-        assert len(unique) == 1 and unique[0].enclosure.overlaps(r)
+        assert len(unique) == 1 and unique[0].enclosure.is_finite() and unique[0].enclosure.overlaps(r)
     assert sum(p.status is RootStatus.UNIQUE for p in pieces) == len(roots)
 
 
@@ -153,7 +153,7 @@ def test_isolation_of_a_polynomial_finds_every_root_once(signed):
     _tiles(iso.pieces, arb(0), arb(1))
     assert len(iso.roots) == 5
     for r, enc in zip(rs, sorted(iso.roots, key=lambda x: float(x.mid()))):
-        assert enc.overlaps(arb(r))
+        assert enc.is_finite() and enc.overlaps(arb(r))
     assert all(p.status in (RootStatus.EMPTY, RootStatus.UNIQUE) for p in iso.pieces)
 
 
@@ -246,7 +246,7 @@ def test_a_resumed_search_keeps_the_decided_part_and_searches_only_the_rest():
     assert first.unknown and first.resume is not None
     decided, stop = first.resume
     assert decided and all(p.hi < stop or p.hi == stop for p in decided)
-    assert any(p.status is RootStatus.UNIQUE and p.enclosure.overlaps(arb(fmpq(1, 10))) for p in decided)
+    assert any(p.status is RootStatus.UNIQUE and p.enclosure.is_finite() and p.enclosure.overlaps(arb(fmpq(1, 10))) for p in decided)
     seen = []
 
     def counting(s):
@@ -403,14 +403,15 @@ def test_multipliers_keep_every_eigenvalue_whatever_order_they_come_in(order):
     sp = _StubSpectrum(_stub_eigenvalues(theta, arb("1.5"), order))
     claims._multipliers(sp, v)
     assert v.stable is False
-    assert len(v.multipliers) == 4 and v.moduli[0].overlaps(arb("1.5"))
+    assert len(v.multipliers) == 4 and v.moduli[0].is_finite() and v.moduli[0].overlaps(arb("1.5"))
     mids = [float(m.mid()) for m in v.moduli]
     assert mids == sorted(mids, reverse=True)                       # by decreasing modulus
+    assert all(w.is_finite() for w in v.multipliers)                # a NaN ball overlaps every z
     for z in sp.eigenvalues:
         assert sum(1 for w in v.multipliers if w.overlaps(z)) == 1
     pair = [w for w in v.multipliers if not w.imag.contains(0)]
     assert len(pair) == 2 and pair[0].imag > 0 > pair[1].imag      # the pair: Im > 0 first
-    assert v.margin.overlaps(arb("-0.5"))
+    assert v.margin.is_finite() and v.margin.overlaps(arb("-0.5"))
 
 
 @pytest.mark.parametrize("first", [0, 1])
@@ -452,10 +453,11 @@ def test_a_ball_straddling_the_real_axis_is_made_real_only_when_its_conjugate_me
                   acb(arb("0.5", "1e-9"), arb("-0.00105", "0.0001")), acb(last)]
     v = claims.RootVerdict(theta, [arb(0)] * 4, "genuine", "")
     claims._multipliers(_StubSpectrum(true, enclosures=enclosures), v)
+    assert all(w.is_finite() for w in v.multipliers)                # a NaN ball contains every z
     for z in true:
         assert sum(1 for w in v.multipliers if w.contains(z)) == 1, (z, v.multipliers)
     for z, m in zip(v.multipliers, v.moduli):
-        assert m.overlaps(abs(z))
+        assert m.is_finite() and m.overlaps(abs(z))
 
 
 # --------------------------------------------------------------------------- analyse (mutmut survivors)

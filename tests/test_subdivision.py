@@ -20,19 +20,19 @@ def test_positivity_proved_refuted_and_inconclusive():
 def test_max_with_removable_singularity_is_enclosed():
     with working_precision(128):
         m = enclose_max(lambda x: x.sinc(), "-1", "2", abs_tol="1e-20")     # sin(x)/x, max 1 at 0
-        assert m.converged and m.ball.contains(1) and m.ball.rad() < arb("1e-19")
+        assert m.converged and m.ball.is_finite() and m.ball.contains(1) and m.ball.rad() < arb("1e-19")
         n = enclose_min(lambda x: x.cos(), "0", "4", abs_tol="1e-15")
-        assert n.ball.contains(-1)
+        assert n.ball.is_finite() and n.ball.contains(-1)
 
 
 def test_enclose_min_encloses_the_minimum_and_reports_its_point():
     from flint import arb
     with working_precision(64):
         m = enclose_min(lambda x: (x - arb("0.3")) ** 2 + 1, "-1", "2", abs_tol="1e-10")
-        assert m.ball.contains(1) and m.ball.lower() > arb("0.999999") and m.converged
+        assert m.ball.is_finite() and m.ball.contains(1) and m.ball.lower() > arb("0.999999") and m.converged
         assert m.pieces > 1 and m.cover and abs(m.argpoint - arb("0.3")) < arb("0.01")
         loose = enclose_min(lambda x: (x - arb("0.3")) ** 2 + 1, "-1", "2", abs_tol="0.5")
-        assert loose.ball.contains(1) and loose.ball.rad() > m.ball.rad()
+        assert loose.ball.is_finite() and loose.ball.contains(1) and loose.ball.rad() > m.ball.rad()
         tight_rel = enclose_min(lambda x: (x - arb("0.3")) ** 2 + 1, "-1", "2", abs_tol="0", rel_tol="1e-9")
         assert tight_rel.ball.rad() < loose.ball.rad()
 
@@ -222,7 +222,7 @@ def test_certify_positive_on_box_reports_what_it_decided_on():
     assert f"undecided after {boxes} boxes" in out.reason and out.leaves
     out = certify_positive_on_box(lambda b: b["u"] - arb("0.3"), whole, max_pieces=50)
     assert out.status is Status.REFUTED and out.witness_value is not None and out.witness_value <= 0
-    assert out.witness_value.contains(arb(out.witness["u"].numerator) / out.witness["u"].denominator - arb("0.3"))
+    assert out.witness_value.is_finite() and out.witness_value.contains(arb(out.witness["u"].numerator) / out.witness["u"].denominator - arb("0.3"))
     assert isinstance(out.leaves, list)
     out = certify_positive_on_box(lambda b: b["u"] * b["u"] + 1, whole)
     assert out.status is Status.PROVED and out.reason == f"f > 0 certified on {len(out.leaves)} boxes"
@@ -251,13 +251,13 @@ def test_the_max_enclosure_holds_the_maximum_when_point_values_are_wide():
     # maximum by up to the radius) would put the whole enclosure above the true maximum
     with working_precision(64):
         inside = enclose_max(_noisy(lambda x: x * (1 - x), "1e-6"), "0", "1", abs_tol="1e-9")   # max 1/4 at 1/2
-        assert inside.ball.contains(arb(1) / 4) and inside.ball.lower() < arb(1) / 4
+        assert inside.ball.is_finite() and inside.ball.contains(arb(1) / 4) and inside.ball.lower() < arb(1) / 4
         at_end = enclose_max(_noisy(lambda x: x, "1e-6"), "0", "1", abs_tol="1e-9")              # max 1 at the end 1
-        assert at_end.ball.contains(1) and at_end.ball.lower() < 1
+        assert at_end.ball.is_finite() and at_end.ball.contains(1) and at_end.ball.lower() < 1
         low_end = enclose_max(_noisy(lambda x: -x, "1e-6"), "0", "1", abs_tol="1e-9")            # max 0 at the end 0
-        assert low_end.ball.contains(0) and low_end.ball.lower() < 0
+        assert low_end.ball.is_finite() and low_end.ball.contains(0) and low_end.ball.lower() < 0
         third = enclose_max(_noisy(lambda x: -(x - arb(1) / 3) ** 2, "1e-6"), "0", "1", abs_tol="1e-9")
-        assert third.ball.contains(0) and third.ball.lower() < 0                               # max 0 at 1/3, met by midpoints
+        assert third.ball.is_finite() and third.ball.contains(0) and third.ball.lower() < 0    # max 0 at 1/3, met by midpoints
 
 
 def test_the_max_is_taken_over_the_interval_only():
@@ -265,7 +265,7 @@ def test_the_max_is_taken_over_the_interval_only():
     with working_precision(64):
         for lo, hi in (("1", "2"), ("2", "3"), ("-3", "-2")):
             m = enclose_max(lambda x: -x, lo, hi, abs_tol="1e-12")
-            assert m.ball.contains(-arb(lo)) and m.ball.upper() < -arb(lo) + arb("1e-9")
+            assert m.ball.is_finite() and m.ball.contains(-arb(lo)) and m.ball.upper() < -arb(lo) + arb("1e-9")
             assert arb(lo) <= m.argpoint <= arb(hi)
 
 
@@ -275,20 +275,20 @@ def test_the_max_reports_its_pieces_and_whether_it_converged():
         m = enclose_max(f, "-1", "2", abs_tol="1e-6")
         assert m.converged and m.pieces == len(calls) > 1                 # a piece is one interval evaluation
         cut = enclose_max(lambda x: (x * 7).sin(), "-1", "2", abs_tol="1e-30", max_pieces=9)
-        assert not cut.converged and cut.pieces == 9 and cut.ball.contains(1)
+        assert not cut.converged and cut.pieces == 9 and cut.ball.is_finite() and cut.ball.contains(1)
         default = enclose_max(lambda x: -(x - arb("0.3")) ** 2, "-1", "2")  # the default tolerance 1e-12
-        assert default.converged and default.ball.contains(0) and default.ball.rad() < arb("1e-11")
+        assert default.converged and default.ball.is_finite() and default.ball.contains(0) and default.ball.rad() < arb("1e-11")
 
 
 def test_the_relative_tolerance_scales_with_the_maximum_and_the_precision_stops_the_search():
     with working_precision(64):
         m = enclose_max(lambda x: 100 - (x - arb("0.3")) ** 2, "-1", "2", abs_tol="0", rel_tol="1e-6")
         # converged to about rel_tol * |max| = 1e-4: not looser, and not 100 times tighter than asked
-        assert m.converged and m.ball.contains(100) and arb("1e-6") < 2 * m.ball.rad() <= arb("1e-4")
+        assert m.converged and m.ball.is_finite() and m.ball.contains(100) and arb("1e-6") < 2 * m.ball.rad() <= arb("1e-4")
     with working_precision(16):
         # abs_tol 0 cannot be met: the search stops where the precision can no longer split a piece
         cut = enclose_max(lambda x: 100 - (x - arb(1) / 3) ** 2, "-1", "2", abs_tol="0", max_pieces=20000)
-        assert not cut.converged and cut.pieces < 500 and cut.ball.contains(100)
+        assert not cut.converged and cut.pieces < 500 and cut.ball.is_finite() and cut.ball.contains(100)
 
 
 def test_positivity_counts_its_pieces_and_stops_at_its_budget():
@@ -324,7 +324,7 @@ def test_an_undecided_piece_is_reported_with_f_over_it_and_min_width_stops_the_s
         a, b = r.stuck
         assert certainly_lt(a, b) and r.stuck_value is not None
         fx = f(a.union(b))
-        assert r.stuck_value.overlaps(fx) and abs(r.stuck_value.rad() - fx.rad()) <= fx.rad() * arb("1e-6")
+        assert r.stuck_value.is_finite() and r.stuck_value.overlaps(fx) and abs(r.stuck_value.rad() - fx.rad()) <= fx.rad() * arb("1e-6")
         assert r.reason == (f"f not separated from 0 on [{a.str(12)}, {b.str(12)}] after {r.pieces} pieces "
                             "(raise precision or max_pieces; f may touch 0 there)")
         w = certify_positive(f, "-2", "2", min_width="1e-3")
