@@ -472,6 +472,12 @@ FORGERIES = [
      ["constants", "damping_condition", "best_mu", "best_mu_direct"]),
     ("M cover gap", lambda d: d["witnesses"]["constants"]["M"].update(cover=_drop(d["witnesses"]["constants"]["M"]["cover"], 0)),
      ["constants", "damping_condition", "best_mu", "best_mu_direct"]),
+    ("m cover from above 0", lambda d: d["witnesses"]["constants"]["m"].update(
+        cover=[p for p in d["witnesses"]["constants"]["m"]["cover"] if Fraction(p[0]) > 0]),
+     ["constants", "damping_condition", "best_mu", "best_mu_direct"]),
+    ("M cover from above 0", lambda d: d["witnesses"]["constants"]["M"].update(
+        cover=[p for p in d["witnesses"]["constants"]["M"]["cover"] if Fraction(p[0]) > 0]),
+     ["constants", "damping_condition", "best_mu", "best_mu_direct"]),
     ("m point beyond x2*", lambda d: d["witnesses"]["constants"]["m"].update(point=["3/2", "3/2"]), ["constants"]),
     ("M point beyond x2*", lambda d: d["witnesses"]["constants"]["M"].update(point=["-1/10", "-1/10"]), ["constants"]),
     ("m stored lower", lambda d: d["quantities"]["m"].update(hi=d["quantities"]["m"]["lo"],
@@ -490,6 +496,9 @@ FORGERIES = [
     ("psi piece short", lambda d: d["witnesses"]["v_positive"].update(psi=[["0", "1/10"]]), ["v_positive"]),
     ("cylinder gap", lambda d: d["witnesses"]["invariant_estimate"].update(
         cylinder=_drop(d["witnesses"]["invariant_estimate"]["cylinder"])), ["invariant_estimate"]),
+    ("cylinder from above 0", lambda d: d["witnesses"]["invariant_estimate"].update(
+        cylinder=[p for p in d["witnesses"]["invariant_estimate"]["cylinder"] if Fraction(p[0]) > 0]),
+     ["invariant_estimate"]),
     ("c_set above c*", lambda d: _claim(d, "invariant_estimate")["details"].update(c_set="1000"),
      ["invariant_estimate"]),
     ("direct box dropped", lambda d: d["witnesses"]["vdot_direct"].update(boxes=_drop(d["witnesses"]["vdot_direct"]["boxes"])),
