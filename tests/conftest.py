@@ -10,6 +10,7 @@ every test file, which read example counts from the loaded profile; CI uses ``ci
 """
 import os
 
+import mpmath
 import pytest
 from flint import ctx
 from hypothesis import HealthCheck, settings
@@ -23,9 +24,13 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 @pytest.fixture(autouse=True)
 def _precision_is_restored():
-    """Every test must leave flint's global precision and series cap as it found them."""
+    """Every test must leave flint's global precision and series cap as it found them. mpmath's working
+    precision, which several reference computations set for their whole test (``mp.dps = 40``), is put
+    back after each test, so that no test sees the digits another one chose."""
     before = ctx.prec, ctx.cap
+    mp_prec = mpmath.mp.prec
     yield
+    mpmath.mp.prec = mp_prec
     assert (ctx.prec, ctx.cap) == before, f"a test leaked ctx.prec, ctx.cap = {ctx.prec}, {ctx.cap} (was {before})"
 
 

@@ -178,6 +178,32 @@ def test_bound_over_pieces_re_bounds_a_piece_a_hair_above_the_stored_bound():
     assert tight < plain and tight >= 1 + arb("2.5e-10") and tight <= 1 + arb("3e-10")
 
 
+def test_m_and_M_at_a_point_are_rounded_down_lower_bounds():
+    """m's and M's values at a point (their lower bounds) are exact points at or below the float side's
+    mpmath values (approx.MpGimbal, written without balls) and within 1e-15 of them: rounded down, not up."""
+    import mpmath
+    from rigor_gyro.kinds.lyapunov.approx import AGAFONOV2013, MpGimbal
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    from rigor_gyro.core.balls import exact_fraction
+    for params in (dict(AGAFONOV2013), dict(AGAFONOV2013, moment="linear", a="3")):
+        scene = dataclasses.replace(load_scene("agafonov2013"), parameters=params)
+        with mpmath.workdps(60):
+            mg = MpGimbal(params)            # its parameters at 60 digits (they are read at construction)
+        with working_precision(64):
+            g = validate(scene).gimbal
+            for x in ("0", "1/7", "3/10", "1/2"):
+                with mpmath.workdps(60):
+                    X = mpmath.mpf(Fraction(x).numerator) / Fraction(x).denominator
+                    refs = (mg.m_quotient(X), mg.q(X))
+                for fn, ref in zip((lc.m_lower_at, lc.M_lower_at), refs):
+                    lo = fn(g, _q(x))
+                    assert lo.is_finite() and lo.rad().is_zero(), (fn.__name__, x)
+                    f = exact_fraction(lo.mid())
+                    with mpmath.workdps(60):
+                        v = mpmath.mpf(f.numerator) / f.denominator
+                        assert v <= ref and ref - v <= abs(ref) * mpmath.mpf("1e-15"), (fn.__name__, params, x, v, ref)
+
+
 def test_the_faces_minimiser_is_inside_the_disc_only_when_certainly_closer_than_R():
     """(m1, m3) = (5.6e-8, -0.0057735) on the paper's scene, (2.80, -577.36) on the refuted one (there m1
     matters: m1^2 = 7.8 against a window of 6.7 at 1e-5 relative): inside for R a hair above the
@@ -755,9 +781,9 @@ def test_psi_at_a_point_is_each_psi_of_the_vdot_form():
     from .test_properties_lyapunov import contains_mp
     for params in (dict(AGAFONOV2013), dict(AGAFONOV2013, H="10", a="1e4", mu="0.01", k="0.1")):
         scene = dataclasses.replace(load_scene("agafonov2013"), parameters=params)
-        g = validate(scene).gimbal
-        mg = MpGimbal(params)
-        with mpmath.workdps(60):
+        with mpmath.workdps(60), working_precision(128):
+            g = validate(scene).gimbal
+            mg = MpGimbal(params)            # its parameters at 60 digits (they are read at construction)
             for x1, x2, x3 in (("3/2", "3/10", "-7/4"), ("-1/3", "-1/2", "5/2"), ("40", "1/10", "-30")):
                 X = [_q(v) for v in (x1, x2, x3)]
                 M = [mpmath.mpf(Fraction(v).numerator) / Fraction(v).denominator for v in (x1, x2, x3)]

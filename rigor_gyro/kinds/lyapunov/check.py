@@ -218,6 +218,17 @@ def _direct_boxes_hold(g, R: arb, stored_boxes, cert_prec: int) -> bool:
                                                                  cert_prec)))
 
 
+def m_lower_at(g, x2: arb) -> arb:
+    """A lower bound of m = max over [0, x2*] of |cos x2 f'(x2)| / D(x2), from its value at the point x2 of
+    that range: the larger lower end of its two enclosures there (an exact point, rounded down)."""
+    return g.m_quotient(x2).lower().max(abs(g.m_signed(x2)).lower())
+
+
+def M_lower_at(g, x2: arb) -> arb:
+    """A lower bound of M = max over [0, x2*] of q: q's lower end at the point x2 of that range."""
+    return g.q(x2).lower()
+
+
 def faces_minimiser_inside(g, xs: arb, R: arb) -> bool:
     """The point (m1, m3) where V is smallest on the face x2 = x2* lies certainly inside the disc
     x1^2 + x3^2 < R^2 (then the faces' closed form phi(x2*) is V's minimum over the face piece of the
@@ -323,11 +334,11 @@ def check(model, data: dict) -> list[CheckResult]:
               and _within(_b(wc["m"]["point"]), arb(0), xs) and _within(_b(wc["M"]["point"]), arb(0), xs))
         if ok:
             pt = _b(wc["m"]["point"])       # m >= its value at the point: the tighter of the two forms there
-            m_at = g.m_quotient(pt).lower().max(abs(g.m_signed(pt)).lower())
+            m_at = m_lower_at(g, pt)
             # each piece at this precision and at the certificate's, intersected (a 128-bit bound of m once
             # came out 1e-18 above the 64-bit one: arb's 30-bit radii round differently)
             m = m_at.union(_max_upper(lambda X: _tighter(m_fn, X, cert_prec), wc["m"]["cover"], _stored_hi("m")))
-            M = g.q(_b(wc["M"]["point"])).lower().union(_max_upper(lambda X: _tighter(g.q, X, cert_prec),
+            M = M_lower_at(g, _b(wc["M"]["point"])).union(_max_upper(lambda X: _tighter(g.q, X, cert_prec),
                                                                    wc["M"]["cover"], _stored_hi("M")))
             if m.is_finite() and M.is_finite():
                 K = closed_form_constants(g, m, M)
