@@ -921,6 +921,16 @@ def test_the_x2_extent_ends_below_x2_star_only_where_the_stored_pieces_beyond_co
         w = bad["witnesses"]["invariant_estimate"]["extent_x2"]
         w["beyond"] = _drop(w["beyond"]) if edit == "gap" else w["beyond"][1:]
         assert "'extent_x2'" in _unverified(bad), edit
+    # phi > c_set must hold on the pieces beyond: from 7/16 it does not (the set reaches 0.5236). With no
+    # verified slice point the extent's lower end is the axis segment's, 0.360: an extent stored as
+    # [0.359, 0.438] (false) is not confirmed
+    bad = copy.deepcopy(agafonov)
+    w = bad["witnesses"]["invariant_estimate"]["extent_x2"]
+    a, b = Fraction(7, 16), Fraction(w["beyond"][-1][1])           # dyadic ends (exact balls), b above x2*
+    cuts = [a + (b - a) * j / 64 for j in range(65)]                # phi is bounded well on small pieces
+    w["point"], w["beyond"] = ["3/2", "3/2"], [[str(u), str(v)] for u, v in zip(cuts, cuts[1:])]
+    bad["quantities"]["extent_x2"].update(lo="359/1000", hi="438/1000")
+    assert "'extent_x2'" in _unverified(bad)
 
 
 def test_without_a_verified_slice_point_the_x2_extent_is_confirmed_only_down_to_zero(agafonov):

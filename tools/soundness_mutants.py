@@ -422,6 +422,10 @@ MUTANTS = [
      'if we_ and _covers(we_.get("cover", []), arb(0), xs):', 'if we_ or _covers(we_.get("cover", []), arb(0), xs):',
      "an extent of the invariant set bounded above over stored pieces that do not cover [0, x2*]: an extent "
      "too short is confirmed"),
+    ("check_x2_extent_beyond_phi_plus_c", "rigor_gyro/kinds/lyapunov/check.py",
+     "lambda y: g.phi(y) - cl, x, cert_prec), beyond):", "lambda y: g.phi(y) + cl, x, cert_prec), beyond):",
+     "the pieces beyond the x2 extent's end checked on phi + c_set > 0 (always) instead of phi > c_set: an "
+     "extent that ends before the set does is confirmed"),
 ]
 
 
