@@ -223,17 +223,24 @@ def test_the_faces_minimiser_is_inside_the_disc_only_when_certainly_closer_than_
 
 
 def test_the_cylinder_samples_lie_on_the_cylinder_and_in_range():
-    """Each sample point possibly lies on x1^2 + x3^2 = R^2 (its balls are float cosines times R) with
-    |x2| <= x2*, at three heights 0, x2*/2, x2* and 32 distinct angles each."""
+    """The directions are exact rational points of the unit circle, 32 of them spread around it (no gap over
+    an angle of 2 pi / 32 and a hair); each sample ball holds a point of x1^2 + x3^2 = R^2, at |x2| = 0,
+    x2*/2, x2*: so V's smallest sample bounds V's minimum on the cylinder from above."""
+    import math
+    from rigor_gyro.kinds.lyapunov.model import CIRCLE_DIRECTIONS
+    assert len(CIRCLE_DIRECTIONS) == 32 and all(c * c + s * s == 1 for c, s in CIRCLE_DIRECTIONS)
+    angles = sorted(math.atan2(s, c) % (2 * math.pi) for c, s in CIRCLE_DIRECTIONS)
+    gaps = [b - a for a, b in zip(angles, angles[1:] + [angles[0] + 2 * math.pi])]
+    assert max(gaps) < 2 * math.pi / 32 * (1 + 1e-9) and min(gaps) > 0
     with working_precision(128):
         R, xs = _q("0.002"), arb.pi() / 6
         pts = lc.cylinder_points(R, xs)
         assert len(pts) == 96
-        for x1, x2, x3 in pts:
-            assert abs(x1 * x1 + x3 * x3 - R * R) < R * R * arb("1e-15")
+        for (x1, x2, x3), (c, s) in zip(pts, CIRCLE_DIRECTIONS * 3):
+            assert x1.contains(R * _q(c)) and x3.contains(R * _q(s)) and x1.rad() < R * arb("1e-35")
+            assert (x1 * x1 + x3 * x3).contains(R * R)
             assert x2 >= 0 and not (abs(x2) > xs)
         assert sorted({float(p[1].mid()) for p in pts}) == [0.0, float((xs / 2).mid()), float(xs.mid())]
-        assert len({(float(p[0].mid()), float(p[2].mid())) for p in pts}) == 32
 
 
 def test_inside_16_needs_mu_certainly_between_both_ends():
@@ -260,8 +267,8 @@ def test_the_mu_pieces_must_cover_16_out_to_its_ends_outer_bounds():
 def test_r_sup_piece_upper_is_1_over_the_largest_rho_lower_in_range_rounded_up(agafonov):
     """Over a mu piece of the built-in certificate: 1 / max of rho_lower at the stored x2 points, its upper
     end (not its lower: 1/L is a ball of a few ulps), at or above 1 / rho at the best point for each mu of
-    the piece; points beyond x2* skipped (rho is larger there); +inf with no point in range; 0 where a
-    point's rho_lower is +inf (no disc at all)."""
+    the piece, whatever the points' order; points beyond x2* skipped (rho is larger there); +inf (nothing
+    bounded) with no point in range."""
     from rigor_gyro.kinds.lyapunov.claims import rho_function, rho_lower, validate
     wb = agafonov["witnesses"]["best_mu"]
     with working_precision(128):            # the checker's (2 x 64 bits): the points at x2* are in range there
@@ -560,7 +567,7 @@ FORGERIES = [
     ("R_sup bound stated low", lambda d: _claim(d, "best_mu")["details"].update(R_sup_upper_bound="0.024077"),
      ["best_mu"]),
     ("best_mu gap stated low", lambda d: _claim(d, "best_mu")["details"].update(relative_gap="1e-9"), ["best_mu"]),
-    # rho beyond x2* is larger (over 600 at x2 = 3/2 on every mu piece, against 41.5 at most inside): a point
+    # rho beyond x2* is larger (over 600 at x2 = 3/2 on every mu piece, against at most 51.5 inside): a point
     # there would bound R_sup by 0.0017, far below its value 0.02407; the checker takes only points of [-x2*, x2*]
     ("R_sup point beyond x2*", lambda d: (d["witnesses"]["best_mu"]["x2_points"].append(["3/2", "3/2"]),
                                           _claim(d, "best_mu")["details"].update(R_sup_upper_bound="0.005")),
@@ -638,21 +645,22 @@ def test_a_stored_bound_below_the_checkers_bound_fails_at_its_name(agafonov, nam
 
 
 def test_r_direct_upper_needs_a_point_where_vdot_is_certainly_positive(agafonov):
-    """R_direct_upper bounds the direct test's supremum radius by the radius of a stored point with Vdot > 0.
-    The point moved halfway to the axis (radius 0.0121, inside the disc where Vdot < 0 is proved) and the
-    bound lowered to 0.0121 (false: the direct test holds up to 0.02417): not confirmed; the point moved
-    beyond x2* likewise."""
+    """R_direct_upper bounds the direct test's supremum radius by the radius of a stored point of the
+    region |x2| <= x2* with Vdot > 0; the bound is lowered with each forged point to 0.0121 or 0.0201
+    (false: the direct test holds up to 0.02417). A point halfway to the axis (radius 0.0121, inside the
+    disc where Vdot < 0 is proved): not confirmed, on Vdot > 0. A point at x2 = 0.9, beyond x2*, radius
+    0.0200, where Vdot = 0.404 > 0 is certain: not confirmed, on the range."""
     assert "R_direct_upper" not in _unverified(copy.deepcopy(agafonov))
-    for edit in ("inside the disc", "beyond x2*"):
+    for edit, bound in (("inside the disc", "0.0121"), ("beyond x2*", "0.0201")):
         bad = copy.deepcopy(agafonov)
         pt = bad["witnesses"]["vdot_direct"]["point"]
         if edit == "inside the disc":
             for k in ("x1", "x3"):
                 pt[k] = [str(Fraction(e) / 2) for e in pt[k]]
-            q = bad["quantities"]["R_direct_upper"]
-            q["lo"] = q["hi"] = q["mid"] = "0.0121"
         else:
-            pt["x2"] = ["-3/2", "-3/2"]
+            pt.update(x1=["7393/965942"] * 2, x2=["9/10"] * 2, x3=["-9949/538436"] * 2)
+        q = bad["quantities"]["R_direct_upper"]
+        q["lo"] = q["hi"] = q["mid"] = bound
         assert "R_direct_upper" in _unverified(bad), edit
 
 
@@ -914,8 +922,8 @@ def test_the_x2_extent_ends_below_x2_star_only_where_the_stored_pieces_beyond_co
     to x2*), a hair below x2* = pi/6: with a piece dropped (a gap), or the first one dropped (the pieces
     start later), the stored extent is not confirmed."""
     q = agafonov["quantities"]["extent_x2"]
-    xs = Fraction(75458536011251609, 144115188075855872)       # one of the stored piece ends, just above pi/6
-    assert Fraction(q["hi"]) < xs and "'extent_x2'" not in _unverified(copy.deepcopy(agafonov))
+    piece_end = Fraction(75458536011251609, 144115188075855872)    # a stored piece end, 7.2e-11 below pi/6
+    assert Fraction(q["hi"]) < piece_end and "'extent_x2'" not in _unverified(copy.deepcopy(agafonov))
     for edit in ("gap", "later"):
         bad = copy.deepcopy(agafonov)
         w = bad["witnesses"]["invariant_estimate"]["extent_x2"]

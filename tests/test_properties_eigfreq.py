@@ -245,8 +245,10 @@ def test_twice_the_precision_never_contradicts(params):
     for name, x in first.quantities.items():
         if name in second.quantities:
             y = second.quantities[name]
-            # only the float formulas' errors may be unbounded (the claim says so); every certified quantity is finite
-            assert (x.is_finite() and y.is_finite()) or name.startswith("approx_rel_error_"), (name, x, y)
+            # the roots and the nu's are finite whenever stored (a NaN ball overlaps every ball); a bracket's
+            # ends may be NaN where a radicand's ball straddles 0, the float formulas' errors unbounded
+            if name.startswith(("omega_", "nu_")):
+                assert x.is_finite() and y.is_finite(), (name, x, y)
             assert x.overlaps(y), (name, x, y)
 
 

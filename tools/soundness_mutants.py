@@ -395,9 +395,15 @@ MUTANTS = [
     ("check_sublevel_confirmed_by_default", "rigor_gyro/kinds/lyapunov/check.py",
      'sub_ok, sub_msg = False, "no stored boxes"', 'sub_ok, sub_msg = True, "no stored boxes"',
      "a proved largest sublevel set without its witness confirmed"),
-    ("check_cylinder_samples_beyond_range", "rigor_gyro/kinds/lyapunov/check.py",
-     "for x2 in (arb(0), xs / 2, xs) for j in range(32)]", "for x2 in (arb(0), xs * 2, xs) for j in range(32)]",
-     "the upper end of c* from V sampled at |x2| = 2 x2*, beyond the cylinder piece c* is the minimum over"),
+    ("check_cylinder_samples_beyond_range", "rigor_gyro/kinds/lyapunov/model.py",
+     "for x2 in (arb(0), xs / 2, xs) for c, s_ in CIRCLE_DIRECTIONS]",
+     "for x2 in (arb(0), xs * 2, xs) for c, s_ in CIRCLE_DIRECTIONS]",
+     "the upper end of c* (prover and checker) from V sampled at |x2| = 2 x2*, beyond the cylinder piece c* is "
+     "the minimum over"),
+    ("cylinder_samples_off_the_circle", "rigor_gyro/kinds/lyapunov/model.py",
+     "((1 - t * t) / (1 + t * t), 2 * t / (1 + t * t))", "((1 - t * t) / (1 + t * t), t / (1 + t * t))",
+     "the sample directions off the unit circle (s halved): V sampled inside the disc, an upper end of c* "
+     "that may lie below it"),
     ("check_x2_axis_capped_on_mu_over_F", "rigor_gyro/kinds/lyapunov/check.py",
      "capped = certainly_lt(c.mu * g.F(xs), cl)", "capped = certainly_lt(c.mu / g.F(xs), cl)",
      "the x2 axis segment taken as capped at x2* on a wrong test: a segment around x2*, above the root of "
@@ -426,6 +432,11 @@ MUTANTS = [
      "lambda y: g.phi(y) - cl, x, cert_prec), beyond):", "lambda y: g.phi(y) + cl, x, cert_prec), beyond):",
      "the pieces beyond the x2 extent's end checked on phi + c_set > 0 (always) instead of phi > c_set: an "
      "extent that ends before the set does is confirmed"),
+    ("check_direct_point_beyond_range", "rigor_gyro/kinds/lyapunov/check.py",
+     "if certainly_le(abs(x2), xs) and certainly_positive(g.vdot(x1, x2, x3)):",
+     "if True and certainly_positive(g.vdot(x1, x2, x3)):",
+     "R_direct_upper confirmed from a point beyond x2* (outside the region the direct test is about), where "
+     "Vdot > 0 at a radius below R_direct"),
 ]
 
 

@@ -31,7 +31,6 @@ in the precision), and checks
 """
 from __future__ import annotations
 
-import math
 from fractions import Fraction
 
 from flint import arb
@@ -44,8 +43,8 @@ from ...core.roots import RootStatus, enclose_f_df, newton_root
 from .claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
 from .equilibria import Equilibrium, classify as classify_equilibrium, pi_text
-from .model import (DIRECT_DOMAIN, closed_form_constants, cylinder_lower_bound, direct_margin, mean_value_enclosure,
-                    psi_min_functions, slice_extent, slice_in_region, sublevel_lower_bound, symmetric_in_x2, vdot_polar)
+from .model import (DIRECT_DOMAIN, closed_form_constants, cylinder_lower_bound, cylinder_points, direct_margin,
+                    mean_value_enclosure, psi_min_functions, slice_extent, slice_in_region, sublevel_lower_bound, symmetric_in_x2, vdot_polar)
 
 __all__ = ["check"]
 
@@ -237,14 +236,6 @@ def faces_minimiser_inside(g, xs: arb, R: arb) -> bool:
     return certainly_lt(m1 ** 2 + m3 ** 2, R ** 2)
 
 
-def cylinder_points(R: arb, xs: arb) -> list[tuple[arb, arb, arb]]:
-    """96 points (x1, x2, x3) of the cylinder x1^2 + x3^2 = R^2, |x2| <= x2*: 32 angles at x2 = 0, x2*/2,
-    x2*. V's smallest value there bounds c* (V's minimum over that cylinder piece) from above; a point off
-    the cylinder or beyond x2* would not."""
-    return [(R * arb(math.cos(2 * math.pi * j / 32)), x2, R * arb(math.sin(2 * math.pi * j / 32)))
-            for x2 in (arb(0), xs / 2, xs) for j in range(32)]
-
-
 def _inside_16(K: dict, mu: arb) -> bool:
     """mu lies certainly inside (16), mu_min < mu < mu_max (``K``: the checker's constants)."""
     return certainly_lt(K["mu_min"], mu) and certainly_lt(mu, K["mu_max"])
@@ -265,9 +256,11 @@ def psi_at_point(g, which: str, x1: arb, x2: arb, x3: arb) -> arb:
 
 def r_sup_piece_upper(g, xs: arb, points: list[arb], Mu: arb) -> arb:
     """An upper bound (an exact point) of R_sup(mu) for every mu in the ball ``Mu``: 1 / the largest lower
-    bound of rho(x2, mu) at the ``points`` x2 of [-x2*, x2*] (R_sup <= 1 / rho(x2) at any x2 of the range;
-    a point beyond it proves nothing and is skipped), rounded up; +inf when no point gives a positive bound.
-    Precision: the current one. Fails when: never raises for finite balls."""
+    bound of rho(x2, mu) at the ``points`` x2 certainly in [-x2*, x2*] (R_sup <= 1 / rho(x2) at any x2 of
+    the range; a point beyond it proves nothing and is skipped), rounded up. +inf (nothing bounded) when no
+    point in range gives a finite positive bound, or when one gives +inf or NaN (rho_lower is +inf where no
+    disc keeps Psi > 0: R_sup is 0 there, but +inf is the conservative answer). Precision: the current one,
+    also for the points' balls (the caller makes them). Fails when: never raises for finite balls."""
     L = arb(0)
     for x in points:
         if not _within(abs(x), arb(0), xs):
@@ -480,10 +473,9 @@ def check(model, data: dict) -> list[CheckResult]:
             low = rho(point).lower() if _within(abs(point), arb(0), xs) else arb(0)
             contains("R_sup_at_mu_best", (1 / top).union(1 / low) if certainly_positive(low) else arb("nan"))
         U = None
-        x2_points = [_b(t) for t in wb["x2_points"]]
-        if _covers_16(wb["mu_pieces"], K):
-            U = _bound_over_pieces(lambda Mu: r_sup_piece_upper(g, xs, x2_points, Mu), wb["mu_pieces"],
-                                   _stored_hi("R_sup_upper_bound"), cert_prec)
+        if _covers_16(wb["mu_pieces"], K):       # the points made at each pass's precision, as the mu pieces
+            U = _bound_over_pieces(lambda Mu: r_sup_piece_upper(g, xs, [_b(t) for t in wb["x2_points"]], Mu),
+                                   wb["mu_pieces"], _stored_hi("R_sup_upper_bound"), cert_prec)
         if U is not None and U.is_finite():
             upper_bound_holds("R_sup_upper_bound", U)
             upper_bound_holds("R_max_relative_gap", (U - R_max) / R_max)

@@ -61,8 +61,8 @@ from .. import Attempt, Phases
 from .equilibria import equilibria
 from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
-from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, closed_form_constants, cylinder_lower_bound, direct_margin,
-                    hypot_ball, mean_value_enclosure, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
+from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, closed_form_constants, cylinder_lower_bound,
+                    cylinder_points, direct_margin, hypot_ball, mean_value_enclosure, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
 from .moments import MOMENTS
 from .paper import PAPER_SCHEMA, audit as audit_paper
 
@@ -556,8 +556,7 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
     cyl_lb = (-cyl.ball).lower()
     ctx.witnesses["invariant_estimate"] = {"cylinder": pieces_text(cyl.cover)}
     # an upper bound of the boundary minimum: V at boundary points
-    samples = [g.V(R * arb(math.cos(2 * math.pi * j / 32)), x2, R * arb(math.sin(2 * math.pi * j / 32)))
-               for x2 in (arb(0), xs / 2, xs) for j in range(32)]
+    samples = [g.V(*p) for p in cylinder_points(R, xs)]      # each ball holds V at a point of the cylinder
     upper = samples[0]
     for v in samples[1:]:
         upper = upper.min(v)

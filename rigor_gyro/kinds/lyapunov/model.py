@@ -52,7 +52,7 @@ from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
            "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound",
-           "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "symmetric_in_x2", "law_is_odd", "v_polar", "sublevel_lower_bound",
+           "CIRCLE_DIRECTIONS", "cylinder_points", "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "symmetric_in_x2", "law_is_odd", "v_polar", "sublevel_lower_bound",
            "slice_extent", "slice_in_region"]
 
 
@@ -605,6 +605,30 @@ def closed_form_constants(g: Gimbal, m: arb, M: arb) -> dict[str, arb]:
     R1, R2 = sqrt_of_nonnegative(D1 / D2), sqrt_of_nonnegative(E1 / E2)
     out.update({"R1": R1, "R2": R2, "R": R1.min(R2), "R2_base": mu * H * cs ** 2 - m * A0})
     return out
+
+
+def _circle_directions(n: int = 32) -> list[tuple[Fraction, Fraction]]:
+    """n exact rational points (c, s) of the unit circle, c^2 + s^2 = 1 exactly, near the angles 2 pi j / n:
+    c = (1 - t^2) / (1 + t^2), s = 2 t / (1 + t^2) with t = tan(pi j / n) rounded to a float (any rational t
+    gives a point of the circle; the float only places it)."""
+    out = []
+    for j in range(n):
+        t = Fraction(math.tan(math.pi * j / n)) if 2 * j != n else None
+        out.append((Fraction(-1), Fraction(0)) if t is None else ((1 - t * t) / (1 + t * t), 2 * t / (1 + t * t)))
+    return out
+
+
+#: the directions V is sampled in on the cylinder (an upper bound of c*: V at points of the cylinder)
+CIRCLE_DIRECTIONS = _circle_directions()
+
+
+def cylinder_points(R: arb, xs: arb) -> list[tuple[arb, arb, arb]]:
+    """96 balls (x1, x2, x3), each containing a point of the cylinder x1^2 + x3^2 = R^2 with |x2| <= x2*
+    (for every radius R's ball holds): the 32 CIRCLE_DIRECTIONS, exact rationals of the unit circle, times
+    R, at x2 = 0, x2*/2, x2*. V's smallest upper end over them is >= V at a point of the cylinder, so it
+    bounds c* (V's minimum over that cylinder piece) from above."""
+    return [(R * arb(fmpq(c.numerator, c.denominator)), x2, R * arb(fmpq(s_.numerator, s_.denominator)))
+            for x2 in (arb(0), xs / 2, xs) for c, s_ in CIRCLE_DIRECTIONS]
 
 
 def cylinder_lower_bound(g: Gimbal, R: arb):
