@@ -178,6 +178,32 @@ def test_bound_over_pieces_re_bounds_a_piece_a_hair_above_the_stored_bound():
     assert tight < plain and tight >= 1 + arb("2.5e-10") and tight <= 1 + arb("3e-10")
 
 
+def test_rho_at_a_point_is_a_rounded_down_lower_bound_in_range_and_0_beyond():
+    """rho(x2) = max_i |(ci1, ci3)| / ci0 at points of [0, x2*]: an exact point at or below the float side's
+    mpmath value (approx.MpGimbal.psi_true, 60 digits) and within 1e-15 of it; 0 beyond x2*."""
+    import mpmath
+    from rigor_gyro.kinds.lyapunov.approx import AGAFONOV2013, MpGimbal
+    from rigor_gyro.kinds.lyapunov.claims import rho_function, validate
+    from rigor_gyro.core.balls import exact_fraction
+    params = dict(AGAFONOV2013)
+    with mpmath.workdps(60):
+        mg = MpGimbal(params)
+    with working_precision(64):
+        g = validate(load_scene("agafonov2013")).gimbal
+        rho, xs = rho_function(g), g.c.x2_star
+        for x in ("1/10", "3/10", "1/2"):
+            lo = lc.rho_lower_at(rho, _q(x), xs)
+            assert lo.is_finite() and lo.rad().is_zero(), x
+            f = exact_fraction(lo.mid())
+            with mpmath.workdps(60):
+                (c10, c11, c13), (c20, c21, c23) = mg.psi_true(mpmath.mpf(Fraction(x).numerator) / Fraction(x).denominator)
+                ref = max(mpmath.hypot(c11, c13) / c10, mpmath.hypot(c21, c23) / c20)
+                v = mpmath.mpf(f.numerator) / f.denominator
+                assert 0 < c10 and 0 < c20 and v <= ref and ref - v <= ref * mpmath.mpf("1e-15"), (x, v, ref)
+        for x in ("3/5", "-3/5", "3/2"):
+            assert lc.rho_lower_at(rho, _q(x), xs) == 0, x
+
+
 def test_m_and_M_at_a_point_are_rounded_down_lower_bounds():
     """m's and M's values at a point (their lower bounds) are exact points at or below the float side's
     mpmath values (approx.MpGimbal, written without balls) and within 1e-15 of them: rounded down, not up."""
@@ -766,7 +792,7 @@ def test_damping_refutation_is_re_derived(refuted, agafonov):
     assert _items(bad)["damping_condition"] is False
 
 
-@pytest.mark.parametrize("edit", ["origin", "beyond_x2_star", "outside_the_disc"])
+@pytest.mark.parametrize("edit", ["origin", "beyond_x2_star", "outside_the_disc", "outside_the_disc_in_x3"])
 def test_a_forged_vdot_counterexample_is_rejected(refuted, edit):
     bad = copy.deepcopy(refuted)
     ce = _claim(bad, "vdot_nonpositive")["counterexample"]
@@ -775,8 +801,10 @@ def test_a_forged_vdot_counterexample_is_rejected(refuted, edit):
         pt["x1"] = pt["x3"] = ["0", "0"]
     elif edit == "beyond_x2_star":
         pt["x2"] = ["3/2", "3/2"]
-    else:
+    elif edit == "outside_the_disc":
         pt["x1"] = ["1000", "1000"]
+    else:                       # Vdot > 0 there too (-Psi2 x3^2 dominates), but x1^2 + x3^2 > R^2
+        pt["x3"] = ["1000", "1000"]
     assert _items(bad)["vdot_nonpositive"] is False, edit
 
 

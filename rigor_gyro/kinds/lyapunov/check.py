@@ -217,6 +217,13 @@ def _direct_boxes_hold(g, R: arb, stored_boxes, cert_prec: int) -> bool:
                                                                  cert_prec)))
 
 
+def rho_lower_at(rho, x2: arb, xs: arb) -> arb:
+    """A lower bound of rho(x2) = max_i |(ci1, ci3)| / ci0 (``rho`` from claims.rho_function): its lower end
+    at x2 (an exact point, rounded down) when x2 is certainly in [-x2*, x2*], else 0 (no bound: R_sup is
+    1 / the maximum of rho over the range only)."""
+    return rho(x2).lower() if _within(abs(x2), arb(0), xs) else arb(0)
+
+
 def m_lower_at(g, x2: arb) -> arb:
     """A lower bound of m = max over [0, x2*] of |cos x2 f'(x2)| / D(x2), from its value at the point x2 of
     that range: the larger lower end of its two enclosures there (an exact point, rounded down)."""
@@ -470,7 +477,7 @@ def check(model, data: dict) -> list[CheckResult]:
         if _covers(wb["r_sup_cover"], arb(0), xs):
             top = _max_upper(rho, wb["r_sup_cover"])
             point = _b(wb["r_sup_point"])
-            low = rho(point).lower() if _within(abs(point), arb(0), xs) else arb(0)
+            low = rho_lower_at(rho, point, xs)
             contains("R_sup_at_mu_best", (1 / top).union(1 / low) if certainly_positive(low) else arb("nan"))
         U = None
         if _covers_16(wb["mu_pieces"], K):       # the points made at each pass's precision, as the mu pieces
