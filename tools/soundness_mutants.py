@@ -437,6 +437,10 @@ MUTANTS = [
      "if True and certainly_positive(g.vdot(x1, x2, x3)):",
      "R_direct_upper confirmed from a point beyond x2* (outside the region the direct test is about), where "
      "Vdot > 0 at a radius below R_direct"),
+    ("check_rho_at_point_rounded_up", "rigor_gyro/kinds/lyapunov/check.py",
+     "    return rho(x2).lower() if _within(abs(x2), arb(0), xs) else arb(0)",
+     "    return rho(x2).upper() if _within(abs(x2), arb(0), xs) else arb(0)",
+     "rho at R_sup(mu_best)'s point rounded up: the enclosure of R_sup(mu_best) may end below it"),
 ]
 
 
