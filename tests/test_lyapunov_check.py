@@ -269,6 +269,30 @@ def test_the_cylinder_samples_lie_on_the_cylinder_and_in_range():
         assert sorted({float(p[1].mid()) for p in pts}) == [0.0, float((xs / 2).mid()), float(xs.mid())]
 
 
+def test_c_star_upper_is_the_smallest_upper_end_of_v_on_the_cylinder():
+    """Where the cylinder binds (R = 0.002) and where the faces do (the paper's R): the bound is at or
+    above the smallest upper end of V over the cylinder points (an upper end, not a lower one) and within
+    1e-25 of it, and with the minimiser inside also at most phi(x2*)'s upper end."""
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    from rigor_gyro.kinds.lyapunov.model import cylinder_points
+    with working_precision(128):
+        g = validate(load_scene("agafonov2013")).gimbal
+        xs = g.c.x2_star
+        face = g.phi(xs)
+        for R in (_q("0.002"), _q("0.024166952920")):
+            inside = lc.faces_minimiser_inside(g, xs, R)
+            ups = [g.V(*p).upper() for p in cylinder_points(R, xs)]
+            low_up = min(ups, key=lambda u: exact_endpoints(u)[0])
+            u = lc.c_star_upper(g, R, xs, face, inside)
+            assert u.rad().is_zero() and u.is_finite()
+            if inside and face.upper() < low_up:
+                assert u == face.upper()
+            else:
+                assert u >= low_up and u <= low_up * (1 + arb("1e-25")), (R, u, low_up)
+        assert lc.c_star_upper(g, _q("0.002"), xs, face, False) >= min(
+            (g.V(*p).upper() for p in cylinder_points(_q("0.002"), xs)), key=lambda x: exact_endpoints(x)[0])
+
+
 def test_inside_16_needs_mu_certainly_between_both_ends():
     K = {"mu_min": arb(1) + arb(0, 1e-3), "mu_max": arb(2) + arb(0, 1e-3)}
     for mu, inside in (("3/2", True), ("1/2", False), ("5/2", False), ("1", False), ("2", False),
@@ -879,6 +903,11 @@ def test_a_forged_sublevel_refutation_is_rejected(refuted, agafonov):
     for t in ("1/4", "0", "x", ""):
         c["counterexample"] = {"where": "origin", "t_over_pi": t}     # A(0, t) > 0 at every t here
         assert _items(copy.deepcopy(bad))["largest_sublevel"] is False, t
+    # mu = k/A0 - 1e-7: A(0, 0) = 0.0567, positive but small (below 1): still rejected
+    near = copy.deepcopy(bad)
+    near["scene"]["parameters"]["mu"] = "399999873/12700000000"
+    _claim(near, "largest_sublevel")["counterexample"] = {"where": "origin", "x2": "0", "t_over_pi": "0"}
+    assert _items(near)["largest_sublevel"] is False
 
 
 def test_an_empty_mu_interval_is_re_derived(refuted, agafonov):

@@ -243,6 +243,17 @@ def faces_minimiser_inside(g, xs: arb, R: arb) -> bool:
     return certainly_lt(m1 ** 2 + m3 ** 2, R ** 2)
 
 
+def c_star_upper(g, R: arb, xs: arb, face: arb, inside: bool) -> arb:
+    """An upper bound of c* (an exact point): the smallest upper end of V over the cylinder points (each
+    ball holds V at a point of the cylinder), and with the faces' minimiser inside the disc also the faces'
+    value phi(x2*)'s upper end."""
+    samples = [g.V(*p) for p in cylinder_points(R, xs)]
+    upper = samples[0]
+    for s in samples[1:]:
+        upper = upper.min(s)
+    return upper.upper().min(face.upper()) if inside else upper.upper()
+
+
 def _inside_16(K: dict, mu: arb) -> bool:
     """mu lies certainly inside (16), mu_min < mu < mu_max (``K``: the checker's constants)."""
     return certainly_lt(K["mu_min"], mu) and certainly_lt(mu, K["mu_max"])
@@ -389,11 +400,7 @@ def check(model, data: dict) -> list[CheckResult]:
                 cyl = v if cyl is None else cyl.min(v)
         if cyl is not None:
             lower = face.lower().min(cyl) if inside else cyl
-            samples = [g.V(*p) for p in cylinder_points(R, xs)]
-            upper = samples[0]
-            for s in samples[1:]:
-                upper = upper.min(s)
-            upper = upper.upper().min(face.upper()) if inside else upper.upper()
+            upper = c_star_upper(g, R, xs, face, inside)
             cstar_lo_ok = "c_star" in q and stored_interval(q["c_star"])[0] <= _lower(lower)
             cstar_hi_ok = "c_star" in q and stored_interval(q["c_star"])[1] >= _upper(upper)
             if cstar_lo_ok and cstar_hi_ok:
