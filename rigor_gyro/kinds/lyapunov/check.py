@@ -44,7 +44,8 @@ from .claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
 from .equilibria import Equilibrium, classify as classify_equilibrium, pi_text
 from .model import (DIRECT_DOMAIN, closed_form_constants, cylinder_lower_bound, cylinder_points, direct_margin,
-                    mean_value_enclosure, psi_min_functions, slice_extent, slice_in_region, sublevel_lower_bound, symmetric_in_x2, vdot_polar)
+                    mean_value_enclosure, psi_min_functions, slice_extent, slice_in_region, sublevel_lower_bound,
+                    symmetric_in_x2, vdot_polar)
 
 __all__ = ["check"]
 

@@ -62,7 +62,8 @@ from .equilibria import equilibria
 from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
 from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, closed_form_constants, cylinder_lower_bound,
-                    cylinder_points, direct_margin, hypot_ball, mean_value_enclosure, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
+                    cylinder_points, direct_margin, hypot_ball, mean_value_enclosure, slice_extent, slice_in_region,
+                    symmetric_in_x2, vdot_polar)
 from .moments import MOMENTS
 from .paper import PAPER_SCHEMA, audit as audit_paper
 

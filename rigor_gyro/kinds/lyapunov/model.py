@@ -52,8 +52,8 @@ from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
            "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound",
-           "CIRCLE_DIRECTIONS", "cylinder_points", "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "symmetric_in_x2", "law_is_odd", "v_polar", "sublevel_lower_bound",
-           "slice_extent", "slice_in_region"]
+           "CIRCLE_DIRECTIONS", "cylinder_points", "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "symmetric_in_x2",
+           "law_is_odd", "v_polar", "sublevel_lower_bound", "slice_extent", "slice_in_region"]
 
 
 class Dual:
