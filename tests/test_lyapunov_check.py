@@ -253,14 +253,14 @@ def test_the_cylinder_samples_lie_on_the_cylinder_and_in_range():
     an angle of 2 pi / 32 and a hair); each sample ball holds a point of x1^2 + x3^2 = R^2, at |x2| = 0,
     x2*/2, x2*: so V's smallest sample bounds V's minimum on the cylinder from above."""
     import math
-    from rigor_gyro.kinds.lyapunov.model import CIRCLE_DIRECTIONS
+    from rigor_gyro.kinds.lyapunov.model import CIRCLE_DIRECTIONS, cylinder_points
     assert len(CIRCLE_DIRECTIONS) == 32 and all(c * c + s * s == 1 for c, s in CIRCLE_DIRECTIONS)
     angles = sorted(math.atan2(s, c) % (2 * math.pi) for c, s in CIRCLE_DIRECTIONS)
     gaps = [b - a for a, b in zip(angles, angles[1:] + [angles[0] + 2 * math.pi])]
     assert max(gaps) < 2 * math.pi / 32 * (1 + 1e-9) and min(gaps) > 0
     with working_precision(128):
         R, xs = _q("0.002"), arb.pi() / 6
-        pts = lc.cylinder_points(R, xs)
+        pts = cylinder_points(R, xs)
         assert len(pts) == 96
         for (x1, x2, x3), (c, s) in zip(pts, CIRCLE_DIRECTIONS * 3):
             assert x1.contains(R * _q(c)) and x3.contains(R * _q(s)) and x1.rad() < R * arb("1e-35")

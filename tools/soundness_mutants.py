@@ -420,7 +420,7 @@ MUTANTS = [
      'proved = vdot_ok and v_ok and ic.get("status") == "proved"',
      'proved = vdot_ok and v_ok or ic.get("status") == "proved"',
      "the invariant estimate confirmed when Vdot <= 0 or V > 0, which it rests on, is not"),
-    ("check_faces_inside_m3_twice", "rigor_gyro/kinds/lyapunov/check.py",
+    ("check_faces_inside_m3_twice", "rigor_gyro/kinds/lyapunov/model.py",
      "    return certainly_lt(m1 ** 2 + m3 ** 2, R ** 2)", "    return certainly_lt(m1 ** 2 + m3 * 2, R ** 2)",
      "the faces' minimiser taken as inside the disc where it is not (m3 < 0): c*'s upper end from the faces' "
      "closed form, which then need not bound V's minimum over the region's face"),

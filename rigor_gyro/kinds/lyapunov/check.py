@@ -43,9 +43,9 @@ from ...core.roots import RootStatus, enclose_f_df, newton_root
 from .claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
 from .equilibria import Equilibrium, classify as classify_equilibrium, pi_text
-from .model import (DIRECT_DOMAIN, closed_form_constants, cylinder_lower_bound, cylinder_points, direct_margin,
-                    mean_value_enclosure, psi_min_functions, slice_extent, slice_in_region, sublevel_lower_bound,
-                    symmetric_in_x2, vdot_polar)
+from .model import (DIRECT_DOMAIN, c_star_upper, closed_form_constants, cylinder_lower_bound, direct_margin,
+                    faces_minimiser_inside, mean_value_enclosure, psi_min_functions, slice_extent, slice_in_region,
+                    sublevel_lower_bound, symmetric_in_x2, vdot_polar)
 
 __all__ = ["check"]
 
@@ -234,25 +234,6 @@ def m_lower_at(g, x2: arb) -> arb:
 def M_lower_at(g, x2: arb) -> arb:
     """A lower bound of M = max over [0, x2*] of q: q's lower end at the point x2 of that range."""
     return g.q(x2).lower()
-
-
-def faces_minimiser_inside(g, xs: arb, R: arb) -> bool:
-    """The point (m1, m3) where V is smallest on the face x2 = x2* lies certainly inside the disc
-    x1^2 + x3^2 < R^2 (then the faces' closed form phi(x2*) is V's minimum over the face piece of the
-    region, and it bounds c* from above as well as below)."""
-    m1, m3 = g.phi_minimiser(xs)
-    return certainly_lt(m1 ** 2 + m3 ** 2, R ** 2)
-
-
-def c_star_upper(g, R: arb, xs: arb, face: arb, inside: bool) -> arb:
-    """An upper bound of c* (an exact point): the smallest upper end of V over the cylinder points (each
-    ball holds V at a point of the cylinder), and with the faces' minimiser inside the disc also the faces'
-    value phi(x2*)'s upper end."""
-    samples = [g.V(*p) for p in cylinder_points(R, xs)]
-    upper = samples[0]
-    for s in samples[1:]:
-        upper = upper.min(s)
-    return upper.upper().min(face.upper()) if inside else upper.upper()
 
 
 def _inside_16(K: dict, mu: arb) -> bool:

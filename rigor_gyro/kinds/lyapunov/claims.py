@@ -61,9 +61,9 @@ from .. import Attempt, Phases
 from .equilibria import equilibria
 from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
-from .model import (DIRECT_DOMAIN, Gimbal, certify_vdot_nonpositive, closed_form_constants, cylinder_lower_bound,
-                    cylinder_points, direct_margin, hypot_ball, mean_value_enclosure, slice_extent, slice_in_region,
-                    symmetric_in_x2, vdot_polar)
+from .model import (DIRECT_DOMAIN, Gimbal, c_star_upper, certify_vdot_nonpositive, closed_form_constants,
+                    cylinder_lower_bound, direct_margin, faces_minimiser_inside, hypot_ball, mean_value_enclosure,
+                    slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
 from .moments import MOMENTS
 from .paper import PAPER_SCHEMA, audit as audit_paper
 
@@ -547,8 +547,7 @@ def _v_positive_claim(ctx: _Ctx) -> Claim:
 def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
     g, xs = ctx.g, ctx.xs
     face = g.phi(xs)
-    m1, m3 = g.phi_minimiser(xs)
-    inside = certainly_lt(m1 ** 2 + m3 ** 2, R ** 2)
+    inside = faces_minimiser_inside(g, xs, R)
     # V(-x) = V(x), so the cylinder over [0, x2*] with every theta covers |x2| <= x2*
     # the tolerance is relative to the minimum being certified (a tiny positive c* must come out positive),
     # with an absolute floor at the precision's resolution of V's scale
@@ -556,17 +555,10 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
                       abs_tol=(abs(face) + R * R) * arb(2) ** (-ctx.prec // 2), max_pieces=ctx.m.max_pieces)
     cyl_lb = (-cyl.ball).lower()
     ctx.witnesses["invariant_estimate"] = {"cylinder": pieces_text(cyl.cover)}
-    # an upper bound of the boundary minimum: V at boundary points
-    samples = [g.V(*p) for p in cylinder_points(R, xs)]      # each ball holds V at a point of the cylinder
-    upper = samples[0]
-    for v in samples[1:]:
-        upper = upper.min(v)
-    if inside:
-        lower = face.lower().min(cyl_lb)
-        upper = upper.upper().min(face.upper())
-    else:   # the face minimum is then on its rim, which belongs to the cylinder
-        lower = cyl_lb
-        upper = upper.upper()
+    # an upper bound of the boundary minimum: V at points of the cylinder (and the faces' value when inside);
+    # with the minimiser outside, the face minimum is on its rim, which belongs to the cylinder
+    upper = c_star_upper(g, R, xs, face, inside)
+    lower = face.lower().min(cyl_lb) if inside else cyl_lb
     if inside and certainly_lt(face.upper(), cyl_lb):
         cstar, where = face, "attained on the faces |x2| = x2* (minimiser inside the disc), closed form"
     else:

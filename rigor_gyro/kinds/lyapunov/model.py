@@ -52,7 +52,7 @@ from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
            "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound",
-           "CIRCLE_DIRECTIONS", "cylinder_points", "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "symmetric_in_x2",
+           "CIRCLE_DIRECTIONS", "cylinder_points", "faces_minimiser_inside", "c_star_upper", "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "symmetric_in_x2",
            "law_is_odd", "v_polar", "sublevel_lower_bound", "slice_extent", "slice_in_region"]
 
 
@@ -629,6 +629,25 @@ def cylinder_points(R: arb, xs: arb) -> list[tuple[arb, arb, arb]]:
     bounds c* (V's minimum over that cylinder piece) from above."""
     return [(R * arb(fmpq(c.numerator, c.denominator)), x2, R * arb(fmpq(s_.numerator, s_.denominator)))
             for x2 in (arb(0), xs / 2, xs) for c, s_ in CIRCLE_DIRECTIONS]
+
+
+def faces_minimiser_inside(g: Gimbal, xs: arb, R: arb) -> bool:
+    """The point (m1, m3) where V is smallest on the face x2 = x2* lies certainly inside the disc
+    x1^2 + x3^2 < R^2 (then the faces' closed form phi(x2*) is V's minimum over the face piece of the
+    region, and it bounds c* from above as well as below)."""
+    m1, m3 = g.phi_minimiser(xs)
+    return certainly_lt(m1 ** 2 + m3 ** 2, R ** 2)
+
+
+def c_star_upper(g: Gimbal, R: arb, xs: arb, face: arb, inside: bool) -> arb:
+    """An upper bound of c* (an exact point): the smallest upper end of V over the cylinder points (each
+    ball holds V at a point of the cylinder), and with the faces' minimiser inside the disc also the faces'
+    value phi(x2*)'s upper end."""
+    samples = [g.V(*p) for p in cylinder_points(R, xs)]
+    upper = samples[0]
+    for s in samples[1:]:
+        upper = upper.min(s)
+    return upper.upper().min(face.upper()) if inside else upper.upper()
 
 
 def cylinder_lower_bound(g: Gimbal, R: arb):
