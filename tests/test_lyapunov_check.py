@@ -293,6 +293,59 @@ def test_c_star_upper_is_the_smallest_upper_end_of_v_on_the_cylinder():
             (g.V(*p).upper() for p in cylinder_points(_q("0.002"), xs)), key=lambda x: exact_endpoints(x)[0])
 
 
+def test_the_cylinder_margin_bound_is_the_lower_end_of_cyl_over_c_star_minus_1():
+    """cylinder_margin_lower(cyl, c*) is an exact point at or below the smallest cyl / c* - 1 over both balls
+    (cyl's lower end over c*'s upper end, computed exactly) and close to it (1e-15 relative for exact
+    inputs; for wide balls arb's quotient is a midpoint-radius hull, a few times their width): rounded down,
+    not up."""
+    from rigor_gyro.core.balls import exact_endpoints, exact_fraction
+    cases = [(_q("4/3"), _q("1/3"), 15), (arb(2, 0.01), arb(1, 0.01), 1), (_q("23/7"), arb(3, 1e-9), 7)]
+    with working_precision(64):
+        for cyl, cs, digits in cases:
+            low = lc.cylinder_margin_lower(cyl, cs)
+            assert low.is_finite() and low.rad().is_zero(), (cyl, cs)
+            inf = exact_endpoints(cyl)[0] / exact_endpoints(cs)[1] - 1
+            v = exact_fraction(low.mid())
+            assert v <= inf and inf - v <= abs(inf) * Fraction(1, 10 ** digits), (cyl, cs, v, inf)
+
+
+def test_a_slice_point_bounds_an_extent_below_only_inside_the_range_with_its_slice_in_the_disc(
+        agafonov, monkeypatch):
+    """slice_point_lower: at a stored point x2 of [-x2*, x2*] whose slice lies in the disc, the lower end of
+    the value there (rounded down: a ball value gives its lower end; x2 = 1/3, inexact, gives a point below
+    1/3). Elsewhere the fallback: a point beyond x2*, even one whose slice were in the disc (the region ends
+    at x2*: 754 took a lower end from such a point), and a point whose slice is empty (c below phi) or off
+    the disc (R tiny)."""
+    from rigor_gyro.core.balls import exact_fraction
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    fb = arb(-7)
+    with working_precision(64):
+        g = validate(load_scene("agafonov2013")).gimbal
+        xs = g.c.x2_star
+        cl = _q(_claim(agafonov, "invariant_estimate")["details"]["c_set"])
+        R = _q(agafonov["quantities"]["R"]["lo"])
+        third = _q("1/3")
+        assert third.rad() > 0
+        for x in ("1/3", "-1/3", "1/100"):
+            assert lc.slice_in_region(g, cl, R, _q(x)), x
+        low = lc.slice_point_lower(g, cl, R, xs, third, lambda y: y, fb)
+        assert low.rad().is_zero() and exact_fraction(low.mid()) < Fraction(1, 3) < exact_fraction(low.mid()) + \
+            Fraction(1, 10 ** 18)
+        ball = arb(5, 1)                         # [4, 6], its radius rounded up a hair
+        for x in ("1/100", "-1/3"):
+            low = lc.slice_point_lower(g, cl, R, xs, _q(x), lambda y: ball, fb)
+            assert low.rad().is_zero() and arb("3.99999") < low <= 4 and low == ball.lower(), x
+        # in range, but the slice is empty (c_set far below phi there) or its centre off a tiny disc
+        assert lc.slice_point_lower(g, _q("1/1000000000"), R, xs, third, lambda y: y, fb) == fb
+        assert lc.slice_point_lower(g, cl, _q("1/1000000000000"), xs, third, lambda y: y, fb) == fb
+        # beyond x2*: never, whatever its slice
+        monkeypatch.setattr(lc, "slice_in_region", lambda *a: True)
+        for x in ("3/2", "-3/2", "7/10"):
+            assert not lc._within(abs(_q(x)), arb(0), xs)
+            assert lc.slice_point_lower(g, cl, R, xs, _q(x), lambda y: ball, fb) == fb, x
+        assert lc.slice_point_lower(g, cl, R, xs, third, lambda y: ball, fb) == ball.lower()
+
+
 def test_inside_16_needs_mu_certainly_between_both_ends():
     K = {"mu_min": arb(1) + arb(0, 1e-3), "mu_max": arb(2) + arb(0, 1e-3)}
     for mu, inside in (("3/2", True), ("1/2", False), ("5/2", False), ("1", False), ("2", False),

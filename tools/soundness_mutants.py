@@ -343,8 +343,8 @@ MUTANTS = [
      "psi's mu^2 term written 2 mu: v_positive decided on a function without the sign of V's minimum "
      "(the checker shares psi)"),
     ("check_x2_extent_floor_raised", "rigor_gyro/kinds/lyapunov/check.py",
-     "                           else arb(0))",
-     "                           else arb(1))",
+     "                                if \"extent_x2_axis\" in verified else arb(0))",
+     "                                if \"extent_x2_axis\" in verified else arb(1))",
      "with no verified slice point the checker's x2 extent is the hull of 1 and x2* instead of [0, x2*]: a "
      "stored extent of the invariant set starting above 0, which nothing certifies, is confirmed"),
     ("check_x2_axis_root_unbracketed", "rigor_gyro/kinds/lyapunov/check.py",
@@ -409,7 +409,7 @@ MUTANTS = [
      "the x2 axis segment taken as capped at x2* on a wrong test: a segment around x2*, above the root of "
      "mu F = c_set, is confirmed"),
     ("check_cylinder_margin_on_a_product", "rigor_gyro/kinds/lyapunov/check.py",
-     "own = (cyl / cs_up - 1).lower()", "own = (cyl * cs_up - 1).lower()",
+     "    return (cyl / c_star_up - 1).lower()", "    return (cyl * c_star_up - 1).lower()",
      "the checker's bound of the cylinder margin min V / c* - 1 computed as cyl c* - 1: a margin far above the "
      "true one is confirmed"),
     ("check_x2_extent_beyond_on_either", "rigor_gyro/kinds/lyapunov/check.py",
@@ -441,6 +441,18 @@ MUTANTS = [
      "    return rho(x2).lower() if _within(abs(x2), arb(0), xs) else arb(0)",
      "    return rho(x2).upper() if _within(abs(x2), arb(0), xs) else arb(0)",
      "rho at R_sup(mu_best)'s point rounded up: the enclosure of R_sup(mu_best) may end below it"),
+    ("check_slice_point_beyond_range", "rigor_gyro/kinds/lyapunov/check.py",
+     "    if _within(abs(pt), arb(0), xs) and slice_in_region(g, cl, R, pt):",
+     "    if _within(abs(pt), arb(0), xs) or slice_in_region(g, cl, R, pt):",
+     "an extent's lower end taken from a stored slice point beyond x2* (outside the region) whose slice lies in "
+     "the disc: a lower end from outside the set"),
+    ("check_slice_point_rounded_up", "rigor_gyro/kinds/lyapunov/check.py",
+     "        return value(pt).lower()\n    return fallback", "        return value(pt).upper()\n    return fallback",
+     "an extent's lower end from a slice point rounded up: it may lie beyond the set's extent"),
+    ("check_cylinder_margin_rounded_up", "rigor_gyro/kinds/lyapunov/check.py",
+     "    return (cyl / c_star_up - 1).lower()", "    return (cyl / c_star_up - 1).upper()",
+     "the checker's bound of the cylinder margin min V / c* - 1 rounded up: a stored margin above the true one "
+     "by up to the ball's width is confirmed"),
 ]
 
 

@@ -271,6 +271,24 @@ def r_sup_piece_upper(g, xs: arb, points: list[arb], Mu: arb) -> arb:
     return (1 / L).upper() if certainly_positive(L) else arb("inf")
 
 
+def cylinder_margin_lower(cyl: arb, c_star_up: arb) -> arb:
+    """A lower bound (an exact point, rounded down) of min over the cylinder of V / c* - 1, from ``cyl`` (a
+    lower bound of V's minimum there) and ``c_star_up`` (an upper bound of c*, positive): the lower end of
+    cyl / c_star_up - 1. Precision: the current one. NaN when c_star_up's ball contains 0 (never a bound)."""
+    return (cyl / c_star_up - 1).lower()
+
+
+def slice_point_lower(g, cl: arb, R: arb, xs: arb, pt: arb, value, fallback: arb) -> arb:
+    """A lower bound of an extent of the set {V < c_set} (``cl``) in the region from a stored slice point
+    x2 = ``pt``: the lower end of ``value(pt)`` (the slice's half-width in x1 or x3, or pt itself for x2)
+    when pt is certainly in [-x2*, x2*] and its slice certainly lies in the disc of radius R (then the set
+    reaches that far); else ``fallback``. A point beyond x2* never counts: the region ends there, so its
+    slice, however large, is not a slice of the set. Precision: the current one."""
+    if _within(abs(pt), arb(0), xs) and slice_in_region(g, cl, R, pt):
+        return value(pt).lower()
+    return fallback
+
+
 def _all_positive(f, pieces) -> bool:
     return all(certainly_positive(f(_b(p))) for p in pieces)
 
@@ -392,7 +410,7 @@ def check(model, data: dict) -> list[CheckResult]:
                 # (its cylinder bound over its c*'s upper end: the prover's c* is the faces' closed form
                 # when they bind, else the hull of the lower and upper bounds)
                 cs_up = face.upper() if inside and certainly_lt(face.upper(), cyl) else upper
-                own = (cyl / cs_up - 1).lower()
+                own = cylinder_margin_lower(cyl, cs_up)
                 if certainly_positive(lower) and stored_interval(q["cylinder_margin_lower"])[1] <= _lower(own):
                     verified.add("cylinder_margin_lower")
             contains("c_star_face", face)
@@ -428,16 +446,16 @@ def check(model, data: dict) -> list[CheckResult]:
                         up = _max_upper(lambda X: _tighter(fn, X, cert_prec), we_["cover"])
                         up = up if certainly_le(up, R.upper()) else R.upper()
                         pt = _b(we_["point"])
-                        low = (_tighter(fn, pt, cert_prec).lower()
-                               if _within(abs(pt), arb(0), xs) and slice_in_region(g, cl, R, pt)
-                               else axes[axis].lower())     # the axis segment lies in the set
+                        # else the axis segment, which lies in the set
+                        low = slice_point_lower(g, cl, R, xs, pt, lambda y: _tighter(fn, y, cert_prec),
+                                                axes[axis].lower())
                         contains(f"extent_{axis}", low.union(up))
                 w2 = wi.get("extent_x2") or {}
                 if w2:
                     pt = _b(w2["point"])
-                    low = (pt.lower() if _within(abs(pt), arb(0), xs) and slice_in_region(g, cl, R, pt) else
-                           arb(fmpq_of(stored_interval(q["extent_x2_axis"])[0])) if "extent_x2_axis" in verified
-                           else arb(0))
+                    axis_low = (arb(fmpq_of(stored_interval(q["extent_x2_axis"])[0]))
+                                if "extent_x2_axis" in verified else arb(0))
+                    low = slice_point_lower(g, cl, R, xs, pt, lambda y: y, axis_low)
                     beyond = w2.get("beyond") or []
                     up = xs.upper()
                     if beyond:
