@@ -135,13 +135,38 @@ def test_proving_a_scene_imports_only_its_own_kind(scene):
     assert float_side == "[]"
 
 
-def _named_mutants():
+def _tool(name: str):
     import importlib.util
-    path = PKG.parent / "tools" / "soundness_mutants.py"
-    spec = importlib.util.spec_from_file_location("soundness_mutants", path)
+    spec = importlib.util.spec_from_file_location(name, PKG.parent / "tools" / f"{name}.py")
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
-    return mod.MUTANTS
+    return mod
+
+
+def _named_mutants():
+    return _tool("soundness_mutants").MUTANTS
+
+
+def test_the_named_mutant_runs_put_last_times_killer_first_and_keep_every_test(tmp_path, monkeypatch):
+    """tools/pytest_first.py only reorders (the same tests run); soundness_mutants reads each mutant's latest
+    'killed by' node id from the tables (an order hint: a stale one moves nothing)."""
+    plugin = _tool("pytest_first")
+
+    class Item:
+        def __init__(self, nodeid):
+            self.nodeid = nodeid
+    items = [Item(f"tests/t.py::t{i}") for i in range(6)]
+    monkeypatch.setenv("PYTEST_FIRST", "tests/t.py::t4\ntests/gone.py::x\ntests/t.py::t2\n")
+    plugin.pytest_collection_modifyitems(None, None, items)
+    assert [it.nodeid[-1] for it in items] == ["4", "2", "0", "1", "3", "5"]
+    monkeypatch.setenv("PYTEST_FIRST", "")
+    plugin.pytest_collection_modifyitems(None, None, items)
+    assert [it.nodeid[-1] for it in items] == ["4", "2", "0", "1", "3", "5"]
+    md = tmp_path / "m.md"
+    md.write_text("| mutant | what | outcome | s |\n|---|---|---|---|\n"
+                  "| `a` | x | killed by tests/t.py::t1[p q] (error) | 3 |\n| `b` | y | SURVIVED | 1 |\n"
+                  "| `a` | x | killed by tests/u.py::t2 | 3 |\nprose `c` | killed by tests/v.py::t |\n")
+    assert _tool("soundness_mutants").killer_hints(md) == {"a": "tests/u.py::t2"}
 
 
 @pytest.mark.parametrize("mutant", _named_mutants(), ids=lambda m: m[0])

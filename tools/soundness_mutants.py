@@ -1,11 +1,13 @@
 """Named soundness mutants: each weakens one step a proof rests on; the default tests must kill all.
 
-    python tools/soundness_mutants.py [--only NAME ...] [--tests FILE ...] [--list] [--out proofs/mutation.md]
+    python tools/soundness_mutants.py [--only NAME ...] [--tests FILE ...] [--in-order] [--list] [--out FILE]
 
 Each mutant is one textual substitution in one file. It is applied to a fresh copy of the files git
 tracks, as they are in the working tree (in a temporary folder), and the README's test command runs
 there (``python -m pytest -x``, the ``ci`` hypothesis profile, with the copy first on ``sys.path``). A
-mutant is *killed* when the tests fail. The unmutated copy must pass the same tests first (otherwise the
+mutant is *killed* when the tests fail. The tests that killed it last time (the latest "killed by" of
+its row in proofs/mutation.md) run first (tools/pytest_first.py: the same tests, only in another order),
+so that ``-x`` stops within seconds when they kill it again; ``--in-order`` keeps pytest's order. The unmutated copy must pass the same tests first (otherwise the
 run stops, exit 4: a test failing there would "kill" every mutant). ``test_rules``' check of this list's
 texts is left out of both runs (see ``RULE``). Prints a table (and writes it with
 ``--out``); exits 1 if any mutant survives.
@@ -456,7 +458,22 @@ MUTANTS = [
 ]
 
 
-def run(names: list[str] | None, out: str | None, tests: list[str] | None = None) -> int:
+def killer_hints(path: Path = ROOT / "proofs" / "mutation.md") -> dict[str, str]:
+    """name -> the node id of the test that killed the mutant in its latest row of ``path``'s tables
+    (``| `name` | ... | killed by NODEID | ... |``); only an order hint, never an outcome."""
+    hints: dict[str, str] = {}
+    if not path.is_file():
+        return hints
+    for line in path.read_text().splitlines():
+        cells = [c.strip() for c in line.split("|")]
+        if len(cells) >= 5 and cells[1].startswith("`") and cells[1].endswith("`"):
+            for cell in cells[3:]:
+                if cell.startswith("killed by tests/"):
+                    hints[cells[1].strip("`")] = cell.removeprefix("killed by ").split(" ")[0]
+    return hints
+
+
+def run(names: list[str] | None, out: str | None, tests: list[str] | None = None, in_order: bool = False) -> int:
     rows, survivors = [], []
     # one snapshot of the tree, taken now: edits made while the mutants run do not leak into them
     snapshot = Path(tempfile.mkdtemp(prefix="mutants-snapshot-"))
@@ -470,14 +487,15 @@ def run(names: list[str] | None, out: str | None, tests: list[str] | None = None
             shutil.copy2(src, snapshot / rel)
     # the unmutated snapshot must pass the same tests: a test that fails there (one that reads a file
     # the snapshot does not hold, say) would "kill" every mutant and the run would measure nothing
-    env = dict(os.environ, PYTHONPATH=str(snapshot), HYPOTHESIS_PROFILE="ci")
-    base = subprocess.run([*PYTEST, *(tests or [])],
+    env = dict(os.environ, PYTHONPATH=str(snapshot) + os.pathsep + str(snapshot / "tools"), HYPOTHESIS_PROFILE="ci")
+    base = subprocess.run([*PYTEST, "-p", "pytest_first", *(tests or [])],
                           cwd=snapshot, env=env, capture_output=True, text=True)
     if base.returncode != 0:
         print("the unmutated snapshot fails its tests, so every kill would be void:\n" + base.stdout[-2000:])
         shutil.rmtree(snapshot, ignore_errors=True)
         return 4
     print("the unmutated snapshot passes its tests", flush=True)
+    hints = {} if in_order else killer_hints()
     for name, path, old, new, what in MUTANTS:
         if names and name not in names:
             continue
@@ -489,12 +507,18 @@ def run(names: list[str] | None, out: str | None, tests: list[str] | None = None
         with tempfile.TemporaryDirectory() as tmp:
             shutil.copytree(snapshot, tmp, dirs_exist_ok=True)
             (Path(tmp) / path).write_text(text.replace(old, new))
-            env = dict(os.environ, PYTHONPATH=tmp, HYPOTHESIS_PROFILE="ci")
+            env = dict(os.environ, PYTHONPATH=tmp + os.pathsep + str(Path(tmp) / "tools"), HYPOTHESIS_PROFILE="ci",
+                       PYTEST_FIRST=hints.get(name, ""))
             t0 = time.time()
-            r = subprocess.run([*PYTEST, *(tests or [])], cwd=tmp,
+            r = subprocess.run([*PYTEST, "-p", "pytest_first", *(tests or [])], cwd=tmp,
                                env=env, capture_output=True, text=True)
             secs = time.time() - t0
-        killed = r.returncode != 0
+        if r.returncode in (4, 5):      # pytest's usage error / no tests: the run is broken, nothing was tested
+            rows.append((name, what, f"NOT RUN (pytest exit {r.returncode}: {r.stdout[-200:]!r})", secs))
+            survivors.append(name)
+            print(f"{name}: NOT RUN (pytest exit {r.returncode})", flush=True)
+            continue
+        killed = r.returncode != 0     # 1 a test failed, 2 a collection error, 3 an internal error
         # the first failing test, or the first erroring one (a fixture that raised: an internal check fired)
         failed = next((ln.split(" ")[1] + (" (error)" if ln.startswith("ERROR ") else "")
                        for ln in r.stdout.splitlines() if ln.startswith(("FAILED ", "ERROR "))), "")
@@ -522,12 +546,13 @@ def main() -> int:
     ap.add_argument("--out")
     ap.add_argument("--tests", nargs="*", help="run only these test files (a quick targeted run; the default "
                                                 "is the README's whole test command)")
+    ap.add_argument("--in-order", action="store_true", help="pytest's own order (not last time's killers first)")
     args = ap.parse_args()
     if args.list:
         for name, path, *_rest, what in MUTANTS:
             print(f"{name:36s} {path}: {what}")
         return 0
-    return run(args.only, args.out, args.tests)
+    return run(args.only, args.out, args.tests, args.in_order)
 
 
 if __name__ == "__main__":
