@@ -293,6 +293,17 @@ def test_c_star_upper_is_the_smallest_upper_end_of_v_on_the_cylinder():
             (g.V(*p).upper() for p in cylinder_points(_q("0.002"), xs)), key=lambda x: exact_endpoints(x)[0])
 
 
+def test_c_star_lower_is_the_faces_lower_end_or_the_cylinders_bound_whichever_is_smaller():
+    """c_star_lower(face, cyl, inside): with the faces' minimiser inside, the smaller of phi(x2*)'s lower end
+    (not its upper end: a c_set between the two would pass) and cyl; else cyl alone."""
+    from rigor_gyro.kinds.lyapunov.model import c_star_lower
+    face, cyl = arb(23, 1e-3), _q("40")
+    assert c_star_lower(face, cyl, True) == face.lower() and face.lower() < 23 - arb("0.00099")
+    assert c_star_lower(face, cyl, False) == cyl
+    assert c_star_lower(face, _q("22"), True) == 22 and c_star_lower(face, _q("22"), False) == 22
+    assert c_star_lower(face, _q("23"), True) == face.lower()      # cyl inside face's ball: the lower end
+
+
 def test_the_cylinder_margin_bound_is_the_lower_end_of_cyl_over_c_star_minus_1():
     """cylinder_margin_lower(cyl, c*) is an exact point at or below the smallest cyl / c* - 1 over both balls
     (cyl's lower end over c*'s upper end, computed exactly) and close to it (1e-15 relative for exact

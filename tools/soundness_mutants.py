@@ -454,10 +454,13 @@ MUTANTS = [
     ("check_cylinder_margin_rounded_up", "rigor_gyro/kinds/lyapunov/check.py",
      "    return (cyl / c_star_up - 1).lower()", "    return (cyl / c_star_up - 1).upper()",
      "the checker's bound of the cylinder margin min V / c* - 1 rounded up: a stored margin above the true one "
-     "by up to the ball's width is confirmed"),    ("check_c_star_lower_from_cylinder_alone", "rigor_gyro/kinds/lyapunov/check.py",
-     "lower = face.lower().min(cyl) if inside else cyl", "lower = cyl",
+     "by up to the ball's width is confirmed"),    ("c_star_lower_from_cylinder_alone", "rigor_gyro/kinds/lyapunov/model.py",
+     "    return face.lower().min(cyl) if inside else cyl", "    return cyl",
      "c*'s lower bound from the cylinder alone where the faces' minimiser is inside the disc: a c_set above the "
-     "faces' level (below the cylinder's) is confirmed, and the sublevel set may cross the faces"),
+     "faces' level (below the cylinder's) is confirmed, and the sublevel set may cross the faces"),    ("c_star_lower_from_face_upper", "rigor_gyro/kinds/lyapunov/model.py",
+     "    return face.lower().min(cyl) if inside else cyl", "    return face.upper().min(cyl) if inside else cyl",
+     "c*'s lower bound from the faces' value's upper end: a c_set within that ball's width above c* is certified "
+     "(prover) and confirmed (checker)"),
 ]
 
 

@@ -43,9 +43,9 @@ from ...core.roots import RootStatus, enclose_f_df, newton_root
 from .claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
 from .equilibria import Equilibrium, classify as classify_equilibrium, pi_text
-from .model import (DIRECT_DOMAIN, c_star_upper, closed_form_constants, cylinder_lower_bound, direct_margin,
-                    faces_minimiser_inside, mean_value_enclosure, psi_min_functions, slice_extent, slice_in_region,
-                    sublevel_lower_bound, symmetric_in_x2, vdot_polar)
+from .model import (DIRECT_DOMAIN, c_star_lower, c_star_upper, closed_form_constants, cylinder_lower_bound,
+                    direct_margin, faces_minimiser_inside, mean_value_enclosure, psi_min_functions, slice_extent,
+                    slice_in_region, sublevel_lower_bound, symmetric_in_x2, vdot_polar)
 
 __all__ = ["check"]
 
@@ -399,7 +399,7 @@ def check(model, data: dict) -> list[CheckResult]:
                 v = lb(_b(p)).lower()
                 cyl = v if cyl is None else cyl.min(v)
         if cyl is not None:
-            lower = face.lower().min(cyl) if inside else cyl
+            lower = c_star_lower(face, cyl, inside)
             upper = c_star_upper(g, R, xs, face, inside)
             cstar_lo_ok = "c_star" in q and stored_interval(q["c_star"])[0] <= _lower(lower)
             cstar_hi_ok = "c_star" in q and stored_interval(q["c_star"])[1] >= _upper(upper)

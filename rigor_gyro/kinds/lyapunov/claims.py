@@ -61,7 +61,7 @@ from .. import Attempt, Phases
 from .equilibria import equilibria
 from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
-from .model import (DIRECT_DOMAIN, Gimbal, c_star_upper, certify_vdot_nonpositive, closed_form_constants,
+from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_vdot_nonpositive, closed_form_constants,
                     cylinder_lower_bound, direct_margin, faces_minimiser_inside, hypot_ball, mean_value_enclosure,
                     slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
 from .moments import MOMENTS
@@ -558,7 +558,7 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
     # an upper bound of the boundary minimum: V at points of the cylinder (and the faces' value when inside);
     # with the minimiser outside, the face minimum is on its rim, which belongs to the cylinder
     upper = c_star_upper(g, R, xs, face, inside)
-    lower = face.lower().min(cyl_lb) if inside else cyl_lb
+    lower = c_star_lower(face, cyl_lb, inside)
     if inside and certainly_lt(face.upper(), cyl_lb):
         cstar, where = face, "attained on the faces |x2| = x2* (minimiser inside the disc), closed form"
     else:

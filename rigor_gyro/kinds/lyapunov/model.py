@@ -52,7 +52,8 @@ from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
            "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound",
-           "CIRCLE_DIRECTIONS", "cylinder_points", "faces_minimiser_inside", "c_star_upper", "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "symmetric_in_x2",
+           "CIRCLE_DIRECTIONS", "cylinder_points", "faces_minimiser_inside", "c_star_lower", "c_star_upper",
+           "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "symmetric_in_x2",
            "law_is_odd", "v_polar", "sublevel_lower_bound", "slice_extent", "slice_in_region"]
 
 
@@ -637,6 +638,14 @@ def faces_minimiser_inside(g: Gimbal, xs: arb, R: arb) -> bool:
     region, and it bounds c* from above as well as below)."""
     m1, m3 = g.phi_minimiser(xs)
     return certainly_lt(m1 ** 2 + m3 ** 2, R ** 2)
+
+
+def c_star_lower(face: arb, cyl: arb, inside: bool) -> arb:
+    """A lower bound of c* = min(V on the faces |x2| = x2* inside the disc, V on the cylinder): ``cyl`` (a
+    lower bound of V's minimum on the cylinder), and with the faces' minimiser inside the disc also the
+    faces' value phi(x2*)'s lower end (``face`` encloses it). Without the minimiser inside, the faces' minimum
+    over the disc lies on its rim, on the cylinder: cyl bounds it."""
+    return face.lower().min(cyl) if inside else cyl
 
 
 def c_star_upper(g: Gimbal, R: arb, xs: arb, face: arb, inside: bool) -> arb:
