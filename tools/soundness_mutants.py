@@ -460,7 +460,11 @@ MUTANTS = [
      "faces' level (below the cylinder's) is confirmed, and the sublevel set may cross the faces"),    ("c_star_lower_from_face_upper", "rigor_gyro/kinds/lyapunov/model.py",
      "    return face.lower().min(cyl) if inside else cyl", "    return face.upper().min(cyl) if inside else cyl",
      "c*'s lower bound from the faces' value's upper end: a c_set within that ball's width above c* is certified "
-     "(prover) and confirmed (checker)"),
+     "(prover) and confirmed (checker)"),    ("c_star_upper_from_an_outside_minimiser", "rigor_gyro/kinds/lyapunov/model.py",
+     "    return upper.upper().min(face.upper()) if inside else upper.upper()",
+     "    return upper.upper().min(face.upper())",
+     "c*'s upper bound lowered to phi(x2*) when the faces' minimiser lies outside the disc, where phi(x2*) bounds "
+     "nothing of c*: a stored c* enclosure below the true c* is confirmed"),
 ]
 
 
