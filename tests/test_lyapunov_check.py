@@ -292,6 +292,8 @@ def test_c_star_upper_is_the_smallest_upper_end_of_v_on_the_cylinder():
             # the minimiser outside the disc: the faces' value is no bound of V over the faces in the disc, so
             # it must not lower the bound, however small
             assert lc.c_star_upper(g, R, xs, arb(-5), False) >= low_up
+            # the minimiser inside and the faces far above: the cylinder points' upper ends, not lower ends
+            assert lc.c_star_upper(g, R, xs, arb(1000), True) >= low_up
         assert lc.c_star_upper(g, _q("0.002"), xs, face, False) >= min(
             (g.V(*p).upper() for p in cylinder_points(_q("0.002"), xs)), key=lambda x: exact_endpoints(x)[0])
 

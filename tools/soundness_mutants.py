@@ -464,7 +464,11 @@ MUTANTS = [
      "    return upper.upper().min(face.upper()) if inside else upper.upper()",
      "    return upper.upper().min(face.upper())",
      "c*'s upper bound lowered to phi(x2*) when the faces' minimiser lies outside the disc, where phi(x2*) bounds "
-     "nothing of c*: a stored c* enclosure below the true c* is confirmed"),
+     "nothing of c*: a stored c* enclosure below the true c* is confirmed"),    ("c_star_upper_from_lower_ends", "rigor_gyro/kinds/lyapunov/model.py",
+     "    return upper.upper().min(face.upper()) if inside else upper.upper()",
+     "    return upper.lower().min(face.upper()) if inside else upper.upper()",
+     "c*'s upper bound from the cylinder samples' lower ends (the faces' minimiser inside, the cylinder binding): "
+     "a bound up to a ball's width below c*"),
 ]
 
 
