@@ -155,18 +155,20 @@ def test_the_named_mutant_runs_put_last_times_killer_first_and_keep_every_test(t
     class Item:
         def __init__(self, nodeid):
             self.nodeid = nodeid
-    items = [Item(f"tests/t.py::t{i}") for i in range(6)]
-    monkeypatch.setenv("PYTEST_FIRST", "tests/t.py::t4\ntests/gone.py::x\ntests/t.py::t2\n")
+    items = [Item(f"tests/t.py::t{i}") for i in range(6)] + [Item("tests/t.py::p[a b]")]
+    monkeypatch.setenv("PYTEST_FIRST", "tests/t.py::t4\ntests/gone.py::x\ntests/t.py::p[a\ntests/t.py::t2\n")
     plugin.pytest_collection_modifyitems(None, None, items)
-    assert [it.nodeid[-1] for it in items] == ["4", "2", "0", "1", "3", "5"]
+    assert [it.nodeid[-1] for it in items] == ["4", "]", "2", "0", "1", "3", "5"]
     monkeypatch.setenv("PYTEST_FIRST", "")
     plugin.pytest_collection_modifyitems(None, None, items)
-    assert [it.nodeid[-1] for it in items] == ["4", "2", "0", "1", "3", "5"]
+    assert [it.nodeid[-1] for it in items] == ["4", "]", "2", "0", "1", "3", "5"]
     md = tmp_path / "m.md"
     md.write_text("| mutant | what | outcome | s |\n|---|---|---|---|\n"
                   "| `a` | x | killed by tests/t.py::t1[p q] (error) | 3 |\n| `b` | y | SURVIVED | 1 |\n"
                   "| `a` | x | killed by tests/u.py::t2 | 3 |\nprose `c` | killed by tests/v.py::t |\n")
     assert _tool("soundness_mutants").killer_hints(md) == {"a": "tests/u.py::t2"}
+    md.write_text("| `a` | x | killed by tests/t.py::t1[p q] (error) | 3 |\n")
+    assert _tool("soundness_mutants").killer_hints(md) == {"a": "tests/t.py::t1[p q]"}
 
 
 @pytest.mark.parametrize("mutant", _named_mutants(), ids=lambda m: m[0])

@@ -1,5 +1,5 @@
 """A pytest plugin (``-p pytest_first``, with this folder on ``sys.path``): the tests whose node ids are the
-lines of the environment variable ``PYTEST_FIRST`` run first, in that order; every other test keeps its
+lines of the environment variable ``PYTEST_FIRST`` start with run first, in that order; every other test keeps its
 place after them. The set of tests is unchanged: only their order.
 
 tools/soundness_mutants.py uses it to run the test that killed a mutant last time before the rest, so that
@@ -14,5 +14,7 @@ def pytest_collection_modifyitems(session, config, items) -> None:
     first = [line for line in os.environ.get("PYTEST_FIRST", "").splitlines() if line.strip()]
     if not first:
         return
-    rank = {nodeid: i for i, nodeid in enumerate(first)}
-    items.sort(key=lambda item: rank.get(item.nodeid, len(rank)))      # stable: the rest keep their order
+
+    def rank(item) -> int:     # a line may be a node id's start (a parametrisation cut at a space)
+        return next((i for i, start in enumerate(first) if item.nodeid.startswith(start)), len(first))
+    items.sort(key=rank)       # stable: the rest keep their order

@@ -483,7 +483,7 @@ def killer_hints(path: Path = ROOT / "proofs" / "mutation.md") -> dict[str, str]
         if len(cells) >= 5 and cells[1].startswith("`") and cells[1].endswith("`"):
             for cell in cells[3:]:
                 if cell.startswith("killed by tests/"):
-                    hints[cells[1].strip("`")] = cell.removeprefix("killed by ").split(" ")[0]
+                    hints[cells[1].strip("`")] = cell.removeprefix("killed by ").removesuffix(" (error)")
     return hints
 
 
@@ -534,7 +534,7 @@ def run(names: list[str] | None, out: str | None, tests: list[str] | None = None
             continue
         killed = r.returncode != 0     # 1 a test failed, 2 a collection error, 3 an internal error
         # the first failing test, or the first erroring one (a fixture that raised: an internal check fired)
-        failed = next((ln.split(" ")[1] + (" (error)" if ln.startswith("ERROR ") else "")
+        failed = next((ln.split(" ", 1)[1].split(" - ")[0] + (" (error)" if ln.startswith("ERROR ") else "")
                        for ln in r.stdout.splitlines() if ln.startswith(("FAILED ", "ERROR "))), "")
         rows.append((name, what, f"killed by {failed}" if killed else "SURVIVED", secs))
         if not killed:
