@@ -932,7 +932,8 @@ def test_psi_at_a_point_is_each_psi_of_the_vdot_form():
 
 def test_a_psi_counterexample_is_decided_on_the_psi_it_names(refuted):
     """At x2 = 0.3, x1 = x3 = 0 (in the region): Psi1 = 50.3 > 0, Psi2 = -1596 < 0, Vdot = 0. Labelled
-    Psi2 the point refutes the Psi test; labelled Psi1, or unlabelled (Vdot > 0 needed), it does not."""
+    Psi2 the point refutes the Psi test; labelled Psi1, or unlabelled (Vdot > 0 needed), it does not; nor
+    does a point outside the disc."""
     for label, ok in (("Psi2", True), ("Psi1", False), (None, False)):
         bad = copy.deepcopy(refuted)
         ce = _claim(bad, "vdot_nonpositive")["counterexample"]
@@ -941,11 +942,14 @@ def test_a_psi_counterexample_is_decided_on_the_psi_it_names(refuted):
         if label:
             ce["psi"] = label
         assert _items(bad)["vdot_nonpositive"] is ok, label
-    bad = copy.deepcopy(refuted)                  # the same point beyond the region's radius: rejected
-    ce = _claim(bad, "vdot_nonpositive")["counterexample"]
-    ce["point"] = {"x1": ["1", "1"], "x2": ["3/10", "3/10"], "x3": ["0", "0"]}
-    ce["psi"] = "Psi2"
-    assert _items(bad)["vdot_nonpositive"] is False
+    # points beyond the region's radius R = 0.00338 (Psi2 = -1596 there too): rejected, also inside the unit
+    # disc (1663 compared x1^2 + x3^2 with R / R)
+    for x1, x3 in (("1", "0"), ("1/2", "0"), ("0", "1/2"), ("3/1000", "3/1000")):
+        bad = copy.deepcopy(refuted)
+        ce = _claim(bad, "vdot_nonpositive")["counterexample"]
+        ce["point"] = {"x1": [x1, x1], "x2": ["3/10", "3/10"], "x3": [x3, x3]}
+        ce["psi"] = "Psi2"
+        assert _items(bad)["vdot_nonpositive"] is False, (x1, x3)
 
 
 @pytest.mark.parametrize("edit", ["origin", "beyond_x2_star", "v_positive_there"])

@@ -468,7 +468,10 @@ MUTANTS = [
      "    return upper.upper().min(face.upper()) if inside else upper.upper()",
      "    return upper.lower().min(face.upper()) if inside else upper.upper()",
      "c*'s upper bound from the cylinder samples' lower ends (the faces' minimiser inside, the cylinder binding): "
-     "a bound up to a ball's width below c*"),
+     "a bound up to a ball's width below c*"),    ("check_counterexample_region_unit_disc", "rigor_gyro/kinds/lyapunov/check.py",
+     "certainly_lt(x1 * x1 + x3 * x3, R * R))", "certainly_lt(x1 * x1 + x3 * x3, R / R))",
+     "a Vdot or Psi counterexample accepted anywhere in the unit disc, not the region's disc of radius R: a "
+     "refutation of a true Vdot <= 0 over the region is confirmed"),
 ]
 
 

@@ -407,10 +407,9 @@ def check(model, data: dict) -> list[CheckResult]:
                 verified.add("c_star")
             if "cylinder_margin_lower" in q:
                 # a lower bound of min_cylinder V / c* - 1: valid when at most this checker's own bound
-                # (its cylinder bound over its c*'s upper end: the prover's c* is the faces' closed form
-                # when they bind, else the hull of the lower and upper bounds)
-                cs_up = face.upper() if inside and certainly_lt(face.upper(), cyl) else upper
-                own = cylinder_margin_lower(cyl, cs_up)
+                # (its cylinder bound over its c*'s upper end; where the faces bind certainly, face.upper() <
+                # cyl <= every cylinder sample, that upper end is the faces' phi(x2*).upper())
+                own = cylinder_margin_lower(cyl, upper)
                 if certainly_positive(lower) and stored_interval(q["cylinder_margin_lower"])[1] <= _lower(own):
                     verified.add("cylinder_margin_lower")
             contains("c_star_face", face)
