@@ -942,6 +942,12 @@ def test_a_psi_counterexample_is_decided_on_the_psi_it_names(refuted):
         if label:
             ce["psi"] = label
         assert _items(bad)["vdot_nonpositive"] is ok, label
+    # Psi1 = 0.38 at x2 = 1/40, x1 = x3 = 0: positive, though below 1 (1689 decided on Psi1 <= 1)
+    bad = copy.deepcopy(refuted)
+    ce = _claim(bad, "vdot_nonpositive")["counterexample"]
+    ce["point"] = {"x1": ["0", "0"], "x2": ["1/40", "1/40"], "x3": ["0", "0"]}
+    ce["psi"] = "Psi1"
+    assert _items(bad)["vdot_nonpositive"] is False
     # points beyond the region's radius R = 0.00338 (Psi2 = -1596 there too): rejected, also inside the unit
     # disc (1663 compared x1^2 + x3^2 with R / R)
     for x1, x3 in (("1", "0"), ("1/2", "0"), ("0", "1/2"), ("3/1000", "3/1000")):

@@ -471,7 +471,11 @@ MUTANTS = [
      "a bound up to a ball's width below c*"),    ("check_counterexample_region_unit_disc", "rigor_gyro/kinds/lyapunov/check.py",
      "certainly_lt(x1 * x1 + x3 * x3, R * R))", "certainly_lt(x1 * x1 + x3 * x3, R / R))",
      "a Vdot or Psi counterexample accepted anywhere in the unit disc, not the region's disc of radius R: a "
-     "refutation of a true Vdot <= 0 over the region is confirmed"),
+     "refutation of a true Vdot <= 0 over the region is confirmed"),    ("check_psi_counterexample_up_to_one", "rigor_gyro/kinds/lyapunov/check.py",
+     'ok = in_region and certainly_le(psi_at_point(g, ce["psi"], x1, x2, x3), 0)',
+     'ok = in_region and certainly_le(psi_at_point(g, ce["psi"], x1, x2, x3), 1)',
+     "a Psi counterexample confirmed where Psi is positive up to 1: a refutation of the statement's Psi test "
+     "at a point where it holds"),
 ]
 
 
