@@ -360,6 +360,8 @@ def test_a_slice_point_bounds_an_extent_below_only_inside_the_range_with_its_sli
             assert not lc._within(abs(_q(x)), arb(0), xs)
             assert lc.slice_point_lower(g, cl, R, xs, _q(x), lambda y: ball, fb) == fb, x
         assert lc.slice_point_lower(g, cl, R, xs, third, lambda y: ball, fb) == ball.lower()
+        # the fallback is a ball too (the axis segment's end): its lower end (772 took the upper)
+        assert lc.slice_point_lower(g, cl, R, xs, _q("3/2"), lambda y: ball, ball) == ball.lower()
 
 
 def test_inside_16_needs_mu_certainly_between_both_ends():
@@ -992,6 +994,13 @@ def test_a_forged_sublevel_refutation_is_rejected(refuted, agafonov):
     near["scene"]["parameters"]["mu"] = "399999873/12700000000"
     _claim(near, "largest_sublevel")["counterexample"] = {"where": "origin", "x2": "0", "t_over_pi": "0"}
     assert _items(near)["largest_sublevel"] is False
+    # mu = 0.0315: A(0, 0) = -22.3 < 0 (a true refutation at t = 0) but A(0, pi/4), A(0, pi/2) > 0: a
+    # refutation stated at those t is rejected, at t = 0 confirmed (1804 decided at t = 0 whatever was stored)
+    for t, ok in (("1/4", False), ("1/2", False), ("0", True)):
+        alt = copy.deepcopy(near)
+        alt["scene"]["parameters"]["mu"] = "0.0315"
+        _claim(alt, "largest_sublevel")["counterexample"] = {"where": "origin", "x2": "0", "t_over_pi": t}
+        assert _items(alt)["largest_sublevel"] is ok, t
 
 
 def test_an_empty_mu_interval_is_re_derived(refuted, agafonov):
@@ -1049,12 +1058,18 @@ def test_the_x2_axis_extent_is_verified_only_as_a_segment_through_the_root_of_mu
 @pytest.mark.parametrize("axis", ["x1", "x3"])
 def test_an_extent_is_bounded_above_only_over_a_cover_of_0_to_x2_star(agafonov, axis):
     """The x1 (x3) extent's upper end is the largest bound of the slice extent over the stored cover of
-    [0, x2*]: a cover with a gap, or short of x2*, bounds nothing, and the stored extent is not confirmed."""
-    for edit in ("gap", "short"):
+    [0, x2*]: a cover with a gap, short of x2*, or starting a hair above 0 (1e-30: the bound over it is
+    the same) bounds nothing, and the stored extent is not confirmed."""
+    for edit in ("gap", "short", "from above 0"):
         bad = copy.deepcopy(agafonov)
         w = bad["witnesses"]["invariant_estimate"][f"extent_{axis}"]
         last = max(range(len(w["cover"])), key=lambda i: Fraction(w["cover"][i][1]))      # the piece ending at x2*
-        w["cover"] = _drop(w["cover"]) if edit == "gap" else _drop(w["cover"], last)
+        first = min(range(len(w["cover"])), key=lambda i: Fraction(w["cover"][i][0]))     # the piece from 0
+        if edit == "from above 0":
+            assert Fraction(w["cover"][first][0]) == 0
+            w["cover"][first] = ["1/1000000000000000000000000000000", w["cover"][first][1]]
+        else:
+            w["cover"] = _drop(w["cover"]) if edit == "gap" else _drop(w["cover"], last)
         assert f"'extent_{axis}'" in _unverified(bad), edit
 
 

@@ -475,7 +475,14 @@ MUTANTS = [
      'ok = in_region and certainly_le(psi_at_point(g, ce["psi"], x1, x2, x3), 0)',
      'ok = in_region and certainly_le(psi_at_point(g, ce["psi"], x1, x2, x3), 1)',
      "a Psi counterexample confirmed where Psi is positive up to 1: a refutation of the statement's Psi test "
-     "at a point where it holds"),
+     "at a point where it holds"),    ("check_extent_cover_from_above_0", "rigor_gyro/kinds/lyapunov/check.py",
+     'if we_ and _covers(we_.get("cover", []), arb(0), xs):', 'if we_ and _covers(we_.get("cover", []), arb(1), xs):',
+     "an x1 or x3 extent bounded above over stored pieces that need not start at 0: the slices near x2 = 0 left "
+     "unbounded, an extent too short confirmed"),
+    ("check_origin_refutation_at_t_0", "rigor_gyro/kinds/lyapunov/check.py",
+     "vdot_polar(g, arb(0), arb.pi() * arb(fmpq_of(t)))[0] if t", "vdot_polar(g, arb(0), arb(0))[0] if t",
+     "a refutation of the largest sublevel set at the origin decided at t = 0 whatever t it states: a stored "
+     "counterexample direction where A(0, t) > 0 is confirmed"),
 ]
 
 

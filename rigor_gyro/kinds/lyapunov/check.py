@@ -282,11 +282,12 @@ def slice_point_lower(g, cl: arb, R: arb, xs: arb, pt: arb, value, fallback: arb
     """A lower bound of an extent of the set {V < c_set} (``cl``) in the region from a stored slice point
     x2 = ``pt``: the lower end of ``value(pt)`` (the slice's half-width in x1 or x3, or pt itself for x2)
     when pt is certainly in [-x2*, x2*] and its slice certainly lies in the disc of radius R (then the set
-    reaches that far); else ``fallback``. A point beyond x2* never counts: the region ends there, so its
-    slice, however large, is not a slice of the set. Precision: the current one."""
+    reaches that far); else the lower end of ``fallback`` (a ball that bounds the extent below, such as the
+    axis segment's end). A point beyond x2* never counts: the region ends there, so its slice, however
+    large, is not a slice of the set. Precision: the current one."""
     if _within(abs(pt), arb(0), xs) and slice_in_region(g, cl, R, pt):
         return value(pt).lower()
-    return fallback
+    return fallback.lower()
 
 
 def _all_positive(f, pieces) -> bool:
@@ -447,7 +448,7 @@ def check(model, data: dict) -> list[CheckResult]:
                         pt = _b(we_["point"])
                         # else the axis segment, which lies in the set
                         low = slice_point_lower(g, cl, R, xs, pt, lambda y: _tighter(fn, y, cert_prec),
-                                                axes[axis].lower())
+                                                axes[axis])
                         contains(f"extent_{axis}", low.union(up))
                 w2 = wi.get("extent_x2") or {}
                 if w2:
