@@ -960,14 +960,18 @@ def test_a_psi_counterexample_is_decided_on_the_psi_it_names(refuted):
         assert _items(bad)["vdot_nonpositive"] is False, (x1, x3)
 
 
-@pytest.mark.parametrize("edit", ["origin", "beyond_x2_star", "v_positive_there"])
+@pytest.mark.parametrize("edit", ["origin", "beyond_x2_star", "v_positive_there", "v_small_positive_there"])
 def test_a_forged_v_counterexample_is_rejected(refuted, edit):
+    """V <= 0 is re-decided at the stored point, off the origin and in the range: the origin, x2 = 100, a
+    point where V is large, and one where V = 2.8e-6 is positive though small (1881 decided on V <= 1)."""
     bad = copy.deepcopy(refuted)
     pt = _claim(bad, "v_positive")["counterexample"]["point"]
     if edit == "origin":
         pt["x1"] = pt["x2"] = pt["x3"] = ["0", "0"]
     elif edit == "beyond_x2_star":
         pt["x2"] = ["100", "100"]
+    elif edit == "v_small_positive_there":
+        pt.update(x1=["1/1000", "1/1000"], x2=["0", "0"], x3=["0", "0"])
     else:
         pt["x1"] = ["1000", "1000"]
     assert _items(bad)["v_positive"] is False, edit
@@ -1071,6 +1075,32 @@ def test_an_extent_is_bounded_above_only_over_a_cover_of_0_to_x2_star(agafonov, 
         else:
             w["cover"] = _drop(w["cover"]) if edit == "gap" else _drop(w["cover"], last)
         assert f"'extent_{axis}'" in _unverified(bad), edit
+
+
+def test_the_x2_extent_is_bounded_by_x2_stars_upper_end_and_the_axis_segments_lower_end(agafonov):
+    """Without the pieces beyond, the x2 extent's upper end is x2*'s (an extent stored up to pi/6 - 1e-50,
+    inside x2*'s ball, is not confirmed: 828 took x2*'s lower end). Without a verified slice point its lower
+    end is the verified axis segment's stored lower end (an extent from halfway between the axis segment's
+    stored ends is not confirmed: 816 took the upper end)."""
+    import mpmath
+    bad = copy.deepcopy(agafonov)
+    del bad["witnesses"]["invariant_estimate"]["extent_x2"]["beyond"]
+    q = bad["quantities"]["extent_x2"]
+    with mpmath.workdps(80):
+        hi = Fraction(mpmath.nstr(mpmath.pi / 6, 70)) - Fraction(1, 10 ** 50)
+    q["hi"] = f"{hi.numerator}/{hi.denominator}"
+    assert "'extent_x2'" in _unverified(bad)
+    q["hi"] = str(Fraction(hi) + Fraction(1, 10 ** 12))             # above pi/6's ball: confirmed
+    assert "'extent_x2'" not in _unverified(bad)
+    bad = copy.deepcopy(agafonov)
+    bad["witnesses"]["invariant_estimate"]["extent_x2"]["point"] = ["3/2", "3/2"]        # beyond x2*: unverified
+    ax = bad["quantities"]["extent_x2_axis"]
+    q = bad["quantities"]["extent_x2"]
+    q["lo"] = str((Fraction(ax["lo"]) + Fraction(ax["hi"])) / 2)
+    assert "'extent_x2'" in _unverified(bad)
+    # from the axis segment's lower end (a hair below: the decimal, not dyadic, is a ball to the checker)
+    q["lo"] = str(Fraction(ax["lo"]) - Fraction(1, 10 ** 30))
+    assert "'extent_x2'" not in _unverified(bad)
 
 
 def test_the_x2_extent_ends_below_x2_star_only_where_the_stored_pieces_beyond_cover_the_rest(agafonov):

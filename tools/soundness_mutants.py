@@ -482,7 +482,17 @@ MUTANTS = [
     ("check_origin_refutation_at_t_0", "rigor_gyro/kinds/lyapunov/check.py",
      "vdot_polar(g, arb(0), arb.pi() * arb(fmpq_of(t)))[0] if t", "vdot_polar(g, arb(0), arb(0))[0] if t",
      "a refutation of the largest sublevel set at the origin decided at t = 0 whatever t it states: a stored "
-     "counterexample direction where A(0, t) > 0 is confirmed"),
+     "counterexample direction where A(0, t) > 0 is confirmed"),    ("check_x2_extent_up_to_x2_star_lower_end", "rigor_gyro/kinds/lyapunov/check.py",
+     "                    up = xs.upper()", "                    up = xs.lower()",
+     "the x2 extent's upper end, without pieces beyond, taken at x2*'s lower end: an extent ending inside x2*'s "
+     "ball, below pi/6, is confirmed"),
+    ("check_x2_extent_floor_from_axis_upper_end", "rigor_gyro/kinds/lyapunov/check.py",
+     'arb(fmpq_of(stored_interval(q["extent_x2_axis"])[0]))', 'arb(fmpq_of(stored_interval(q["extent_x2_axis"])[1]))',
+     "the x2 extent's lower end, without a verified slice point, from the axis segment's stored upper end: an "
+     "extent starting above the verified one is confirmed"),
+    ("check_v_counterexample_up_to_one", "rigor_gyro/kinds/lyapunov/check.py",
+     "off_origin and certainly_le(g.V(x1, x2, x3), 0)", "off_origin and certainly_le(g.V(x1, x2, x3), 1)",
+     "a V counterexample confirmed where V is positive up to 1: a refutation of V > 0 at a point where it holds"),
 ]
 
 
