@@ -587,3 +587,36 @@ def test_the_direct_margin_over_a_box_contains_a_minus_r_abs_b_at_every_point_of
                               arb.pi() * arb(fmpq(ss.numerator, ss.denominator)))
             pt = a - R * abs(b)
             assert F.lower() <= pt.upper() and pt.lower() <= F.upper(), (uu, ss, F, pt)   # meets each point's ball
+
+
+def test_log1m_tail_bounds_the_series_remainder_and_is_within_1_over_1_minus_r_of_it():
+    """sum_{k>=n} r^k / (k + 1) <= log1m_tail(r, n) <= that / (1 - r), the remainder from mpmath at 60 digits
+    (L(r) less the first n terms): a tail shrunk ((n + 2), (1 + r), (2 - r)) falls below the remainder."""
+    import mpmath
+    from rigor_gyro.kinds.lyapunov.moments import log1m_tail
+    with mpmath.workdps(60):
+        for num, den in ((0, 1), (1, 100), (1, 10), (1, 4), (1, 2)):
+            rq = mpmath.mpf(num) / den
+            L = mpmath.mpf(1) if num == 0 else -mpmath.log(1 - rq) / rq
+            for n in (1, 2, 3, 5, 10, 30):
+                rem = L - mpmath.fsum(rq ** k / (k + 1) for k in range(n))
+                t = log1m_tail(arb(fmpq(num, den)), n)
+                lo, hi = (mpmath.mpf(str(x)) for x in (t.lower().mid().str(60, radius=False),
+                                                          t.upper().mid().str(60, radius=False)))
+                assert t.is_finite() and hi >= rem - mpmath.mpf(10) ** -55, (num, den, n)
+                assert lo <= rem / (1 - rq) * (1 + mpmath.mpf(10) ** -15) + mpmath.mpf(10) ** -55, (num, den, n)
+
+
+def test_log1m_ratio_encloses_minus_log_1_minus_u_over_u_tightly():
+    """L(u) = -log(1 - u) / u at points of [-3/4, 3/4] (the series up to |u| = 1/2, log1p beyond) and at 0:
+    contains mpmath's value (60 digits), radius below 2^-50 at 64 bits; NaN for a ball beyond 1/2 through 0."""
+    import mpmath
+    from rigor_gyro.kinds.lyapunov.moments import log1m_ratio
+    with working_precision(64), mpmath.workdps(60):
+        for num, den in ((-3, 4), (-1, 2), (-1, 3), (-1, 1000), (0, 1), (1, 1000), (1, 3), (1, 2), (3, 4)):
+            v = log1m_ratio(arb(fmpq(num, den)))
+            uq = mpmath.mpf(num) / den
+            ref = mpmath.mpf(1) if num == 0 else -mpmath.log(1 - uq) / uq
+            mid, rad = mpmath.mpf(v.mid().str(40, radius=False)), mpmath.mpf(v.rad().str(10, radius=False))
+            assert v.is_finite() and abs(mid - ref) <= rad + mpmath.mpf(10) ** -38 and rad < 2 ** -50, (num, den, v)
+        assert not log1m_ratio(arb(0, 0.9)).is_finite()

@@ -23,7 +23,13 @@ from flint import acb, arb
 
 from ...core.balls import current_precision
 
-__all__ = ["MOMENTS", "MomentLaw", "SineMoment", "LinearMoment", "log1m_ratio", "moment_law"]
+__all__ = ["MOMENTS", "MomentLaw", "SineMoment", "LinearMoment", "log1m_ratio", "log1m_tail", "moment_law"]
+
+
+def log1m_tail(r: arb, n: int) -> arb:
+    """An upper bound of the series' remainder sum_{k>=n} r^k / (k + 1) for 0 <= r < 1 (``r`` an exact
+    point): r^n / ((n + 1)(1 - r)), the geometric series of r^n / (n + 1). Precision: the current one."""
+    return r ** n / ((n + 1) * (1 - r))
 
 
 def log1m_ratio(u: arb) -> arb:
@@ -39,13 +45,11 @@ def log1m_ratio(u: arb) -> arb:
         return -(-u).log1p() / u
     eps = arb(2) ** (-(current_precision() + 8))
     s, p, n = arb(0), arb(1), 0
-    rn = arb(1)                      # r^n
     while True:
         s += p / (n + 1)
         p *= u
-        rn *= r
         n += 1
-        tail = rn / ((n + 1) * (1 - r))
+        tail = log1m_tail(r, n)
         if tail < eps or n > 8 * current_precision():
             return s + arb(0, tail.upper())
 
