@@ -45,7 +45,14 @@ class _Timeout(Exception):
     pass
 
 
+#: set when the alarm fired: under ``--pytest`` the _Timeout is raised inside a test, where pytest reports
+#: it as a failure (exit 1), so the exception alone would make a timeout look like a kill
+_timed_out = False
+
+
 def _alarm(*_):
+    global _timed_out
+    _timed_out = True
     raise _Timeout()
 
 
@@ -144,8 +151,10 @@ def _loop(run_all, names_file: str) -> int:
     signal.signal(signal.SIGALRM, _alarm)
     os.environ["MUTANT_UNDER_TEST"] = ""
     run_all()                               # the unmutated code passes, or nothing is measured
+    global _timed_out
     for name in open(names_file).read().split():
         os.environ["MUTANT_UNDER_TEST"] = name
+        _timed_out = False
         signal.alarm(TIMEOUT_S)
         try:
             run_all()
@@ -158,6 +167,8 @@ def _loop(run_all, names_file: str) -> int:
             verdict = "killed"
         finally:
             signal.alarm(0)
+        if _timed_out:                      # whatever pytest made of it: not a kill
+            verdict = "timeout"
         print(f"{name}\t{verdict}", flush=True)
     return 0
 
