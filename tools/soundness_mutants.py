@@ -492,7 +492,13 @@ MUTANTS = [
      "extent starting above the verified one is confirmed"),
     ("check_v_counterexample_up_to_one", "rigor_gyro/kinds/lyapunov/check.py",
      "off_origin and certainly_le(g.V(x1, x2, x3), 0)", "off_origin and certainly_le(g.V(x1, x2, x3), 1)",
-     "a V counterexample confirmed where V is positive up to 1: a refutation of V > 0 at a point where it holds"),
+     "a V counterexample confirmed where V is positive up to 1: a refutation of V > 0 at a point where it holds"),    ("sine_G_c0_zero_halved", "rigor_gyro/kinds/lyapunov/moments.py",
+     "            return a * x.sin() ** 2 / (2 * A0)", "            return a * x.sin() ** 2 / (4 * A0)",
+     "the sine law's G halved when C0 = 0 (its own branch): V's potential term, and every bound built on it, "
+     "for a gimbal without C0"),
+    ("log1m_tail_shrunk", "rigor_gyro/kinds/lyapunov/moments.py",
+     "    return r ** n / ((n + 1) * (1 - r))", "    return r ** n / ((n + 2) * (1 - r))",
+     "the series tail of L(u) = -log(1 - u)/u (q's closed form for the sine law) shrunk below the remainder"),
 ]
 
 
