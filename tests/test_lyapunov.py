@@ -485,3 +485,17 @@ def test_a_vdot_witness_lies_in_the_region_for_every_radius_in_the_ball():
         assert certainly_lt(x1 * x1 + x3 * x3, arb("0.0025")) and certainly_positive(v)
         ref = g.vdot(x1, x2, x3)
         assert v.is_finite() and ref.is_finite() and v.overlaps(ref)
+
+
+@pytest.mark.parametrize("bounds, U", [((1, 5, 3), 5), ((5, 1), 5), ((2, float("inf"), 1), float("inf"))])
+def test_the_direct_bound_over_mu_is_the_largest_piece_bound_in_any_order(monkeypatch, bounds, U):
+    """direct_sup_upper_bound takes the largest of the pieces' bounds by exact comparison (+inf if any is
+    infinite), not the heap's first piece: the heap orders by a key, and a misordered or tied key must not
+    lower the bound (mutmut: U from the first piece only survived, since the heap put the largest first)."""
+    from rigor_gyro.kinds.lyapunov import direct_mu
+    pieces = [(arb(i), arb(i + 1), arb(b)) for i, b in enumerate(bounds)]
+    monkeypatch.setattr(direct_mu, "best_first_bisection", lambda *a, **k: (pieces, len(pieces)))
+    monkeypatch.setattr(direct_mu, "direct_point_search", lambda gm, start=None: (0.02, 0.5, 0.25, 0))
+    g = validate(load_scene("agafonov2013")).gimbal
+    got = direct_mu.direct_sup_upper_bound(g, arb(0), arb(len(bounds)), arb("0.01"))[0]
+    assert (got == U) if U != float("inf") else not got.is_finite()

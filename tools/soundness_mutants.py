@@ -498,7 +498,11 @@ MUTANTS = [
      "for a gimbal without C0"),
     ("log1m_tail_shrunk", "rigor_gyro/kinds/lyapunov/moments.py",
      "    return r ** n / ((n + 1) * (1 - r))", "    return r ** n / ((n + 2) * (1 - r))",
-     "the series tail of L(u) = -log(1 - u)/u (q's closed form for the sine law) shrunk below the remainder"),
+     "the series tail of L(u) = -log(1 - u)/u (q's closed form for the sine law) shrunk below the remainder"),    ("direct_bound_from_first_piece", "rigor_gyro/kinds/lyapunov/direct_mu.py",
+     "        if not u.is_finite() or (U.is_finite() and certainly_gt(u, U)):",
+     "        if not u.is_finite() and (U.is_finite() and certainly_gt(u, U)):",
+     "the bound of R_dsup over (16) taken from the heap's first piece, not the largest by exact comparison: a "
+     "misordered key lowers the certified bound"),
 ]
 
 
