@@ -653,3 +653,21 @@ def test_each_moment_law_against_mpmath_f_its_derivative_f_over_x_g_and_q(law):
                 if q is not None:
                     D = A0m - C0m * mpmath.sin(xm) ** 2
                     assert inside(q, (am * fm(xm)) ** 2 / (2 * D * G)), (law, a_, C0_, xq)
+
+
+def test_log1m_ratio_adds_the_whole_tail_bound_from_the_balls_largest_modulus(monkeypatch):
+    """White box: the tail is below 2^-(prec+8), under the partial sums' own rounding, so no value can show
+    it dropped. With log1m_tail stood in by a ball [1, 2] (never below eps: the loop runs to its cap) the
+    result's radius must reach 2 (the tail's upper end, as a radius); and the tail is asked at |u|'s upper
+    end (0.3 for u = [0.2 +/- 0.1])."""
+    from rigor_gyro.kinds.lyapunov import moments
+    asked = []
+
+    def stand_in(r, n):
+        asked.append(r)
+        return arb("1.5") + arb(0, 0.5)
+    monkeypatch.setattr(moments, "log1m_tail", stand_in)
+    with working_precision(64):
+        v = moments.log1m_ratio(arb("0.2") + arb(0, 0.1))
+    assert v.is_finite() and v.rad() >= 2 and abs(v.mid() - arb("1.116")) < 1
+    assert all(r >= arb("0.3") for r in asked) and asked
