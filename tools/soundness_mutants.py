@@ -454,35 +454,43 @@ MUTANTS = [
     ("check_cylinder_margin_rounded_up", "rigor_gyro/kinds/lyapunov/check.py",
      "    return (cyl / c_star_up - 1).lower()", "    return (cyl / c_star_up - 1).upper()",
      "the checker's bound of the cylinder margin min V / c* - 1 rounded up: a stored margin above the true one "
-     "by up to the ball's width is confirmed"),    ("c_star_lower_from_cylinder_alone", "rigor_gyro/kinds/lyapunov/model.py",
+     "by up to the ball's width is confirmed"),
+    ("c_star_lower_from_cylinder_alone", "rigor_gyro/kinds/lyapunov/model.py",
      "    return face.lower().min(cyl) if inside else cyl", "    return cyl",
      "c*'s lower bound from the cylinder alone where the faces' minimiser is inside the disc: a c_set above the "
-     "faces' level (below the cylinder's) is confirmed, and the sublevel set may cross the faces"),    ("c_star_lower_from_face_upper", "rigor_gyro/kinds/lyapunov/model.py",
+     "faces' level (below the cylinder's) is confirmed, and the sublevel set may cross the faces"),
+    ("c_star_lower_from_face_upper", "rigor_gyro/kinds/lyapunov/model.py",
      "    return face.lower().min(cyl) if inside else cyl", "    return face.upper().min(cyl) if inside else cyl",
      "c*'s lower bound from the faces' value's upper end: a c_set within that ball's width above c* is certified "
-     "(prover) and confirmed (checker)"),    ("c_star_upper_from_an_outside_minimiser", "rigor_gyro/kinds/lyapunov/model.py",
+     "(prover) and confirmed (checker)"),
+    ("c_star_upper_from_an_outside_minimiser", "rigor_gyro/kinds/lyapunov/model.py",
      "    return upper.upper().min(face.upper()) if inside else upper.upper()",
      "    return upper.upper().min(face.upper())",
      "c*'s upper bound lowered to phi(x2*) when the faces' minimiser lies outside the disc, where phi(x2*) bounds "
-     "nothing of c*: a stored c* enclosure below the true c* is confirmed"),    ("c_star_upper_from_lower_ends", "rigor_gyro/kinds/lyapunov/model.py",
+     "nothing of c*: a stored c* enclosure below the true c* is confirmed"),
+    ("c_star_upper_from_lower_ends", "rigor_gyro/kinds/lyapunov/model.py",
      "    return upper.upper().min(face.upper()) if inside else upper.upper()",
      "    return upper.lower().min(face.upper()) if inside else upper.upper()",
      "c*'s upper bound from the cylinder samples' lower ends (the faces' minimiser inside, the cylinder binding): "
-     "a bound up to a ball's width below c*"),    ("check_counterexample_region_unit_disc", "rigor_gyro/kinds/lyapunov/check.py",
+     "a bound up to a ball's width below c*"),
+    ("check_counterexample_region_unit_disc", "rigor_gyro/kinds/lyapunov/check.py",
      "certainly_lt(x1 * x1 + x3 * x3, R * R))", "certainly_lt(x1 * x1 + x3 * x3, R / R))",
      "a Vdot or Psi counterexample accepted anywhere in the unit disc, not the region's disc of radius R: a "
-     "refutation of a true Vdot <= 0 over the region is confirmed"),    ("check_psi_counterexample_up_to_one", "rigor_gyro/kinds/lyapunov/check.py",
+     "refutation of a true Vdot <= 0 over the region is confirmed"),
+    ("check_psi_counterexample_up_to_one", "rigor_gyro/kinds/lyapunov/check.py",
      'ok = in_region and certainly_le(psi_at_point(g, ce["psi"], x1, x2, x3), 0)',
      'ok = in_region and certainly_le(psi_at_point(g, ce["psi"], x1, x2, x3), 1)',
      "a Psi counterexample confirmed where Psi is positive up to 1: a refutation of the statement's Psi test "
-     "at a point where it holds"),    ("check_extent_cover_from_above_0", "rigor_gyro/kinds/lyapunov/check.py",
+     "at a point where it holds"),
+    ("check_extent_cover_from_above_0", "rigor_gyro/kinds/lyapunov/check.py",
      'if we_ and _covers(we_.get("cover", []), arb(0), xs):', 'if we_ and _covers(we_.get("cover", []), arb(1), xs):',
      "an x1 or x3 extent bounded above over stored pieces that need not start at 0: the slices near x2 = 0 left "
      "unbounded, an extent too short confirmed"),
     ("check_origin_refutation_at_t_0", "rigor_gyro/kinds/lyapunov/check.py",
      "vdot_polar(g, arb(0), arb.pi() * arb(fmpq_of(t)))[0] if t", "vdot_polar(g, arb(0), arb(0))[0] if t",
      "a refutation of the largest sublevel set at the origin decided at t = 0 whatever t it states: a stored "
-     "counterexample direction where A(0, t) > 0 is confirmed"),    ("check_x2_extent_up_to_x2_star_lower_end", "rigor_gyro/kinds/lyapunov/check.py",
+     "counterexample direction where A(0, t) > 0 is confirmed"),
+    ("check_x2_extent_up_to_x2_star_lower_end", "rigor_gyro/kinds/lyapunov/check.py",
      "                    up = xs.upper()", "                    up = xs.lower()",
      "the x2 extent's upper end, without pieces beyond, taken at x2*'s lower end: an extent ending inside x2*'s "
      "ball, below pi/6, is confirmed"),
@@ -492,13 +500,15 @@ MUTANTS = [
      "extent starting above the verified one is confirmed"),
     ("check_v_counterexample_up_to_one", "rigor_gyro/kinds/lyapunov/check.py",
      "off_origin and certainly_le(g.V(x1, x2, x3), 0)", "off_origin and certainly_le(g.V(x1, x2, x3), 1)",
-     "a V counterexample confirmed where V is positive up to 1: a refutation of V > 0 at a point where it holds"),    ("sine_G_c0_zero_halved", "rigor_gyro/kinds/lyapunov/moments.py",
+     "a V counterexample confirmed where V is positive up to 1: a refutation of V > 0 at a point where it holds"),
+    ("sine_G_c0_zero_halved", "rigor_gyro/kinds/lyapunov/moments.py",
      "            return a * x.sin() ** 2 / (2 * A0)", "            return a * x.sin() ** 2 / (4 * A0)",
      "the sine law's G halved when C0 = 0 (its own branch): V's potential term, and every bound built on it, "
      "for a gimbal without C0"),
     ("log1m_tail_shrunk", "rigor_gyro/kinds/lyapunov/moments.py",
      "    return r ** n / ((n + 1) * (1 - r))", "    return r ** n / ((n + 2) * (1 - r))",
-     "the series tail of L(u) = -log(1 - u)/u (q's closed form for the sine law) shrunk below the remainder"),    ("direct_bound_from_first_piece", "rigor_gyro/kinds/lyapunov/direct_mu.py",
+     "the series tail of L(u) = -log(1 - u)/u (q's closed form for the sine law) shrunk below the remainder"),
+    ("direct_bound_from_first_piece", "rigor_gyro/kinds/lyapunov/direct_mu.py",
      "        if not u.is_finite() or (U.is_finite() and certainly_gt(u, U)):",
      "        if not u.is_finite() and (U.is_finite() and certainly_gt(u, U)):",
      "the bound of R_dsup over (16) taken from the heap's first piece, not the largest by exact comparison: a "
