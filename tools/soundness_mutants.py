@@ -7,10 +7,11 @@ tracks, as they are in the working tree (in a temporary folder), and the README'
 there (``python -m pytest -x``, the ``ci`` hypothesis profile, with the copy first on ``sys.path``). A
 mutant is *killed* when the tests fail. The tests that killed it last time (the latest "killed by" of
 its row in proofs/mutation.md) run first (tools/pytest_first.py: the same tests, only in another order),
-so that ``-x`` stops within seconds when they kill it again; ``--in-order`` keeps pytest's order. The unmutated copy must pass the same tests first (otherwise the
-run stops, exit 4: a test failing there would "kill" every mutant). ``test_rules``' check of this list's
-texts is left out of both runs (see ``RULE``). Prints a table (and writes it with
-``--out``); exits 1 if any mutant survives.
+so that ``-x`` stops within seconds when they kill it again; ``--in-order`` keeps pytest's order. The
+unmutated copy must pass the same tests first (otherwise the run stops, exit 4: a test failing there
+would "kill" every mutant); a pytest exit of 4 or 5 (a broken run) is "NOT RUN", never a kill.
+``test_rules``' check of this list's texts is left out of both runs (see ``RULE``). Prints a table
+(and writes it with ``--out``); exits 1 if any mutant survives or was not run.
 """
 from __future__ import annotations
 
