@@ -61,9 +61,9 @@ from .. import Attempt, Phases
 from .equilibria import equilibria
 from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
-from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_vdot_nonpositive, closed_form_constants,
-                    cylinder_lower_bound, direct_margin, faces_minimiser_inside, hypot_ball, mean_value_enclosure,
-                    slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
+from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_vdot_nonpositive,
+                    closed_form_constants, cylinder_lower_bound, direct_margin, faces_minimiser_inside, hypot_ball,
+                    mean_value_enclosure, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
 from .moments import MOMENTS
 from .paper import PAPER_SCHEMA, audit as audit_paper
 
