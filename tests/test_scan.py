@@ -17,8 +17,9 @@ from rigor_gyro.scene import load_scene
 
 @pytest.mark.parametrize("q, text", [
     (Fraction(1, 8), "0.125"), (Fraction(3, 40), "0.075"), (Fraction(-5, 2), "-2.5"), (Fraction(7), "7"),
-    (Fraction(1200), "1200"), (Fraction(1, 3), "0.33333333333333331"), (Fraction(1, 6), "0.16666666666666666"),
-    (Fraction(10 ** 45 + 1, 10 ** 45), "1"),          # an exact decimal of 46 digits: 17 digits instead
+    (Fraction(1200), "1200"), (Fraction(1, 3), "1/3"), (Fraction(1, 6), "1/6"),    # no decimal: the fraction
+    (Fraction(10 ** 45 + 1, 10 ** 45), "1." + "0" * 44 + "1"),      # an exact decimal of 46 digits, exactly
+    (Fraction(1, 5), "0.2"), (Fraction(4, 5), "0.8"),
     (Fraction(123456789012, 10 ** 11), "1.23456789012"),
 ])
 def test_a_point_is_named_by_its_exact_decimal_when_it_has_one(q, text):

@@ -13,7 +13,7 @@ import pytest
 from flint import arb, fmpq
 
 from rigor_gyro import load_scene, prove_scene
-from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.balls import interval_text, rational_text, working_precision
 from rigor_gyro.core.boxes import fraction_text
 from rigor_gyro.core.errors import ParameterError
 from rigor_gyro.margins.threshold import find_threshold, search_range, write_threshold
@@ -43,7 +43,9 @@ def _assert_stated_truly(res, scene):
     assert res.bracket() == (lo, hi) and hi - lo <= res.width * max(abs(lo), abs(hi))
     data = res.to_json()
     assert data["bracket"] == [fraction_text(lo), fraction_text(hi)]
-    assert data["bracket_decimal"] == [f"{float(lo):.17g}", f"{float(hi):.17g}"]
+    bl, bh, rounded = interval_text(lo, hi)
+    assert data["bracket_decimal"] == [bl, bh] and Fraction(bl) <= lo < hi <= Fraction(bh)   # outward
+    assert rounded == (Fraction(bl) != lo or Fraction(bh) != hi)
     assert data["search"] == [fraction_text(res.lo), fraction_text(res.hi)]
     assert data["requested_relative_width"] == fraction_text(res.width) and data["certified"] is True
     assert data["statement"] == (f"claim {res.claim!r} is proved at {res.param} = {fraction_text(p)} and refuted at "
@@ -52,8 +54,10 @@ def _assert_stated_truly(res, scene):
     assert data["steps"] == res.steps and data["param"] == res.param and data["claim"] == res.claim
     lines = res.lines()
     assert len(lines) == 1
-    assert f"proved at {res.param} = {float(p):.17g}, refuted at {res.param} = {float(r):.17g}" in lines[0]
-    assert f"changes in [{float(lo):.17g}, {float(hi):.17g}]" in lines[0] and f"{len(res.steps)} proofs" in lines[0]
+    assert f"proved at {res.param} = {rational_text(p)}, refuted at {res.param} = {rational_text(r)}:" in lines[0]
+    assert Fraction(rational_text(p)) == p and Fraction(rational_text(r)) == r          # exact points, exactly
+    assert (f"changes in [{bl}, {bh}]{' (rounded outward)' if rounded else ''} (width " in lines[0]
+            and f"{len(res.steps)} proofs" in lines[0])
 
 
 def test_a_threshold_proved_below_and_refuted_above_holds_what_it_states():
@@ -86,7 +90,7 @@ def test_a_threshold_is_written_as_its_json_and_a_table_of_its_steps(tmp_path):
     md = md_path.read_text().splitlines()
     assert md[0] == "# " + res.lines()[0]
     rows = [line for line in md if line.startswith("| ") and line[2].isdigit()]
-    assert rows == [f"| {i} | {float(Fraction(s['value'])):.17g} | {s['status']} |" for i, s in enumerate(res.steps, 1)]
+    assert rows == [f"| {i} | {rational_text(Fraction(s['value']))} | {s['status']} |" for i, s in enumerate(res.steps, 1)]
 
 
 def test_a_search_without_a_change_states_no_bracket():

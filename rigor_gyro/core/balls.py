@@ -47,7 +47,8 @@ __all__ = [
     "DEFAULT_PREC", "DEFAULT_MAXPREC", "working_precision", "current_precision", "ball", "is_finite",
     "certainly_lt", "certainly_le", "certainly_gt", "certainly_ge", "certainly_positive",
     "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
-    "overlaps", "certainly_within", "interval", "exact_fraction", "exponent10", "decimal_bounds", "quantity", "stored_hull",
+    "overlaps", "certainly_within", "interval", "exact_fraction", "exponent10", "decimal_bounds", "rational_text", "interval_text",
+    "width_text", "about_text", "quantity", "stored_hull",
     "rel_width_at_most", "sqrt_of_nonnegative", "exact_endpoints", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
 ]
 
@@ -305,6 +306,47 @@ def _format_scaled(n: int, scale: int) -> str:
         return sign + digits[:-scale] + "." + digits[-scale:]
     mant = digits[0] + ("." + digits[1:] if len(digits) > 1 else "")
     return f"{sign}{mant}e{exponent:+d}"
+
+
+def rational_text(q: Fraction, max_digits: int = 100) -> str:
+    """An exact rational shown as what it is: its exact decimal when it terminates within ``max_digits``
+    significant digits (1/5 -> "0.2", 3/40 -> "0.075", 1200 -> "1200"), otherwise the fraction "n/d"
+    (1/3 -> "1/3"). Never through a float; :func:`~fractions.Fraction` reads either form back exactly."""
+    q = Fraction(q)
+    d, a, b = q.denominator, 0, 0
+    while d % 2 == 0:
+        d, a = d // 2, a + 1
+    while d % 5 == 0:
+        d, b = d // 5, b + 1
+    if d == 1:
+        scale = max(a, b)
+        n = q.numerator * 10 ** scale // q.denominator          # exact: the denominator divides 10^scale
+        if len(str(abs(n)).rstrip("0")) <= max_digits:
+            return _format_scaled(n, scale)
+    return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
+
+
+def interval_text(lo: Fraction, hi: Fraction, digits: int | None = None) -> tuple[str, str, bool]:
+    """Decimals (l, h, rounded) with l <= lo <= hi <= h: each end exact when it has at most ``digits``
+    significant digits, otherwise rounded outward to them (``rounded`` says whether any end was). The
+    default ``digits`` resolves the width hi - lo to about 1/100 (at least 6 digits)."""
+    lo, hi = Fraction(lo), Fraction(hi)
+    if digits is None:
+        top = max(abs(lo), abs(hi))
+        digits = 6 if top == 0 or hi == lo else max(6, exponent10(top) - exponent10(hi - lo) + 3)
+    l, h = _round_decimal(lo, digits, "down"), _round_decimal(hi, digits, "up")
+    return l, h, Fraction(l) != lo or Fraction(h) != hi
+
+
+def width_text(w: Fraction) -> str:
+    """A nonnegative exact width, rounded up to 3 significant digits (exact when it has at most 3)."""
+    return _round_decimal(Fraction(w), 3, "up")
+
+
+def about_text(q: Fraction, digits: int = 4) -> str:
+    """An exact rational to ``digits`` significant digits, rounded to nearest (for fractions of a volume
+    shown beside their exact value), exact when it has at most that many digits."""
+    return _round_decimal(Fraction(q), digits, "nearest")
 
 
 #: decimals are printed to the digits the ball supports (its accuracy + 3), up to this many

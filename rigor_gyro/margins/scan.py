@@ -21,6 +21,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+from ..core.balls import rational_text
 from ..core.boxes import fraction_text, is_tolerance
 from ..core.errors import ParameterError
 from ..kinds import kind_module
@@ -124,19 +125,9 @@ class Scan:
 
 
 def _d(q: Fraction) -> str:
-    """The exact decimal of q when it has one of at most 40 digits (every scan point does), else 17 digits."""
-    d = q.denominator
-    for f in (2, 5):
-        while d % f == 0:
-            d //= f
-    if d == 1:
-        from decimal import Decimal, localcontext
-        with localcontext() as c:
-            c.prec = 40
-            text = format((Decimal(q.numerator) / Decimal(q.denominator)).normalize(), "f")
-        if Fraction(text) == q:                 # exact (a longer expansion was rounded: not used)
-            return text
-    return f"{float(q):.17g}"
+    """The exact decimal of q (every scan point has one; 1/5 -> "0.2"), or "n/d" for an end that does not
+    terminate (1/3 -> "1/3"); never through a float."""
+    return rational_text(q)
 
 
 def run_scan(scene: Scene, param: str, n: int, *, lo: str | None = None, hi: str | None = None,

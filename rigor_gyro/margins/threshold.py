@@ -22,6 +22,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+from ..core.balls import about_text, interval_text, rational_text, width_text
 from ..core.boxes import fraction_text, is_tolerance
 from ..core.errors import ParameterError
 from ..core.exact import option_number, parse_exact
@@ -60,14 +61,18 @@ class Threshold:
         return min(self.proved_at, self.refuted_at), max(self.proved_at, self.refuted_at)
 
     def lines(self) -> list[str]:
+        """What the search certified, every number as what it is: the search ends and the two proved points
+        as exact decimals (or fractions n/d when they do not terminate), the bracket as exact decimals or
+        rounded outward (then said), its width rounded up."""
         head = f"{self.scene.name}: margin of {self.claim!r} in {self.param}"
         b = self.bracket()
-        if b is None or self.stopped and b is None:
+        if b is None:
             return [f"{head}: no change of outcome certified in [{_d(self.lo)}, {_d(self.hi)}]: {self.stopped}"]
         l, r = b
+        bl, bh, rounded = interval_text(l, r)
         text = (f"{head}: proved at {self.param} = {_d(self.proved_at)}, refuted at {self.param} = "
-                f"{_d(self.refuted_at)}: the outcome changes in [{_d(l)}, {_d(r)}] (width {float(r - l):.3g}, "
-                f"{len(self.steps)} proofs)")
+                f"{_d(self.refuted_at)}: the outcome changes in [{bl}, {bh}]{' (rounded outward)' if rounded else ''} "
+                f"(width {_width(r - l)}, {len(self.steps)} proofs)")
         return [text] + ([f"{head}: stopped before the requested width: {self.stopped}"] if self.stopped else [])
 
     def to_json(self) -> dict[str, Any]:
@@ -80,14 +85,22 @@ class Threshold:
                               f"and refuted at {self.param} = {fraction_text(self.refuted_at)} (point proofs), so "
                               f"its outcome changes in [{fraction_text(b[0])}, {fraction_text(b[1])}]") if b else None,
                 "bracket": [fraction_text(b[0]), fraction_text(b[1])] if b else None,
-                "bracket_decimal": [_d(b[0]), _d(b[1])] if b else None,
+                "bracket_decimal": list(interval_text(*b)[:2]) if b else None,
                 "stopped": self.stopped, "steps": self.steps}
 
 
-def _d(q: Fraction | None, digits: int = 17) -> str:
+def _d(q: Fraction | None) -> str:
+    """An exact point as what it is: its exact decimal (1/5 -> "0.2"), or "n/d" when it does not
+    terminate (1/3 -> "1/3"); never through a float."""
     if q is None:
         return "-"
-    return f"{float(q):.{digits}g}"
+    return rational_text(q)
+
+
+def _width(w: Fraction) -> str:
+    """An exact width: exact when it has at most 3 significant digits, else "<= " its value rounded up."""
+    text = width_text(w)
+    return text if Fraction(text) == w else f"<= {text}"
 
 
 def _status(scene: Scene, param: str, value: Fraction, claim: str) -> tuple[str, str]:
@@ -103,8 +116,9 @@ def _status(scene: Scene, param: str, value: Fraction, claim: str) -> tuple[str,
             p = pave(box_scene(s))
             c = p.claims[0]
             v = c.volume(p.bs.box)
-            return c.status, (f"paving of the other parameters' box: proved {float(v['proved']):.4g}, refuted "
-                              f"{float(v['refuted']):.4g}, undecided {float(v['undecided']):.4g} of the volume")
+            return c.status, (f"paving of the other parameters' box: proved {about_text(v['proved'])}, refuted "
+                              f"{about_text(v['refuted'])}, undecided {about_text(v['undecided'])} of the volume "
+                              "(4 digits, to nearest)")
         c = prove_scene(s).claim(claim)
     except ParameterError as e:
         raise ParameterError(f"{param} = {_d(value)} is outside the kind's domain: {e}") from None
