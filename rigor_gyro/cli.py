@@ -28,19 +28,61 @@ EXIT_INTERNAL = 4
 _PRECEDENCE = (EXIT_INTERNAL, EXIT_BAD_INPUT, 1, 3, 0)
 
 
+EXIT_CODES_HELP = """exit status:
+  0  every claim proved            1  some claim refuted (a certified counterexample)
+  3  some claim inconclusive       2  bad input or usage (nothing is proved or written)
+  4  internal error (a bug; --debug prints the traceback); a crash is never 1"""
+
+
 class _Parser(argparse.ArgumentParser):
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)        # --qui is not --quiet: options are spelled out
+        kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
+        super().__init__(*args, **kwargs)
+
     def error(self, message):  # usage errors are exit 2, as argparse does: one line, with our prefix
         self.exit(EXIT_BAD_INPUT, f"rigor-gyro: error: {message} (see {self.prog} --help)\n")
 
 
+def _seconds(text: str) -> float:
+    """--time-limit's type: seconds > 0 (argparse turns the ValueError into a usage error, exit 2)."""
+    from .core.deadline import check_time_limit
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of seconds") from None
+    try:
+        return check_time_limit(value, "--time-limit")
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+
+
+def _epilog(examples: str, status: str = EXIT_CODES_HELP) -> str:
+    return f"examples:\n{examples}\n\n{status}"
+
+
 def _parser() -> argparse.ArgumentParser:
     p = _Parser(prog="rigor-gyro", description="Verified numerics for gyroscopic instruments: "
-                "prove the claims of a scene with Arb ball arithmetic and write certificates.")
+                "prove the claims of a scene with Arb ball arithmetic and write certificates.",
+                epilog=_epilog("  rigor-gyro list                          the built-in scenes\n"
+                               "  rigor-gyro prove --all -o proofs         prove the papers' examples\n"
+                               "  rigor-gyro prove mine.toml --time-limit 60\n"
+                               "  rigor-gyro check proofs/*.json           re-verify the certificates"))
     p.add_argument("--version", action="version", version=f"rigor-gyro {__version__}")
     p.add_argument("--debug", action="store_true", help="print the traceback of an internal error")
-    sub = p.add_subparsers(dest="command", parser_class=_Parser)
-    sub.add_parser("list", help="list the built-in scenes (the papers' examples, then the demos)")
-    pr = sub.add_parser("prove", help="prove scenes; write <name>.json and <name>.md")
+    sub = p.add_subparsers(dest="command", parser_class=_Parser, metavar="COMMAND")
+    sub.add_parser("list", help="list the built-in scenes (the papers' examples, then the demos)",
+                   description="List the built-in scenes: group, name, kind and source.",
+                   epilog=_epilog("  rigor-gyro list | grep lyapunov", "exit status: 0"))
+    pr = sub.add_parser("prove", help="prove scenes; write <name>.json and <name>.md",
+                        description="Prove the claims of scenes and write, per scene, a certificate "
+                        "(<name>.json) and a report (<name>.md). A scene with tolerances (a parameter "
+                        "written as an interval) is paved: every claim decided over the box.",
+                        epilog=_epilog("  rigor-gyro prove --all                      the papers' examples into ./proofs\n"
+                                       "  rigor-gyro prove rudenko1976 -o out -q      one scene, one line\n"
+                                       "  rigor-gyro prove mine.toml --maxprec 8192 --time-limit 120\n"
+                                       "  rigor-gyro prove --group margin -j 2        the tolerance boxes on 2 processes\n"
+                                       "several scenes: the worst status wins, in the order 4, 2, 1, 3, 0"))
     pr.add_argument("scenes", nargs="*", metavar="SCENE", help="built-in scene name or path to a TOML file")
     pr.add_argument("--all", action="store_true", help="prove every built-in scene of the papers")
     pr.add_argument("--group", choices=("paper", "demo", "margin", "stress", "all"), default=None,
@@ -51,25 +93,38 @@ def _parser() -> argparse.ArgumentParser:
                     help=f"starting precision in bits, {MIN_PREC}..{MAX_PREC} (default {DEFAULT_PREC})")
     pr.add_argument("--maxprec", type=int, default=DEFAULT_MAXPREC,
                     help=f"highest precision to escalate to, --prec..{MAX_PREC} (default {DEFAULT_MAXPREC})")
-    pr.add_argument("--out", default="proofs", help="output folder (default: ./proofs)")
-    pr.add_argument("--quiet", action="store_true", help="print only the verdict line of each scene")
+    pr.add_argument("-o", "--out", default="proofs", help="output folder (default: ./proofs)")
+    pr.add_argument("-q", "--quiet", action="store_true", help="print only the verdict line of each scene, no progress")
     pr.add_argument("--plots", action="store_true",
                     help="also draw the scene's figures into --out (needs the 'plots' extra: matplotlib)")
-    pr.add_argument("--workers", type=int, default=None,
+    pr.add_argument("-j", "--workers", type=int, default=None,
                     help="processes (default: the cores): one scene per process when several are proved, "
                          "and the sub-boxes of scenes with tolerances")
     pr.add_argument("--scheduler", default=None, metavar="ADDRESS",
-                    help="run the sub-boxes on a Dask distributed scheduler (tcp://host:8786, or 'local' for a "
-                         "LocalCluster of --workers processes; needs the 'dask' extra)")
+                    help="run the sub-boxes of scenes with tolerances on a Dask distributed scheduler "
+                         "(tcp://host:8786, or 'local' for a LocalCluster of --workers processes; needs the 'dask' extra)")
+    pr.add_argument("--time-limit", type=_seconds, default=None, metavar="SECONDS",
+                    help="wall-clock budget per scene: when it runs out, every claim not yet decided is "
+                         "inconclusive (reason: time limit) and the certificate is written")
     pr.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
-    mg = sub.add_parser("margin", help="certified threshold: where a claim stops holding as one parameter moves")
+    mg = sub.add_parser("margin", help="certified threshold: where a claim stops holding as one parameter moves",
+                        description="Bracket the value of one parameter where a claim changes from proved to "
+                        "refuted (both ends certified), or with --scan prove the claims at N exact points.",
+                        epilog=_epilog("  rigor-gyro margin agafonov2013 --param k --claim damping_condition\n"
+                                       "  rigor-gyro margin roitenberg1947 --param tau --lo 0.005 --hi 0.02 --scan 9 -o out\n"
+                                       "  rigor-gyro margin rudenko1976 --param eps --lo 0.1 --hi 2 --width 1e-9 --time-limit 60",
+                                       "exit status:\n  0  a bracket to the requested width was certified (a scan: "
+                                       "every point decided)\n  3  the search stopped (both ends alike, an "
+                                       "inconclusive point, the budget or the time limit): never 1, a search is not "
+                                       "a refutation\n  2  bad input         4  internal error"))
     mg.add_argument("scene", metavar="SCENE", help="built-in scene name or path to a TOML file")
     mg.add_argument("--param", required=True, help="the parameter to move")
     mg.add_argument("--lo", default=None, help="lower end of the search (exact number; default: value / 2)")
     mg.add_argument("--hi", default=None, help="upper end of the search (exact number; default: 2 value)")
     mg.add_argument("--claim", default=None, help="the claim (default: the scene's first claim)")
     mg.add_argument("--width", default=None, help="relative width of the threshold bracket (default 1e-6)")
-    mg.add_argument("--out", default=None, help="also write margin_<scene>_<param>.json/.md here")
+    mg.add_argument("-o", "--out", default=None, help="also write margin_<scene>_<param>.json/.md here")
+    mg.add_argument("-q", "--quiet", action="store_true", help="no progress display")
     mg.add_argument("--scan", type=int, default=None, metavar="N",
                     help="instead of a threshold: prove the claims (or --claim) at N exact points from --lo to --hi, "
                          "a map of point proofs (exit 0 all decided, 3 some inconclusive); writes "
@@ -79,36 +134,55 @@ def _parser() -> argparse.ArgumentParser:
                     help="with --out: also draw the result (<stem>.png; needs the 'plots' extra: matplotlib)")
     mg.add_argument("--quantity", action="append", default=None, metavar="Q",
                     help="with --scan: also report this certified quantity at each point (repeatable)")
-    mg.add_argument("--workers", type=int, default=1, help="with --scan: processes (default 1)")
+    mg.add_argument("-j", "--workers", type=int, default=1, help="with --scan: processes (default 1)")
     mg.add_argument("--scheduler", default=None, metavar="ADDRESS",
                     help="with --scan: run the points on a Dask scheduler (tcp://host:8786 or 'local')")
+    mg.add_argument("--time-limit", type=_seconds, default=None, metavar="SECONDS",
+                    help="wall-clock budget of the threshold search: when it runs out, the bracket certified so "
+                         "far is reported and the search is inconclusive (reason: time limit)")
     mg.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     cp = sub.add_parser("campaign", help="prove N random scenes of a kind and compare them with mpmath, "
-                        "floats and independent decisions (needs the 'crosscheck' extra)")
+                        "floats and independent decisions (needs the 'crosscheck' extra)",
+                        description="Prove N random scenes of a kind; compare each with mpmath, floats and "
+                        "independent decisions, and re-check each certificate.",
+                        epilog=_epilog("  rigor-gyro campaign --kind eigenfrequencies --cases 1000 -j 2 -o out",
+                                       "exit status:\n  0  no containment failure, verdict disagreement, check "
+                                       "failure or crash\n  1  some case found one\n  2  bad input or usage"))
     cp.add_argument("--kind", required=True, choices=sorted(_KIND_NAMES))
     cp.add_argument("--cases", type=int, default=100, help="number of random scenes (default 100)")
     cp.add_argument("--seed", type=int, default=0, help="seed of the draw (default 0)")
-    cp.add_argument("--workers", type=int, default=1, help="processes (default 1)")
+    cp.add_argument("-j", "--workers", type=int, default=1, help="processes (default 1)")
     cp.add_argument("--case-timeout", type=float, default=60.0, metavar="SECONDS",
                     help="stop a case after this many seconds and count it inconclusive (timed out); "
                          "0: no limit (default 60)")
-    cp.add_argument("--out", default=None, help="also write the summary (Markdown) and the results (JSON) here")
+    cp.add_argument("-o", "--out", default=None, help="also write the summary (Markdown) and the results (JSON) here")
+    cp.add_argument("-q", "--quiet", action="store_true", help="no progress display")
     cp.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     bn = sub.add_parser("bench", help="work-precision: widths, bits lost and times per precision, against the "
-                        "float and mpmath paths (--stress: the stiff and extreme catalog); needs 'crosscheck'")
+                        "float and mpmath paths (--stress: the stiff and extreme catalog); needs 'crosscheck'",
+                        description="Measure widths, bits lost and times per precision (a benchmark decides nothing).",
+                        epilog=_epilog("  rigor-gyro bench rudenko1976 --schedule 53,128,512 --repeat 1 -o /tmp/b",
+                                       "exit status: 0 measurements written; 2 bad input or usage; 4 internal error"))
     bn.add_argument("scenes", nargs="*", metavar="SCENE", help="scenes (default: the papers' examples)")
     bn.add_argument("--stress", action="store_true", help="run the stress group instead: OUT/stress.md and "
                     "OUT/bench/stress.json")
-    bn.add_argument("--out", default=None, help="folder for the results (default proofs/bench; with --stress, proofs)")
+    bn.add_argument("-o", "--out", default=None, help="folder for the results (default proofs/bench; with --stress, proofs)")
+    bn.add_argument("-q", "--quiet", action="store_true", help="no progress display")
     bn.add_argument("--plots", action="store_true", help="also draw a work-precision figure per scene (needs 'plots')")
     bn.add_argument("--schedule", default="53,64,128,256,512,1024,2048",
                     help="precisions in bits, comma-separated (default 53,64,128,256,512,1024,2048)")
     bn.add_argument("--repeat", type=int, default=3, help="runs per measurement; the median is reported (default 3)")
     bn.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     ck = sub.add_parser("check", help="re-verify certificates from their own data (exit 0 all confirm, "
-                        "1 one does not, 2 unreadable)")
+                        "1 one does not, 2 unreadable)",
+                        description="Re-verify written results from their own data, independently of how they were "
+                        "proved: certificates, pavings, thresholds and scans.",
+                        epilog=_epilog("  rigor-gyro check proofs/*.json\n  rigor-gyro check -q out/margin_*.json",
+                                       "exit status:\n  0  every file confirmed\n  1  some file is not confirmed "
+                                       "(the first failing check is named)\n  2  a file is unreadable or not a "
+                                       "result of rigor-gyro\n  4  internal error"))
     ck.add_argument("certs", nargs="+", metavar="CERT.json", help="certificate files written by 'prove'")
-    ck.add_argument("--quiet", action="store_true", help="print only one line per certificate")
+    ck.add_argument("-q", "--quiet", action="store_true", help="print only one line per certificate")
     ck.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     return p
 
@@ -121,6 +195,12 @@ def _say(text: str, err: bool = False) -> None:
     except BrokenPipeError:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, stream.fileno())
+
+
+def _input_error(ref: str, e: Exception) -> str:
+    """A bad-input line naming ``ref`` once: the messages of scene loading start with the path already."""
+    msg = str(e)
+    return f"rigor-gyro: {msg}" if msg.startswith((ref, f"builtin:{ref}")) else f"rigor-gyro: {ref}: {msg}"
 
 
 def _bad(message: str) -> int:
@@ -141,6 +221,9 @@ def _check_out(out: str) -> str | None:
     """None if ``out`` is (or can be made) a writable folder; otherwise what is wrong with it."""
     if not out.strip():
         return "--out is empty: name a folder (default: proofs)"
+    if out.strip() == "-":
+        return ("--out -: rigor-gyro writes files (a certificate and a report per result), not a stream: "
+                "name a folder (the verdict lines go to standard output anyway)")
     path = Path(out)
     try:
         if path.exists() and not path.is_dir():
@@ -179,7 +262,7 @@ def _cmd_prove(args) -> int:
                 module.validate(scene)
                 requested_claims(scene, module.CLAIMS)
         except RigorGyroError as e:
-            _say(f"rigor-gyro: {ref}: bad input: {e}", err=True)
+            _say(_input_error(ref, e), err=True)
             codes.append(EXIT_BAD_INPUT)
             continue
         scenes.append((ref, scene))
@@ -199,6 +282,13 @@ def _cmd_prove(args) -> int:
         return _bad(str(e))
     if args.workers is not None and not 1 <= args.workers <= 256:
         return _bad(f"need 1 <= --workers <= 256 (got {args.workers})")
+    boxes = sum(hasattr(s, "box") for _, s in scenes)
+    if args.scheduler is not None and not boxes:
+        return _bad("--scheduler runs the sub-boxes of scenes with tolerances, and none of these scenes has "
+                    "tolerances: drop --scheduler (point scenes run on --workers processes)")
+    if args.scheduler is not None and boxes < len(scenes):
+        _say("rigor-gyro: warning: --scheduler applies to the scenes with tolerances only; the point scenes "
+             "run here, on --workers processes", err=True)
     executor = None
     for ref, scene in scenes:
         if not hasattr(scene, "box"):
@@ -209,7 +299,7 @@ def _cmd_prove(args) -> int:
                 executor = make_executor(args.workers, args.scheduler)
             codes.append(_pave(scene, executor, args))
         except RigorGyroError as e:
-            _say(f"rigor-gyro: {ref}: bad input: {e}", err=True)
+            _say(_input_error(ref, e), err=True)
             codes.append(EXIT_BAD_INPUT)
         except OSError as e:
             _say(f"rigor-gyro: {ref}: cannot write to --out {args.out!r}: {e.strerror or e}", err=True)
@@ -242,14 +332,17 @@ def _prove_points(points: list, args) -> list[int]:
     from concurrent.futures.process import BrokenProcessPool
     _POINT_JOBS[:] = [(ref, scene, args) for ref, scene in points]
     codes = []
+    from .progress import progress_bar
     try:
-        with ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("fork")) as pool:
+        with ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("fork")) as pool, \
+                progress_bar("prove", total=len(points), unit="scene", delay=2.0, enabled=not args.quiet) as bar:
             for code, out, err in pool.map(_prove_point_captured, range(len(points))):
                 if out:
                     _say(out.rstrip("\n"))
                 if err:
                     _say(err.rstrip("\n"), err=True)
                 codes.append(code)
+                bar.update(1)
     except BrokenProcessPool as e:  # a worker died (killed, out of memory): a failure, never a verdict
         _internal(e, args, where="a prove worker")
         codes.append(EXIT_INTERNAL)
@@ -271,24 +364,30 @@ def _prove_point_captured(i: int) -> tuple[int, str, str]:
     out, err = io.StringIO(), io.StringIO()
     with redirect_stdout(out), redirect_stderr(err):
         try:
-            code = _prove_point(ref, scene, args)
+            code = _prove_point(ref, scene, args, show_progress=False)
         except Exception as e:  # a bug outside the proof (a figure): one line, never exit 1
             _internal(e, args, where=ref)
             code = EXIT_INTERNAL
     return code, out.getvalue(), err.getvalue()
 
 
-def _prove_point(ref: str, scene, args) -> int:
+def _prove_point(ref: str, scene, args, show_progress: bool = True) -> int:
     """Prove one scene without tolerances, write its certificate and report, print its lines; its exit
-    code."""
+    code. On a terminal, a proof that takes more than 2 s shows its phase (claim) and precision."""
     from .certificate import EXIT_CODES
+    from .progress import progress_bar
     from .prover import prove_scene
     from .report import write_outputs
     try:
-        cert = prove_scene(scene, prec=args.prec, maxprec=args.maxprec)
+        with progress_bar(scene.name, delay=2.0, unit="phase", enabled=show_progress and not args.quiet) as bar:
+            def progress(phase: str, bits: int) -> None:
+                bar.update(1 if phase else 0)
+                bar.status(f"{phase or 'start'}, {bits} bits")
+            cert = prove_scene(scene, prec=args.prec, maxprec=args.maxprec, time_limit=args.time_limit,
+                               progress=progress)
         jpath, mpath = write_outputs(cert, args.out)
     except RigorGyroError as e:
-        _say(f"rigor-gyro: {ref}: bad input: {e}", err=True)
+        _say(_input_error(ref, e), err=True)
         return EXIT_BAD_INPUT
     except OSError as e:
         _say(f"rigor-gyro: {ref}: cannot write to --out {args.out!r}: {e.strerror or e}", err=True)
@@ -311,18 +410,18 @@ def _pave(bs, executor, args) -> int:
     """Pave one scene with tolerances; print its claims and verdict; write its paving pair."""
     from .margins.paving import pave
     from .margins.report import write_paving
-    tty = sys.stderr.isatty() and not args.quiet
+    from .progress import progress_bar
 
-    def progress(done, queued, result):
-        if tty:
+    with progress_bar(bs.scene.name, unit="box", enabled=not args.quiet) as bar:
+        def progress(done, queued, result):
             vols = [c.volume(bs.box) for c in result.values()]
             worst = min(vols, key=lambda v: v["proved"])          # the claim furthest from proved
-            print(f"\r{bs.scene.name}: {done} boxes evaluated, {queued} queued; least proved claim so far: "
-                  f"proved {float(worst['proved']):.3f}, refuted {float(worst['refuted']):.3f}, undecided "
-                  f"{float(worst['undecided']):.3f} of the volume", end="", file=sys.stderr, flush=True)
-    paving = pave(bs, executor, progress)
-    if tty:
-        print(file=sys.stderr)
+            bar.update(done - progress.done)
+            progress.done = done
+            bar.status(f"{queued} queued; least proved claim: {float(worst['proved']):.3f} proved, "
+                       f"{float(worst['refuted']):.3f} refuted")
+        progress.done = 0
+        paving = pave(bs, executor, progress, time_limit=args.time_limit)
     jpath, mpath = write_paving(paving, args.out)
     if not args.quiet:
         for c in paving.claims:
@@ -401,21 +500,25 @@ def _cmd_campaign(args) -> int:
         return _bad("need 1 <= --cases <= 1000000 and 1 <= --workers <= 64")
     if not (args.case_timeout >= 0 and args.case_timeout < float("inf")):
         return _bad("need a finite --case-timeout >= 0 (seconds; 0 means no limit)")
-    tty = sys.stderr.isatty()
-
-    def progress(done, total):
-        if tty and (done % 10 == 0 or done == total):
-            print(f"\r{args.kind}: {done}/{total} cases", end="" if done < total else "\n", file=sys.stderr, flush=True)
+    if args.out is not None:        # checked before any case runs: a campaign is not lost at its end
+        problem = _check_out(args.out)
+        if problem:
+            return _bad(problem)
+    from .progress import progress_bar
     try:
-        results = run_campaign(args.kind, args.cases, args.seed, args.workers, progress,
-                               args.case_timeout or None)
+        with progress_bar(args.kind, total=args.cases, unit="case", enabled=not args.quiet) as bar:
+            def progress(done, total):
+                bar.update(done - progress.done)
+                progress.done = done
+            progress.done = 0
+            results = run_campaign(args.kind, args.cases, args.seed, args.workers, progress,
+                                   args.case_timeout or None)
     except ImportError as e:
         return _bad(f"campaign needs the cross-check libraries ({e.name}): pip install 'rigor_gyro[crosscheck]'")
     table = summary_table(args.kind, args.seed, results)
     _say(table)
     if args.out:
         out = Path(args.out)
-        out.mkdir(parents=True, exist_ok=True)
         (out / f"campaign_{args.kind}_{args.seed}.md").write_text(table + "\n", encoding="utf-8")
         (out / f"campaign_{args.kind}_{args.seed}.json").write_text(json.dumps(results, indent=1) + "\n",
                                                                      encoding="utf-8")
@@ -433,6 +536,10 @@ def _cmd_check(args) -> int:
             report = check_file(path)
         except CertificateError as e:
             _say(f"rigor-gyro: {e}", err=True)
+            codes.append(EXIT_BAD_INPUT)
+            continue
+        except RecursionError:      # json nested beyond Python's recursion limit: not a result of ours
+            _say(f"rigor-gyro: {path}: nested too deeply to be a certificate", err=True)
             codes.append(EXIT_BAD_INPUT)
             continue
         if not args.quiet:
@@ -469,7 +576,6 @@ def _internal(e: BaseException, args, where: str = "") -> None:
 
 def _cmd_bench(args) -> int:
     """Exit 0 when the measurements were written (a benchmark decides nothing), 2 for bad usage."""
-    import json
     try:
         schedule = tuple(int(x) for x in args.schedule.split(","))
     except ValueError:
@@ -488,11 +594,16 @@ def _cmd_bench(args) -> int:
                     "pip install 'rigor_gyro[crosscheck]'")
     if args.plots and not _has_matplotlib():
         return _bad(NO_MATPLOTLIB)
-    tty = sys.stderr.isatty()
+    from .progress import progress_bar
+    with progress_bar("bench", unit="step", enabled=not args.quiet) as bar:
+        def progress(text):
+            bar.update(1)
+            bar.status(text)
+        return _bench(args, schedule, progress)
 
-    def progress(text):
-        if tty:
-            print(f"\r{text:70s}", end="", file=sys.stderr, flush=True)
+
+def _bench(args, schedule, progress) -> int:
+    import json
     if args.stress:
         from .bench.stress import run_stress, stress_markdown
         out = Path(args.out or "proofs")
@@ -500,8 +611,6 @@ def _cmd_bench(args) -> int:
         if problem:
             return _bad(problem)
         rows = run_stress(progress=progress)
-        if tty:
-            print(file=sys.stderr)
         md = stress_markdown(rows)
         (out / "stress.md").write_text(md, encoding="utf-8")
         # the data beside the work-precision results (a JSON in proofs/ itself would pass for a certificate)
@@ -531,8 +640,6 @@ def _cmd_bench(args) -> int:
         if args.plots:
             from .bench.plots import work_precision_figure
             work_precision_figure(sb, out)
-    if tty:
-        print(file=sys.stderr)
     summary = summary_markdown(benches)
     if not args.scenes:
         (out / "README.md").write_text(summary, encoding="utf-8")

@@ -10,20 +10,28 @@ needs (log2(1 / rel_width) + 8 bits: an attempt that cannot meet the width is no
 the attempt at the highest precision, whose undecided claims say ``inconclusive`` with the hint to
 raise ``--maxprec``. Each claim records the lowest precision, among those tried, at which it already
 had its final status.
+
+Time limit: with ``time_limit`` (seconds of wall clock), escalation stops when it runs out; an attempt
+still running then is interrupted (Unix main thread; elsewhere the limit is checked between attempts),
+and the certificate is the last attempt that finished, its undecided claims inconclusive with the reason
+"time limit". When no attempt finished, every requested claim is inconclusive for that reason (nothing
+is decided, so nothing is lost: a budget never refutes).
 """
 from __future__ import annotations
 
 import math
 import time
 from fractions import Fraction
+from typing import Callable
 
 from flint import arb
 
 from .certificate import Certificate
-from .core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, check_precision, escalate
+from .core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, Escalation, check_precision, escalate
+from .core.deadline import TimeLimitReached, check_time_limit, time_limit as _time_limit
 from .core.errors import ParameterError, SceneError
-from .core.outcome import AuditStatus, Status
-from .kinds import Attempt, kind_module
+from .core.outcome import AuditStatus, Claim, Status
+from .kinds import Attempt, Phases, kind_module
 from .scene import Scene
 
 __all__ = ["prove_scene", "requested_claims"]
@@ -137,16 +145,22 @@ def starting_precision(model, prec: int, maxprec: int) -> int:
     return p
 
 
-def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAULT_MAXPREC) -> Certificate:
-    """Prove ``scene``; see the module docstring. Bad input raises before any computation:
+def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAULT_MAXPREC,
+                time_limit: float | None = None, progress: Callable[[str, int], None] | None = None) -> Certificate:
+    """Prove ``scene``; see the module docstring. ``progress(phase, bits)``, if given, is told each phase
+    (a claim or a stage) of each attempt as it starts (display only). Bad input raises before any computation:
     :class:`SceneError` (not a Scene, unknown kind or claim) or :class:`ParameterError` (parameters,
-    options, precisions out of range)."""
+    options, precisions, time limit out of range)."""
     if not isinstance(scene, Scene):
         raise SceneError(f"prove_scene needs a Scene (from load_scene or parse_scene), got {type(scene).__name__}")
     check_precision(prec, "prec")
     check_precision(maxprec, "maxprec")
     if maxprec < prec:
         raise ParameterError(f"maxprec ({maxprec}) must be >= prec ({prec})")
+    try:
+        time_limit = check_time_limit(time_limit, "time_limit")
+    except ValueError as e:
+        raise ParameterError(str(e)) from None
     module = kind_module(scene.kind)
     model = module.validate(scene)
     wanted = requested_claims(scene, module.CLAIMS)
@@ -157,7 +171,13 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
 
     def run(p: int) -> Attempt:
         t = time.perf_counter()
-        a = module.attempt(model, wanted, p)
+        if progress is not None:
+            progress("", p)
+            Phases.listener = lambda phase: progress(phase, p)
+        try:
+            a = module.attempt(model, wanted, p)
+        finally:
+            Phases.listener = None
         attempt_seconds.append([p, round(time.perf_counter() - t, 4)])
         history.append((p, a))
         return a
@@ -165,7 +185,7 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
     hopeless: dict[str, str] = {}
 
     def done(a: Attempt) -> bool:
-        if a.settled or a.stalled:
+        if a.settled or a.stalled or budget.expired():
             return True
         if len(history) < 2:
             return False
@@ -178,8 +198,20 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
             return True
         return False
 
-    esc = escalate(run, done, prec=starting_precision(model, prec, maxprec), maxprec=maxprec)
+    p0 = starting_precision(model, prec, maxprec)
+    with _time_limit(time_limit) as budget:
+        try:
+            esc = escalate(run, done, prec=p0, maxprec=maxprec)
+        except TimeLimitReached:
+            esc = None
+        except Exception:
+            if not budget.fired:        # a bug, not the alarm surfacing through a C callback
+                raise
+            esc = None
     elapsed = time.perf_counter() - t0
+    timed_out = esc is None or (budget.expired() and not esc.result.settled)
+    if esc is None:
+        esc = _interrupted(history, module.CLAIMS, wanted, p0, budget.reason())
     final = esc.result
     for claim in final.claims:
         claim.precision_bits = esc.prec
@@ -188,8 +220,10 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
             if same and claim.status is not Status.INCONCLUSIVE:
                 claim.precision_bits = p
                 break
-        if claim.status is Status.INCONCLUSIVE:
-            if claim.id in hopeless:
+        if claim.status is Status.INCONCLUSIVE and not (timed_out and not history):
+            if timed_out:
+                hint = budget.reason()
+            elif claim.id in hopeless:
                 hint = f"escalation stopped: {hopeless[claim.id]}"
             elif final.stalled and not final.settled:
                 hint = "more precision does not help here (see the reason)"
@@ -197,7 +231,10 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
                 hint = f"try --maxprec {2 * maxprec}"
             claim.reason += f" [undecided at every precision tried: {esc.tried} bits; {hint}]"
     notes = list(final.notes)
-    if not final.widths_met:
+    if timed_out:
+        notes.append(f"{budget.reason()}: the certificate is the last attempt that finished"
+                     + (f" ({esc.prec} bits)" if history else " (none did: nothing was decided)"))
+    if not final.widths_met and not timed_out:
         if "widths" in hopeless:
             notes.append(f"requested enclosure widths not met: {hopeless['widths']}")
         elif not esc.done:
@@ -212,3 +249,15 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
                                 "pieces": _piece_counts(final.claims)},
                        precisions_tried=esc.tried,
                        formulas=final.formulas, notes=notes, extra=final.extra, witnesses=final.witnesses)
+
+
+def _interrupted(history: list[tuple[int, Attempt]], statements: dict[str, str], wanted: list[str], p0: int,
+                 why: str) -> Escalation:
+    """The escalation as it stood when the time limit interrupted an attempt: the last attempt that
+    finished, or (none did) every requested claim inconclusive for the time limit."""
+    if history:
+        p, a = history[-1]
+        return Escalation(a, p, False, [q for q, _ in history])
+    claims = [Claim(c, statements[c], Status.INCONCLUSIVE, f"not decided: {why} before the first attempt "
+                    f"({p0} bits) finished") for c in wanted]
+    return Escalation(Attempt(claims=claims, quantities={}, widths_met=False), p0, False, [p0])

@@ -26,6 +26,7 @@ from __future__ import annotations
 import difflib
 import os
 import re
+import stat
 import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
@@ -138,23 +139,37 @@ def load_scene(ref: str) -> Scene:
     if ref in builtins:
         text, where = builtins[ref].read_text(encoding="utf-8"), f"builtin:{ref}"
     else:
+        _check_path(ref, builtins)
         path = Path(ref)
-        try:
-            is_file = path.is_file()
-        except (OSError, ValueError) as e:
-            raise SceneError(f"no scene {ref[:80]!r}...: not a usable path ({e})") from None
-        if not is_file:
-            raise SceneError(f"no scene {ref!r}: not a built-in scene (see `rigor-gyro list`: "
-                             f"{', '.join(builtins)}{_did_you_mean(ref, builtins)}) and not a file")
         try:
             if path.stat().st_size > MAX_SCENE_BYTES:
                 raise SceneError(f"{ref}: larger than {MAX_SCENE_BYTES} bytes: not a scene file")
-            text, where = path.read_bytes().decode("utf-8"), str(path)
+            text, where = path.read_bytes().decode("utf-8"), ref
         except UnicodeDecodeError as e:
             raise SceneError(f"{ref}: not UTF-8 text ({e.reason} at byte {e.start}): save the scene as UTF-8") from None
         except OSError as e:
             raise SceneError(f"{ref}: cannot be read ({e.strerror or e})") from None
     return parse_scene(text, where)
+
+
+def _check_path(ref: str, builtins) -> None:
+    """SceneError unless ``ref`` names a regular file, saying what it is instead (no such file, a
+    directory, a FIFO or device: never opened, so a FIFO cannot block); the message starts with the path."""
+    shown = ref if len(ref) <= 200 else ref[:200] + "..."
+    try:
+        st = os.stat(ref)
+    except FileNotFoundError:
+        looks_like_path = os.sep in ref or "/" in ref or ref.endswith(".toml")
+        if looks_like_path:
+            raise SceneError(f"{shown}: no such file") from None
+        raise SceneError(f"{shown}: no such file, and not a built-in scene{_did_you_mean(ref, builtins)} "
+                         "(`rigor-gyro list` names them)") from None
+    except (OSError, ValueError) as e:
+        raise SceneError(f"{shown}: not a usable path ({getattr(e, 'strerror', None) or e})") from None
+    if stat.S_ISDIR(st.st_mode):
+        raise SceneError(f"{shown}: is a directory: give a scene file (a .toml) or a built-in scene name")
+    if not stat.S_ISREG(st.st_mode):
+        raise SceneError(f"{shown}: not a regular file (a FIFO, socket or device): give a scene file (a .toml)")
 
 
 def _table(data: dict, key: str, where: str) -> dict:
@@ -182,6 +197,9 @@ def parse_scene(text: str, where: str = "<string>") -> Scene:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise SceneError(f"{where}: not valid TOML: {e}") from None
+    except RecursionError:
+        raise SceneError(f"{where}: nested too deeply to be a scene file (tables and arrays nest a few "
+                         "levels at most)") from None
     unknown = [k for k in data if k not in TOP_LEVEL]
     if unknown:
         raise SceneError(f"{where}: unknown top-level key or table {unknown[0]!r}{_did_you_mean(unknown[0], TOP_LEVEL)}; "

@@ -52,11 +52,16 @@ class Phases:
     ``with phases("vdot_nonpositive"): ...`` adds the block's time to that phase. Timing only: it never
     enters a certificate (the prover writes it to the timings file), so certificates stay byte-identical."""
 
+    #: called with each phase's name as it starts (the prover's progress display); None: nobody listens
+    listener: Callable[[str], None] | None = None
+
     def __init__(self) -> None:
         self.seconds: dict[str, float] = {}
 
     @contextmanager
     def __call__(self, name: str):
+        if Phases.listener is not None:
+            Phases.listener(name)
         t0 = time.perf_counter()
         try:
             yield

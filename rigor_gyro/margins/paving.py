@@ -36,6 +36,7 @@ from typing import Any
 
 from ..core.balls import working_precision
 from ..core.boxes import Box, fraction_text, split_parameters
+from ..core.deadline import Budget, check_time_limit
 from ..core.errors import ParameterError, SceneError
 from ..core.exact import option_count, option_number
 from ..kinds import KINDS, kind_module
@@ -206,8 +207,12 @@ class Paving:
         return {"proved": 0, "refuted": 1, "inconclusive": 3}[self.verdict]
 
 
-def pave(bs: BoxScene, executor: Executor | None = None, progress=None) -> Paving:
-    """The paving of ``bs.box`` for each of ``bs.claims`` (see the module docstring)."""
+def pave(bs: BoxScene, executor: Executor | None = None, progress=None, time_limit: float | None = None) -> Paving:
+    """The paving of ``bs.box`` for each of ``bs.claims`` (see the module docstring). With ``time_limit``
+    (seconds), the budget is checked after each level of subdivision: once it has run out, the boxes
+    still open are undecided leaves (reason: the time limit), no point proof is run, and the paving is
+    written as far as it got (a valid certificate: its decided leaves stand)."""
+    budget = Budget(check_time_limit(time_limit))
     t0 = time.perf_counter()
     ex = executor or Executor(1)
     whole = bs.box
@@ -245,9 +250,15 @@ def pave(bs: BoxScene, executor: Executor | None = None, progress=None) -> Pavin
         active = nxt
         if progress:
             progress(evaluated, len(active), result)
+        if active and budget.expired():
+            for child, open_ in active:
+                for c in open_:
+                    result[c].boxes.append((child, "undecided"))
+                    result[c].reasons["undecided"] = budget.reason()
+            active, budget_hit = [], True
     # point proofs at midpoints: refuted boxes (re-checkable counterexamples) and undecided boxes
     ptasks, owners = [], []
-    for c, cp in result.items():
+    for c, cp in ([] if budget.expired() else result.items()):
         for outcome in ("refuted", "undecided"):
             for b, s in [x for x in cp.boxes if x[1] == outcome][:bs.max_points]:
                 params = bs.point_parameters(b.midpoint())
