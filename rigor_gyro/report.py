@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 import os
 import tempfile
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
@@ -38,8 +39,10 @@ def _short(q: dict[str, str], digits: int = 10) -> str:
 
 
 def _summary(cert: dict[str, Any]) -> list[str]:
-    """The answer first: the verdict and its claims in one line each, the numbers an engineer wants
-    (the kind's HEADLINE quantities, midpoint and certified half-width), and how to read the rest."""
+    """The answer first: the verdict, the kind's headline in a line or two (the relay's period and
+    frequency, the estimate's extents and radii beside the paper's R, the audit's counts and refuted
+    assertions), the claims not proved in one line each, the kind's HEADLINE quantities (midpoint and
+    certified half-width), and how to read the rest. Everything from the certificate's stored bounds."""
     from .kinds import kind_module
     claims = cert["claims"]
     by: dict[str, list[str]] = {}
@@ -48,10 +51,15 @@ def _summary(cert: dict[str, Any]) -> list[str]:
     out = ["## Summary", "",
            f"**Verdict: {cert['verdict']}** ({len(claims)} claims: "
            + ", ".join(f"{len(by[s])} {s}" for s in ("proved", "refuted", "inconclusive") if s in by) + ")."]
-    for c in claims:
-        if c["status"] != "proved":
-            out.append(f"- `{c['id']}` **{c['status']}**: {_esc(c['reason'])[:300]}"
-                       + ("..." if len(c["reason"]) > 300 else ""))
+    heads = _HEADLINES.get(cert["scene"]["kind"], lambda _: [])(cert) + audit_headlines(cert)
+    if heads:
+        out += [""] + heads
+    bad = [c for c in claims if c["status"] != "proved"]
+    if bad:
+        out.append("")
+    for c in bad:
+        out.append(f"- `{c['id']}` **{c['status']}**: {_esc(c['reason'])[:300]}"
+                   + ("..." if len(c["reason"]) > 300 else ""))
     try:
         headline = getattr(kind_module(cert["scene"]["kind"]), "HEADLINE", {})
     except Exception:
@@ -191,11 +199,7 @@ def _audit_section(rows: list[dict]) -> list[str]:
            "`digits-transposed`, `digit-dropped`, `digit-doubled`, `digit-substituted`, `propagated`, or "
            "`unexplained`: no single edit of the digits, sign or decimal point gives the print). A class is a reading "
            "of the print, not a proof of what the author meant.", ""]
-    counts: dict[str, int] = {}
-    for r in rows:
-        counts[r.get("class", r["status"])] = counts.get(r.get("class", r["status"]), 0) + 1
-    out.append(f"**{len(rows)} rows:** " + ", ".join(f"{n} {c}" for c, n in
-                                                     sorted(counts.items(), key=lambda kv: (-kv[1], kv[0]))) + ".")
+    out.append(f"**{len(rows)} rows:** " + ", ".join(f"{n} {c}" for c, n in _class_counts(rows)) + ".")
     out.append("")
     odd = [r for r in rows if r.get("class", r["status"]) not in _PLAIN]
     numerical = [r for r in odd if r.get("class") in _NUMERICAL]
@@ -227,6 +231,177 @@ def _audit_section(rows: list[dict]) -> list[str]:
         out += ["### Rows that agree", "",
                 "; ".join(f"{_esc(r['id'])} ({_esc(r['printed'])})" for r in plain) + ".", "",
                 "Every row, with its certified bounds and notes, is in the JSON certificate (`paper`).", ""]
+    return out
+
+
+# ---------------------------------------------------------------- the summary's headline lines
+# (issue 35: an engineer reads the answer in a minute). Every number from the certificate's stored
+# decimal bounds, as exact rationals, rounded outward; nothing is recomputed in floats.
+
+def _outward(q: Fraction, digits: int, up: bool) -> str:
+    """The rational ``q`` rounded to ``digits`` significant digits, up (toward +oo) or down: exact
+    decimal arithmetic (Decimal division of two exact integers is correctly rounded), no float."""
+    from decimal import ROUND_CEILING, ROUND_FLOOR, Decimal, localcontext
+    with localcontext() as c:
+        c.prec = digits
+        c.rounding = ROUND_CEILING if up else ROUND_FLOOR
+        d = Decimal(q.numerator) / Decimal(q.denominator)
+    text = format(d, "f") if -7 < d.adjusted() < 21 else str(d)
+    return "0" if d == 0 else text
+
+
+def _bounds_text(lo: Fraction, hi: Fraction, digits: int = 10) -> str:
+    """[lo, hi] rounded outward to ``digits`` significant digits (one number when both ends round alike,
+    as for an exact value)."""
+    a, b = _outward(lo, digits, up=False), _outward(hi, digits, up=True)
+    return a if a == b else f"[{a}, {b}]"
+
+
+def _fractions(q: dict[str, str]) -> tuple[Fraction, Fraction] | None:
+    """The stored decimal bounds of a quantity as exact rationals (None if an end is not finite)."""
+    try:
+        return Fraction(q["lo"]), Fraction(q["hi"])
+    except (KeyError, TypeError, ValueError, ZeroDivisionError):
+        return None
+
+
+def _q_text(q: dict[str, str], digits: int = 10) -> str:
+    """A stored quantity as its certified interval, rounded outward to ``digits`` significant digits."""
+    f = _fractions(q)
+    return _bounds_text(*f, digits) if f else f"[{q.get('lo')}, {q.get('hi')}]"
+
+
+def _reciprocal(lo: Fraction, hi: Fraction) -> tuple[Fraction, Fraction] | None:
+    """[1/hi, 1/lo]: the exact image of [lo, hi] under 1/x when 0 < lo (None otherwise)."""
+    return (1 / hi, 1 / lo) if lo > 0 else None
+
+
+def orbit_headlines(cert: dict[str, Any]) -> list[str]:
+    """Kind periodic_orbit: each genuine orbit's period 2 theta* and frequency 1/period (in Hz: the
+    scenes' time unit is the second), from the root's stored enclosure of theta* (exact rationals,
+    rounded outward); the stable ones first."""
+    roots = (cert.get("extra") or {}).get("roots") or []
+    genuine = [r for r in roots if r.get("kind") == "genuine"]
+    out = []
+    for stable in (True, False, None):
+        for r in (r for r in genuine if r.get("stable") is stable):
+            try:
+                lo, hi = (Fraction(x) for x in r["theta"])
+            except (KeyError, TypeError, ValueError, ZeroDivisionError):
+                continue
+            what = {True: "stable", False: "unstable", None: "stability undecided"}[stable]
+            freq = _reciprocal(2 * lo, 2 * hi)
+            label = "Self-oscillation" + (f" {len(out) + 1} of {len(genuine)}" if len(genuine) > 1 else "")
+            out.append(f"- **{label}** (genuine, {what}): period 2 theta* = {_bounds_text(2 * lo, 2 * hi)} s, "
+                       "frequency 1/period = " + (f"{_bounds_text(*freq)} Hz" if freq else
+                                                  "not enclosed (theta* not certainly > 0)") + ".")
+    if not out and roots:
+        out.append(f"- **No genuine orbit certified** among the {len(roots)} root{'s' if len(roots) > 1 else ''} of the "
+                   "half-period equation.")
+    return out
+
+
+def eigenfrequency_headlines(cert: dict[str, Any]) -> list[str]:
+    """Kind eigenfrequencies: the four eigenfrequencies in Hz (given hz_scale), else the omegas."""
+    q = cert["quantities"]
+    for key, unit in (("freq_hz", " (Hz)"), ("omega", " (omega_j)")):
+        got = [q[f"{key}_{j}"] for j in range(1, 5) if f"{key}_{j}" in q]
+        if got:
+            return [f"- **Eigenfrequencies**{unit}: " + ", ".join(_q_text(v, 8) for v in got) + "."]
+    return []
+
+
+#: kind lyapunov: the certified radii beside the paper's R, in this order (quantity, what)
+_RADII = (("R", "R = min(R1, R2)"), ("R_used", "R used"), ("R_direct", "R_direct (direct test, scene's mu)"),
+          ("R_max", "R_max (Psi test, mu_best)"), ("R_direct_max", "R_direct_max (direct test, mu_direct)"))
+
+
+def lyapunov_headlines(cert: dict[str, Any]) -> list[str]:
+    """Kind lyapunov: the extents of the invariant estimate, and the paper's printed R (its audit rows)
+    beside the certified radii."""
+    q = cert["quantities"]
+    out = []
+    ext = [(a, q[f"extent_{a}"]) for a in ("x1", "x2", "x3") if f"extent_{a}" in q]
+    if ext:
+        level = f" with c* = {_q_text(q['c_star'], 10)}" if "c_star" in q else ""
+        out.append(f"- **Estimate of the domain of attraction** {{V < c*}} in region (17){level}: extents "
+                   + ", ".join(f"max |{a}| = {_q_text(v, 6)}" for a, v in ext) + ".")
+    rows = {r["id"]: r for r in cert.get("paper") or []}
+    printed = [f"{k} = {rows[k]['printed']}" for k in ("R1", "R2") if k in rows]
+    said = next((rows[k] for k in ("R = R1", "R") if k in rows), None)
+    if said is not None:
+        printed.append(f"\"{said['printed'] if '=' in said['printed'] else 'R = ' + said['printed']}\""
+                       + (f" ({said['status']}: {said['note']})" if said.get("status") in ("refuted", "confirmed")
+                          and said.get("note") else ""))
+    certified = [f"{what} = {_q_text(q[k], 10)}" for k, what in _RADII
+                 if k in q and not (k == "R_used" and "R" in q and q["R"] == q["R_used"])]
+    if printed or certified:
+        out.append("- **Radius R of region (17)** (x1^2 + x3^2 <= R^2): "
+                   + (f"the paper prints {', '.join(printed)}" if printed else "")
+                   + ("; " if printed and certified else "") + (f"certified: {'; '.join(certified)}" if certified else "")
+                   + ".")
+    return out
+
+
+_HEADLINES = {"periodic_orbit": orbit_headlines, "lyapunov": lyapunov_headlines,
+              "eigenfrequencies": eigenfrequency_headlines}
+
+
+def _class_counts(rows: list[dict]) -> list[tuple[str, int]]:
+    """Audit rows per discrepancy class, the most frequent first."""
+    counts: dict[str, int] = {}
+    for r in rows:
+        counts[r.get("class", r["status"])] = counts.get(r.get("class", r["status"]), 0) + 1
+    return sorted(counts.items(), key=lambda kv: (-kv[1], kv[0]))
+
+
+def _percent_rows(rows: list[dict]) -> list[str]:
+    """Kind eigenfrequencies: the paper's "error does not exceed 5 %" (audit rows ``error <= x for root
+    j``) in one line: where it is refuted, with the certified errors that exceed it."""
+    import re
+    found = [(m, r) for r in rows for m in [re.match(r"error <= (\S+) for root (\d+)", r["id"])] if m]
+    if not found:
+        return []
+    claim = re.sub(r"\s*\(root \d+\)\s*$", "", found[0][1]["printed"])
+    bad = [(m.group(2), r) for m, r in found if r["status"] == "refuted"]
+    good = [m.group(2) for m, r in found if r["status"] == "confirmed"]
+    rest = [m.group(2) for m, r in found if r["status"] not in ("refuted", "confirmed")]
+
+    def roots(js: list[str]) -> str:
+        return ("root " if len(js) == 1 else "roots ") + (", ".join(js[:-1]) + " and " + js[-1] if len(js) > 1 else js[0])
+
+    if not bad:
+        line = f"- **Confirmed: \"{claim}\"** for {roots(good)}" if good else f"- \"{claim}\": not decided"
+    else:
+        parts = []
+        for j, r in bad:
+            note = r.get("note", "")
+            shown = note.split(";", 1)[0].removeprefix("exceeds: ") if note.startswith("exceeds: ") else note
+            parts.append(f"root {j}: {shown}")
+        line = (f"- **Refuted: \"{claim}\"** (relative errors in Hz of the brackets and approximations, "
+                f"certified): exceeded for {roots([j for j, _ in bad])} ({'; '.join(parts)})")
+        if good:
+            line += f"; holds for {roots(good)}"
+    if rest and (bad or good):
+        line += f"; undecided for {roots(rest)}"
+    return [line + "."]
+
+
+def audit_headlines(cert: dict[str, Any]) -> list[str]:
+    """The audit in two or three lines: rows by class, the "error < 5 %" claim (Rudenko), the other
+    assertions of the paper certified false."""
+    rows = cert.get("paper") or []
+    if not rows:
+        return []
+    out = [f"- **Audit of the paper** (never changes the verdict): {len(rows)} rows: "
+           + ", ".join(f"{n} {c}" for c, n in _class_counts(rows)) + "."]
+    pct = _percent_rows(rows)
+    out += pct
+    refuted = [r["id"] for r in rows if r.get("class", r["status"]) == "assertion-refuted"
+               and not (pct and r["id"].startswith("error <= "))]
+    if refuted:
+        out.append(f"- **{'Other assertions' if pct else 'Assertions'} of the paper certified false**: "
+                   + "; ".join(f"`{i}`" for i in refuted) + " (each with its counterexample under *Audit*).")
     return out
 
 

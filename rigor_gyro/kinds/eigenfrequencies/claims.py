@@ -147,7 +147,8 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
     else:
         nonpos = [x for x in pr.real if not certainly_positive(x)]
         if pr.nonreal:
-            st, why = Status.REFUTED, f"{len(pr.nonreal)} roots are certainly non-real: {[str(z) for z in pr.nonreal]}"
+            st, why = Status.REFUTED, (f"{len(pr.nonreal)} roots are certainly non-real: "
+                                       + "; ".join(f"{_fmt(z.real)} + {_fmt(z.imag)} i" for z in pr.nonreal))
             ce = {"nonreal_roots": [{"re": _bounds(z.real), "im": _bounds(z.imag)} for z in pr.nonreal]}
         elif any(certainly_le(x, 0) for x in nonpos):
             st, why = Status.REFUTED, f"a root is certainly <= 0: {[_fmt(x) for x in nonpos]}"

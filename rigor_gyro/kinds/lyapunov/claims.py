@@ -813,7 +813,7 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     # to rel_width, on at most 2000 pieces (R_max keeps 10 digits: a wider R_sup only costs digits)
     R_enc, e = r_sup(gb, xs, rel=_q(ctx.m.rel_width) / 4 + arb(2) ** (-ctx.prec), max_pieces=min(ctx.m.max_pieces, 2000))
     if not (R_enc.is_finite() and certainly_positive(R_enc)):
-        return _claim("best_mu", Status.INCONCLUSIVE, f"R_sup(mu_best) not enclosed: {R_enc}", decides=R_enc)
+        return _claim("best_mu", Status.INCONCLUSIVE, f"R_sup(mu_best) not enclosed: {_fmt(R_enc)}", decides=R_enc)
     estimate = max(f1, f2, float(R_enc.mid()))
     quantities["mu_best"] = _q(mu_best)
     quantities["R_sup_at_mu_best"] = R_enc
@@ -842,7 +842,7 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
                                 "r_sup_point": ball_text(e.argpoint), "mu_pieces": pieces_text(u_cover),
                                 "x2_points": [ball_text(x) for x in u_points]}
     if not (U.is_finite() and certainly_le(_q(R_max), U)):
-        return _claim("best_mu", Status.INCONCLUSIVE, f"no finite upper bound of sup R_sup over (16): {U}",
+        return _claim("best_mu", Status.INCONCLUSIVE, f"no finite upper bound of sup R_sup over (16): {_fmt(U)}",
                       decides=U)
     # stored as its 15-digit decimal rounded up: a re-derivation on the same pieces at another precision
     # differs in the last bits of arb's radius arithmetic (30-bit radii on wide mu pieces; 1.4e-24 relative
