@@ -1,0 +1,123 @@
+"""The figures' shared style: a colour-blind-safe palette (Okabe-Ito) and tick/label de-cluttering.
+
+Plain data and duck-typed helpers: this module imports nothing (no matplotlib, no numpy), so the
+rigorous side may import it without pulling in a float library (tests/test_rules.py). The helpers take
+matplotlib Figure/Axes objects built by the figure modules (the kinds' and margins' ``plots``,
+``bench.plots``), which import matplotlib themselves. A figure is a float drawing of certified data; it
+never decides anything.
+"""
+from __future__ import annotations
+
+__all__ = ["OKABE_ITO", "STATUS_COLOURS", "STATUS_LABELS", "COUNTEREXAMPLE_COLOUR", "SERIES",
+           "tick_label_overlaps", "text_overlaps", "declutter_ticks", "place_point_labels"]
+
+#: Okabe & Ito (2008), "Color universal design": distinguishable with every common colour-vision deficiency
+OKABE_ITO = {"black": "#000000", "orange": "#E69F00", "sky blue": "#56B4E9", "bluish green": "#009E73",
+             "yellow": "#F0E442", "blue": "#0072B2", "vermillion": "#D55E00", "reddish purple": "#CC79A7",
+             "grey": "#999999"}
+
+#: an outcome's colour: proved bluish green, refuted vermillion, undecided / inconclusive orange
+STATUS_COLOURS = {"proved": OKABE_ITO["bluish green"], "refuted": OKABE_ITO["vermillion"],
+                  "undecided": OKABE_ITO["orange"], "inconclusive": OKABE_ITO["orange"]}
+STATUS_LABELS = {"proved": "proved", "refuted": "refuted", "undecided": "undecided",
+                 "inconclusive": "inconclusive"}
+COUNTEREXAMPLE_COLOUR = OKABE_ITO["black"]
+#: colours for curves that are not outcomes (methods, quantities, trajectories), in order
+SERIES = [OKABE_ITO[k] for k in ("blue", "vermillion", "bluish green", "reddish purple", "orange", "sky blue",
+                                 "black", "yellow")]
+
+
+def _drawn(fig) -> None:
+    fig.canvas.draw()
+
+
+def _visible_tick_labels(axis) -> list:
+    """The tick labels the axis actually draws (inside the view, visible, with text)."""
+    lo, hi = sorted(axis.get_view_interval())
+    out = []
+    for tick in list(axis.get_major_ticks()) + list(axis.get_minor_ticks()):
+        loc = tick.get_loc()
+        if loc is None or not (lo - 1e-12 * abs(hi - lo) <= loc <= hi + 1e-12 * abs(hi - lo)):
+            continue
+        for lab in (tick.label1, tick.label2):
+            if lab.get_visible() and lab.get_text() and tick.get_visible():
+                out.append(lab)
+    return out
+
+
+def text_overlaps(texts, renderer=None) -> list[tuple[str, str]]:
+    """Pairs of the given (drawn, visible) Text artists whose window extents overlap."""
+    boxes = [(t.get_text(), t.get_window_extent(renderer)) for t in texts if t.get_visible() and t.get_text()]
+    bad = []
+    for i in range(len(boxes)):
+        for j in range(i + 1, len(boxes)):
+            if boxes[i][1].overlaps(boxes[j][1]):
+                bad.append((boxes[i][0], boxes[j][0]))
+    return bad
+
+
+def tick_label_overlaps(fig) -> list[tuple[str, str]]:
+    """Pairs of tick labels of one axis of ``fig`` that overlap once drawn (empty: none collide)."""
+    _drawn(fig)
+    bad = []
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            bad += text_overlaps(_visible_tick_labels(axis))
+    return bad
+
+
+def declutter_ticks(fig) -> None:
+    """Make every axis's tick labels non-overlapping: rotate colliding x labels, then hide minor labels,
+    then thin the labels (every other one) until none collide."""
+    _drawn(fig)
+    for ax in fig.axes:
+        for which, axis in (("x", ax.xaxis), ("y", ax.yaxis)):
+            if not text_overlaps(_visible_tick_labels(axis)):
+                continue
+            if which == "x":
+                for lab in ax.get_xticklabels(which="both"):
+                    lab.set_rotation(30)
+                    lab.set_horizontalalignment("right")
+                _drawn(fig)
+            if text_overlaps(_visible_tick_labels(axis)):
+                for tick in axis.get_minor_ticks():
+                    tick.label1.set_visible(False)
+                    tick.label2.set_visible(False)
+                _drawn(fig)
+            step = 2
+            while text_overlaps(_visible_tick_labels(axis)) and step < 64:
+                labels = _visible_tick_labels(axis)
+                for i, lab in enumerate(labels):
+                    if i % step:
+                        lab.set_visible(False)
+                _drawn(fig)
+                step *= 2
+
+
+#: offsets (points) tried in order for a point label
+_OFFSETS = [(5, 5), (5, -12), (-8, 6), (-8, -12), (5, 16), (-8, 16), (5, -22), (-8, -22), (14, 0), (-18, 0),
+            (5, 28), (5, -34)]
+
+
+def place_point_labels(ax, xs, ys, texts, fontsize: float = 7) -> list[str]:
+    """Label the points (x, y) with ``texts`` so that no two labels overlap: each label takes the first
+    offset of a fixed list that collides with no label placed before; a label with no free offset is
+    not drawn and returned (the caller lists it elsewhere, e.g. in the legend), so nothing is dropped
+    silently. Returns the texts that could not be placed."""
+    fig = ax.figure
+    _drawn(fig)
+    placed, left_out = [], []
+    for x, y, t in zip(xs, ys, texts):
+        for dx, dy in _OFFSETS:
+            a = ax.annotate(t, (x, y), textcoords="offset points", xytext=(dx, dy), fontsize=fontsize,
+                            ha="left" if dx >= 0 else "right", va="bottom" if dy >= 0 else "top")
+            ext = a.get_window_extent(fig.canvas.get_renderer())
+            axbox = ax.get_window_extent()
+            inside = axbox.x0 <= ext.x0 and ext.x1 <= axbox.x1 and axbox.y0 <= ext.y0 and ext.y1 <= axbox.y1
+            if inside and not any(ext.overlaps(o) for o in placed):
+                placed.append(ext)
+                break
+            a.remove()
+        else:
+            left_out.append(t)
+    return left_out
