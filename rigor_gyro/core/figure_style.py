@@ -67,22 +67,21 @@ def tick_label_overlaps(fig) -> list[tuple[str, str]]:
 
 
 def declutter_ticks(fig) -> None:
-    """Make every axis's tick labels non-overlapping: rotate colliding x labels, then hide minor labels,
-    then thin the labels (every other one) until none collide."""
+    """Make every axis's tick labels non-overlapping: hide the minor labels of a colliding axis, then rotate
+    colliding x labels, then thin the labels (every other one) until none collide."""
     _drawn(fig)
     for ax in fig.axes:
         for which, axis in (("x", ax.xaxis), ("y", ax.yaxis)):
             if not text_overlaps(_visible_tick_labels(axis)):
                 continue
-            if which == "x":
+            for tick in axis.get_minor_ticks():
+                tick.label1.set_visible(False)
+                tick.label2.set_visible(False)
+            _drawn(fig)
+            if which == "x" and text_overlaps(_visible_tick_labels(axis)):
                 for lab in ax.get_xticklabels(which="both"):
                     lab.set_rotation(30)
                     lab.set_horizontalalignment("right")
-                _drawn(fig)
-            if text_overlaps(_visible_tick_labels(axis)):
-                for tick in axis.get_minor_ticks():
-                    tick.label1.set_visible(False)
-                    tick.label2.set_visible(False)
                 _drawn(fig)
             step = 2
             while text_overlaps(_visible_tick_labels(axis)) and step < 64:
@@ -101,12 +100,18 @@ _OFFSETS = [(5, 5), (5, -12), (-8, 6), (-8, -12), (5, 16), (-8, 16), (5, -22), (
 
 def place_point_labels(ax, xs, ys, texts, fontsize: float = 7) -> list[str]:
     """Label the points (x, y) with ``texts`` so that no two labels overlap: each label takes the first
-    offset of a fixed list that collides with no label placed before; a label with no free offset is
+    offset of a fixed list that collides with no label placed before and covers no point; a label with no free offset is
     not drawn and returned (the caller lists it elsewhere, e.g. in the legend), so nothing is dropped
     silently. Returns the texts that could not be placed."""
     fig = ax.figure
     _drawn(fig)
     placed, left_out = [], []
+    r = 5.0         # half the size of a marker (pixels): a label keeps clear of every point
+    dots = [tuple(ax.transData.transform((x, y))) for x, y in zip(xs, ys)]
+
+    def hits_a_point(ext) -> bool:
+        return any(ext.x0 - r <= px <= ext.x1 + r and ext.y0 - r <= py <= ext.y1 + r for px, py in dots)
+
     for x, y, t in zip(xs, ys, texts):
         for dx, dy in _OFFSETS:
             a = ax.annotate(t, (x, y), textcoords="offset points", xytext=(dx, dy), fontsize=fontsize,
@@ -114,7 +119,7 @@ def place_point_labels(ax, xs, ys, texts, fontsize: float = 7) -> list[str]:
             ext = a.get_window_extent(fig.canvas.get_renderer())
             axbox = ax.get_window_extent()
             inside = axbox.x0 <= ext.x0 and ext.x1 <= axbox.x1 and axbox.y0 <= ext.y0 and ext.y1 <= axbox.y1
-            if inside and not any(ext.overlaps(o) for o in placed):
+            if inside and not any(ext.overlaps(o) for o in placed) and not hits_a_point(ext):
                 placed.append(ext)
                 break
             a.remove()
