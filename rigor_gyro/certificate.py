@@ -22,7 +22,7 @@ from typing import Any
 
 from flint import arb
 
-from .core.balls import quantity, working_precision
+from .core.balls import as_quantity, quantity, working_precision
 from .core.misprints import classify_row
 from .core.errors import CertificationFailed
 from .core.outcome import AuditRow, AuditStatus, Claim, Status
@@ -58,6 +58,31 @@ class Certificate:
     notes: list[str] = field(default_factory=list)
     extra: dict[str, Any] = field(default_factory=dict)
     witnesses: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        # each quantity shows its certified digits from Python (a Quantity is the arb itself)
+        self.quantities = {k: as_quantity(v) for k, v in self.quantities.items()}
+
+    def __repr__(self) -> str:
+        """A few lines: the scene, its kind, the verdict, the claims by status, what else it holds."""
+        by: dict[str, list[str]] = {}
+        for c in self.claims:
+            by.setdefault(c.status.value, []).append(c.id)
+        counts = ", ".join(f"{len(by[s])} {s}" for s in ("proved", "refuted", "inconclusive") if s in by) or "none"
+        lines = [f"<Certificate {self.scene.get('name')!r} (kind {self.scene.get('kind')!r}): "
+                 f"{self.verdict.value}, {len(self.claims)} claims: {counts}>"]
+        for s in ("refuted", "inconclusive"):
+            for cid in by.get(s, [])[:5]:
+                reason = self.claim(cid).reason
+                lines.append(f"  {cid}: {s}: {reason[:100]}{'...' if len(reason) > 100 else ''}")
+        lines.append(f"  {len(self.quantities)} quantities (.quantities[name]), {len(self.paper)} audit rows, "
+                     f"{self.precision_bits} bits; .to_json(), rigor_gyro.write_outputs(cert, folder)")
+        return "\n".join(lines)
+
+    def _repr_markdown_(self) -> str:
+        """The Markdown report (what ``rigor-gyro prove`` writes beside the certificate), for notebooks."""
+        from .report import render_markdown
+        return render_markdown(self.to_json())
 
     @property
     def verdict(self) -> Status:

@@ -26,8 +26,11 @@ def _esc(text: Any) -> str:
 
 
 def _short(q: dict[str, str], digits: int = 10) -> str:
-    """A stored quantity as its midpoint to ``digits`` significant digits and its certified half-width."""
+    """A stored quantity as its midpoint to ``digits`` significant digits and its certified half-width; an
+    exact number (a searched decimal, radius 0, lo = hi) as itself, without a half-width."""
     from decimal import Decimal, InvalidOperation, localcontext
+    if q.get("rad") == "0" and q.get("lo") is not None and q.get("lo") == q.get("hi"):
+        return f"{q['lo']} (exact)"
     try:
         mid = Decimal(q["mid"])
     except (InvalidOperation, KeyError, ValueError):

@@ -47,3 +47,78 @@ def test_a_thresholds_lines_show_exact_ends_and_an_outward_bracket():
     stopped = find_threshold(scene, "k", claim="damping_condition", lo="0.3", hi="1/3")
     assert not stopped.certified and "[0.3, 1/3]" in stopped.lines()[0]
     assert "k = 0.3 and" in stopped.stopped and "k = 1/3;" in stopped.stopped
+
+
+# ---------------------------------------------------------------- certified quantities from Python
+
+def test_a_certified_quantity_shows_its_certified_digits_and_stays_an_arb():
+    from flint import arb, fmpq
+
+    from rigor_gyro import prove_scene
+    from rigor_gyro.core.balls import Quantity, certainly_lt, exact_endpoints
+    cert = prove_scene(load_scene("rudenko1976"))
+    w = cert.quantities["omega_1"]
+    assert isinstance(w, Quantity) and isinstance(w, arb)
+    assert isinstance(w + 1, arb) and certainly_lt(w, arb(1)) and w.rad() < arb("1e-70")
+    text = repr(w)
+    assert text == str(w) and text.startswith("[0.00450240157250983917602386831672844424486") and "e-79]" in text
+    mid, rad = text[1:-1].split(" +/- ")
+    lo, hi = exact_endpoints(w)         # the printed ball contains the certified one
+    assert Fraction(mid) - Fraction(rad) <= lo and hi <= Fraction(mid) + Fraction(rad)
+    exact = Quantity.of_exact(Fraction(17, 100))
+    assert repr(exact) == "0.17" and exact.exact == Fraction(17, 100) and exact.rad() > 0   # the ball encloses it
+    assert exact.contains(arb(fmpq(17, 100)))
+
+
+def test_a_certificate_has_a_concise_repr_and_a_markdown_one():
+    from rigor_gyro import prove_scene
+    from rigor_gyro.report import render_markdown
+    cert = prove_scene(load_scene("rudenko1976"))
+    text = repr(cert)
+    assert len(text) < 400 and len(text.splitlines()) <= 8
+    assert "'rudenko1976'" in text and "eigenfrequencies" in text and "proved, 9 claims: 9 proved" in text
+    assert cert._repr_markdown_() == render_markdown(cert.to_json())
+    demo = prove_scene(load_scene("roitenberg1947_b2over15"))
+    if demo.verdict.value != "proved":              # a claim not proved is named with its reason
+        bad = [c for c in demo.claims if c.status.value != "proved"][0]
+        assert f"  {bad.id}: {bad.status.value}: " in repr(demo)
+
+
+# ---------------------------------------------------------------- searched decimals, derived widths
+
+def test_searched_decimals_are_exact_numbers_in_the_certificate_and_the_check_still_reverifies():
+    import copy
+
+    from rigor_gyro import prove_scene
+    from rigor_gyro.certificate import digest
+    from rigor_gyro.check import check_certificate
+    from rigor_gyro.report import _short
+    cert = prove_scene(load_scene("agafonov2013"))
+    data = cert.to_json()
+    q = data["quantities"]
+    names = ["mu_best", "R_max", "R_direct", "R_direct_upper", "mu_direct", "R_direct_max"]
+    for name in names:
+        assert q[name]["lo"] == q[name]["hi"] == q[name]["mid"] and q[name]["rad"] == "0", name
+        assert repr(cert.quantities[name]) == q[name]["lo"] and "+/-" not in repr(cert.quantities[name])
+        assert _short(q[name]) == q[name]["lo"] + " (exact)"
+    details = {c["id"]: c.get("details", {}) for c in data["claims"]}
+    assert q["mu_best"]["lo"] == details["best_mu"]["mu_best"] and q["R_max"]["lo"] == details["best_mu"]["R_max"]
+    assert check_certificate(data).ok
+    bad = copy.deepcopy(data)                  # another searched decimal, the digest recomputed: rejected
+    x = Fraction(q["mu_best"]["lo"]) * Fraction(1000001, 1000000)
+    bad["quantities"]["mu_best"] = {"lo": str(float(x)), "hi": str(float(x)), "mid": str(float(x)), "rad": "0"}
+    bad["integrity"] = {"sha256": digest(bad)}
+    rep = check_certificate(bad)
+    assert not rep.ok and any(r.item == "mu_best" and not r.ok for r in rep.results)
+
+
+def test_the_period_is_as_narrow_as_theta_star_and_the_precision_is_stated():
+    from rigor_gyro import prove_scene
+    cert = prove_scene(load_scene("roitenberg1947"))
+    data = cert.to_json()
+    t, p = data["quantities"]["theta_star"], data["quantities"]["period"]
+    assert Fraction(p["rad"]) <= 2 * Fraction(t["rad"]) * Fraction(101, 100)        # was 5e8 times wider
+    assert Fraction(p["lo"]) <= 2 * Fraction(t["hi"]) and 2 * Fraction(t["lo"]) <= Fraction(p["hi"])    # they meet
+    bits = data["precision_bits"]
+    assert any(n.startswith(f"Precision: the roots of g are isolated and classified at the working precision ({bits} "
+                            f"bits)") and f"recomputed at {bits + 32} bits" in n for n in data["notes"])

@@ -48,7 +48,7 @@ __all__ = [
     "certainly_lt", "certainly_le", "certainly_gt", "certainly_ge", "certainly_positive",
     "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
     "overlaps", "certainly_within", "interval", "exact_fraction", "exponent10", "decimal_bounds", "rational_text", "interval_text",
-    "width_text", "about_text", "quantity", "stored_hull",
+    "width_text", "about_text", "Quantity", "as_quantity", "quantity", "stored_hull",
     "rel_width_at_most", "sqrt_of_nonnegative", "exact_endpoints", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
 ]
 
@@ -383,8 +383,9 @@ def decimal_bounds(x: arb, digits: int | None = None) -> tuple[str, str]:
     """
     if x.is_nan():
         return "nan", "nan"
-    a, b = _endpoints(x)
-    d = digits or _digits_for(x)
+    exact = getattr(x, "exact", None)
+    a, b = (exact, exact) if exact is not None else _endpoints(x)
+    d = digits or (max(6, len(rational_text(exact))) if exact is not None else _digits_for(x))
     lo = _round_decimal(a, d, "down") if a is not None else "-inf"
     hi = _round_decimal(b, d, "up") if b is not None else "+inf"
     return lo, hi
@@ -410,6 +411,9 @@ def quantity(x: arb, digits: int | None = None) -> dict[str, str]:
     """The certificate form of a ball: outward-rounded ``lo``/``hi``, and the midpoint (nearest) and
     half-width (rounded up, 3 digits) of the exact interval [x.lower(), x.upper()]."""
     lo, hi = decimal_bounds(x, digits)
+    exact = getattr(x, "exact", None)
+    if exact is not None and lo == hi:          # a searched decimal: the number itself, radius 0
+        return {"lo": lo, "hi": hi, "mid": lo, "rad": "0"}
     if not x.is_finite():
         return {"lo": lo, "hi": hi, "mid": "nan" if x.is_nan() else "inf", "rad": "inf"}
     d = digits or _digits_for(x)
@@ -417,6 +421,46 @@ def quantity(x: arb, digits: int | None = None) -> dict[str, str]:
     mid = _round_decimal((a + b) / 2, d, "nearest")
     rad = _round_decimal((b - a) / 2, 3, "up")
     return {"lo": lo, "hi": hi, "mid": mid, "rad": rad}
+
+
+class Quantity(arb):
+    """A certified quantity: the arb ball itself (every arithmetic and predicate works on it; the results
+    are plain arbs) that shows its certified digits, not python-flint's default 53 bits.
+
+    ``str``/``repr`` print the ball to the digits its own accuracy supports, as ``[mid +/- rad]`` from
+    Arb's ``arb_get_str``, whose printed ball contains the ball (a radius of 8e-79 prints as such, where
+    ``str(arb)`` at the default precision prints 17 digits and a radius of 8e-19). A decimal chosen by a
+    search (``exact``, an exact rational: the ball then encloses it at the precision it was made at) is
+    that number exactly: printed as its exact decimal, without a radius, and stored so in certificates
+    (:func:`quantity`)."""
+
+    def __init__(self, x: object, exact: Fraction | None = None):
+        super().__init__(x)
+        self.exact = None if exact is None else Fraction(exact)
+
+    @classmethod
+    def of_exact(cls, q: Fraction) -> "Quantity":
+        """The exact rational q (a searched decimal) as a quantity: a ball containing q at the current
+        precision, that shows and stores q exactly."""
+        q = Fraction(q)
+        return cls(arb(fmpq(q.numerator, q.denominator)), exact=q)
+
+    def text(self) -> str:
+        if self.exact is not None:
+            return rational_text(self.exact)
+        if not self.is_finite():
+            return arb.str(self)
+        return arb.str(self, _digits_for(self) - 1, radius=True)
+
+    __str__ = text
+
+    def __repr__(self) -> str:
+        return self.text()
+
+
+def as_quantity(x: object) -> object:
+    """``x`` as a :class:`Quantity` when it is an arb (anything else unchanged)."""
+    return x if isinstance(x, Quantity) or not isinstance(x, arb) else Quantity(x)
 
 
 def stored_hull(x: arb) -> arb:

@@ -316,6 +316,19 @@ def check(model, data: dict) -> list[CheckResult]:
             say(name, False, f"stored [{q[name]['lo']}, {q[name]['hi']}] does not contain the recomputed value")
         return ok
 
+    def contains_exact(name: str, text: str) -> bool:
+        """A searched decimal (mu_best, R_max, R_direct, mu_direct, R_direct_max): the stored [lo, hi] holds
+        the exact number the witness names (a certificate stores it as that number, lo = hi)."""
+        if name not in q:
+            return True
+        lo, hi = stored_interval(q[name])
+        ok = lo <= number(text) <= hi
+        if ok:
+            verified.add(name)
+        else:
+            say(name, False, f"stored [{q[name]['lo']}, {q[name]['hi']}] does not contain the searched decimal {text}")
+        return ok
+
     def contains_hull(name: str, low: arb, up: arb) -> bool:
         """A stored enclosure of a number between low's lower end and up's upper end: it must hold that exact
         interval (no midpoint-radius ball of the two: its radius, rounded up by 2^-30 relative, would widen
@@ -490,8 +503,8 @@ def check(model, data: dict) -> list[CheckResult]:
         mu_b = fmpq_of(number(d["mu_best"]))
         R_max = arb(fmpq_of(number(d["R_max"])))
         gb = g.with_mu(mu_b)
-        contains("mu_best", arb(mu_b))
-        contains("R_max", R_max)
+        contains_exact("mu_best", d["mu_best"])
+        contains_exact("R_max", d["R_max"])
         inside16 = _inside_16(K, arb(mu_b))
         at_R_max = vdot_holds(gb, R_max, wb["vdot_at_R_max"])
         rho = rho_function(gb)
@@ -516,7 +529,7 @@ def check(model, data: dict) -> list[CheckResult]:
     wd = W.get("vdot_direct")
     if wd and claims.get("vdot_direct", {}).get("status") == "proved":
         Rd = arb(fmpq_of(number(wd["R"])))
-        contains("R_direct", Rd)
+        contains_exact("R_direct", wd["R"])
         direct_ok = _direct_boxes_hold(g, Rd, wd.get("boxes", []), cert_prec)
         pt = wd.get("point")
         if pt and direct_ok:
@@ -538,8 +551,8 @@ def check(model, data: dict) -> list[CheckResult]:
         # the claim's details state the same mu and radius as the witness, exactly (the campaign and a reader
         # take them from there)
         same = _same_number(dd.get("mu_direct"), wbd["mu"]) and _same_number(dd.get("R_direct_max"), wbd["R"])
-        contains("mu_direct", arb(mu_d))
-        contains("R_direct_max", Rdm)
+        contains_exact("mu_direct", wbd["mu"])
+        contains_exact("R_direct_max", wbd["R"])
         inside16 = _inside_16(K, arb(mu_d))
         at_mu = _direct_boxes_hold(g.with_mu(mu_d), Rdm, wbd.get("boxes", []), cert_prec)
         Ud = None

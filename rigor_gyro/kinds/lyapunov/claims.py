@@ -48,7 +48,8 @@ from fractions import Fraction
 from flint import arb, fmpq
 
 from ...core.balls import (certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds,
-                           exact_fraction, interval, rel_width_at_most, stored_hull, working_precision)
+                           Quantity, exact_fraction, interval, rel_width_at_most, stored_hull,
+                           working_precision)
 from ...core.audit import check_printed
 from ...core.errors import ParameterError
 from ...core.exact import (Exact, option_count, option_number, parse_options, parse_parameters,
@@ -222,6 +223,12 @@ def _fmpq(fr: Fraction) -> fmpq:
     return fmpq(fr.numerator, fr.denominator)
 
 
+def _searched(x: fmpq | Fraction) -> Quantity:
+    """A decimal chosen by a search (mu_best, R_max, R_direct, ...): exact, shown and stored as that number
+    (radius 0), while the ball it carries contains it at the current precision."""
+    return Quantity.of_exact(Fraction(int(x.p), int(x.q)) if isinstance(x, fmpq) else Fraction(x))
+
+
 class _Ctx:
     """Everything one attempt computes, each piece only when a claim needs it."""
 
@@ -392,7 +399,7 @@ def _vdot_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
         return _claim("vdot_direct", Status.INCONCLUSIVE,
                       f"A - R |B| > 0 not certified at R = {R_text} (search estimate {est:.10g}): {cert.reason}; "
                       "try a larger max_pieces or --maxprec")
-    R_direct = _q(_fmpq(Fraction(R_text)))
+    R_direct = _searched(Fraction(R_text))
     point = d.point
     ctx.witnesses["vdot_direct"] = {"R": R_text, "boxes": [b.to_json() for b in cert.leaves]}
     quantities["R_direct"] = R_direct
@@ -404,7 +411,7 @@ def _vdot_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     ctx.witnesses["vdot_direct"]["point"] = {"x1": ball_text(point[0]), "x2": ball_text(point[1]),
                                             "x3": ball_text(point[2])}
     up_text = d.up_text
-    quantities["R_direct_upper"] = _q(_fmpq(Fraction(up_text)))
+    quantities["R_direct_upper"] = _searched(Fraction(up_text))
     gap = (quantities["R_direct_upper"] - R_direct) / R_direct
     quantities["R_direct_relative_gap"] = gap
     return _claim("vdot_direct", Status.PROVED,
@@ -815,7 +822,7 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     if not (R_enc.is_finite() and certainly_positive(R_enc)):
         return _claim("best_mu", Status.INCONCLUSIVE, f"R_sup(mu_best) not enclosed: {_fmt(R_enc)}", decides=R_enc)
     estimate = max(f1, f2, float(R_enc.mid()))
-    quantities["mu_best"] = _q(mu_best)
+    quantities["mu_best"] = _searched(mu_best)
     quantities["R_sup_at_mu_best"] = R_enc
     sub = _Ctx(ctx.m, ctx.prec)
     sub.g = gb
@@ -831,7 +838,7 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     if claim.status is not Status.PROVED:
         return _claim("best_mu", Status.INCONCLUSIVE, f"R_max could not be re-certified: {claim.reason}",
                       decides=claim.decides)
-    quantities["R_max"] = _q(R_max)
+    quantities["R_max"] = _searched(R_max)
     # how good is R_max: a certified upper bound of sup over (16) of R_sup (branch and bound over mu,
     # on the hull of (16), which contains it)
     # over the hull of (16), padded by 4 radii of its ends: a checker's own enclosure of (16) must lie inside
@@ -916,14 +923,14 @@ def _best_mu_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
         return _claim("best_mu_direct", Status.INCONCLUSIVE,
                       f"at mu_direct = {mu_text}, A - R |B| > 0 not certified at R = {d.R_text or '-'}: {why}; try a "
                       "larger max_pieces or --maxprec")
-    R = _q(_fmpq(Fraction(d.R_text)))
+    R = _searched(Fraction(d.R_text))
     # stored as its 15-digit decimal rounded up (as best_mu's bound: a re-derivation at another precision
     # differs in arb's last radius bits)
     U = _q(_fmpq(Fraction(decimal_bounds(U, 15)[1])))
     if not certainly_le(R, U):      # R <= R_dsup(mu_direct) <= U: both certified, so this cannot happen
         raise AssertionError(f"best_mu_direct: certified R {d.R_text} above the certified bound {U}")
     gap = (U - R) / R
-    quantities.update({"mu_direct": _q(mu), "R_direct_max": R, "R_direct_sup_upper_bound": U,
+    quantities.update({"mu_direct": _searched(mu), "R_direct_max": R, "R_direct_sup_upper_bound": U,
                        "R_direct_max_relative_gap": gap})
     ctx.witnesses["best_mu_direct"] = {"mu": mu_text, "R": d.R_text, "boxes": [b.to_json() for b in d.cert.leaves],
                                        "mu_pieces": pieces_text(cover),

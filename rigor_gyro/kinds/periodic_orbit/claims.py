@@ -835,7 +835,8 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
     widths_met = True
     if main is not None:
         quantities["theta_star"] = main.theta
-        quantities["period"] = 2 * main.theta
+        with working_precision(current_precision() + GUARD_BITS):     # exact doubling: theta*'s own width
+            quantities["period"] = 2 * main.theta
         for name, k in (("beta_dot_0", 1), ("Omega_0", 2), ("i_0", 3), ("I_0", 4)):
             quantities[name] = main.x0[k]
         widths_met = certainly_le(2 * main.theta.rad(), ball(model.theta_width.fmpq()))
@@ -928,6 +929,12 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
     notes.insert(0, f"Searched range {rng}; theta_min = {_fmt(an.theta_min, 6)}; tail point "
                  f"{_fmt(an.T_tail, 8) if an.T_tail is not None else 'not certified'}; "
                  f"scene orbit: {why_main}.")
+    if an.sp_fine is not None:
+        p = current_precision()
+        notes.append(f"Precision: the roots of g are isolated and classified at the working precision ({p} bits); "
+                     f"theta* (and the period 2 theta*), the initial point x(0), the multipliers, the stability margin "
+                     f"and the orbit's quantities are recomputed at {p + GUARD_BITS} bits, so their widths are those "
+                     "of that computation.")
     extra["roots"] = rows
     witnesses = _witnesses(an) if hp[0] is Status.PROVED else {}
     paper: list = []
