@@ -7,6 +7,8 @@
 * ``<name>_trajectories.png``: float trajectories (scipy) from the edge of the set: x1^2 + x3^2 and V
   against time.
 
+:func:`build_figures` returns the Figures (name -> Figure), :func:`plots` saves them. Each is a float
+drawing of certified data (Okabe-Ito colours, with a legend) and never decides anything.
 matplotlib is imported here only (optional extra ``plots``).
 """
 from __future__ import annotations
@@ -16,30 +18,40 @@ from pathlib import Path
 from flint import arb
 
 from ...core.balls import interval, working_precision
+from ...core.figure_style import OKABE_ITO, SERIES, declutter_ticks
 
-__all__ = ["plots"]
+__all__ = ["plots", "build_figures"]
 
-
-def _save(fig, out: Path, name: str, paths: list[str]) -> None:
-    import matplotlib.pyplot as plt
-    p = out / name
-    fig.savefig(p, dpi=110, bbox_inches="tight")
-    plt.close(fig)
-    paths.append(str(p))
+SET_COLOUR = OKABE_ITO["bluish green"]
 
 
 def plots(scene, cert, out_dir) -> list[str]:
+    """Save :func:`build_figures` as ``<out>/<file name>``; the paths (strings)."""
+    import matplotlib.pyplot as plt
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for name, fig in build_figures(scene, cert).items():
+        p = out / name
+        fig.savefig(p, dpi=110, bbox_inches="tight")
+        plt.close(fig)
+        paths.append(str(p))
+    return paths
+
+
+def build_figures(scene, cert) -> dict:
+    """The scene's Figures by file name: the slices, the Psi bounds and (with c_set) the trajectories."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import numpy as np
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
 
     from .approx import FloatGimbal
     from .claims import validate
     from .model import psi_min_functions
 
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
     model = validate(scene)
     g = model.gimbal
     fg = FloatGimbal(dict(scene.parameters))
@@ -48,7 +60,7 @@ def plots(scene, cert, out_dir) -> list[str]:
     c_set = float(q["c_set"].mid()) if "c_set" in q else None
     with working_precision(64):
         xs = float(g.x2_star.ball().mid())
-    paths = []
+    figs = {}
 
     fig, axes = plt.subplots(1, 3, figsize=(13, 4.2))
     t = np.linspace(-1.05 * R, 1.05 * R, 241)
@@ -58,14 +70,21 @@ def plots(scene, cert, out_dir) -> list[str]:
         if c_set is not None:
             Vv = fg.V(X1, np.full_like(X1, x2), X3)
             inside = X1 ** 2 + X3 ** 2 < R ** 2
-            ax.contourf(X1, X3, np.where(inside, Vv, np.nan), levels=[-np.inf, c_set], colors=["tab:green"], alpha=0.35)
-            ax.contour(X1, X3, np.where(inside, Vv, np.nan), levels=[c_set], colors=["tab:green"])
+            ax.contourf(X1, X3, np.where(inside, Vv, np.nan), levels=[-np.inf, c_set], colors=[SET_COLOUR], alpha=0.35)
+            ax.contour(X1, X3, np.where(inside, Vv, np.nan), levels=[c_set], colors=[SET_COLOUR])
         ax.set_title(f"x2 = {x2:.4g}")
         ax.set_xlabel("x1 = alpha-dot")
         ax.set_ylabel("x3 = beta-dot")
         ax.set_aspect("equal")
-    fig.suptitle(f"{scene.name}: region (17) and the invariant set V < c_set (green)")
-    _save(fig, out, f"{scene.name}_slices.png", paths)
+    handles = [Line2D([], [], color="k", lw=1.2, label=f"region (17): disc of radius R = {R:.6g}")]
+    if c_set is not None:
+        handles.append(Patch(facecolor=SET_COLOUR, alpha=0.35, edgecolor=SET_COLOUR,
+                             label=f"certified invariant set V < c_set = {c_set:.6g} (drawn in floats)"))
+    fig.legend(handles=handles, loc="lower center", ncol=len(handles), fontsize=8)
+    fig.suptitle(f"{scene.name}: region (17) and the invariant set V < c_set (a drawing, never a verdict)")
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    declutter_ticks(fig)
+    figs[f"{scene.name}_slices.png"] = fig
 
     with working_precision(64):
         psi1, psi2 = psi_min_functions(g, arb(str(R)))
@@ -74,14 +93,16 @@ def plots(scene, cert, out_dir) -> list[str]:
         lows = [[float(fn(interval(a, b)).lower().mid()) for a, b in zip(edges, edges[1:])] for fn in (psi1, psi2)]
     fig, ax = plt.subplots(figsize=(7, 4))
     xe = np.linspace(0, xs, n + 1)
-    for lo, name in zip(lows, ("Psi1", "Psi2")):
-        ax.stairs(lo, xe, label=f"certified lower bound of min {name} over the disc")
+    for lo, name, colour in zip(lows, ("Psi1", "Psi2"), SERIES):
+        ax.stairs(lo, xe, color=colour, label=f"certified lower bound of min {name} over the disc")
     ax.axhline(0, color="k", lw=0.8)
     ax.set_xlabel("x2")
     ax.set_yscale("symlog")
     ax.legend()
     ax.set_title(f"{scene.name}: Psi lower bounds on x2 pieces (R = {R:.6g})")
-    _save(fig, out, f"{scene.name}_psi.png", paths)
+    fig.tight_layout()
+    declutter_ticks(fig)
+    figs[f"{scene.name}_psi.png"] = fig
 
     if c_set is not None:
         starts = []
@@ -97,16 +118,21 @@ def plots(scene, cert, out_dir) -> list[str]:
         runs = [solve_ivp(fg.rhs_scalar, (0.0, 2.0), s0, method="LSODA", rtol=1e-10, atol=1e-14) for s0 in starts]
         if runs:
             fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 4))
-            for run in runs:
+            for i, run in enumerate(runs):
                 y = run.y
-                a1.plot(run.t, y[0] ** 2 + y[2] ** 2, lw=0.6)
-                a2.plot(run.t, fg.V(y[0], y[1], y[2]), lw=0.8)
-            a1.axhline(R ** 2, color="k", lw=0.8)
+                colour = SERIES[i % len(SERIES)]
+                a1.plot(run.t, y[0] ** 2 + y[2] ** 2, lw=0.6, color=colour, gid="trajectory")
+                a2.plot(run.t, fg.V(y[0], y[1], y[2]), lw=0.8, color=colour, gid="trajectory",
+                        label=f"start {i + 1} (float solve)")
+            a1.axhline(R ** 2, color="k", lw=0.8, ls="--", label="R^2: edge of region (17)")
             a1.set_ylabel("x1^2 + x3^2")
-            a2.axhline(c_set, color="tab:green", lw=0.8)
+            a2.axhline(c_set, color="k", lw=0.8, ls="--", label="c_set: level of the certified set")
             a2.set_ylabel("V")
             for a in (a1, a2):
                 a.set_xlabel("t [s]")
+                a.legend(fontsize=7, loc="best")
             fig.suptitle(f"{scene.name}: float trajectories from the edge of the certified set (never a verdict)")
-            _save(fig, out, f"{scene.name}_trajectories.png", paths)
-    return paths
+            fig.tight_layout()
+            declutter_ticks(fig)
+            figs[f"{scene.name}_trajectories.png"] = fig
+    return figs

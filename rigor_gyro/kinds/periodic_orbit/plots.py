@@ -3,31 +3,49 @@
 * ``<name>_orbit.png``: beta, Omega, i, I over one period 2 theta* of the scene's orbit, evaluated in
   balls from the certified initial point and drawn at their midpoints (floats for drawing only).
 
-matplotlib is imported inside :func:`plots` only (optional extra ``plots``).
+:func:`build_figures` returns the Figures (file name -> Figure), :func:`plots` saves them; a figure
+is a float drawing of certified data and never decides anything. matplotlib is imported inside the
+functions only (optional extra ``plots``).
 """
 from __future__ import annotations
 
 from pathlib import Path
 
 from ...core.balls import working_precision
+from ...core.figure_style import OKABE_ITO, SERIES, declutter_ticks
 from .claims import validate
 from .flow import Spectrum, orbit_expsums, x0_at
 
-__all__ = ["plots"]
+__all__ = ["plots", "build_figures"]
 
 
 def plots(scene, cert, out_dir) -> list:
+    """Save :func:`build_figures` as ``<out>/<file name>``; the paths."""
+    import matplotlib.pyplot as plt
+    figs = build_figures(scene, cert)
+    if not figs:
+        return []
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for name, fig in figs.items():
+        path = out / name
+        fig.savefig(path, dpi=120)
+        plt.close(fig)
+        paths.append(path)
+    return paths
+
+
+def build_figures(scene, cert) -> dict:
     """Draw beta, Omega, i, I over one period of the scene's orbit (floats for drawing only; the curve is
-    evaluated from the certified initial point). Imports matplotlib here only."""
+    evaluated from the certified initial point): ``{"<name>_orbit.png": Figure}``, or {} without theta*."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     if "theta_star" not in cert.quantities:
-        return []
+        return {}
     model = validate(scene)
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
     with working_precision(max(cert.precision_bits, 64)):
         sp = Spectrum(model.params)
         th = cert.quantities["theta_star"]
@@ -45,15 +63,15 @@ def plots(scene, cert, out_dir) -> list:
                     ys[i].append((-1) ** half * float(vals[i].mid()))
     names = ["beta (rad)", "beta' (rad/s)", "Omega (rad/s)", "i (A)", "I (A)"]
     fig, axes = plt.subplots(4, 1, figsize=(7, 9), sharex=True)
-    for ax, i in zip(axes, (0, 2, 3, 4)):
-        ax.plot(ts, ys[i], lw=1.2)
-        ax.axvline(thf, color="grey", lw=0.6, ls="--")
-        ax.axhline(0, color="grey", lw=0.4)
+    for ax, i, colour in zip(axes, (0, 2, 3, 4), SERIES):
+        ax.plot(ts, ys[i], lw=1.2, color=colour, gid="orbit", label=names[i].split(" ")[0] + " (ball midpoints)")
+        ax.axvline(thf, color=OKABE_ITO["grey"], lw=0.8, ls="--", label="theta* (half period)")
+        ax.axhline(0, color=OKABE_ITO["grey"], lw=0.4)
         ax.set_ylabel(names[i])
+        ax.legend(fontsize=7, loc="upper right")
     axes[-1].set_xlabel("t (s)")
-    axes[0].set_title(f"{scene.name}: one period 2 theta*, theta* = {thf:.12g} s")
+    axes[0].set_title(f"{scene.name}: one period 2 theta*, theta* = {thf:.12g} s\n"
+                      "(drawn from the certified initial point; a drawing, never a verdict)", fontsize=10)
     fig.tight_layout()
-    path = out / f"{scene.name}_orbit.png"
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return [path]
+    declutter_ticks(fig)
+    return {f"{scene.name}_orbit.png": fig}
