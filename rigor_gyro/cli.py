@@ -17,6 +17,7 @@ from pathlib import Path
 
 from .core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, MAX_PREC, MIN_PREC
 from .core.errors import RigorGyroError
+from .core.seconds import seconds_text
 from .version import __version__
 
 __all__ = ["main", "EXIT_BAD_INPUT", "EXIT_INTERNAL"]
@@ -401,7 +402,7 @@ def _prove_point(ref: str, scene, args, show_progress: bool = True) -> int:
     if not args.quiet:
         for c in cert.claims:
             _say(f"{scene.name}: {c.id}: {c.status.value} ({c.precision_bits} bits) - {c.reason}")
-    _say(f"{scene.name}: verdict {cert.verdict.value} in {cert.timings['total_s']:.2f} s "
+    _say(f"{scene.name}: verdict {cert.verdict.value} in {seconds_text(cert.timings['total_s'])} "
          f"at {cert.precision_bits} bits -> {jpath}, {mpath}")
     return code
 
@@ -428,7 +429,7 @@ def _pave(bs, executor, args) -> int:
             v = c.volume(bs.box)
             _say(f"{bs.scene.name}: {c.id}: {c.status} over the box (volume proved {float(v['proved']):.4g}, "
                  f"refuted {float(v['refuted']):.4g}, undecided {float(v['undecided']):.4g})")
-    _say(f"{bs.scene.name}: verdict {paving.verdict} over the box in {paving.seconds:.2f} s "
+    _say(f"{bs.scene.name}: verdict {paving.verdict} over the box in {seconds_text(paving.seconds)} "
          f"({paving.evaluated} boxes, {executor.label}) -> {jpath}, {mpath}")
     if args.plots:
         if not _has_matplotlib():
@@ -547,7 +548,7 @@ def _cmd_check(args) -> int:
                 _say(f"{path}: {r.item}: {'ok' if r.ok else 'FAILED'} - {r.message}")
         bad = report.first_failure
         _say(f"{path}: " + ("confirmed" if report.ok else f"NOT confirmed: {bad.item}: {bad.message}")
-             + f" ({len(report.results)} checks, {report.seconds:.2f} s)")
+             + f" ({len(report.results)} checks, {seconds_text(report.seconds)})")
         codes.append(0 if report.ok else 1)
     return next(c for c in (EXIT_BAD_INPUT, 1, 0) if c in codes or c == 0)
 

@@ -12,7 +12,9 @@ Example (on a pipe, as here, the bar is a no-op):
 from __future__ import annotations
 
 import contextlib
+import io
 import os
+import shutil
 import sys
 from typing import Iterator
 
@@ -62,8 +64,13 @@ def progress_bar(desc: str, *, total: int | None = None, unit: str = "it", delay
         yield Bar()
         return
     from tqdm import tqdm
-    bar = tqdm(desc=desc, total=total, unit=unit, delay=delay, dynamic_ncols=True, leave=False,
-               file=sys.stderr, mininterval=0.2)
+    try:        # a real terminal: tqdm follows its width as it changes
+        os.get_terminal_size(sys.stderr.fileno())
+        width = {"dynamic_ncols": True}
+    except (AttributeError, OSError, ValueError, io.UnsupportedOperation):
+        width = {"ncols": shutil.get_terminal_size((80, 24)).columns}       # $COLUMNS, else 80
+    bar = tqdm(desc=desc, total=total, unit=unit, delay=delay, leave=False, file=sys.stderr, mininterval=0.2,
+               **width)
     try:
         yield Bar(bar)
     finally:

@@ -196,6 +196,8 @@ class Paving:
     budget_hit: bool
     seconds: float = 0.0
     executor: str = ""
+    #: why the paving stopped before its resolution (the time limit), or "" when it ran its course
+    stopped: str = ""
 
     @property
     def verdict(self) -> str:
@@ -222,7 +224,7 @@ def pave(bs: BoxScene, executor: Executor | None = None, progress=None, time_lim
     statements = boxes_module(bs.scene.kind).BOX_CLAIMS
     result = {c: ClaimPaving(c, "For every parameter value in the box: " + statements[c]) for c in bs.claims}
     active: list[tuple[Box, tuple[str, ...]]] = [(whole, tuple(bs.claims))]
-    evaluated, levels, budget_hit = 0, 0, False
+    evaluated, levels, budget_hit, stopped = 0, 0, False, ""
     while active:
         levels += 1
         tasks = [(bs.scene.kind, pj, oj, mj, json.dumps(b.to_json()), open_, bs.prec) for b, open_ in active]
@@ -255,10 +257,10 @@ def pave(bs: BoxScene, executor: Executor | None = None, progress=None, time_lim
                 for c in open_:
                     result[c].boxes.append((child, "undecided"))
                     result[c].reasons["undecided"] = budget.reason()
-            active, budget_hit = [], True
+            active, budget_hit, stopped = [], True, budget.reason()
     # point proofs at midpoints: refuted boxes (re-checkable counterexamples) and undecided boxes
     ptasks, owners = [], []
-    for c, cp in ([] if budget.expired() else result.items()):
+    for c, cp in ([] if stopped else result.items()):
         for outcome in ("refuted", "undecided"):
             for b, s in [x for x in cp.boxes if x[1] == outcome][:bs.max_points]:
                 params = bs.point_parameters(b.midpoint())
@@ -270,4 +272,4 @@ def pave(bs: BoxScene, executor: Executor | None = None, progress=None, time_lim
                                  f"is proved: an unsound box or point evaluation")
         result[c].points.append({"box_outcome": outcome, "point": params, **res})
     return Paving(bs, [result[c] for c in bs.claims], evaluated, levels, budget_hit,
-                  time.perf_counter() - t0, ex.label)
+                  time.perf_counter() - t0, ex.label, stopped)

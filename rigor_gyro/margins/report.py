@@ -61,6 +61,8 @@ def paving_json(p: Paving) -> dict[str, Any]:
         "claims": claims,
         "not_box_claims": bs.skipped,
     }
+    if p.stopped:       # only then, so that a paving that ran its course is byte-identical to before
+        data["stopped"] = p.stopped
     data["integrity"] = {"sha256": digest(data)}
     return data
 
@@ -103,7 +105,9 @@ def render_paving(data: dict[str, Any]) -> str:
         out.append("")
     out.append(f"Settings: box_resolution {s['box_resolution']} of each edge, max_boxes {s['max_boxes']}, box "
                f"evaluations at {s['box_prec']} bits; {data['boxes_evaluated']} boxes evaluated in "
-               f"{data['levels']} levels" + ("; the box budget was exhausted" if data["budget_exhausted"] else "") + ".")
+               f"{data['levels']} levels" + (f"; stopped: {data['stopped']}, the open sub-boxes left undecided and no point "
+                                      "proof run" if data.get("stopped") else "; the box budget was exhausted"
+                                      if data["budget_exhausted"] else "") + ".")
     if data["not_box_claims"]:
         out.append("")
         out.append(f"Not decided over boxes (point claims only): {', '.join(data['not_box_claims'])}.")
