@@ -20,6 +20,11 @@ Architecture, bottom up (imports point down; tests/test_rules.py checks it):
   :mod:`~rigor_gyro.prover` (validate -> attempt at escalating precision -> certificate),
   :mod:`~rigor_gyro.certificate` (Certificate, JSON), :mod:`~rigor_gyro.report` (Markdown),
   :mod:`~rigor_gyro.cli` (``rigor-gyro list | prove``).
+
+Writing, checking and paving are exported too, imported on first use (``import rigor_gyro`` stays cheap):
+``write_outputs`` (certificate and report files), ``check_file`` / ``check_certificate`` (the independent
+checker: certificates, pavings, thresholds, scans), ``box_scene`` / ``pave`` / ``write_paving`` (a scene
+with tolerances), ``find_threshold`` / ``write_threshold`` and ``run_scan`` / ``write_scan`` (one parameter).
 """
 from .certificate import Certificate
 from .core.balls import (certainly_ge, certainly_gt, certainly_le, certainly_lt, certainly_negative,
@@ -45,4 +50,27 @@ __all__ = [
     "Scene", "load_scene", "parse_scene", "builtin_scenes", "prove_scene",
     "RigorGyroError", "ParameterError", "SceneError", "CertificationFailed",
     "__version__",
+    "write_outputs", "render_markdown", "check_file", "check_certificate", "CheckReport", "CertificateError",
+    "box_scene", "pave", "has_tolerances", "write_paving", "find_threshold", "write_threshold", "run_scan",
+    "write_scan",
 ]
+
+#: public names imported on first use (module-level __getattr__): writing, checking, paving, margins
+_LAZY = {"write_outputs": "report", "render_markdown": "report",
+         "check_file": "check", "check_certificate": "check", "CheckReport": "check", "CertificateError": "check",
+         "box_scene": "margins.paving", "pave": "margins.paving", "has_tolerances": "margins.paving",
+         "write_paving": "margins.report", "find_threshold": "margins.threshold",
+         "write_threshold": "margins.threshold", "run_scan": "margins.scan", "write_scan": "margins.scan"}
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        import importlib
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))

@@ -80,9 +80,20 @@ class Certificate:
         return "\n".join(lines)
 
     def _repr_markdown_(self) -> str:
-        """The Markdown report (what ``rigor-gyro prove`` writes beside the certificate), for notebooks."""
-        from .report import render_markdown
-        return render_markdown(self.to_json())
+        """For notebooks: the verdict, each claim with its status and reason, and the certified quantities
+        (each to its certified digits; the full report is ``rigor_gyro.render_markdown(cert.to_json())``)."""
+        esc = lambda t: str(t).replace("|", "\\|").replace("\n", " ")       # noqa: E731
+        out = [f"**{esc(self.scene.get('name'))}** (kind `{self.scene.get('kind')}`): "
+               f"**{self.verdict.value}** (final attempt at {self.precision_bits} bits)", "",
+               "| claim | status | reason |", "|---|---|---|"]
+        out += [f"| `{c.id}` | **{c.status.value}** | {esc(c.reason)[:300]} |" for c in self.claims]
+        if self.quantities:
+            out += ["", "| quantity | certified value |", "|---|---|"]
+            items = list(self.quantities.items())
+            out += [f"| `{k}` | {esc(v)} |" for k, v in items[:20]]
+            if len(items) > 20:
+                out.append(f"| ... | {len(items) - 20} more in `.quantities` |")
+        return "\n".join(out) + "\n"
 
     @property
     def verdict(self) -> Status:

@@ -153,6 +153,13 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
     options, precisions, time limit out of range)."""
     if not isinstance(scene, Scene):
         raise SceneError(f"prove_scene needs a Scene (from load_scene or parse_scene), got {type(scene).__name__}")
+    from .core.boxes import is_tolerance
+    boxed = [(k, v) for k, v in scene.parameters.items() if is_tolerance(v)]
+    if boxed:
+        k, v = boxed[0]
+        raise ParameterError(f"scene {scene.name!r} has tolerances (parameter {k} = {v!r}): prove_scene proves one "
+                             "point; pave the box with rigor_gyro.pave(rigor_gyro.box_scene(scene)) (and "
+                             f"rigor_gyro.write_paving), or run `rigor-gyro prove` on the scene file")
     check_precision(prec, "prec")
     check_precision(maxprec, "maxprec")
     if maxprec < prec:

@@ -77,7 +77,13 @@ def test_a_certificate_has_a_concise_repr_and_a_markdown_one():
     text = repr(cert)
     assert len(text) < 400 and len(text.splitlines()) <= 8
     assert "'rudenko1976'" in text and "eigenfrequencies" in text and "proved, 9 claims: 9 proved" in text
-    assert cert._repr_markdown_() == render_markdown(cert.to_json())
+    md = cert._repr_markdown_()
+    assert md.startswith("**rudenko1976** (kind `eigenfrequencies`): **proved**")
+    assert all(f"| `{c.id}` | **proved** |" in md for c in cert.claims)
+    assert f"| `omega_1` | {cert.quantities['omega_1']!r} |" in md and "more in `.quantities`" in md
+    assert render_markdown(cert.to_json()).startswith("# rudenko1976: PROVED")    # the full report, exported
+    import rigor_gyro
+    assert rigor_gyro.render_markdown is render_markdown
     demo = prove_scene(load_scene("roitenberg1947_b2over15"))
     if demo.verdict.value != "proved":              # a claim not proved is named with its reason
         bad = [c for c in demo.claims if c.status.value != "proved"][0]
@@ -122,3 +128,49 @@ def test_the_period_is_as_narrow_as_theta_star_and_the_precision_is_stated():
     bits = data["precision_bits"]
     assert any(n.startswith(f"Precision: the roots of g are isolated and classified at the working precision ({bits} "
                             f"bits)") and f"recomputed at {bits + 32} bits" in n for n in data["notes"])
+
+
+# ---------------------------------------------------------------- the library API
+
+def test_prove_scene_on_a_tolerance_scene_points_to_the_paving_api():
+    import rigor_gyro as rg
+    s = load_scene("agafonov2013")
+    box = dataclasses.replace(s, parameters={**s.parameters, "k": "[0.35, 0.45]"})
+    with pytest.raises(rg.ParameterError) as e:
+        rg.prove_scene(box)
+    text = str(e.value)
+    assert "has tolerances (parameter k = '[0.35, 0.45]')" in text
+    assert "rigor_gyro.pave(rigor_gyro.box_scene(scene))" in text and "rigor-gyro prove" in text
+    assert "cannot read" not in text
+
+
+def test_writing_checking_and_paving_are_exported_lazily():
+    import subprocess
+    import sys
+    code = ("import sys, rigor_gyro as rg; before = sorted(m for m in sys.modules if m.startswith('rigor_gyro.margins') "
+            "or m in ('rigor_gyro.check', 'rigor_gyro.report')); "
+            "names = ['write_outputs', 'check_file', 'check_certificate', 'box_scene', 'pave', 'write_paving', "
+            "'find_threshold', 'run_scan', 'write_threshold', 'write_scan']; "
+            "assert all(n in rg.__all__ and n in dir(rg) and callable(getattr(rg, n)) for n in names); "
+            "print(before, sorted(m for m in ('numpy', 'scipy', 'matplotlib', 'mpmath') if m in sys.modules))")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() == "[] []"
+    import rigor_gyro
+    with pytest.raises(AttributeError):
+        rigor_gyro.no_such_name
+
+
+def test_the_readmes_library_example_runs(tmp_path, monkeypatch):
+    import re
+    from pathlib import Path
+    readme = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
+    section = readme[readme.index("## Library use"):]
+    code = re.search(r"```python\n(.*?)```", section, re.S).group(1)
+    monkeypatch.setattr("tempfile.mkdtemp", lambda *a, **k: str(tmp_path))
+    env: dict = {}
+    exec(compile(code, "README.md (Library use)", "exec"), env)
+    assert env["cert"].verdict.value == "proved" and env["paving"].claims[0].status == "proved"
+    assert env["t"].certified and str(env["w"]).startswith("[0.00450240157250983917602386831672844424486401")
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert {"rudenko1976.json", "rudenko1976.md", "agafonov2013.json", "margin_agafonov2013_k.json"} <= set(names)
