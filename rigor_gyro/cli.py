@@ -460,14 +460,17 @@ def _cmd_margin(args) -> int:
             return _bad("--width is the threshold's; a scan proves exactly the --scan N points")
         if not 1 <= args.workers <= 64:
             return _bad("need 1 <= --workers <= 64")
+        if args.time_limit is not None:
+            return _bad("--time-limit bounds a threshold search; a scan proves exactly its --scan N points "
+                        "(lower N, or prove a single point with `rigor-gyro prove --time-limit`)")
         return _said(run_scan(scene, args.param, args.scan, lo=args.lo, hi=args.hi, claim=args.claim,
                               quantities=args.quantity, log=args.log, workers=args.workers,
                               scheduler=args.scheduler), write_scan, args.out, args.plots)
     if args.log or args.quantity or args.workers != 1 or args.scheduler:
         return _bad("--log, --quantity, --workers and --scheduler go with --scan")
     return _said(find_threshold(scene, args.param, lo=args.lo, hi=args.hi, claim=args.claim,
-                                width=args.width if args.width is not None else "1e-6"), write_threshold, args.out,
-                 args.plots)
+                                width=args.width if args.width is not None else "1e-6", time_limit=args.time_limit),
+                 write_threshold, args.out, args.plots)
 
 
 NO_MATPLOTLIB = "--plots needs matplotlib: pip install 'rigor_gyro[plots]'"

@@ -267,3 +267,25 @@ def test_the_prove_line_prints_short_times_honestly(tmp_path, capsys):
 def test_no_hand_written_carriage_return_printers_are_left():
     import inspect
     assert "\\r" not in inspect.getsource(cli)
+
+
+def test_a_threshold_out_of_time_keeps_its_certified_bracket(monkeypatch, capsys):
+    from rigor_gyro.margins import threshold
+    real = threshold._status
+    seconds_given = []
+
+    def slow(*a):
+        seconds_given.append(a[-1])
+        time.sleep(0.2)
+        return real(*a)
+    monkeypatch.setattr(threshold, "_status", slow)
+    scene = threshold.Scene(**{**vars(__import__("rigor_gyro").load_scene("rudenko1976"))})
+    res = threshold.find_threshold(scene, "Omega2", lo="1e-6", hi="1", claim="bracket_2", width="1e-12",
+                                   time_limit=1.0)
+    assert "time limit of 1 s" in res.stopped and res.exit_code == 3
+    assert 3 <= len(res.steps) <= 7
+    assert all(s is not None and 0 < s <= 1.0 for s in seconds_given), "each proof gets what is left"
+    p, r = res.proved_at, res.refuted_at
+    by_value = {s["value"]: s["status"] for s in res.steps}
+    assert by_value[threshold.fraction_text(p)] == "proved" and by_value[threshold.fraction_text(r)] == "refuted"
+    assert main(["margin", "rudenko1976", "--param", "Omega2", "--scan", "3", "--time-limit", "5"]) == 2

@@ -24,6 +24,7 @@ from typing import Any
 
 from ..core.balls import about_text, interval_text, rational_text, width_text
 from ..core.boxes import fraction_text, is_tolerance
+from ..core.deadline import Budget, check_time_limit
 from ..core.errors import ParameterError
 from ..core.exact import option_number, parse_exact
 from ..kinds import kind_module
@@ -103,9 +104,10 @@ def _width(w: Fraction) -> str:
     return text if Fraction(text) == w else f"<= {text}"
 
 
-def _status(scene: Scene, param: str, value: Fraction, claim: str) -> tuple[str, str]:
+def _status(scene: Scene, param: str, value: Fraction, claim: str, seconds: float | None = None) -> tuple[str, str]:
     """The claim at ``param = value``: a point proof, or, when other parameters are tolerances, the
-    paving of their box (proved: for every point of it; refuted: a certified counterexample in it)."""
+    paving of their box (proved: for every point of it; refuted: a certified counterexample in it),
+    within ``seconds`` of wall clock (None: no limit; out of time: inconclusive)."""
     from ..prover import prove_scene
     s = Scene(name=scene.name, kind=scene.kind, source=scene.source,
               parameters={**scene.parameters, param: fraction_text(value)}, claims_only=[claim],
@@ -113,13 +115,13 @@ def _status(scene: Scene, param: str, value: Fraction, claim: str) -> tuple[str,
     try:
         if any(is_tolerance(v) for v in s.parameters.values()):
             from .paving import box_scene, pave
-            p = pave(box_scene(s))
+            p = pave(box_scene(s), time_limit=seconds)
             c = p.claims[0]
             v = c.volume(p.bs.box)
             return c.status, (f"paving of the other parameters' box: proved {about_text(v['proved'])}, refuted "
                               f"{about_text(v['refuted'])}, undecided {about_text(v['undecided'])} of the volume "
                               "(4 digits, to nearest)")
-        c = prove_scene(s).claim(claim)
+        c = prove_scene(s, time_limit=seconds).claim(claim)
     except ParameterError as e:
         raise ParameterError(f"{param} = {_d(value)} is outside the kind's domain: {e}") from None
     return c.status.value, c.reason
@@ -147,8 +149,14 @@ def search_range(scene: Scene, param: str, lo: str | None, hi: str | None) -> tu
 
 
 def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str | None = None,
-                   claim: str | None = None, width: str = "1e-6") -> Threshold:
-    """Bisect ``param`` between ``lo`` and ``hi`` (default value/2 and 2 value) for ``claim``."""
+                   claim: str | None = None, width: str = "1e-6", time_limit: float | None = None) -> Threshold:
+    """Bisect ``param`` between ``lo`` and ``hi`` (default value/2 and 2 value) for ``claim``. With
+    ``time_limit`` (seconds of wall clock) the search stops when it runs out: the bracket certified so
+    far is kept and the result says "time limit" (exit 3, never a refutation)."""
+    try:
+        budget = Budget(check_time_limit(time_limit, "time_limit"))
+    except ValueError as e:
+        raise ParameterError(str(e)) from None
     module = kind_module(scene.kind)
     if param not in scene.parameters:
         raise ParameterError(f"--param {param!r} is not a parameter of scene {scene.name!r}; it has "
@@ -174,9 +182,15 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
     res = Threshold(scene, param, claim, lo_q, hi_q, w)
     ends = {}
     for x in (lo_q, hi_q):
-        st, why = _status(scene, param, x, claim)
+        if budget.expired():
+            res.stopped = f"{budget.reason()} before the claim was decided at both ends"
+            return res
+        st, why = _status(scene, param, x, claim, budget.remaining())
         res.steps.append({"value": fraction_text(x), "status": st, "reason": why[:300]})
         ends[x] = st
+    if budget.expired() and "inconclusive" in ends.values():
+        res.stopped = f"{budget.reason()} before the claim was decided at both ends"
+        return res
     if {ends[lo_q], ends[hi_q]} != {"proved", "refuted"}:
         res.stopped = (f"the claim is {ends[lo_q]} at {param} = {_d(lo_q)} and {ends[hi_q]} at {param} = {_d(hi_q)}; "
                        "a threshold needs one proved end and one refuted end (widen --lo/--hi)")
@@ -185,13 +199,19 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
     for _ in range(MAX_STEPS):
         if abs(r - p) <= w * max(abs(p), abs(r)):
             break
+        if budget.expired():
+            res.stopped = f"{budget.reason()}: the bracket certified so far is kept"
+            break
         m = (p + r) / 2
-        st, why = _status(scene, param, m, claim)
+        st, why = _status(scene, param, m, claim, budget.remaining())
         res.steps.append({"value": fraction_text(m), "status": st, "reason": why[:300]})
         if st == "proved":
             p = m
         elif st == "refuted":
             r = m
+        elif budget.expired():
+            res.stopped = f"{budget.reason()} during the proof at {param} = {_d(m)}: the bracket certified so far is kept"
+            break
         else:
             res.stopped = f"the claim is inconclusive at {param} = {_d(m)}: {why[:200]}"
             break
