@@ -273,3 +273,34 @@ def test_declutter_removes_overlapping_tick_labels():
     declutter_ticks(fig)
     assert tick_label_overlaps(fig) == []
     assert any(t.get_visible() for t in ax.get_xticklabels())
+
+
+def test_a_stopped_threshold_and_a_bare_log_scan_are_still_drawn_in_full():
+    """No bracket: one panel with every step and the outcome legend; a log scan with no quantity: only the
+    status rows, one per claim, every point drawn."""
+    steps = [{"value": "1/1000", "status": "proved", "reason": ""}, {"value": "1", "status": "proved", "reason": ""}]
+    data = {"schema": "rigor-gyro/threshold/1", "scene": {"name": "s"}, "param": "p", "claim": "c",
+            "search": ["1/1000", "1"], "certified": False, "bracket": None, "bracket_decimal": None,
+            "stopped": "the claim is proved at both ends", "steps": steps}
+    fig, _ = build_margin_figure(data)
+    [ax] = fig.axes
+    assert sum(len(ln.get_xdata()) for ln in ax.lines) == 2 and ax.get_xscale() == "log"
+    assert not [p for p in ax.patches if p.get_gid() == "bracket"]
+    assert {"proved", "refuted", "inconclusive"} <= set(_legend_texts(fig))
+    assert tick_label_overlaps(fig) == []
+    pts = [{"value": v, "claims": {"a": {"status": sa}, "b": {"status": sb}}, "quantities": {}}
+           for v, sa, sb in (("1/10", "proved", "refuted"), ("1", "inconclusive", "refuted"),
+                             ("10", "refuted", "proved"))]
+    scan = {"schema": "rigor-gyro/scan/1", "scene": {"name": "s"}, "param": "p", "claims": ["a", "b"],
+            "quantities": [], "log": True, "points": pts,
+            "counts": {"a": {"proved": 1, "refuted": 1, "inconclusive": 1},
+                       "b": {"proved": 1, "refuted": 2, "inconclusive": 0}}}
+    fig, _ = build_margin_figure(scan)
+    [top] = fig.axes
+    assert top.get_xscale() == "log"
+    for c in ("a", "b"):
+        assert sum(len(ln.get_xdata()) for ln in top.lines if ln.get_gid().startswith(f"status-{c}-")) == 3
+    colours = {ln.get_gid(): to_hex(ln.get_color()) for ln in top.lines}
+    assert colours["status-a-inconclusive"] == STATUS_COLOURS["inconclusive"].lower()
+    assert colours["status-b-refuted"] == STATUS_COLOURS["refuted"].lower()
+    assert tick_label_overlaps(fig) == []
