@@ -31,18 +31,21 @@ def _drawn(fig) -> None:
     fig.canvas.draw()
 
 
-def _visible_tick_labels(axis) -> list:
-    """The tick labels the axis actually draws (inside the view, visible, with text)."""
+def _visible_tick_labels(axis, minor: bool | None = None) -> list:
+    """The tick labels the axis actually draws (inside the view, visible, with text), by position; only the
+    minor (``minor=True``) or major (False) ones when asked."""
     lo, hi = sorted(axis.get_view_interval())
+    ticks = [] if minor is True else [(t, False) for t in axis.get_major_ticks()]
+    ticks += [] if minor is False else [(t, True) for t in axis.get_minor_ticks()]
     out = []
-    for tick in list(axis.get_major_ticks()) + list(axis.get_minor_ticks()):
+    for tick, _ in ticks:
         loc = tick.get_loc()
         if loc is None or not (lo - 1e-12 * abs(hi - lo) <= loc <= hi + 1e-12 * abs(hi - lo)):
             continue
         for lab in (tick.label1, tick.label2):
             if lab.get_visible() and lab.get_text() and tick.get_visible():
-                out.append(lab)
-    return out
+                out.append((loc, lab))
+    return [lab for _, lab in sorted(out, key=lambda p: p[0])]
 
 
 def text_overlaps(texts, renderer=None) -> list[tuple[str, str]]:
@@ -66,31 +69,33 @@ def tick_label_overlaps(fig) -> list[tuple[str, str]]:
     return bad
 
 
+def _thin(fig, axis, minor: bool | None) -> None:
+    """Hide every other label (then three of four, ...) of the given kind until the axis has no collision."""
+    step = 2
+    while text_overlaps(_visible_tick_labels(axis)) and step <= 64:
+        for i, lab in enumerate(_visible_tick_labels(axis, minor)):
+            if i % 2:
+                lab.set_visible(False)
+        _drawn(fig)
+        step *= 2
+
+
 def declutter_ticks(fig) -> None:
-    """Make every axis's tick labels non-overlapping: hide the minor labels of a colliding axis, then rotate
-    colliding x labels, then thin the labels (every other one) until none collide."""
+    """Make every axis's tick labels non-overlapping: thin the minor labels of a colliding axis (a log
+    axis's), then rotate colliding x labels, then thin the major labels (every other one) until none
+    collide."""
     _drawn(fig)
     for ax in fig.axes:
         for which, axis in (("x", ax.xaxis), ("y", ax.yaxis)):
             if not text_overlaps(_visible_tick_labels(axis)):
                 continue
-            for tick in axis.get_minor_ticks():
-                tick.label1.set_visible(False)
-                tick.label2.set_visible(False)
-            _drawn(fig)
+            _thin(fig, axis, True)
             if which == "x" and text_overlaps(_visible_tick_labels(axis)):
                 for lab in ax.get_xticklabels(which="both"):
                     lab.set_rotation(30)
                     lab.set_horizontalalignment("right")
                 _drawn(fig)
-            step = 2
-            while text_overlaps(_visible_tick_labels(axis)) and step < 64:
-                labels = _visible_tick_labels(axis)
-                for i, lab in enumerate(labels):
-                    if i % step:
-                        lab.set_visible(False)
-                _drawn(fig)
-                step *= 2
+            _thin(fig, axis, None)
 
 
 #: offsets (points) tried in order for a point label
