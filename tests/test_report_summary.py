@@ -189,3 +189,25 @@ def test_complex_roots_are_reported_as_decimal_intervals(monkeypatch):
     for re_lo, re_hi, im_lo, im_hi in shown:       # each contains 1 + 2i or 1 - 2i
         assert Fraction(re_lo) <= 1 <= Fraction(re_hi)
         assert Fraction(im_lo) <= 2 <= Fraction(im_hi) or Fraction(im_lo) <= -2 <= Fraction(im_hi)
+
+
+def test_no_reason_of_the_demos_carries_the_ball_format():
+    """The planted refutations and inconclusive outcomes too (V <= 0 on a face, a sign condition that
+    fails): their reasons print outward-rounded decimals (core.balls.enclosure_text)."""
+    from rigor_gyro.scene import builtin_scenes
+    for name in builtin_scenes("demo"):
+        cert = json.loads(json.dumps(prove_scene(load_scene(name)).to_json()))
+        for c in cert["claims"]:
+            assert "+/-" not in c["reason"], (name, c["id"], c["reason"])
+
+
+def test_enclosure_text_rounds_outward_and_never_prints_a_flint_ball():
+    from flint import arb
+
+    from rigor_gyro.core.balls import enclosure_text
+    x = arb("-240987.88") + arb(0, "1.84e-3")
+    text = enclosure_text(x, 8)
+    lo, hi = (Fraction(t) for t in text.strip("[]").split(", "))
+    assert lo <= Fraction("-240987.88") - Fraction("1.84e-3") and hi >= Fraction("-240987.88") + Fraction("1.84e-3")
+    assert "+/-" not in text and enclosure_text(arb(3), 5) == "3"
+    assert enclosure_text(arb(0, "inf")) == "[-inf, +inf]" and enclosure_text(arb("nan")) == "nan"

@@ -47,7 +47,7 @@ __all__ = [
     "DEFAULT_PREC", "DEFAULT_MAXPREC", "working_precision", "current_precision", "ball", "is_finite",
     "certainly_lt", "certainly_le", "certainly_gt", "certainly_ge", "certainly_positive",
     "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
-    "overlaps", "certainly_within", "interval", "exact_fraction", "exponent10", "decimal_bounds", "rational_text", "interval_text",
+    "overlaps", "certainly_within", "interval", "exact_fraction", "exponent10", "decimal_bounds", "enclosure_text", "rational_text", "interval_text",
     "width_text", "about_text", "Quantity", "as_quantity", "quantity", "stored_hull",
     "rel_width_at_most", "sqrt_of_nonnegative", "exact_endpoints", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
 ]
@@ -389,6 +389,14 @@ def decimal_bounds(x: arb, digits: int | None = None) -> tuple[str, str]:
     lo = _round_decimal(a, d, "down") if a is not None else "-inf"
     hi = _round_decimal(b, d, "up") if b is not None else "+inf"
     return lo, hi
+
+
+def enclosure_text(x: arb, digits: int = 12) -> str:
+    """A ball as text for a reason or a report: ``[lo, hi]`` rounded outward to ``digits`` significant
+    digits (one decimal when both ends print alike), ``[-inf, +inf]`` for an unbounded ball, ``nan``;
+    never python-flint's ``[mid +/- rad]``, whose printing can collapse the ball."""
+    lo, hi = decimal_bounds(x, digits)
+    return lo if lo == hi else f"[{lo}, {hi}]"
 
 
 def decimal_bounds_apart(x: arb, value: object, digits: int) -> tuple[str, str]:

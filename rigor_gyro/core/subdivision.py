@@ -33,7 +33,8 @@ from typing import Callable
 
 from flint import arb, fmpq
 
-from .balls import ball, certainly_le, certainly_lt, certainly_positive, exact_fraction, interval
+from .balls import (ball, certainly_le, certainly_lt, certainly_positive, decimal_bounds, enclosure_text,
+                    exact_fraction, interval)
 from .outcome import Status
 from .roots import enclose_f_df
 
@@ -89,15 +90,15 @@ def certify_positive(f: IntervalFunction, lo: object, hi: object, *, max_pieces:
         mid = ((a + b) / 2).mid()
         fm = f(mid)
         if certainly_le(fm, 0):
-            return Positivity(Status.REFUTED, done, mid, fm, reason=f"f(t) <= 0 at the point t = {mid.str(20)}")
+            return Positivity(Status.REFUTED, done, mid, fm, reason=f"f(t) <= 0 at the point t = {enclosure_text(mid, 20)}")
         for end in (a, b):
             fe = f(end)
             if certainly_le(fe, 0):
-                return Positivity(Status.REFUTED, done, end, fe, reason=f"f(t) <= 0 at the point t = {end.str(20)}")
+                return Positivity(Status.REFUTED, done, end, fe, reason=f"f(t) <= 0 at the point t = {enclosure_text(end, 20)}")
         too_small = min_width is not None and certainly_lt(b - a, ball(min_width))
         if done + len(stack) >= max_pieces or too_small or not certainly_lt(a, mid) or not certainly_lt(mid, b):
             return Positivity(Status.INCONCLUSIVE, done, stuck=(a, b), stuck_value=fx,
-                              reason=f"f not separated from 0 on [{a.str(12)}, {b.str(12)}] after {done} "
+                              reason=f"f not separated from 0 on [{decimal_bounds(a, 12)[0]}, {decimal_bounds(b, 12)[1]}] after {done} "
                                      "pieces (raise precision or max_pieces; f may touch 0 there)")
         stack.append((mid, b))
         stack.append((a, mid))

@@ -28,7 +28,8 @@ from fractions import Fraction
 
 from flint import acb_mat, arb, fmpq
 
-from ...core.balls import certainly_le, certainly_lt, certainly_negative, certainly_nonzero, certainly_positive
+from ...core.balls import (certainly_le, certainly_lt, certainly_negative, certainly_nonzero, certainly_positive,
+                           enclosure_text)
 from ...core.roots import RootStatus, isolate_roots
 from .model import Dual, Gimbal
 
@@ -119,7 +120,7 @@ def equilibria(g: Gimbal) -> Equilibria:
         elif certainly_lt(abs(root), pi):
             points.append(Equilibrium(arb(0), root, "f(x2) = 0"))
         elif not certainly_lt(pi, abs(root)):
-            problems.append(f"a root of f at {root.str(10)} is not separated from |x2| = pi")
+            problems.append(f"a root of f at {enclosure_text(root, 10)} is not separated from |x2| = pi")
     for sgn in (1, -1):
         x2 = sgn * pi / 2
         points.append(Equilibrium(-g.f(x2) / c.k, x2, "cos x2 = 0", exact=pi_text(Fraction(sgn, 2))))
@@ -127,10 +128,10 @@ def equilibria(g: Gimbal) -> Equilibria:
         if certainly_lt(pi, abs(root)):
             continue
         if not certainly_lt(abs(root), pi):
-            problems.append(f"a root of h at {root.str(10)} is not separated from |x2| = pi")
+            problems.append(f"a root of h at {enclosure_text(root, 10)} is not separated from |x2| = pi")
             continue
         if not certainly_nonzero(root.cos()):
-            problems.append(f"a root of h at {root.str(10)} is not separated from cos x2 = 0")
+            problems.append(f"a root of h at {enclosure_text(root, 10)} is not separated from cos x2 = 0")
             continue
         points.append(Equilibrium(-g.f(root) / c.k, root, "k H + C0 sin x2 f(x2) = 0"))
     for e in points:

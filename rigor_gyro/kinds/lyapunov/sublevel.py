@@ -36,7 +36,7 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from ...core.balls import certainly_le, certainly_positive, decimal_bounds, exact_fraction
+from ...core.balls import certainly_le, certainly_positive, decimal_bounds, enclosure_text, exact_fraction
 from ...core.boxes import Box
 from ...core.subdivision import lower_bound_on_box
 from .model import DIRECT_DOMAIN, Gimbal, sublevel_lower_bound, symmetric_in_x2, v_polar, vdot_polar
@@ -167,16 +167,16 @@ def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
     out.face = face
     if face.is_finite() and certainly_le(face, 0):
         out.refutation = {"where": "faces", "phi": face}
-        out.reason = f"min of V on the faces |x2| = x2* is {face.str(8)} <= 0 (certified): c_max <= 0 at this x2*"
+        out.reason = f"min of V on the faces |x2| = x2* is {enclosure_text(face, 8)} <= 0 (certified): c_max <= 0 at this x2*"
         return out
     origin = _origin_counterexample(g)
     if origin is not None:
         out.refutation = {"where": "origin", "s": origin[0], "A": origin[1]}
-        out.reason = (f"at x2 = 0, t = pi * {origin[0]}: A = {origin[1].str(8)} < 0 (certified), so Vdot = -r^2 (A + r B) "
+        out.reason = (f"at x2 = 0, t = pi * {origin[0]}: A = {enclosure_text(origin[1], 8)} < 0 (certified), so Vdot = -r^2 (A + r B) "
                       "> 0 for all small r > 0 there while V -> 0: c_max <= 0")
         return out
     if not (face.is_finite() and certainly_positive(face)):
-        out.reason = f"the minimum of V on the faces |x2| = x2* is not certainly positive ({face.str(6)})"
+        out.reason = f"the minimum of V on the faces |x2| = x2* is not certainly positive ({enclosure_text(face, 6)})"
         return out
     est, u, s, r = _search(g)
     out.estimate, out.at = est, (u, s)
@@ -196,7 +196,7 @@ def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
     best = lower_bound_on_box(lb, whole, top * (1 - arb(out.gap)), max_pieces=min(max_pieces, BOX_BUDGET))
     if not (best.bound.is_finite() and certainly_positive(best.bound)):
         out.reason = ("no positive lower bound of V over {Vdot >= 0, (x1, x3) != 0, |x2| <= x2*} was certified "
-                      f"(best {best.bound.str(6)} on {best.boxes} boxes)")
+                      f"(best {enclosure_text(best.bound, 6)} on {best.boxes} boxes)")
         out.bound = best.bound
         return out
     out.n_lower = decimal_bounds(best.bound, 12)[0]      # each end rounded to its own 12 digits: still > 0
