@@ -1,7 +1,7 @@
 """Subdivision: positivity proofs with witnesses, and certified extrema."""
 from flint import arb
 
-from rigor_gyro.core.balls import certainly_lt, working_precision
+from rigor_gyro.core.balls import certainly_lt, decimal_bounds, enclosure_text, working_precision
 from rigor_gyro.certificate import Status
 from rigor_gyro.core.subdivision import certify_positive, enclose_max, enclose_min, mean_value_form
 
@@ -309,9 +309,9 @@ def test_positivity_is_refuted_at_an_end_of_the_interval_with_the_end_as_witness
         for f, end in ((lambda x: x, 0), (lambda x: 1 - x, 1)):             # f > 0 inside, f = 0 at one end
             r = certify_positive(f, "0", "1")
             assert r.status is Status.REFUTED and r.witness == end and r.witness.rad() == 0
-            assert r.witness_value == 0 and r.reason == f"f(t) <= 0 at the point t = {arb(end).str(20)}"
+            assert r.witness_value == 0 and r.reason == f"f(t) <= 0 at the point t = {enclosure_text(arb(end), 20)}"
         r = certify_positive(lambda x: (x - arb(1) / 2) ** 2 - arb("1e-9"), "-2", "2")   # refuted at a midpoint
-        assert r.status is Status.REFUTED and r.reason == f"f(t) <= 0 at the point t = {r.witness.str(20)}"
+        assert r.status is Status.REFUTED and r.reason == f"f(t) <= 0 at the point t = {enclosure_text(r.witness, 20)}"
 
 
 def test_an_undecided_piece_is_reported_with_f_over_it_and_min_width_stops_the_search():
@@ -325,7 +325,8 @@ def test_an_undecided_piece_is_reported_with_f_over_it_and_min_width_stops_the_s
         assert certainly_lt(a, b) and r.stuck_value is not None
         fx = f(a.union(b))
         assert r.stuck_value.is_finite() and r.stuck_value.overlaps(fx) and abs(r.stuck_value.rad() - fx.rad()) <= fx.rad() * arb("1e-6")
-        assert r.reason == (f"f not separated from 0 on [{a.str(12)}, {b.str(12)}] after {r.pieces} pieces "
+        assert r.reason == (f"f not separated from 0 on [{decimal_bounds(a, 12)[0]}, {decimal_bounds(b, 12)[1]}] after "
+                            f"{r.pieces} pieces "
                             "(raise precision or max_pieces; f may touch 0 there)")
         w = certify_positive(f, "-2", "2", min_width="1e-3")
         a, b = w.stuck
