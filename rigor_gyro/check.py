@@ -21,6 +21,13 @@ What is checked:
 
 The audit of the paper (rows about the source, never a verdict) is covered by the digest only.
 
+Every output kind has a JSON Schema in ``rigor_gyro/schemas/`` (certificate, paving, threshold, scan), and
+:func:`check_certificate` dispatches on the file's ``schema``: each file is first validated against its
+schema (by :func:`schema_errors`, a small validator of the JSON Schema keywords those files use: the
+installed package needs no jsonschema; the tests validate with jsonschema too), then re-verified by its
+kind's checker (pavings: :mod:`rigor_gyro.margins.check`; thresholds and scans:
+:func:`~rigor_gyro.margins.threshold.check_threshold`, :func:`~rigor_gyro.margins.scan.check_scan`).
+
 Guarantee: :func:`check_certificate` returns a report whose ``ok`` is True only when every check
 passed. Fails when: the file is not readable JSON of this schema: :class:`CertificateError`.
 """
@@ -35,7 +42,114 @@ from typing import Any
 from .certificate import SCHEMA, digest
 from .core.errors import RigorGyroError
 
-__all__ = ["CertificateError", "CheckResult", "CheckReport", "check_certificate", "check_file", "digest"]
+__all__ = ["CertificateError", "CheckResult", "CheckReport", "check_certificate", "check_file", "digest", "SCHEMA_FILES",
+           "load_schema", "schema_errors"]
+
+#: the schema of each output kind, by the ``schema`` field of the file
+SCHEMA_FILES = {SCHEMA: "certificate-2", "rigor-gyro/paving/1": "paving-1", "rigor-gyro/threshold/1": "threshold-1",
+                "rigor-gyro/scan/1": "scan-1"}
+_SCHEMAS: dict[str, dict] = {}
+
+
+def load_schema(name: str) -> dict[str, Any]:
+    """The JSON Schema ``rigor_gyro/schemas/<name>.schema.json`` (cached)."""
+    if name not in _SCHEMAS:
+        from importlib import resources
+        _SCHEMAS[name] = json.loads((resources.files("rigor_gyro") / "schemas" / f"{name}.schema.json")
+                                    .read_text(encoding="utf-8"))
+    return _SCHEMAS[name]
+
+
+_TYPES = {"object": dict, "array": list, "string": str, "boolean": bool, "null": type(None)}
+_ANNOTATIONS = {"$schema", "$id", "$defs", "title", "description"}
+
+
+def _type_ok(x: Any, t: str) -> bool:
+    if t == "integer":
+        return isinstance(x, int) and not isinstance(x, bool)
+    if t == "number":
+        return isinstance(x, (int, float)) and not isinstance(x, bool)
+    return isinstance(x, _TYPES[t])
+
+
+def schema_errors(data: Any, schema: dict[str, Any], root: dict[str, Any] | None = None, path: str = "$",
+                  limit: int = 5) -> list[str]:
+    """The first ``limit`` places where ``data`` breaks ``schema`` (JSON Schema 2020-12, the keywords the
+    schemas of rigor_gyro use: type, const, enum, pattern, minimum, maximum, required, properties,
+    additionalProperties, minProperties, items, minItems, maxItems, $ref to #/$defs, anyOf, oneOf, not,
+    if/then/else); [] when it conforms. A keyword outside this set is an error of the schema (ValueError),
+    so a schema never asks for a check this validator silently skips."""
+    import re
+    root = root or schema
+    errors: list[str] = []
+
+    def err(msg: str) -> None:
+        errors.append(f"{path}: {msg}")
+
+    unknown = set(schema) - _ANNOTATIONS - {"type", "const", "enum", "pattern", "minimum", "maximum", "required",
+                                            "properties", "additionalProperties", "minProperties", "items", "minItems",
+                                            "maxItems", "$ref", "anyOf", "oneOf", "not", "if", "then", "else"}
+    if unknown:
+        raise ValueError(f"schema keyword(s) {sorted(unknown)} not supported by rigor_gyro's validator")
+    if "$ref" in schema:
+        ref = schema["$ref"]
+        if not ref.startswith("#/$defs/"):
+            raise ValueError(f"unsupported $ref {ref!r}")
+        errors += schema_errors(data, root["$defs"][ref[len("#/$defs/"):]], root, path, limit)
+    if "type" in schema:
+        types = schema["type"] if isinstance(schema["type"], list) else [schema["type"]]
+        if not any(_type_ok(data, t) for t in types):
+            err(f"{type(data).__name__} is not of type {'/'.join(types)}")
+            return errors[:limit]
+    if "const" in schema and data != schema["const"]:
+        err(f"{str(data)[:60]!r} is not {schema['const']!r}")
+    if "enum" in schema and data not in schema["enum"]:
+        err(f"{str(data)[:60]!r} is not one of {schema['enum']}")
+    if isinstance(data, str) and "pattern" in schema and not re.search(schema["pattern"], data):
+        err(f"{data[:60]!r} does not match {schema['pattern']!r}")
+    if _type_ok(data, "number"):
+        if "minimum" in schema and data < schema["minimum"]:
+            err(f"{data} < {schema['minimum']}")
+        if "maximum" in schema and data > schema["maximum"]:
+            err(f"{data} > {schema['maximum']}")
+    if isinstance(data, dict):
+        for k in schema.get("required", []):
+            if k not in data:
+                err(f"missing {k!r}")
+        if len(data) < schema.get("minProperties", 0):
+            err(f"fewer than {schema['minProperties']} properties")
+        props = schema.get("properties", {})
+        extra = schema.get("additionalProperties", True)
+        for k, v in data.items():
+            if len(errors) >= limit:
+                break
+            if k in props:
+                errors += schema_errors(v, props[k], root, f"{path}.{k}", limit)
+            elif extra is False:
+                err(f"unexpected {k!r}")
+            elif isinstance(extra, dict):
+                errors += schema_errors(v, extra, root, f"{path}.{k}", limit)
+    if isinstance(data, list):
+        if len(data) < schema.get("minItems", 0):
+            err(f"fewer than {schema['minItems']} items")
+        if "maxItems" in schema and len(data) > schema["maxItems"]:
+            err(f"more than {schema['maxItems']} items")
+        if "items" in schema:
+            for i, v in enumerate(data):
+                if len(errors) >= limit:
+                    break
+                errors += schema_errors(v, schema["items"], root, f"{path}[{i}]", limit)
+    if "anyOf" in schema and not any(not schema_errors(data, s, root, path, 1) for s in schema["anyOf"]):
+        err("matches none of anyOf")
+    if "oneOf" in schema and sum(not schema_errors(data, s, root, path, 1) for s in schema["oneOf"]) != 1:
+        err("does not match exactly one of oneOf")
+    if "not" in schema and not schema_errors(data, schema["not"], root, path, 1):
+        err("matches a schema it must not")
+    if "if" in schema:
+        branch = "then" if not schema_errors(data, schema["if"], root, path, 1) else "else"
+        if branch in schema:
+            errors += schema_errors(data, schema[branch], root, path, limit)
+    return errors[:limit]
 
 
 class CertificateError(RigorGyroError, ValueError):
@@ -66,8 +180,16 @@ class CheckReport:
         return next((r for r in self.results if not r.ok), None)
 
 
+def _conformance(data: Any, name: str) -> list[str]:
+    try:
+        return schema_errors(data, load_schema(name))
+    except RecursionError:
+        return ["$: nested too deeply to validate"]
+
+
 def check_file(path: str | Path) -> CheckReport:
-    """Read and check a certificate file; CertificateError if it cannot be read as one."""
+    """Read and check an output file: a certificate, a paving, a threshold or a scan (by its ``schema``
+    field); CertificateError if it cannot be read as one."""
     p = Path(path)
     try:
         data = json.loads(p.read_text(encoding="utf-8"))
@@ -90,7 +212,7 @@ def _structure(data: Any) -> None:
     if missing:
         raise CertificateError(f"not a certificate: missing {missing}")
     if data["schema"] != SCHEMA:
-        raise CertificateError(f"schema {data['schema']!r}: this checker reads {SCHEMA!r}")
+        raise CertificateError(f"schema {data['schema']!r}: this checker reads {sorted(SCHEMA_FILES)}")
     scene = data["scene"]
     if not isinstance(scene, dict) or not {"name", "kind", "parameters"} <= set(scene):
         raise CertificateError("scene block incomplete")
@@ -113,13 +235,30 @@ def check_certificate(data: Any, file: str = "<data>") -> CheckReport:
     from .scene import Scene
 
     t0 = time.perf_counter()
-    if isinstance(data, dict) and data.get("schema") == "rigor-gyro/paving/1":
-        from .margins.check import check_paving
+    kind = data.get("schema") if isinstance(data, dict) else None
+    if kind in ("rigor-gyro/paving/1", "rigor-gyro/threshold/1", "rigor-gyro/scan/1"):
         report = CheckReport(file)
-        try:
-            report.results.extend(CheckResult(*t) for t in check_paving(data))
-        except (KeyError, TypeError, ValueError, ArithmeticError, AttributeError, IndexError) as e:
-            report.results.append(CheckResult("data", False, f"the paving's data cannot be checked: {type(e).__name__}: {e}"))
+        errors = _conformance(data, SCHEMA_FILES[kind])
+        schema = CheckResult("schema", not errors, f"conforms to {SCHEMA_FILES[kind]}.schema.json" if not errors
+                             else f"does not conform to {SCHEMA_FILES[kind]}.schema.json: " + "; ".join(errors))
+        # a threshold or scan is read only once it conforms; a paving's checks run whatever (each names what
+        # it cannot read), its schema last, as a certificate's
+        if kind != "rigor-gyro/paving/1":
+            report.results.append(schema)
+        if not errors or kind == "rigor-gyro/paving/1":
+            try:
+                if kind == "rigor-gyro/paving/1":
+                    from .margins.check import check_paving as check_kind
+                elif kind == "rigor-gyro/threshold/1":
+                    from .margins.threshold import check_threshold as check_kind
+                else:
+                    from .margins.scan import check_scan as check_kind
+                report.results.extend(CheckResult(*t) for t in check_kind(data))
+            except (RigorGyroError, KeyError, TypeError, ValueError, ArithmeticError, AttributeError, IndexError) as e:
+                report.results.append(CheckResult("data", False, f"the {kind.split('/')[1]}'s data cannot be checked: "
+                                                  f"{type(e).__name__}: {e}"))
+        if kind == "rigor-gyro/paving/1":
+            report.results.append(schema)
         report.seconds = time.perf_counter() - t0
         return report
     _structure(data)
@@ -171,5 +310,8 @@ def check_certificate(data: Any, file: str = "<data>") -> CheckReport:
                 report.results.extend(kind_check(model, data))
             except (KeyError, TypeError, ValueError, ArithmeticError, AttributeError, IndexError, RecursionError) as e:
                 add(CheckResult("data", False, f"the certificate's data cannot be checked: {type(e).__name__}: {e}"))
+    errors = _conformance(data, SCHEMA_FILES[SCHEMA])
+    add(CheckResult("schema", not errors, "conforms to certificate-2.schema.json" if not errors else
+                    "does not conform to certificate-2.schema.json: " + "; ".join(errors)))
     report.seconds = time.perf_counter() - t0
     return report

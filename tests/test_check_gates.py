@@ -36,7 +36,8 @@ GATES = {
     "verdict inconclusive for proved": (lambda d: d.update(verdict="inconclusive"),
                                         [("verdict", "but the claims give 'proved'")]),
     "an unknown status": (lambda d: (d["claims"][0].update(status="probably"), d.update(verdict="inconclusive")),
-                          [("claims", "unknown status(es) ['probably']"), ("bracket_1", "re-decided")]),
+                          [("claims", "unknown status(es) ['probably']"), ("bracket_1", "re-decided"),
+                           ("schema", "$.claims[0].status: 'probably' is not one of")]),
     "a scene outside the kind's domain": (lambda d: d["scene"]["parameters"].update(b="-1"),
                                           [("scene", "the certificate's scene is not valid")]),
     "scene parameters as a list": (lambda d: d["scene"].update(parameters=[["a", "1"]]),
@@ -50,7 +51,8 @@ GATES = {
     "precision 32769 bits": (lambda d: d.update(precision_bits=32769), [("precision_bits", "out of range")]),
     "precision as text": (lambda d: d.update(precision_bits="64"), [("precision_bits", "out of range")]),
     "a quantity the kind's checker cannot read": (lambda d: d["quantities"].update(omega_1=7),
-                                                 [("data", "cannot be checked")]),
+                                                 [("data", "cannot be checked"),
+                                                  ("schema", "$.quantities.omega_1: int is not of type object")]),
 }
 
 

@@ -157,7 +157,9 @@ def test_each_claim_with_its_status_flipped_fails_at_its_own_item(cert):
     """proved -> refuted (no counterexample), refuted -> proved: the claim's item fails and no other."""
     for cid, status, items in flipped(cert):
         assert items.get(cid) is False, (cid, status)
-        others = {k: v for k, v in items.items() if k != cid and not v}
+        # the schema also fails when a refuted claim has no counterexample (certificate-2.schema.json requires one)
+        others = {k: v for k, v in items.items() if k != cid and not v
+                  and not (k == "schema" and status == "proved")}
         assert not others, (cid, others)
 
 

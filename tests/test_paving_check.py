@@ -98,7 +98,8 @@ ALTERATIONS = {
     "statement": (_proved, lambda d: _claim(d).update(statement=_claim(d)["statement"] + " Also for eps = 1."),
                   [("bracket_1", "not the kind's box statement")]),
     "unknown sub-box status": (_proved, lambda d: _claim(d)["boxes"][0].update(status="maybe"),
-                               [("bracket_1", "unknown sub-box status")]),
+                               [("bracket_1", "unknown sub-box status"),
+                                ("schema", "$.claims[0].boxes[0].status: 'maybe' is not one of")]),
     "the last proved sub-box relabelled refuted": (       # after undecided ones: each decided box is re-evaluated
         _mixed, lambda d: _last_proved(_claim(d)).update(status="refuted"),
         [("bracket_2", "volume fractions or sub-box counts"), ("bracket_2", "stored refuted, re-evaluated proved"),
@@ -158,8 +159,9 @@ def test_a_paving_whose_data_cannot_be_read_fails_at_data():
     del _claim(data)["boxes"][0]["box"]
     report = check_certificate(_reseal(data), "p.json")
     assert report.file == "p.json" and 0 < report.seconds < 60
-    assert [(r.item, r.ok) for r in report.results][-1] == ("data", False)
-    assert "cannot be checked: KeyError" in report.results[-1].message
+    assert [(r.item, r.ok) for r in report.results][-2:] == [("data", False), ("schema", False)]
+    assert "cannot be checked: KeyError" in report.results[-2].message
+    assert "$.claims[0].boxes[0]: missing 'box'" in report.results[-1].message
 
 
 def test_a_pavings_counters_and_budget_are_what_it_did():

@@ -23,14 +23,17 @@ from typing import Any
 
 from ..core.balls import rational_text
 from ..core.boxes import fraction_text, is_tolerance
-from ..core.errors import ParameterError
+from ..core.errors import ParameterError, RigorGyroError
 from ..kinds import kind_module
 from ..scene import Scene
 from .threshold import search_range
 
-__all__ = ["Scan", "scan_points", "run_scan", "write_scan"]
+__all__ = ["Scan", "scan_points", "run_scan", "write_scan", "check_scan", "statement", "SCHEMA"]
 
+SCHEMA = "rigor-gyro/scan/1"
 MAX_POINTS = 10000
+#: the checker re-proves every point of a scan up to this many, else this many evenly spread (ends included)
+MAX_RECHECK = 64
 
 
 def scan_points(lo: Fraction, hi: Fraction, n: int, log: bool) -> list[Fraction]:
@@ -99,11 +102,9 @@ class Scan:
         return out
 
     def to_json(self) -> dict[str, Any]:
-        return {"schema": "rigor-gyro/scan/1", "scene": self.scene.header(), "param": self.param,
+        return {"schema": SCHEMA, "scene": self.scene.header(), "param": self.param,
                 "claims": self.claims, "quantities": self.quantities, "log": self.log,
-                "statement": (f"at each exact value of {self.param} listed, each claim has the status given (a "
-                              "point proof at that value, the other parameters as in the scene); nothing is "
-                              "claimed between the values"),
+                "statement": statement(self.param),
                 "counts": self.counts(),
                 "points": [{"value": fraction_text(v), **r} for v, r in zip(self.values, self.results)]}
 
@@ -122,6 +123,12 @@ class Scan:
                 cells.append(f"[{b[0]}, {b[1]}]" if b else "-")
             rows.append(f"| {_d(v)} | " + " | ".join(cells) + " |")
         return "\n".join(rows) + "\n"
+
+
+def statement(param: str) -> str:
+    """What a scan output states, as its checker re-derives it."""
+    return (f"at each exact value of {param} listed, each claim has the status given (a point proof at that value, "
+            "the other parameters as in the scene); nothing is claimed between the values")
 
 
 def _d(q: Fraction) -> str:
@@ -180,3 +187,69 @@ def write_scan(res: Scan, out_dir: str) -> list[Path]:
     from ..report import write_pair
     return list(write_pair(out_dir, f"scan_{res.scene.name}_{res.param}", json.dumps(res.to_json(), indent=1) + "\n",
                            res.markdown(), None))
+
+
+def check_scan(data: dict[str, Any], max_points: int = MAX_RECHECK) -> list[tuple[str, bool, str]]:
+    """Re-verify a scan output (schema ``rigor-gyro/scan/1``, already validated against its JSON Schema) as
+    (item, ok, message) triples.
+
+    Checked: the scene, parameter, claims and quantities valid for the kind (as :func:`run_scan` requires);
+    the points exact, strictly increasing, each with exactly the claims and quantities listed; the counts
+    and the statement re-derived; then the points re-proved by the point prover (every point when there are
+    at most ``max_points``, else ``max_points`` of them evenly spread, both ends included: the message says
+    how many): each stored proved or refuted status must be re-decided the same (an inconclusive one claims
+    nothing), and each stored quantity interval must contain the re-computed one."""
+    out: list[tuple[str, bool, str]] = []
+
+    def add(item: str, ok: bool, message: str) -> None:
+        out.append((item, bool(ok), message))
+
+    sc = data["scene"]
+    try:
+        scene = Scene(name=sc["name"], kind=sc["kind"], source=sc.get("source", ""), parameters=dict(sc["parameters"]),
+                      claims_only=sc.get("claims_only"), options=dict(sc.get("options") or {}), paper={},
+                      path=sc.get("file"))
+        module = kind_module(scene.kind)
+        param, claims, quantities = data["param"], list(data["claims"]), list(data["quantities"])
+        if param not in scene.parameters or any(is_tolerance(v) for v in scene.parameters.values()):
+            raise ParameterError(f"{param!r} is not a parameter of a scene of points")
+        if not claims or any(c not in module.CLAIMS for c in claims) or len(set(claims)) != len(claims):
+            raise ParameterError(f"claims {claims} are not distinct claims of kind {scene.kind!r}")
+        if any(q not in getattr(module, "HEADLINE", {}) for q in quantities):
+            raise ParameterError(f"quantities {quantities}: kind {scene.kind!r} reports {sorted(module.HEADLINE)}")
+        module.validate(scene)
+    except (RigorGyroError, TypeError, ValueError, KeyError) as e:
+        add("scene", False, f"the scan's scene, parameter, claims or quantities are not valid: {e}")
+        return out
+    add("scene", True, f"scene {scene.name!r}, parameter {param!r}, claims {claims} valid for the kind")
+    points = data["points"]
+    values = [Fraction(p["value"]) for p in points]
+    add("points", len(values) >= 2 and all(a < b for a, b in zip(values, values[1:]))
+        and all(list(p["claims"]) == claims and list(p["quantities"]) == quantities for p in points),
+        f"{len(values)} exact points, strictly increasing, each with the claims and quantities listed")
+    counts = {c: {k: sum(1 for p in points if p["claims"][c]["status"] == k)
+                  for k in ("proved", "refuted", "inconclusive")} for c in claims}
+    add("counts", data["counts"] == counts, "the counts re-derived from the points")
+    add("statement", data["statement"] == statement(param), "the scan's statement")
+    n = len(points)
+    picked = list(range(n)) if n <= max_points else sorted({round(i * (n - 1) / (max_points - 1))
+                                                             for i in range(max_points)})
+    options_json = json.dumps(scene.options, sort_keys=True)
+    bad: list[str] = []
+    for i in picked:
+        x, stored = values[i], points[i]
+        res = scan_task(scene.kind, json.dumps({**scene.parameters, param: fraction_text(x)}, sort_keys=True),
+                        options_json, tuple(claims), tuple(quantities))
+        for c in claims:
+            st = stored["claims"][c]["status"]
+            if st != "inconclusive" and res["claims"][c]["status"] != st:
+                bad.append(f"{c} at {param} = {_d(x)}: stored {st}, re-decided {res['claims'][c]['status']}")
+        for q in quantities:
+            s_b, r_b = stored["quantities"][q], res["quantities"][q]
+            if s_b is not None and (r_b is None or not Fraction(s_b[0]) <= Fraction(r_b[0]) <= Fraction(r_b[1])
+                                    <= Fraction(s_b[1])):
+                bad.append(f"{q} at {param} = {_d(x)}: stored {s_b} does not contain the re-computed {r_b}")
+    what = (f"all {n} points re-proved" if len(picked) == n else
+            f"{len(picked)} of {n} points re-proved (evenly spread, both ends: a sample)")
+    add("re-proved", not bad, what + ("" if not bad else f": {len(bad)} mismatch(es), first: {bad[0]}"))
+    return out

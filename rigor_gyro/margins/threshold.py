@@ -25,13 +25,14 @@ from typing import Any
 from ..core.balls import about_text, interval_text, rational_text, width_text
 from ..core.boxes import fraction_text, is_tolerance
 from ..core.deadline import Budget, check_time_limit
-from ..core.errors import ParameterError
+from ..core.errors import ParameterError, RigorGyroError
 from ..core.exact import option_number, parse_exact
 from ..kinds import kind_module
 from ..scene import Scene
 
-__all__ = ["Threshold", "find_threshold", "search_range", "write_threshold"]
+__all__ = ["Threshold", "find_threshold", "search_range", "write_threshold", "check_threshold", "statement", "SCHEMA"]
 
+SCHEMA = "rigor-gyro/threshold/1"
 MAX_STEPS = 200
 
 
@@ -78,16 +79,24 @@ class Threshold:
 
     def to_json(self) -> dict[str, Any]:
         b = self.bracket()
-        return {"schema": "rigor-gyro/threshold/1", "scene": self.scene.header(), "param": self.param,
+        return {"schema": SCHEMA, "scene": self.scene.header(), "param": self.param,
                 "claim": self.claim, "search": [fraction_text(self.lo), fraction_text(self.hi)],
                 "requested_relative_width": fraction_text(self.width),
                 "certified": self.certified,
-                "statement": (f"claim {self.claim!r} is proved at {self.param} = {fraction_text(self.proved_at)} "
-                              f"and refuted at {self.param} = {fraction_text(self.refuted_at)} (point proofs), so "
-                              f"its outcome changes in [{fraction_text(b[0])}, {fraction_text(b[1])}]") if b else None,
+                "statement": statement(self.claim, self.param, self.proved_at, self.refuted_at) if b else None,
+                "proved_at": fraction_text(self.proved_at) if b else None,
+                "refuted_at": fraction_text(self.refuted_at) if b else None,
                 "bracket": [fraction_text(b[0]), fraction_text(b[1])] if b else None,
                 "bracket_decimal": list(interval_text(*b)[:2]) if b else None,
                 "stopped": self.stopped, "steps": self.steps}
+
+
+def statement(claim: str, param: str, proved_at: Fraction, refuted_at: Fraction) -> str:
+    """What a threshold output states (exact rationals), as its checker re-derives it."""
+    lo, hi = min(proved_at, refuted_at), max(proved_at, refuted_at)
+    return (f"claim {claim!r} is proved at {param} = {fraction_text(proved_at)} and refuted at {param} = "
+            f"{fraction_text(refuted_at)} (point proofs), so its outcome changes in [{fraction_text(lo)}, "
+            f"{fraction_text(hi)}]")
 
 
 def _d(q: Fraction | None) -> str:
@@ -228,3 +237,75 @@ def write_threshold(res: Threshold, out_dir: str) -> list[Path]:
                     f"{res.param} | status |", "|---|---|---|"] + [f"| {i} | {_d(Fraction(s['value']))} | {s['status']} |"
                                                                    for i, s in enumerate(res.steps, 1)] + [""])
     return list(write_pair(out_dir, f"margin_{res.scene.name}_{res.param}", json.dumps(data, indent=1) + "\n", md, None))
+
+
+def check_threshold(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
+    """Re-verify a threshold output (schema ``rigor-gyro/threshold/1``, already validated against its JSON
+    Schema) as (item, ok, message) triples.
+
+    Checked: the scene, parameter and claim valid for the kind (as :func:`find_threshold` requires); the
+    search range and width; the bracket, its decimals, ``certified`` and the statement re-derived from the
+    stored proved and refuted points and the requested width (the bracket's relative width); the two stored
+    points re-decided by the prover (a point proof, or the paving of the other parameters' box when they are
+    tolerances): proved at one, refuted at the other, as stored. A search that certified no bracket states
+    only the outcomes at its two search ends: both re-decided and compared. Not re-run: the bisection steps
+    in between (the search's log; the theorem is about the two points)."""
+    out: list[tuple[str, bool, str]] = []
+
+    def add(item: str, ok: bool, message: str) -> None:
+        out.append((item, bool(ok), message))
+
+    sc = data["scene"]
+    try:
+        scene = Scene(name=sc["name"], kind=sc["kind"], source=sc.get("source", ""), parameters=dict(sc["parameters"]),
+                      claims_only=sc.get("claims_only"), options=dict(sc.get("options") or {}), paper={},
+                      path=sc.get("file"))
+        module = kind_module(scene.kind)
+        param, claim = data["param"], data["claim"]
+        if param not in scene.parameters or is_tolerance(scene.parameters[param]):
+            raise ParameterError(f"{param!r} is not a number parameter of the scene")
+        if claim not in module.CLAIMS:
+            raise ParameterError(f"claim {claim!r} is not one of kind {scene.kind!r}")
+        if any(is_tolerance(v) for v in scene.parameters.values()):
+            from .paving import box_scene
+            box_scene(scene)
+        else:
+            module.validate(scene)
+    except (RigorGyroError, TypeError, ValueError, KeyError) as e:
+        add("scene", False, f"the threshold's scene, parameter or claim is not valid: {e}")
+        return out
+    add("scene", True, f"scene {scene.name!r}, parameter {param!r}, claim {claim!r} valid for the kind")
+    lo, hi = (Fraction(t) for t in data["search"])
+    w = Fraction(data["requested_relative_width"])
+    add("search", lo < hi and 0 < w <= 1, f"search [{_d(lo)}, {_d(hi)}], relative width {_d(w)}")
+    steps = data["steps"]
+    values = [Fraction(s["value"]) for s in steps]
+    status_of = {v: s["status"] for v, s in zip(values, steps)}
+    add("steps", len(steps) >= 2 and values[:2] == [lo, hi] and len(set(values)) == len(values)
+        and all(lo <= v <= hi for v in values), "the steps start at the search's two ends, each value once, inside it")
+    if data["proved_at"] is None or data["refuted_at"] is None:
+        ok = (data["proved_at"] is None and data["refuted_at"] is None and data["bracket"] is None
+              and data["bracket_decimal"] is None and data["statement"] is None and not data["certified"]
+              and bool(data["stopped"]))
+        add("bracket", ok, "no bracket stated, not certified, stopped" if ok else
+            "a bracket, a statement or 'certified' without both a proved and a refuted point")
+        for x in (lo, hi):
+            st, _ = _status(scene, param, x, claim)
+            add(f"{param} = {_d(x)}", st == status_of.get(x), f"re-decided {st}, stored {status_of.get(x)}")
+        return out
+    p, r = Fraction(data["proved_at"]), Fraction(data["refuted_at"])
+    l, h = min(p, r), max(p, r)
+    width_ok = h - l <= w * max(abs(l), abs(h))
+    add("bracket", p != r and data["bracket"] == [fraction_text(l), fraction_text(h)]
+        and data["bracket_decimal"] == list(interval_text(l, h)[:2])
+        and data["statement"] == statement(claim, param, p, r)
+        and status_of.get(p) == "proved" and status_of.get(r) == "refuted",
+        "the bracket, its decimals and the statement re-derived from the proved and refuted points (steps of the "
+        "search)")
+    add("certified", data["certified"] == (width_ok and not data["stopped"]),
+        f"certified {data['certified']}: relative width {'within' if width_ok else 'above'} {_d(w)}"
+        + (", stopped" if data["stopped"] else ""))
+    for x, want in ((p, "proved"), (r, "refuted")):
+        st, why = _status(scene, param, x, claim)
+        add(f"{want}_at", st == want, f"{param} = {_d(x)}: re-decided {st}" + ("" if st == want else f" ({why[:160]})"))
+    return out
