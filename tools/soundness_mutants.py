@@ -514,6 +514,11 @@ MUTANTS = [
      "        if not u.is_finite() and (U.is_finite() and certainly_gt(u, U)):",
      "the bound of R_dsup over (16) taken from the heap's first piece, not the largest by exact comparison: a "
      "misordered key lowers the certified bound"),
+    # issue 36 part 3: the direct test's box function with |B| taken at its midpoint
+    ("direct_margin_abs_b_radius_dropped", "rigor_gyro/kinds/lyapunov/model.py",
+     "        direct = A - R * abs(B)\n", "        direct = A - R * abs(B).mid()\n",
+     "the radius of |B| dropped from A - R |B| (direct_margin: vdot_direct, best_mu_direct and the checker): a "
+     "box's lower bound above the minimum of A - R |B| over it, so Vdot < 0 certified where it may fail"),
 ]
 
 
