@@ -127,6 +127,21 @@ ALTERATIONS = {
     "verdict proved for refuted": (_refuted, lambda d: d.update(verdict="proved"), [("verdict", "verdict")]),
     "verdict refuted for proved": (_proved, lambda d: d.update(verdict="refuted"), [("verdict", "verdict")]),
     "verdict proved for inconclusive": (_undecided, lambda d: d.update(verdict="proved"), [("verdict", "verdict")]),
+    # the texts the report prints as what the paving holds (issue 36: these were confirmed unread)
+    "point parameters changed, the scene not": (_proved, lambda d: d["point_parameters"].update(a="15.09"),
+                                                [("point_parameters", "not the scene's values")]),
+    "a point proof's reason forged": (_refuted, lambda d: _claim(d)["points"][0].update(
+        reason="f(t) <= 0 at the point t = 3 (a forged counterexample)"), [("bracket_2", "stored reason or precision")]),
+    "a point proof's precision": (_refuted, lambda d: _claim(d)["points"][1].update(precision_bits=16),
+                                  [("bracket_2", "stored reason or precision")]),
+    "the proved sub-boxes' reason forged": (_proved, lambda d: _claim(d)["reasons"].update(proved="holds by symmetry"),
+                                            [("bracket_1", "stored reasons are not")]),
+    "the refuted sub-boxes' reason forged": (_refuted, lambda d: _claim(d)["reasons"].update(refuted="omega_2 = 7"),
+                                             [("bracket_2", "stored reasons are not")]),
+    "the undecided reason forged": (_mixed, lambda d: _claim(d)["reasons"].update(undecided="budget"),
+                                    [("bracket_2", "stored reasons are not")]),
+    "a reason added for a status no sub-box has": (_proved, lambda d: _claim(d)["reasons"].update(refuted="x"),
+                                                   [("bracket_1", "stored reasons are not")]),
 }
 
 

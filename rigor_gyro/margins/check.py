@@ -7,11 +7,15 @@ recomputed exactly (with the decimals and sub-box counts the report prints), eve
 sub-box re-evaluated on its own balls with the kind's box rigour at the stored precision, every stored
 point proof re-run by the point prover, the claims not decided over boxes re-derived, and the claim's
 status and the verdict re-derived by the rules of :mod:`.paving`. An undecided sub-box claims nothing.
+The texts the report prints are re-derived too: the point parameters (the scene's values of the
+parameters without tolerances), each claim's reasons (the first sub-box of each status in the order
+pave evaluates: the whole box, then the stored leaves; or the time limit that stopped it), and each
+point proof's whole record (status, reason, precision).
 Not checked: what describes the run rather than the box (the boxes evaluated, the levels, the budget
-flag, the texts of the reasons a sub-box stayed undecided); the report prints them as such.
+flag); the report prints them as such.
 
-Cost: one box evaluation per decided sub-box (no search, no splitting) and one point proof per stored
-point.
+Cost: one box evaluation per decided sub-box and one of the whole box (no search, no splitting), and
+one point proof per stored point.
 """
 from __future__ import annotations
 
@@ -58,6 +62,9 @@ def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     settings = {"box_resolution": fraction_text(bs.resolution), "max_boxes": bs.max_boxes, "box_prec": bs.prec,
                 "max_points": bs.max_points, "unsplit": list(bs.frozen)}
     add(CheckResult("settings", data["settings"] == settings, "the settings re-derived from the scene"))
+    ok = data.get("point_parameters") == dict(bs.points)
+    add(CheckResult("point_parameters", ok, "the point parameters re-derived from the scene" if ok else
+                    "the stored point parameters are not the scene's values of the parameters without tolerances"))
     ids = [c["id"] for c in data["claims"]]
     skipped = data.get("not_box_claims")
     add(CheckResult("claims", ids == bs.claims and skipped == bs.skipped,
@@ -68,6 +75,8 @@ def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     oj = json.dumps(bs.options, sort_keys=True)
     mj = json.dumps({k: fraction_text(q) for k, q in bs.box.midpoint().items()}, sort_keys=True)
     statuses = []
+    # the whole box is what pave evaluates first, for every claim: its reason opens each claim's reasons
+    first = evaluate_task(bs.scene.kind, pj, oj, mj, json.dumps(bs.box.to_json()), tuple(bs.claims), bs.prec)
     for c in data["claims"]:
         cid = c["id"]
         if c.get("statement") != "For every parameter value in the box: " + statements.get(cid, ""):
@@ -88,13 +97,23 @@ def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
         add(CheckResult(cid, numbers, "volume fractions (exact and decimal) and sub-box counts recomputed" if numbers
                         else "the stored volume fractions or sub-box counts are not the sub-boxes' own"))
         bad = []
+        reasons = {}
+        if cid in first:
+            reasons[first[cid][0]] = first[cid][1]
         for b, s in boxes:
             if s == "undecided":
                 continue
-            got = evaluate_task(bs.scene.kind, pj, oj, mj, json.dumps(b.to_json()), (cid,), bs.prec)[cid][0]
+            got, why = evaluate_task(bs.scene.kind, pj, oj, mj, json.dumps(b.to_json()), (cid,), bs.prec)[cid]
+            reasons.setdefault(got, why)
             if got != s:
                 bad.append(f"{b.to_json()}: stored {s}, re-evaluated {got}")
         add(CheckResult(cid, not bad, "every decided sub-box re-evaluated" if not bad else bad[0]))
+        if isinstance(data.get("stopped"), str) and data["stopped"] and "undecided" in c.get("reasons", {}) \
+                and any(s == "undecided" for _, s in boxes):
+            reasons["undecided"] = data["stopped"]
+        ok = c.get("reasons") == dict(sorted(reasons.items()))
+        add(CheckResult(cid, ok, "the reasons re-derived (the first sub-box of each status)" if ok else
+                        "the stored reasons are not the sub-boxes' own (re-evaluated in pave's order)"))
         # the point proofs are exactly pave's: the midpoints of the first max_points refuted and the
         # first max_points undecided sub-boxes, in order, every parameter as the scene has it
         expected = []
@@ -108,9 +127,12 @@ def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
                         else "the stored point proofs are not the midpoints of the paving's refuted and undecided sub-boxes"))
         wrong = []
         for p in c["points"] if stored == expected else []:
-            got = point_task(bs.scene.kind, json.dumps(p["point"], sort_keys=True), oj, cid)["status"]
+            redo = point_task(bs.scene.kind, json.dumps(p["point"], sort_keys=True), oj, cid)
+            got = redo["status"]
             if got != p["status"]:
                 wrong.append(f"point {p['point']}: stored {p['status']}, re-proved {got}")
+            elif {k: v for k, v in p.items() if k not in ("box_outcome", "point")} != redo:
+                wrong.append(f"point {p['point']}: the stored reason or precision is not the point proof's own")
             if p["box_outcome"] == "refuted" and got == "proved":
                 wrong.append(f"point {p['point']}: proved at the midpoint of a sub-box refuted everywhere")
         add(CheckResult(cid, not wrong, f"{len(c['points'])} point proofs re-run" if not wrong else wrong[0]))
