@@ -68,3 +68,96 @@ def test_the_direct_margin_encloses_a_minus_r_abs_b_sampled_independently_over_a
     assert high * (1 - mpmath.sign(high) * mpmath.mpf("1e-12")) <= hi, (F, high)
     # the radius matters here: the spread of the samples is a good part of the enclosure's width
     assert high - low > (hi - lo) / 50
+
+
+# ------------------------------------------------------------------------------ helpers for whole scenes
+
+PAPER_TEXT = "".join(f'{k} = "{v}"\n' for k, v in load_scene("agafonov2013").parameters.items())
+
+
+def _scene(only: list[str], options: dict | None = None, params: dict | None = None, name: str = "verdicts"):
+    from rigor_gyro.scene import parse_scene
+    body = dict(load_scene("agafonov2013").parameters, **(params or {}))
+    text = f'name = "{name}"\nkind = "lyapunov"\n[parameters]\n' + "".join(f'{k} = "{v}"\n' for k, v in body.items())
+    text += "[claims]\nonly = [" + ", ".join(f'"{c}"' for c in only) + "]\n"
+    if options:
+        text += "[options]\n" + "".join(f'{k} = "{v}"\n' for k, v in options.items())
+    return parse_scene(text)
+
+
+def _prove(only, options=None, params=None, **kw):
+    from rigor_gyro import prove_scene
+    return prove_scene(_scene(only, options, params), **kw)
+
+
+def _confirmed(cert):
+    """The lyapunov checker's own re-derivation (kinds/lyapunov/check.py, at twice the precision, as
+    rigor-gyro check runs it) confirms every item of the certificate."""
+    import json
+    from rigor_gyro.kinds.lyapunov.check import check
+    data = json.loads(json.dumps(cert.to_json()))
+    with working_precision(max(2 * data["precision_bits"], 128)):
+        results = check(validate(_scene_of(data)), data)
+    bad = [(r.item, r.message) for r in results if not r.ok]
+    assert not bad, bad
+    return results
+
+
+def _scene_of(data):
+    from rigor_gyro.scene import parse_scene
+    s = data["scene"]
+    text = f'name = "{s["name"]}"\nkind = "lyapunov"\n[parameters]\n'
+    text += "".join(f'{k} = "{v}"\n' for k, v in s["parameters"].items())
+    if s.get("options"):
+        text += "[options]\n" + "".join(f'{k} = "{v}"\n' for k, v in s["options"].items())
+    return parse_scene(text)
+
+
+# ------------------------------------------------------------------------------ part 2 (b): the damping margin
+
+def test_the_damping_margin_is_the_margin_to_the_binding_threshold_in_k():
+    """agafonov2013: k = 0.4, mu A0 = 0.02 * 12.7 = 0.254 binds (mu < k/A0 of (16)), not k_min = 0.169 of (18):
+    the margin is k/(mu A0) - 1 = 73/127 = 0.5748..., exactly (k/k_min - 1 = 1.36 is the looser one); the
+    checker re-derives it."""
+    from rigor_gyro.core.stored import interval as stored_interval
+    cert = _prove(["constants", "damping_condition"])
+    claim = cert.claim("damping_condition")
+    assert claim.status.value == "proved"
+    exact = Fraction(4, 10) / (Fraction(2, 100) * Fraction(127, 10)) - 1
+    assert exact == Fraction(73, 127)
+    q = cert.to_json()["quantities"]["damping_margin"]
+    lo, hi = stored_interval(q)
+    assert lo <= exact <= hi and hi - lo < Fraction(1, 10 ** 12)
+    assert claim.details["binding"].startswith("k > mu A0")
+    looser = claim.details["margins"]["k > k_min = p A0/H (18)"]
+    assert Fraction(looser.strip("[]").split(",")[0]) > Fraction(13, 10)
+    assert "binding: k > mu A0" in claim.reason
+    _confirmed(cert)
+
+
+def test_the_damping_margin_names_k_min_where_18_binds():
+    """mu > p/H gives mu A0 > p A0/H = k_min: inside (16) the threshold mu A0 always binds. Below (16), at
+    mu = 0.013 < p/H = 0.01333, the claim is refuted and the margin in k is k/k_min - 1 (k_min binds)."""
+    cert = _prove(["constants", "damping_condition"], params={"mu": "0.013"})
+    claim = cert.claim("damping_condition")
+    assert claim.status.value == "refuted"
+    assert claim.details["binding"].startswith("k > k_min")
+    _confirmed(cert)
+
+
+# ------------------------------------------------------------------------------ part 2 (c): a bad box's end
+
+@pytest.mark.parametrize("name, tol, said", [
+    ("k", "[-1, 1]", "parameter 'k' = '[-1, 1]': k's lower end -1: need > 0"),
+    ("mu", "[-0.02, 0.02]", "parameter 'mu' = '[-0.02, 0.02]': mu's lower end -0.02: need > 0"),
+    ("A2", "[-20, 1]", "parameter 'A2' = '[-20, 1]': A2's lower end -20: need >= 0"),
+    ("k", "[0, 0.4]", "its lower end is 0"),          # a valid midpoint: validate_box names the end already
+])
+def test_a_bad_box_is_named_by_its_bad_end_not_its_midpoint(name, tol, said):
+    from rigor_gyro.core.errors import ParameterError
+    from rigor_gyro.margins.paving import box_scene
+    s = load_scene("margin_agafonov_k_tolerance")
+    with pytest.raises(ParameterError) as e:
+        box_scene(dataclasses.replace(s, parameters={**s.parameters, name: tol}))
+    assert said in str(e.value)
+    assert "'0'" not in str(e.value) and "'0.0'" not in str(e.value)      # never the midpoint

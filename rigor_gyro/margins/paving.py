@@ -85,6 +85,50 @@ class BoxScene:
         return {**{k: v for k, v in self.points.items()}, **{k: fraction_text(q) for k, q in point.items()}}
 
 
+def _end_text(q: Fraction) -> str:
+    """An end of a tolerance as an exact decimal where it has one (-0.02, not -1/50), else as a fraction."""
+    d, n = q.denominator, 0
+    while d % 10 == 0 or d % 2 == 0 or d % 5 == 0:
+        if d % 10 == 0:
+            d //= 10
+        else:
+            d //= 2 if d % 2 == 0 else 5
+        n += 1
+        if n > 60:
+            break
+    if d != 1:
+        return fraction_text(q)
+    import decimal
+    with decimal.localcontext() as ctx:
+        ctx.prec = 200
+        return format(decimal.Decimal(q.numerator) / decimal.Decimal(q.denominator), "f")
+
+
+def _bad_end(module, mid: Scene, box: Box, error: ParameterError, given: dict) -> ParameterError:
+    """The error for a box whose midpoint is bad input, naming the end of a tolerance that is (the midpoint
+    is only where it was first seen): each end of each tolerance, the rest at their midpoints, is validated
+    on its own; the first that fails gives the message ("parameter 'k' = '[-1, 1]': k's lower end -1: need
+    > 0"). The midpoint's own error when no single end fails."""
+    for name in box.names:
+        lo, hi = box.interval(name)
+        for end, value in (("lower", lo), ("upper", hi)):
+            text = _end_text(value)
+            probe = Scene(name=mid.name, kind=mid.kind, source=mid.source,
+                          parameters={**mid.parameters, name: text}, claims_only=mid.claims_only,
+                          options=mid.options, paper={}, path=mid.path)
+            try:
+                module.validate(probe)
+            except ParameterError as e:
+                msg = str(e)
+                if repr(name) not in msg:
+                    continue
+                head = f"parameter {name!r} = {text!r}: "
+                tail = msg[len(head):] if msg.startswith(head) else msg
+                return ParameterError(f"parameter {name!r} = {str(given.get(name, '')).strip()!r}: "
+                                      f"{name}'s {end} end {text}: {tail}")
+    return ParameterError(f"{error} (at the box's midpoint)")
+
+
 def box_scene(scene: Scene) -> BoxScene:
     """Validate a scene with tolerances: the box, the margin options, the domain on the whole box
     (the kind's ``validate_box``), the claims. ParameterError/SceneError naming what to change."""
@@ -112,7 +156,10 @@ def box_scene(scene: Scene) -> BoxScene:
     mid = Scene(name=scene.name, kind=scene.kind, source=scene.source,
                 parameters={**points, **{k: fraction_text(q) for k, q in box.midpoint().items()}},
                 claims_only=scene.claims_only, options=kind_opts, paper={}, path=scene.path)
-    model = module.validate(mid)
+    try:
+        model = module.validate(mid)
+    except ParameterError as e:
+        raise _bad_end(module, mid, box, e, scene.parameters) from None
     with working_precision(prec):
         boxes.validate_box(model, box)
     wanted = requested_claims(scene, module.CLAIMS)

@@ -44,7 +44,7 @@ from .claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
 from .equilibria import Equilibrium, classify as classify_equilibrium, pi_text
 from .model import (DIRECT_DOMAIN, c_star_lower, c_star_upper, closed_form_constants, cylinder_lower_bound,
-                    direct_margin, faces_minimiser_inside, mean_value_enclosure, psi_min_functions, slice_extent,
+                    damping_margin, direct_margin, faces_minimiser_inside, mean_value_enclosure, psi_min_functions, slice_extent,
                     slice_in_region, sublevel_lower_bound, symmetric_in_x2, vdot_polar)
 
 __all__ = ["check"]
@@ -383,7 +383,7 @@ def check(model, data: dict) -> list[CheckResult]:
                 K = closed_form_constants(g, m, M)
                 for name in ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R"):
                     contains(name, K[name])
-                contains("damping_margin", c.k / K["k_min"] - 1)
+                contains("damping_margin", damping_margin(g, K["k_min"])[0])
         if K is None:
             say("constants", False, "the stored covers of m and M do not cover [0, x2*] or give no finite bound")
     R = None
@@ -599,6 +599,15 @@ def check(model, data: dict) -> list[CheckResult]:
                 say(cid, False, "needs the re-verified constants")
                 continue
             parts = [(c.k, K["k_min"]), (c.mu, K["mu_min"]), (K["mu_max"], c.mu)]
+            # the binding threshold in k the details name: the checker's own comparison must not contradict it
+            stated = (cl_.get("details") or {}).get("binding")
+            if stated is not None:
+                _, own, each = damping_margin(g, K["k_min"])
+                single = stated in each
+                if not (stated == own or (not single and all(n in stated for n in each)) or
+                        (single and own not in each and stated in own)):
+                    say(cid, False, f"the binding threshold {stated!r} is not the one re-derived ({own!r})")
+                    continue
             if st == "proved":
                 say(cid, all(certainly_gt(x, y) for x, y in parts), "k > k_min and mu inside (16), re-decided")
             else:

@@ -63,7 +63,7 @@ from .equilibria import equilibria
 from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
 from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_vdot_nonpositive,
-                    closed_form_constants, cylinder_lower_bound, direct_margin, faces_minimiser_inside, hypot_ball,
+                    closed_form_constants, cylinder_lower_bound, damping_margin, direct_margin, faces_minimiser_inside, hypot_ball,
                     mean_value_enclosure, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
 from .moments import MOMENTS
 from .paper import PAPER_SCHEMA, audit as audit_paper
@@ -97,7 +97,7 @@ HEADLINE = {"R_used": "radius R of region (17) used", "c_star": "level c* of the
             "R_direct_max": "certified radius with Vdot < 0 at mu_direct (direct test)",
             "mu_direct": "mu_direct (a search result)",
             "R_direct_sup_upper_bound": "no mu in (16) gives Vdot <= 0 on a disc cylinder of larger radius",
-            "k_min": "k_min = p A0 / H of (18)", "damping_margin": "design margin k/k_min - 1",
+            "k_min": "k_min = p A0 / H of (18)", "damping_margin": "design margin in k: min(k/k_min, k/(mu A0)) - 1",
             "cylinder_margin_lower": "c* against the region's side: V >= (1 + this) c* on x1^2 + x3^2 = R^2 "
                                      "(a certified lower bound)"}
 
@@ -1003,10 +1003,12 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
         else:
             st, why = Status.INCONCLUSIVE, "not separated at this precision: " + desc
             decides = next(x - y for (_, x, y), h in zip(parts, holds) if not h)
-        margin = c.k / k["k_min"] - 1
+        # the margin in k to the nearest threshold of every condition (k_min of (18), mu A0 of (16))
+        margin, binding, each = damping_margin(ctx.g, k["k_min"])
         quantities["damping_margin"] = margin
-        claims.append(_claim("damping_condition", st, why + f"; design margin k/k_min - 1 = {_fmt(margin, 6)}", ce,
-                             decides))
+        claims.append(_claim("damping_condition", st, why + f"; design margin in k = min(k/k_min, k/(mu A0)) - 1 = "
+                             f"{_fmt(margin, 6)}, binding: {binding}", ce, decides, binding=binding,
+                             margins={n: _fmt(v, 6) for n, v in each.items()}))
     R, how = (None, "")
     if any(c in wanted for c in ("vdot_nonpositive", "invariant_estimate")):
         R, how = ctx.R_used()

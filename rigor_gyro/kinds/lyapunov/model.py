@@ -52,6 +52,7 @@ from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
            "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound",
+           "DAMPING_THRESHOLDS", "damping_margin",
            "CIRCLE_DIRECTIONS", "cylinder_points", "faces_minimiser_inside", "c_star_lower", "c_star_upper",
            "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "symmetric_in_x2",
            "law_is_odd", "v_polar", "sublevel_lower_bound", "slice_extent", "slice_in_region"]
@@ -606,6 +607,21 @@ def closed_form_constants(g: Gimbal, m: arb, M: arb) -> dict[str, arb]:
     R1, R2 = sqrt_of_nonnegative(D1 / D2), sqrt_of_nonnegative(E1 / E2)
     out.update({"R1": R1, "R2": R2, "R": R1.min(R2), "R2_base": mu * H * cs ** 2 - m * A0})
     return out
+
+
+#: the thresholds in k of the conditions damping_condition needs (mu > p/H of (16) is no threshold in k)
+DAMPING_THRESHOLDS = ("k > k_min = p A0/H (18)", "k > mu A0 (mu < k/A0 of (16))")
+
+
+def damping_margin(g: Gimbal, k_min: arb) -> tuple[arb, str, dict[str, arb]]:
+    """The design margin in k of damping_condition: min over its thresholds t in k (k_min of (18) and mu A0,
+    from mu < k/A0 of (16)) of k/t - 1, the name of the binding threshold (both names when the two are not
+    separated at this precision) and every threshold's k/t - 1. Valid for every k_min in its ball."""
+    c = g.c
+    each = {name: c.k / t - 1 for name, t in zip(DAMPING_THRESHOLDS, (k_min, c.mu * c.A0))}
+    (n1, a), (n2, b) = each.items()
+    binding = n1 if certainly_lt(a, b) else n2 if certainly_lt(b, a) else f"{n1} and {n2} (not separated)"
+    return a.min(b), binding, each
 
 
 def _circle_directions(n: int = 32) -> list[tuple[Fraction, Fraction]]:
