@@ -161,3 +161,26 @@ def test_a_bad_box_is_named_by_its_bad_end_not_its_midpoint(name, tol, said):
         box_scene(dataclasses.replace(s, parameters={**s.parameters, name: tol}))
     assert said in str(e.value)
     assert "'0'" not in str(e.value) and "'0.0'" not in str(e.value)      # never the midpoint
+
+
+# ------------------------------------------------------------------------------ part 4 (a): real part exactly 0
+
+def test_equilibria_with_a_purely_imaginary_pair_are_decided_not_hyperbolic_at_the_first_precision():
+    """C1 = 50 (C0 = -45.8): at x2 = +-pi/2, J32 = x1 (C0 x1 - s H)/B0 < 0, so the eigenvalues are -k/(A0 - C0)
+    and +-i w exactly (real part 0). They are decided 'not hyperbolic' in closed form at 64 bits (before: Arb's
+    eigenvalues escalated to 4096 bits); the eigenvalues agree with mpmath's of the float-free Jacobian."""
+    from rigor_gyro.kinds.lyapunov.equilibria import NOT_HYPERBOLIC, equilibria, jacobian
+    g, _ = _g_and_mp({"C1": "50"})
+    with working_precision(64):
+        E = equilibria(g)
+        rows = [e for e in E.points if e.case == "cos x2 = 0"]
+        assert E.complete and len(rows) == 2 and all(e.stability == NOT_HYPERBOLIC for e in rows)
+        for e in rows:
+            assert all(z.real.is_zero() for z in e.eigenvalues[1:]) and e.eigenvalues[0].real < 0
+            J = [[float(x.mid()) for x in r] for r in jacobian(g, e.x1, e.x2, arb(0))]
+            ev = sorted(mpmath.eig(mpmath.matrix(J))[0], key=lambda z: float(mpmath.im(z)))
+            w = float(e.eigenvalues[1].imag.mid())
+            assert abs(float(mpmath.im(ev[2])) - abs(w)) < 1e-6 * abs(w) and abs(float(mpmath.re(ev[2]))) < 1e-6
+    g0, _ = _g_and_mp({})
+    with working_precision(64):
+        assert [e.stability for e in equilibria(g0).points if e.case == "cos x2 = 0"] == ["unstable", "unstable"]

@@ -128,8 +128,9 @@ CLAIMS = {
     "equilibria": "The equilibria of system (2) with |x2| <= pi are exactly the points listed in the reason (x3 = 0, "
                   "x1 = -f(x2)/k, and f(x2) = 0, cos x2 = 0 or k H + C0 sin x2 f(x2) = 0; every root isolated on a "
                   "certified cover of [-pi - 1/64, pi + 1/64]), each with the eigenvalues of its linearisation and its "
-                  "stability (asymptotically stable: every real part < 0; unstable: one > 0), and whether it lies in "
-                  "the estimate {V < c_set} of invariant_estimate.",
+                  "stability (asymptotically stable: every real part < 0; unstable: one > 0; not hyperbolic: at "
+                  "cos x2 = 0, eigenvalues -k/(A0 - C0) and +-i w, real part exactly 0, so linearisation decides "
+                  "nothing), and whether it lies in the estimate {V < c_set} of invariant_estimate.",
     "best_mu": "At mu = mu_best (a decimal in (16) chosen by a search, not proved optimal), Psi1 > 0 and Psi2 > 0 "
                "on the disc of radius R_max, so vdot_nonpositive holds there; and R_sup(mu) <= R_sup_upper_bound for "
                "every mu in (16), where R_sup(mu) is the supremum of the radii for which Psi1, Psi2 > 0 on the disc: "

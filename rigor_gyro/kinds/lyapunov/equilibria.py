@@ -15,7 +15,10 @@ piece holds exactly one root); any other root must lie
 certainly inside or certainly outside |x2| <= pi. The linearisation's Jacobian is computed by
 forward-mode differentiation of (2) (dual numbers over balls) and its eigenvalues by Arb
 (``acb_mat.eig``): *asymptotically stable* when every real part is certainly < 0, *unstable* when one is
-certainly > 0, otherwise *undecided* (a real part not separated from 0 at this precision).
+certainly > 0, otherwise *undecided* (a real part not separated from 0 at this precision). At cos x2 = 0
+the eigenvalues are in closed form (:func:`classify_at_cos_zero`): -k/(A0 - C0) and +-sqrt(J32), so a pair
+with real part exactly 0 (J32 < 0, e.g. C0 < -H k/a for the sine law) is decided *not hyperbolic* exactly,
+where Arb's eigenvalues of the matrix would escalate forever.
 
 Guarantee: the list is complete on |x2| <= pi exactly when every piece is decided (``complete``);
 each equilibrium is a ball containing the exact point. Fails when: a piece stays undecided (a double
@@ -33,7 +36,8 @@ from ...core.balls import (certainly_le, certainly_lt, certainly_negative, certa
 from ...core.roots import RootStatus, isolate_roots
 from .model import Dual, Gimbal
 
-__all__ = ["Equilibrium", "Equilibria", "equilibria", "classify", "RANGE_PAD", "jacobian", "pi_text"]
+__all__ = ["Equilibrium", "Equilibria", "equilibria", "classify", "classify_at_cos_zero", "NOT_HYPERBOLIC", "RANGE_PAD",
+           "jacobian", "pi_text"]
 
 #: the search range is [-(pi + RANGE_PAD), pi + RANGE_PAD]
 RANGE_PAD = Fraction(1, 64)
@@ -46,7 +50,7 @@ class Equilibrium:
     case: str                         # "f(x2) = 0", "cos x2 = 0", "k H + C0 sin x2 f(x2) = 0"
     exact: str = ""                   # the exact x2 when known ("0", "pi", "pi/2", ...)
     eigenvalues: list = field(default_factory=list)
-    stability: str = "undecided"      # "asymptotically stable" | "unstable" | "undecided"
+    stability: str = "undecided"      # "asymptotically stable" | "unstable" | NOT_HYPERBOLIC | "undecided"
 
 
 @dataclass
@@ -71,8 +75,43 @@ def jacobian(g: Gimbal, x1: arb, x2: arb, x3: arb) -> list[list[arb]]:
     return [[cols[j][i] for j in range(3)] for i in range(3)]
 
 
+#: the stability of an equilibrium whose linearisation has eigenvalues with real part exactly 0 and none > 0
+NOT_HYPERBOLIC = "not hyperbolic (eigenvalues +-i w, real part exactly 0: the linearisation decides nothing)"
+
+
+def classify_at_cos_zero(g: Gimbal, e: Equilibrium) -> None:
+    """The linearisation at x2 = s pi/2 (s = +-1, cos x2 = 0 exactly), x3 = 0, x1 = -f(x2)/k, in closed form.
+
+    Why: with cos x2 = 0 and sin 2x2 = 0 exactly, the Jacobian of (2) is [[-k/D, J12, 0], [0, 0, 1],
+    [0, J32, 0]] (dx1'/dx3 = (C0 sin 2x2 x1 - H cos x2)/D = 0, dx3'/dx1 = (-C0 sin 2x2 x1 + H cos x2)/B0 = 0),
+    D = A0 - C0 > 0 and J32 = dx3'/dx2 = (-C0 cos 2x2 x1^2 - H sin x2 x1)/B0 = x1 (C0 x1 - s H)/B0. Its
+    eigenvalues are exactly -k/D < 0 and the roots of lambda^2 = J32: J32 > 0 gives +-sqrt(J32) (unstable),
+    J32 < 0 gives +-i sqrt(-J32), real part exactly 0 (not hyperbolic: no ball arithmetic on the 3 x 3 matrix
+    can separate that real part from 0, at any precision). J32 not separated from 0: undecided."""
+    from flint import acb
+    c = g.c
+    s = 1 if certainly_positive(e.x2) else -1
+    lam1 = -c.k / (c.A0 - c.C0)
+    J32 = e.x1 * (c.C0 * e.x1 - s * c.H) / c.B0
+    if certainly_positive(J32):
+        w = J32.sqrt()
+        e.eigenvalues = [acb(lam1), acb(w), acb(-w)]
+        e.stability = "unstable"
+    elif certainly_negative(J32):
+        w = (-J32).sqrt()
+        e.eigenvalues = [acb(lam1), acb(0, w), acb(0, -w)]
+        e.stability = NOT_HYPERBOLIC
+    else:
+        e.eigenvalues = [acb(lam1), acb(0, abs(J32).sqrt()), acb(0, -abs(J32).sqrt())]
+        e.stability = "undecided"
+
+
 def classify(g: Gimbal, e: Equilibrium) -> None:
-    """Set ``e.eigenvalues`` and ``e.stability`` from the linearisation at ``e``."""
+    """Set ``e.eigenvalues`` and ``e.stability`` from the linearisation at ``e`` (in closed form at
+    cos x2 = 0, :func:`classify_at_cos_zero`; by Arb's eigenvalues of the Jacobian elsewhere)."""
+    if e.case == "cos x2 = 0" and e.exact in ("pi/2", "-pi/2"):
+        classify_at_cos_zero(g, e)
+        return
     J = jacobian(g, e.x1, e.x2, arb(0))
     try:
         ev = acb_mat(J).eig(algorithm="rump")
