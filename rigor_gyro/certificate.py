@@ -58,6 +58,8 @@ class Certificate:
     notes: list[str] = field(default_factory=list)
     extra: dict[str, Any] = field(default_factory=dict)
     witnesses: dict[str, Any] = field(default_factory=dict)
+    #: the prover's settings (prec, maxprec, and time_limit when one was given): what the checker re-runs
+    settings: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         # each quantity shows its certified digits from Python (a Quantity is the arb itself)
@@ -146,6 +148,7 @@ class Certificate:
                          "python": platform.python_version()},
             "precision_bits": self.precision_bits,
             "precisions_tried": self.precisions_tried,
+            "settings": self.settings,
             "verdict": self.verdict.value,
             "claims": [c.to_json() for c in self.claims],
             "quantities": {k: quantity(v) for k, v in self.quantities.items()},

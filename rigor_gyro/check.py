@@ -19,7 +19,18 @@ What is checked:
 * every quantity the kind's checker knows: its stored [lo, hi] must contain the value (a quantity
   the checker cannot re-verify is reported as such and makes the check fail).
 
-The audit of the paper (rows about the source, never a verdict) is covered by the digest only.
+* every text the certificate states (each claim's reason, details and counterexample, the quantities,
+  ``extra``, ``notes``, ``formulas``, the witnesses, the precisions): re-derived by running the prover
+  again on the certificate's scene at its stored ``settings`` and compared field by field (the prover
+  is deterministic: CI reproduces the built-in certificates byte for byte). This check is not
+  independent of the prover: it says the text is what rigor_gyro writes for these parameters, while
+  the checks above re-decide every verdict by their own path. A run stopped by ``--time-limit`` is
+  re-derived from its last finished attempt (``maxprec`` = its ``precision_bits``), the time-limit
+  wording aside. A certificate written by another version of rigor_gyro is not compared (the check
+  says so).
+
+The audit of the paper (rows about the source, never a verdict) is covered by the digest only: the
+certificate does not carry the scene's ``[paper]`` table it was computed from.
 
 Every output kind has a JSON Schema in ``rigor_gyro/schemas/`` (certificate, paving, threshold, scan), and
 :func:`check_certificate` dispatches on the file's ``schema``: each file is first validated against its
@@ -311,6 +322,9 @@ def check_certificate(data: Any, file: str = "<data>") -> CheckReport:
             except (KeyError, TypeError, ValueError, ArithmeticError, AttributeError, IndexError, RecursionError) as e:
                 add(CheckResult("data", False, f"the certificate's data cannot be checked: {type(e).__name__}: {e}"))
     errors = _conformance(data, SCHEMA_FILES[SCHEMA])
+    if not errors:
+        from .reproduce import reproduction
+        add(CheckResult("texts", *reproduction(data, scene)))
     add(CheckResult("schema", not errors, "conforms to certificate-2.schema.json" if not errors else
                     "does not conform to certificate-2.schema.json: " + "; ".join(errors)))
     report.seconds = time.perf_counter() - t0

@@ -255,7 +255,9 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
                                 "final_attempt_phases_s": {k: round(v, 4) for k, v in final.phase_seconds.items()},
                                 "pieces": _piece_counts(final.claims)},
                        precisions_tried=esc.tried,
-                       formulas=final.formulas, notes=notes, extra=final.extra, witnesses=final.witnesses)
+                       formulas=final.formulas, notes=notes, extra=final.extra, witnesses=final.witnesses,
+                       settings={"prec": prec, "maxprec": maxprec,
+                                 **({"time_limit": time_limit} if time_limit is not None else {})})
 
 
 def _interrupted(history: list[tuple[int, Attempt]], statements: dict[str, str], wanted: list[str], p0: int,

@@ -22,7 +22,7 @@ import import_graph  # noqa: E402
 PKG = Path(__file__).resolve().parent.parent / "rigor_gyro"
 GRAPH = import_graph.graph()
 APPLICATION = {"rigor_gyro", "rigor_gyro.__main__", "rigor_gyro.cli", "rigor_gyro.scene", "rigor_gyro.prover",
-               "rigor_gyro.certificate", "rigor_gyro.report", "rigor_gyro.progress"}
+               "rigor_gyro.certificate", "rigor_gyro.report", "rigor_gyro.progress", "rigor_gyro.reproduce"}
 FLOAT_SIDE = ("approx", "plots", "campaign")
 FLOAT_LIBRARIES = ("numpy", "scipy", "mpmath", "matplotlib")
 
@@ -55,7 +55,7 @@ def test_the_tree_has_the_documented_shape():
     assert not list(PKG.glob("approx")), "float code lives in each kind's approx.py"
     flat = {p.stem for p in PKG.glob("*.py")}
     assert flat <= {"__init__", "__main__", "cli", "scene", "certificate", "prover", "report", "check", "campaign",
-                    "progress", "version"}, flat
+                    "progress", "reproduce", "version"}, flat
 
 
 def test_only_balls_sets_precision():

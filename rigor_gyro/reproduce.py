@@ -1,0 +1,113 @@
+"""Re-derive every text of a certificate by proving its scene again (the checker's ``texts`` check).
+
+A certificate states more than its verdicts: each claim's reason, details and counterexample, the
+quantities, ``extra`` (roots, moduli, the moment formula), ``notes``, ``formulas``, the witnesses. The
+kinds' checkers re-decide the verdicts by their own path; this module makes every other field a
+re-derived one: it runs :func:`~rigor_gyro.prover.prove_scene` on the certificate's scene at its
+stored ``settings`` and compares the two certificates field by field. The prover is deterministic (CI
+reproduces the built-in certificates byte for byte), so any edit of these fields, however consistent
+it looks and whatever digest it carries, is named here.
+
+Not independent of the prover: a wrong reason written by the prover itself would be reproduced. Not
+compared: ``scene``, ``software``, ``settings``, ``integrity`` (checked elsewhere) and ``paper`` (the
+audit rows: the certificate does not carry the ``[paper]`` table they were computed from).
+
+A run stopped by ``--time-limit`` is re-derived from its last finished attempt: the prover runs again
+with ``maxprec`` = the certificate's ``precision_bits`` and no limit, and the two agree up to the
+time-limit wording (the bracketed hint of an undecided claim, the time-limit note). A run in which no
+attempt finished must say exactly that, with nothing else.
+
+Cost: one proof of the scene.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from .version import __version__
+
+__all__ = ["reproduction", "COMPARED"]
+
+#: the fields compared, in the order a difference is reported
+COMPARED = ("verdict", "precision_bits", "precisions_tried", "claims", "quantities", "formulas", "notes", "extra",
+            "witnesses")
+_HINT = " [undecided at every precision tried:"
+_TIME = "time limit of "
+
+
+def _first_difference(a: Any, b: Any, path: str) -> str | None:
+    """The first place where ``a`` (stored) and ``b`` (re-derived) differ, as a JSON path, or None."""
+    if isinstance(a, dict) and isinstance(b, dict):
+        for k in list(a) + [k for k in b if k not in a]:
+            if k not in a or k not in b:
+                return f"{path}.{k}"
+            d = _first_difference(a[k], b[k], f"{path}.{k}")
+            if d:
+                return d
+        return None
+    if isinstance(a, list) and isinstance(b, list):
+        if len(a) != len(b):
+            return f"{path} (length {len(a)}, re-derived {len(b)})"
+        for i, (x, y) in enumerate(zip(a, b)):
+            d = _first_difference(x, y, f"{path}[{i}]")
+            if d:
+                return d
+        return None
+    return None if a == b else path
+
+
+def _without_time_wording(cert: dict) -> dict:
+    """The certificate's compared fields, the time-limit wording taken out (see the module docstring)."""
+    out = {k: cert.get(k) for k in COMPARED}
+    out["claims"] = [{**c, "reason": c["reason"].split(_HINT, 1)[0]} if c.get("status") == "inconclusive" else c
+                     for c in cert.get("claims", [])]
+    out["notes"] = [n for n in cert.get("notes", [])
+                    if not n.startswith(_TIME) and not n.startswith("requested enclosure widths not met")]
+    return out
+
+
+def _nothing_finished(data: dict, seconds: float) -> tuple[bool, str]:
+    """A run whose first attempt did not finish: every claim inconclusive for the time limit, nothing else."""
+    from .kinds import kind_module
+    statements = kind_module(data["scene"]["kind"]).CLAIMS
+    why = f"time limit of {seconds:g} s reached (--time-limit)"
+    p0 = data["precisions_tried"][0] if data.get("precisions_tried") else None
+    bad = [c["id"] for c in data["claims"]
+           if c.get("status") != "inconclusive" or c.get("statement") != statements.get(c["id"])
+           or c.get("reason") != f"not decided: {why} before the first attempt ({p0} bits) finished"
+           or set(c) - {"id", "statement", "status", "reason", "precision_bits"}]
+    empty = not data.get("quantities") and not data.get("extra") and not data.get("witnesses") \
+        and not data.get("formulas") and data.get("precisions_tried") == [data.get("precision_bits")]
+    notes = data.get("notes") == [f"{why}: the certificate is the last attempt that finished (none did: nothing was "
+                                  "decided)"]
+    ok = not bad and empty and notes
+    return ok, ("no attempt finished before the time limit, and the certificate says exactly that" if ok else
+                "the certificate says no attempt finished before its time limit, but " +
+                (f"claim {bad[0]!r} is not the time limit's inconclusive claim" if bad else
+                 "it holds more than an empty attempt" if not empty else "its notes differ"))
+
+
+def reproduction(data: dict, scene) -> tuple[bool, str]:
+    """(ok, message) of the ``texts`` check for the certificate ``data`` of ``scene`` (already validated
+    against its schema): see the module docstring."""
+    from .prover import prove_scene
+    written_by = (data.get("software") or {}).get("rigor_gyro")
+    if written_by != __version__:
+        return True, (f"not re-derived: written by rigor_gyro {written_by}, this is {__version__} (the verdicts are "
+                      "checked above; the texts are compared only by the version that wrote them)")
+    settings = data["settings"]
+    limit = settings.get("time_limit")
+    fired = limit is not None and any(n.startswith(_TIME) for n in data.get("notes", []))
+    if fired and any(n.endswith("(none did: nothing was decided)") for n in data["notes"]):
+        return _nothing_finished(data, limit)
+    maxprec = data["precision_bits"] if fired else settings["maxprec"]
+    if not settings["prec"] <= maxprec:
+        return False, f"settings prec {settings['prec']} above the last attempt's {maxprec} bits"
+    again = prove_scene(scene, prec=settings["prec"], maxprec=maxprec).to_json()
+    stored, derived = (_without_time_wording(data), _without_time_wording(again)) if fired else (data, again)
+    for key in COMPARED:
+        where = _first_difference(stored.get(key), derived.get(key), key)
+        if where:
+            return False, (f"{where} is not what the prover writes for this scene at these settings (re-proved at "
+                           f"prec {settings['prec']}, maxprec {maxprec}): an edited or foreign certificate")
+    return True, ("every reason, detail, counterexample, quantity, note, formula and extra field re-derived by "
+                  "proving the scene again" + (" (its last finished attempt, the time limit aside)" if fired else ""))
