@@ -291,9 +291,7 @@ def check_certificate(data: Any, file: str = "<data>") -> CheckReport:
     try:
         if not all(isinstance(sc.get(k, {}), dict) for k in ("parameters", "options")):
             raise CertificateError("scene parameters and options must be objects")
-        scene = Scene(name=sc["name"], kind=sc["kind"], source=sc.get("source", ""),
-                      parameters=dict(sc["parameters"]), claims_only=sc.get("claims_only"),
-                      options=dict(sc.get("options") or {}), paper={}, path=sc.get("file"))
+        scene = Scene.from_header(sc)
         module = kind_module(scene.kind)
         model = module.validate(scene)
         wanted = requested_claims(scene, module.CLAIMS)

@@ -66,6 +66,14 @@ class Scene:
                                              or not all(isinstance(c, str) for c in self.claims_only)):
             raise SceneError(f"scene {self.name!r}: claims_only must be None or a non-empty list of claim names")
 
+    @classmethod
+    def from_header(cls, sc: dict[str, Any]) -> "Scene":
+        """The scene a certificate's ``scene`` block (:meth:`header`) describes, without its ``[paper]``
+        table (a header does not carry it). KeyError, TypeError or SceneError when the block is malformed."""
+        return cls(name=sc["name"], kind=sc["kind"], source=sc.get("source", ""), parameters=dict(sc["parameters"]),
+                   claims_only=sc.get("claims_only"), options=dict(sc.get("options") or {}), paper={},
+                   path=sc.get("file"))
+
     def header(self) -> dict[str, Any]:
         """The ``scene`` block of a certificate: everything the result depends on (parameters exactly as
         written, the options and the claims asked for), so two certificates of different settings differ."""

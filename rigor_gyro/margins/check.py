@@ -51,9 +51,7 @@ def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     add(CheckResult("integrity", ok, "digest matches" if ok else "the digest does not match the content"))
     sc = data["scene"]
     try:
-        scene = Scene(name=sc["name"], kind=sc["kind"], source=sc.get("source", ""), parameters=dict(sc["parameters"]),
-                      claims_only=sc.get("claims_only"), options=dict(sc.get("options") or {}), paper={},
-                      path=sc.get("file"))
+        scene = Scene.from_header(sc)
         bs = box_scene(scene)
     except (RigorGyroError, TypeError, ValueError, KeyError) as e:
         add(CheckResult("scene", False, f"the paving's scene is not a valid box scene: {e}"))

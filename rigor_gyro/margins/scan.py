@@ -206,9 +206,7 @@ def check_scan(data: dict[str, Any], max_points: int = MAX_RECHECK) -> list[tupl
 
     sc = data["scene"]
     try:
-        scene = Scene(name=sc["name"], kind=sc["kind"], source=sc.get("source", ""), parameters=dict(sc["parameters"]),
-                      claims_only=sc.get("claims_only"), options=dict(sc.get("options") or {}), paper={},
-                      path=sc.get("file"))
+        scene = Scene.from_header(sc)
         module = kind_module(scene.kind)
         param, claims, quantities = data["param"], list(data["claims"]), list(data["quantities"])
         if param not in scene.parameters or any(is_tolerance(v) for v in scene.parameters.values()):

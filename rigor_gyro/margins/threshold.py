@@ -257,9 +257,7 @@ def check_threshold(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
 
     sc = data["scene"]
     try:
-        scene = Scene(name=sc["name"], kind=sc["kind"], source=sc.get("source", ""), parameters=dict(sc["parameters"]),
-                      claims_only=sc.get("claims_only"), options=dict(sc.get("options") or {}), paper={},
-                      path=sc.get("file"))
+        scene = Scene.from_header(sc)
         module = kind_module(scene.kind)
         param, claim = data["param"], data["claim"]
         if param not in scene.parameters or is_tolerance(scene.parameters[param]):
