@@ -46,7 +46,7 @@ def near(ball, ref, rel):
 
 def test_example_every_claim_proved(example):
     assert {c.id: c.status for c in example.claims} == {c: Status.PROVED for c in (
-        "constants", "damping_condition", "vdot_nonpositive", "vdot_direct", "v_positive", "invariant_estimate",
+        "constants", "damping_condition", "vdot_nonpositive", "psi_test", "vdot_direct", "v_positive", "invariant_estimate",
         "largest_sublevel", "equilibria", "best_mu", "best_mu_direct")}
     assert example.precision_bits == 64
 

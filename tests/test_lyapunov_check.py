@@ -587,7 +587,7 @@ def test_a_refuted_certificate_confirms_every_counterexample(refuted):
     assert all(items.values()), {k: v for k, v in items.items() if not v}
     statuses = {c["id"]: c["status"] for c in refuted["claims"]}
     assert {k for k, v in statuses.items() if v == "refuted"} == {
-        "damping_condition", "vdot_nonpositive", "v_positive", "largest_sublevel", "best_mu", "best_mu_direct"}
+        "damping_condition", "vdot_nonpositive", "psi_test", "v_positive", "largest_sublevel", "best_mu", "best_mu_direct"}
 
 
 @pytest.mark.parametrize("which", ["agafonov", "refuted"])
@@ -938,26 +938,30 @@ def test_a_psi_counterexample_is_decided_on_the_psi_it_names(refuted):
     does a point outside the disc."""
     for label, ok in (("Psi2", True), ("Psi1", False), (None, False)):
         bad = copy.deepcopy(refuted)
-        ce = _claim(bad, "vdot_nonpositive")["counterexample"]
+        ce = _claim(bad, "psi_test")["counterexample"]
         ce["point"] = {"x1": ["0", "0"], "x2": ["3/10", "3/10"], "x3": ["0", "0"]}
         ce.pop("psi", None)
         if label:
             ce["psi"] = label
-        assert _items(bad)["vdot_nonpositive"] is ok, label
+        assert _items(bad)["psi_test"] is ok, label
+        # the same point never refutes Vdot <= 0 (Vdot = 0 there): only a point where Vdot > 0 does
+        bad = copy.deepcopy(refuted)
+        _claim(bad, "vdot_nonpositive")["counterexample"] = copy.deepcopy(ce)
+        assert _items(bad)["vdot_nonpositive"] is False, label
     # Psi1 = 0.38 at x2 = 1/40, x1 = x3 = 0: positive, though below 1 (1689 decided on Psi1 <= 1)
     bad = copy.deepcopy(refuted)
-    ce = _claim(bad, "vdot_nonpositive")["counterexample"]
+    ce = _claim(bad, "psi_test")["counterexample"]
     ce["point"] = {"x1": ["0", "0"], "x2": ["1/40", "1/40"], "x3": ["0", "0"]}
     ce["psi"] = "Psi1"
-    assert _items(bad)["vdot_nonpositive"] is False
+    assert _items(bad)["psi_test"] is False
     # points beyond the region's radius R = 0.00338 (Psi2 = -1596 there too): rejected, also inside the unit
     # disc (1663 compared x1^2 + x3^2 with R / R)
     for x1, x3 in (("1", "0"), ("1/2", "0"), ("0", "1/2"), ("3/1000", "3/1000")):
         bad = copy.deepcopy(refuted)
-        ce = _claim(bad, "vdot_nonpositive")["counterexample"]
+        ce = _claim(bad, "psi_test")["counterexample"]
         ce["point"] = {"x1": [x1, x1], "x2": ["3/10", "3/10"], "x3": [x3, x3]}
         ce["psi"] = "Psi2"
-        assert _items(bad)["vdot_nonpositive"] is False, (x1, x3)
+        assert _items(bad)["psi_test"] is False, (x1, x3)
 
 
 @pytest.mark.parametrize("edit", ["origin", "beyond_x2_star", "v_positive_there", "v_small_positive_there"])

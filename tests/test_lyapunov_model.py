@@ -418,7 +418,7 @@ def test_vdot_nonpositive_is_proved_below_r_sup_on_pieces_covering_the_x2_range(
     with working_precision(64):
         v = certify_vdot_nonpositive(g, g.c.x2_star, R, "R", 20000, record)
     assert v.status is Status.PROVED, v.reason
-    assert set(record) == {"Psi1", "Psi2"} and v.details == {"pieces": v.pieces}
+    assert set(record) == {"Psi1", "Psi2"} and v.details == {"pieces": v.pieces, "test": "Psi"}
     assert v.pieces >= len(record["Psi1"]) + len(record["Psi2"]) and v.witness is None and v.counterexample is None
     xs = _pi_over_6()
     for name, pieces in record.items():
@@ -457,14 +457,18 @@ def test_vdot_nonpositive_is_refuted_only_at_a_point_of_the_region_where_vdot_is
 
 
 def test_a_psi_counterexample_refutes_the_test_at_a_certified_point_when_no_vdot_point_is_found(monkeypatch):
-    """With the Vdot search finding nothing, R above R_sup is refuted on Psi alone: a point of the open disc
-    where the named Psi (the float side's mpmath coefficients) is <= 0, the value inside the stated ball;
-    with a budget too small to decide and R below R_sup, nothing is refuted."""
+    """With the Vdot search on circles finding nothing, R above R_sup refutes the Psi test on Psi alone: a
+    point of the open disc where the named Psi (the float side's mpmath coefficients) is <= 0, the value inside
+    the stated ball; with a budget too small to decide and R below R_sup, nothing is refuted. Vdot <= 0 itself
+    (certify_vdot_nonpositive) is then refuted only from the direct test's point where Vdot > 0, never on Psi."""
     g, mg, _ = _g_and_mp({})
     monkeypatch.setattr(M, "vdot_witness", lambda *a, **k: None)
     R = _radius({}, "1.1")
     with working_precision(64):
-        v = M.certify_vdot_nonpositive(g, g.c.x2_star, R, "R", 20000, {})
+        whole = M.certify_vdot_nonpositive(g, g.c.x2_star, R, "R", 20000, {})
+        assert whole.status is Status.REFUTED and "psi" not in whole.counterexample and whole.witness is not None
+        assert certainly_gt(g.vdot(*whole.witness[:3]), 0)
+        v = M.certify_psi_test(g, g.c.x2_star, R, "R", 20000, {})
     assert v.status is Status.REFUTED and v.witness is None, v.reason
     name = v.counterexample["psi"]
     assert name in ("Psi1", "Psi2") and f"{name} = " in v.reason and "<= 0 at the point" in v.reason
@@ -481,7 +485,7 @@ def test_a_psi_counterexample_refutes_the_test_at_a_certified_point_when_no_vdot
         assert ref <= 0 and contains_mp(arb(v.counterexample["value"].strip("[]").split(",")[0]).union(
             arb(v.counterexample["value"].strip("[]").split(",")[-1])), ref)
     with working_precision(64):
-        small = M.certify_vdot_nonpositive(g, g.c.x2_star, _radius({}, "0.999"), "R", 3, {})
+        small = M.certify_psi_test(g, g.c.x2_star, _radius({}, "0.999"), "R", 3, {})
     assert small.status is Status.INCONCLUSIVE and "no point with certified Vdot > 0 found" in small.reason
     assert small.decides is not None
 

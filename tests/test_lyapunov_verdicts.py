@@ -184,3 +184,70 @@ def test_equilibria_with_a_purely_imaginary_pair_are_decided_not_hyperbolic_at_t
     g0, _ = _g_and_mp({})
     with working_precision(64):
         assert [e.stability for e in equilibria(g0).points if e.case == "cos x2 = 0"] == ["unstable", "unstable"]
+
+
+# ------------------------------------------------------------------------------ part 2 (a): Vdot's claim, Psi's claim
+
+@pytest.mark.parametrize("R, params", [("0.023989", {}), ("0.0240", {}), ("0.02416", {}),
+                                       ("0.0278", {"mu": "0.0231806"})],
+                         ids=["R=0.023989", "R=0.0240", "R=0.02416", "mu=0.0231806,R=0.0278"])
+def test_knife_edge_radii_where_vdot_le_0_holds_are_not_refuted_by_the_vdot_claim(R, params):
+    """Radii above the Psi test's supremum (0.0240776 at best over mu) and below the direct test's
+    (0.024167 at mu = 0.02): psi_test is refuted with a point where Psi1 <= 0, vdot_nonpositive is proved by
+    the direct test at R (its boxes re-evaluated by the checker), never refuted by the Psi point."""
+    cert = _prove(["vdot_nonpositive", "psi_test"], {"R": R}, params)
+    v, p = cert.claim("vdot_nonpositive"), cert.claim("psi_test")
+    assert v.status.value == "proved" and v.details["test"] == "direct", v.reason
+    assert p.status.value == "refuted" and p.counterexample["psi"] == "Psi1"
+    _confirmed(cert)
+
+
+@pytest.mark.parametrize("R", ["0.0242", "0.024168", "0.5"])
+def test_a_radius_with_a_real_vdot_gt_0_point_is_refuted_by_vdot_nonpositive_with_that_point(R):
+    """Above the direct test's supremum (R_direct_upper = 0.02416697225 at mu = 0.02) Vdot > 0 somewhere in
+    the region: vdot_nonpositive is refuted with a point of the region where grad V . f > 0, re-evaluated here
+    in mpmath (automatic differentiation of (7) along (2)) and by the checker."""
+    cert = _prove(["vdot_nonpositive"], {"R": R})
+    v = cert.claim("vdot_nonpositive")
+    assert v.status.value == "refuted", v.reason
+    ce = v.counterexample
+    assert "psi" not in ce
+    _, mg = _g_and_mp({})
+    pt = {k: Fraction(ce["point"][k][0] if isinstance(ce["point"][k], list) else ce["point"][k]) for k in ("x1", "x2", "x3")}
+    assert pt["x1"] ** 2 + pt["x3"] ** 2 < Fraction(R) ** 2
+    with mpmath.workdps(50):
+        x = [mpmath.mpf(q.numerator) / q.denominator for q in (pt["x1"], pt["x2"], pt["x3"])]
+        assert abs(x[1]) <= mpmath.pi / 6
+        assert mg.grad_V_dot_f(*x) > 0
+    _confirmed(cert)
+
+
+def test_a_psi_counterexample_does_not_refute_vdot_nonpositive_in_the_checker():
+    """A certificate whose vdot_nonpositive is 'refuted' by a Psi point (today's psi_test counterexample moved
+    over) is rejected: only a point where Vdot > 0 refutes Vdot <= 0."""
+    import json
+    from rigor_gyro.kinds.lyapunov.check import check
+    cert = _prove(["vdot_nonpositive", "psi_test"], {"R": "0.0240"})
+    data = json.loads(json.dumps(cert.to_json()))
+    claims = {c["id"]: c for c in data["claims"]}
+    claims["vdot_nonpositive"].update(status="refuted", counterexample=claims["psi_test"]["counterexample"])
+    with working_precision(max(2 * data["precision_bits"], 128)):
+        res = check(validate(_scene_of(data)), data)
+    assert not next(r for r in res if r.item == "vdot_nonpositive").ok
+
+
+# ------------------------------------------------------------------------------ part 4 (b): unbounded below
+
+def test_an_unbounded_sublevel_bound_near_the_gimbal_lock_ends_the_claim_at_the_first_precision():
+    """x2* = 1.5697963 (cos x2* ~ 1e-3): gamma, V's coefficient of r^2, is not certainly positive on boxes next to
+    the faces, so the lower bound of V over {Vdot >= 0} stays -inf on the whole box budget at any precision (it
+    did at 64, 128 and 256 bits, 32 s of CPU): largest_sublevel says what blows up and where, and stops the
+    escalation (precision_cannot_help) at the first precision."""
+    from rigor_gyro.kinds.lyapunov.claims import attempt
+    m = validate(_scene(["largest_sublevel"], params={"x2_star": "1.5697963"}))
+    with working_precision(64):
+        a = attempt(m, ["largest_sublevel"], 64)
+    c = a.claims[0]
+    assert c.status.value == "inconclusive" and c.precision_cannot_help
+    assert "gamma" in c.reason and "not certainly positive" in c.reason and "x2/x2* in [" in c.reason
+    assert "unbounded below" in c.precision_cannot_help

@@ -87,21 +87,13 @@ class BoxScene:
 
 def _end_text(q: Fraction) -> str:
     """An end of a tolerance as an exact decimal where it has one (-0.02, not -1/50), else as a fraction."""
-    d, n = q.denominator, 0
-    while d % 10 == 0 or d % 2 == 0 or d % 5 == 0:
-        if d % 10 == 0:
-            d //= 10
-        else:
-            d //= 2 if d % 2 == 0 else 5
-        n += 1
-        if n > 60:
-            break
-    if d != 1:
-        return fraction_text(q)
-    import decimal
-    with decimal.localcontext() as ctx:
-        ctx.prec = 200
-        return format(decimal.Decimal(q.numerator) / decimal.Decimal(q.denominator), "f")
+    for n in range(0, 61):
+        scaled = q * 10 ** n
+        if scaled.denominator == 1:
+            digits = str(abs(scaled.numerator)).rjust(n + 1, "0")
+            body = digits if n == 0 else f"{digits[:-n]}.{digits[-n:]}"
+            return ("-" if q < 0 else "") + body
+    return fraction_text(q)
 
 
 def _bad_end(module, mid: Scene, box: Box, error: ParameterError, given: dict) -> ParameterError:

@@ -8,7 +8,8 @@ value for every parameter in the box; the claims of :mod:`.claims` then run unch
 
 Guarantee: ``proved`` means the claim holds for every parameter value in the box: for
 ``vdot_nonpositive``, Vdot <= 0 on region (17) with each parameter's own R (the disc minimum of Psi
-decreases in R, and R's ball contains every R of the box); ``refuted`` means it fails for every value
+decreases in R, and so does A - R |B| of the direct test, its fallback; R's ball contains every R of the
+box); ``refuted`` means it fails for every value
 in the box (a certified inequality over the box, or a point of the region inside every parameter's
 disc, where Vdot > 0 for every parameter); ``undecided`` otherwise.
 

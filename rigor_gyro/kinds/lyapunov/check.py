@@ -408,7 +408,11 @@ def check(model, data: dict) -> list[CheckResult]:
         v_ok = (all(_covers(wv[k], arb(0), xs) for k in ("S", "f_over_x", "psi"))
                 and _all_positive(g.S, wv["S"]) and _all_positive(lambda x: g.law.f_over_x(c.a, x), wv["f_over_x"])
                 and _all_positive(g.psi, wv["psi"]))
-    vdot_ok = R is not None and vdot_holds(g, R, W.get("vdot_nonpositive"))
+    wvn = W.get("vdot_nonpositive") or {}
+    # Vdot <= 0 on (17): the Psi test's x2 pieces, or the direct test's (x2, t) boxes at R, re-evaluated
+    vdot_ok = R is not None and (vdot_holds(g, R, wvn) if "Psi1" in wvn else
+                                 bool(wvn.get("boxes")) and _direct_boxes_hold(g, R, wvn["boxes"], cert_prec))
+    psi_ok = R is not None and vdot_holds(g, R, W.get("psi_test"))
 
     # ---------------------------------------------------------------- c*, the set, its extents
     inv_ok = False
@@ -585,6 +589,12 @@ def check(model, data: dict) -> list[CheckResult]:
     if we and claims.get("equilibria", {}).get("status") == "proved":
         eq_ok, eq_msg = _check_equilibria(g, we["pieces"], claims["equilibria"].get("details", {}).get("equilibria", []))
 
+    def region_point(ce: dict):
+        """A stored counterexample's point (x1, x2, x3) and whether it certainly lies in region (17)."""
+        pt = ce.get("point", {})
+        x1, x2, x3 = (_b(_pair(pt[k])) for k in ("x1", "x2", "x3"))
+        return x1, x2, x3, (R is not None and certainly_le(abs(x2), xs) and certainly_lt(x1 * x1 + x3 * x3, R * R))
+
     # ---------------------------------------------------------------- the claims
     for cid, cl_ in claims.items():
         st = cl_["status"]
@@ -614,11 +624,18 @@ def check(model, data: dict) -> list[CheckResult]:
                 say(cid, any(certainly_le(x, y) for x, y in parts), "a violated inequality re-derived")
         elif cid == "vdot_nonpositive":
             if st == "proved":
-                say(cid, vdot_ok, "Psi1, Psi2 > 0 over the disc on every stored x2 piece, re-evaluated")
+                say(cid, vdot_ok, "Psi1, Psi2 > 0 over the disc on every stored x2 piece, or A - R |B| > 0 on every "
+                    "stored (x2, t) box (the boxes tile the domain), re-evaluated")
             else:
-                pt = ce.get("point", {})
-                x1, x2, x3 = (_b(_pair(pt[k])) for k in ("x1", "x2", "x3"))
-                in_region = (R is not None and certainly_le(abs(x2), xs) and certainly_lt(x1 * x1 + x3 * x3, R * R))
+                # refuted only by a point where Vdot > 0: a failed Psi test is no counterexample to Vdot <= 0
+                x1, x2, x3, in_region = region_point(ce)
+                say(cid, "psi" not in ce and in_region and certainly_positive(g.vdot(x1, x2, x3)),
+                    "grad V . f > 0 at the stored point of the region, re-evaluated")
+        elif cid == "psi_test":
+            if st == "proved":
+                say(cid, psi_ok, "Psi1, Psi2 > 0 over the disc on every stored x2 piece, re-evaluated")
+            else:
+                x1, x2, x3, in_region = region_point(ce)
                 if "psi" in ce:          # the statement's Psi test fails at the point
                     ok = in_region and certainly_le(psi_at_point(g, ce["psi"], x1, x2, x3), 0)
                     say(cid, ok, f"{ce['psi']} <= 0 at the stored point of the region, re-evaluated")

@@ -8,12 +8,14 @@ exact parameters:
 * ``constants``: A0, B0, C0 exactly; m, M certified maxima over |x2| <= x2* (branch and bound; the
   0/0 of M at x2 = 0 enclosed through f(x)/x); p, k_min, the mu interval (16), R1 (13), R2 (14), R.
 * ``damping_condition``: k > p A0 / H (18) and mu inside (16).
-* ``vdot_nonpositive``: Vdot = -Psi1 x1^2 - Psi2 x3^2 <= 0 on region (17) (|x2| <= x2*, x1^2 + x3^2 <= R^2):
-  over an x2 piece X the minimum of Psi_i over the disc is ci0 - R sqrt(ci1^2 + ci3^2), enclosed on X;
-  Psi1, Psi2 > 0 by subdivision of [-x2*, x2*]. Vdot vanishes on the x2 axis (x1 = x3 = 0), the
-  equilibrium included, exactly by the factored form: nothing is evaluated near 0 / 0.
-  Refuted only with a certified point of the region where grad V . f > 0 (evaluated by automatic
-  differentiation, not through the Psi form).
+* ``vdot_nonpositive``: Vdot <= 0 on region (17) (|x2| <= x2*, x1^2 + x3^2 <= R^2): by the Psi test of
+  ``psi_test``, else by the direct test of ``vdot_direct`` at R (A - R |B| > 0 on (x2, t) boxes). Refuted only
+  with a certified point of the region where grad V . f > 0 (evaluated by automatic differentiation, not
+  through the Psi form): the failure of a sufficient test is never a refutation.
+* ``psi_test``: Psi1, Psi2 > 0 on region (17), Vdot = -Psi1 x1^2 - Psi2 x3^2: over an x2 piece X the minimum
+  of Psi_i over the disc is ci0 - R sqrt(ci1^2 + ci3^2), enclosed on X; Psi1, Psi2 > 0 by subdivision of
+  [-x2*, x2*]. Vdot vanishes on the x2 axis (x1 = x3 = 0) exactly by the factored form. Refuted with a
+  certified point of the region where a Psi_i <= 0 (or where Vdot > 0).
 * ``v_positive``: V > 0 off the origin for |x2| <= x2*, through the exact decomposition
   V = phi(x2) + 1/2 S (x3 + f3/S)^2 + 1/2 (mu x3 + h x1)^2 (see :mod:`rigor_gyro.kinds.lyapunov.model`): certified
   f1 > mu (so S > 0), f(x)/x > 0 (so F > 0 off 0) and psi > 0 (so phi > 0 off 0; psi is finite at
@@ -25,7 +27,7 @@ exact parameters:
   faces |x2| = x2* (:mod:`rigor_gyro.kinds.lyapunov.sublevel`): the largest sublevel set of V that is an
   estimate without region (17); refuted when c_max <= 0 is certified.
 * ``best_mu``: R_sup(mu) = min over x2 of min_i ci0 / |(ci1, ci3)| is the supremum of the radii for
-  which the Psi test of ``vdot_nonpositive`` holds. A search picks mu_best in (16) (not proved
+  which the Psi test of ``psi_test`` holds. A search picks mu_best in (16) (not proved
   optimal); R_max is certified at mu_best, and a branch and bound over mu certifies an upper bound of
   sup over (16) of R_sup, so the relative gap says how close R_max is to the best this test can do.
 
@@ -62,7 +64,7 @@ from .. import Attempt, Phases
 from .equilibria import equilibria
 from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
-from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_vdot_nonpositive,
+from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_psi_test, certify_vdot_nonpositive,
                     closed_form_constants, cylinder_lower_bound, damping_margin, direct_margin, faces_minimiser_inside, hypot_ball,
                     mean_value_enclosure, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
 from .moments import MOMENTS
@@ -105,8 +107,12 @@ CLAIMS = {
     "constants": "Enclosures of A0, B0, C0, m, M, p, k_min = p A0/H, the mu interval (p/H, k/A0), R1, R2 and "
                  "R = min(R1, R2); m and M are certified maxima over |x2| <= x2*.",
     "damping_condition": "k > p A0 / H (18) and p/H < mu < k/A0 (16).",
-    "vdot_nonpositive": "Vdot = grad V . f = -Psi1 x1^2 - Psi2 x3^2 <= 0 on region (17) (|x2| <= x2*, "
-                        "x1^2 + x3^2 <= R^2), with Psi1 > 0 and Psi2 > 0 there (so Vdot = 0 only on x1 = x3 = 0).",
+    "vdot_nonpositive": "Vdot = grad V . f <= 0 on region (17) (|x2| <= x2*, x1^2 + x3^2 <= R^2), = 0 only on "
+                        "x1 = x3 = 0: certified by the Psi test (Psi1 > 0 and Psi2 > 0 there, see psi_test) or, where "
+                        "that test does not decide, by the direct test at R (A - R |B| > 0 on (x2, t) boxes covering "
+                        "the domain, see vdot_direct); refuted only by a certified point of the region where Vdot > 0.",
+    "psi_test": "Psi1 > 0 and Psi2 > 0 on region (17) (|x2| <= x2*, x1^2 + x3^2 <= R^2), where Vdot = -Psi1 x1^2 - "
+                "Psi2 x3^2: the paper's sufficient test for Vdot <= 0 there.",
     "vdot_direct": "Vdot < 0 on |x2| <= x2*, 0 < x1^2 + x3^2 <= R_direct^2 (so Vdot <= 0 there, = 0 only on "
                    "x1 = x3 = 0), certified on Vdot itself (polar form Vdot = -r^2 (A + r B): A - R_direct |B| > 0 "
                    "on boxes covering the (x2, t) domain), not through Psi1 > 0 and Psi2 > 0 separately; and Vdot > 0 "
@@ -132,7 +138,7 @@ CLAIMS = {
                   "cos x2 = 0, eigenvalues -k/(A0 - C0) and +-i w, real part exactly 0, so linearisation decides "
                   "nothing), and whether it lies in the estimate {V < c_set} of invariant_estimate.",
     "best_mu": "At mu = mu_best (a decimal in (16) chosen by a search, not proved optimal), Psi1 > 0 and Psi2 > 0 "
-               "on the disc of radius R_max, so vdot_nonpositive holds there; and R_sup(mu) <= R_sup_upper_bound for "
+               "on the disc of radius R_max, so Vdot <= 0 there (the test of psi_test); and R_sup(mu) <= R_sup_upper_bound for "
                "every mu in (16), where R_sup(mu) is the supremum of the radii for which Psi1, Psi2 > 0 on the disc: "
                "R_max is within R_max_relative_gap of the largest radius this test certifies at any admissible mu.",
     "best_mu_direct": "At mu = mu_direct (a decimal in (16) chosen by a search, not proved optimal), Vdot < 0 on "
@@ -289,11 +295,14 @@ class _Ctx:
 
 # ------------------------------------------------------------------------------------ Vdot
 
-def _vdot_claim(ctx: _Ctx, R: arb, how: str) -> tuple[Claim, dict]:
+def _vdot_claim(ctx: _Ctx, R: arb, how: str, cid: str = "vdot_nonpositive") -> tuple[Claim, dict]:
+    """``vdot_nonpositive`` (Vdot <= 0: the Psi test, else the direct test; refuted only where Vdot > 0) or
+    ``psi_test`` (Psi1, Psi2 > 0: refuted where one is <= 0, or where Vdot > 0)."""
     record: dict = {}
-    v = certify_vdot_nonpositive(ctx.g, ctx.xs, R, how, ctx.m.max_pieces, record=record)
+    fn = certify_vdot_nonpositive if cid == "vdot_nonpositive" else certify_psi_test
+    v = fn(ctx.g, ctx.xs, R, how, ctx.m.max_pieces, record=record)
     info = {"pieces": v.pieces, "record": record}      # the record: the checker's witness
-    claim = _claim("vdot_nonpositive", v.status, v.reason, v.counterexample, **v.details)
+    claim = _claim(cid, v.status, v.reason, v.counterexample, **v.details)
     claim.decides = v.decides
     return claim, info
 
@@ -437,6 +446,12 @@ def _largest_sublevel(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
         claim = _claim("largest_sublevel", Status.REFUTED, r.reason + tail, ce)
         return claim
     if r.c_lower is None:
+        if r.unbounded:
+            # an enclosure unbounded below on the whole box budget: the boxes' width decides it, not the precision
+            claim = _claim("largest_sublevel", Status.INCONCLUSIVE,
+                           r.reason + f": {r.unbounded}; more precision cannot bound it (try a smaller x2*)")
+            claim.precision_cannot_help = f"the lower bound of V over {{Vdot >= 0}} is unbounded below: {r.unbounded}"
+            return claim
         return _claim("largest_sublevel", Status.INCONCLUSIVE, r.reason + "; try a larger max_pieces or --maxprec",
                       decides=r.bound)
     lo, hi = _q(_fmpq(Fraction(r.c_lower))), _q(_fmpq(Fraction(r.c_upper)))
@@ -833,7 +848,7 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     for shrink in ("1", "0.999999", "0.999"):
         R_text = decimal_bounds(R_enc.lower() * arb(shrink), 10)[0]
         R_max = _fmpq(Fraction(R_text))
-        claim, info = _vdot_claim(sub, _q(R_max), "at mu = mu_best, R = R_max")
+        claim, info = _vdot_claim(sub, _q(R_max), "at mu = mu_best, R = R_max", "psi_test")
         if claim.status is Status.PROVED:
             break
     if claim.status is not Status.PROVED:
@@ -1011,7 +1026,7 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
                              f"{_fmt(margin, 6)}, binding: {binding}", ce, decides, binding=binding,
                              margins={n: _fmt(v, 6) for n, v in each.items()}))
     R, how = (None, "")
-    if any(c in wanted for c in ("vdot_nonpositive", "invariant_estimate")):
+    if any(c in wanted for c in ("vdot_nonpositive", "psi_test", "invariant_estimate")):
         R, how = ctx.R_used()
         quantities["R_used"] = R
     vclaim = None
@@ -1022,6 +1037,12 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
             ctx.witnesses["vdot_nonpositive"] = {"R": ball_text(R), **vinfo["record"]}
         if "vdot_nonpositive" in wanted:
             claims.append(vclaim)
+    if "psi_test" in wanted:
+        with phase("psi_test"):
+            pclaim_psi, pinfo = _vdot_claim(ctx, R, how, "psi_test")
+        if pclaim_psi.status is Status.PROVED:
+            ctx.witnesses["psi_test"] = {"R": ball_text(R), **pinfo["record"]}
+        claims.append(pclaim_psi)
     if "vdot_direct" in wanted:
         with phase("vdot_direct"):
             claims.append(_vdot_direct(ctx, quantities))

@@ -51,7 +51,7 @@ from ...core.subdivision import certify_positive
 from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
-           "VdotVerdict", "certify_vdot_nonpositive", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound",
+           "VdotVerdict", "certify_vdot_nonpositive", "certify_psi_test", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound",
            "DAMPING_THRESHOLDS", "damping_margin",
            "CIRCLE_DIRECTIONS", "cylinder_points", "faces_minimiser_inside", "c_star_lower", "c_star_upper",
            "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "symmetric_in_x2",
@@ -518,13 +518,15 @@ class VdotVerdict:
     decides: arb | None = None
 
 
-def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: int,
-                             record: dict | None = None) -> VdotVerdict:
-    """Decide Vdot = -Psi1 x1^2 - Psi2 x3^2 <= 0 on |x2| <= x2*, x1^2 + x3^2 <= R^2.
+def certify_psi_test(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: int,
+                     record: dict | None = None) -> VdotVerdict:
+    """Decide the paper's test Psi1 > 0 and Psi2 > 0 on |x2| <= x2*, x1^2 + x3^2 <= R^2 (which gives
+    Vdot = -Psi1 x1^2 - Psi2 x3^2 <= 0 there).
 
     Guarantee: PROVED when min over the disc of Psi1 and of Psi2 is certified > 0 on x2 pieces covering
     [-x2*, x2*]; REFUTED only with a certified point of the region where grad V . f > 0 (automatic
-    differentiation, not the Psi form); otherwise INCONCLUSIVE with the undecided piece.
+    differentiation, not the Psi form: then some Psi_i < 0 there, since Vdot = -Psi1 x1^2 - Psi2 x3^2) or
+    where a named Psi_i <= 0 (the test fails; ``counterexample["psi"]``); otherwise INCONCLUSIVE.
     ``how`` names the radius in the reason (e.g. "R = min(R1, R2) from (13), (14)")."""
     if not (R.is_finite() and certainly_positive(R)):
         return VdotVerdict(Status.INCONCLUSIVE, f"{how} = {_fmt(R)} is not certainly a positive radius (e.g. R2 of "
@@ -582,6 +584,88 @@ def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: i
     return VdotVerdict(Status.INCONCLUSIVE,
                        f"{how} = {_fmt(R)}: " + "; ".join(bad) + "; no point with certified Vdot > 0 found "
                        "(try a smaller R, higher --maxprec or a larger max_pieces option)", pieces, decides=stuck)
+
+
+def _direct_point(g: Gimbal, xs: arb, R: arb, witness: dict | None):
+    """A point of the open disc of radius R at |x2| <= x2* where Vdot > 0 certainly, from a point (u, s) of the
+    (x2, t) domain where A - R |B| <= 0 (the direct test's counterexample): Vdot = -r^2 (A + r B) > 0 at
+    r = -sign(B) R' for R' < R close enough to R when A < R |B|; None if not certified."""
+    if witness is None:
+        return None
+    try:
+        u, s = (Fraction(str(witness[k])) if not isinstance(witness[k], arb) else exact_fraction(witness[k].mid())
+                for k in ("u", "s"))
+    except (KeyError, ValueError, TypeError, ZeroDivisionError):
+        return None
+    x2 = xs * arb(fmpq(u.numerator, u.denominator))
+    x2 = arb(fmpq(*(lambda q: (q.numerator, q.denominator))(exact_fraction(x2.mid()))))
+    if not certainly_le(abs(x2), xs):
+        return None
+    t = arb.pi() * arb(fmpq(s.numerator, s.denominator))
+    _, B = vdot_polar(g, x2, t)
+    if not (certainly_positive(B) or certainly_negative(B)):
+        return None
+    sgn = -1 if certainly_positive(B) else 1
+    Rq = exact_fraction(R.lower())
+    for shrink in (Fraction(1) - Fraction(1, 2 ** 40), Fraction(1) - Fraction(1, 2 ** 24), Fraction(1) - Fraction(1, 2 ** 12)):
+        r = Rq * shrink
+        p1 = Fraction(sgn * float(t.cos().mid())).limit_denominator(10 ** 15) * r
+        p3 = Fraction(sgn * float(t.sin().mid())).limit_denominator(10 ** 15) * r
+        if not p1 * p1 + p3 * p3 < Rq * Rq:
+            continue
+        b1, b3 = arb(fmpq(p1.numerator, p1.denominator)), arb(fmpq(p3.numerator, p3.denominator))
+        v = g.vdot(b1, x2, b3)
+        if certainly_positive(v):
+            return b1, x2, b3, v
+    return None
+
+
+def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: int,
+                             record: dict | None = None) -> VdotVerdict:
+    """Decide Vdot = grad V . f <= 0 on |x2| <= x2*, x1^2 + x3^2 <= R^2 (region (17)).
+
+    Guarantee: PROVED when the Psi test proves it (:func:`certify_psi_test`: Psi1, Psi2 > 0 there; the
+    record gets its x2 pieces "Psi1", "Psi2") or, where the Psi test does not, when the direct test does
+    (A - R |B| > 0 on (x2, t) boxes tiling the domain, :func:`direct_margin`: Vdot < 0 off x1 = x3 = 0; the
+    record gets its "boxes"); REFUTED only with a certified point of the region where grad V . f > 0
+    (automatic differentiation), never by the failure of a sufficient test; otherwise INCONCLUSIVE."""
+    from ...core.subdivision import certify_positive_on_box
+    from ...core.boxes import Box
+    rec: dict = {}
+    psi = certify_psi_test(g, xs, R, how, max_pieces, record=rec)
+    if psi.status is Status.PROVED:
+        if record is not None:
+            record.update(rec)
+        return VdotVerdict(Status.PROVED, psi.reason + " (the Psi test)", psi.pieces, {**psi.details, "test": "Psi"})
+    if psi.status is Status.REFUTED and psi.witness is not None:       # a point where Vdot > 0 itself
+        return psi
+    if not (R.is_finite() and certainly_positive(R)):
+        return psi
+    cert = certify_positive_on_box(symmetric_in_x2(g, direct_margin(g, R)), Box.of(DIRECT_DOMAIN), max_pieces=max_pieces)
+    psi_why = psi.reason.split(": ", 1)[-1]
+    if cert.status is Status.PROVED:
+        if record is not None:
+            record["boxes"] = [b.to_json() for b in cert.leaves]
+        return VdotVerdict(Status.PROVED,
+                           f"{how} = {_fmt(R)}: A - R |B| > 0 certified on {len(cert.leaves)} boxes of (x2, t) (the "
+                           "direct test: Vdot = -r^2 (A + r B) < 0 for 0 < r <= R), where the Psi test does not decide "
+                           f"({psi_why[:200]})", psi.pieces + len(cert.leaves),
+                           {"pieces": psi.pieces, "boxes": len(cert.leaves), "test": "direct"})
+    w = _direct_point(g, xs, R, cert.witness) if cert.status is Status.REFUTED else None
+    if w is not None:
+        x1, x2, x3, v = w
+        point = {"x1": _fmt(x1, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3, 20), "vdot": _fmt(v, 8)}
+        exact = {"x1": ball_text(x1), "x2": ball_text(x2), "x3": ball_text(x3)}
+        return VdotVerdict(Status.REFUTED,
+                           f"{how} = {_fmt(R)}: grad V . f = {_fmt(v, 6)} > 0 at the point x1 = {_fmt(x1)}, "
+                           f"x2 = {_fmt(x2)}, x3 = {_fmt(x3)} of the region (certified)", psi.pieces,
+                           {"witness": point}, w, {"point": exact, "vdot": _fmt(v, 20), "radius": _fmt(R, 20)})
+    stuck = cert.witness_value if cert.status is Status.REFUTED else None
+    return VdotVerdict(Status.INCONCLUSIVE,
+                       f"{how} = {_fmt(R)}: the Psi test does not decide ({psi_why[:300]}); the direct test "
+                       f"A - R |B| > 0 does not either ({cert.reason[:200]}); no point with certified Vdot > 0 found "
+                       "(try a smaller R, higher --maxprec or a larger max_pieces option)", psi.pieces,
+                       decides=psi.decides if psi.decides is not None else stuck)
 
 # ------------------------------------------------------------------------------------ constants, c*
 # Closed forms shared by the claims and the checker (rigor-gyro check recomputes them from its own m, M).

@@ -80,6 +80,9 @@ class Sublevel:
     #: when no positive lower bound over N was certified: the best one (it decides the claim; its
     #: progress over doublings of the precision steers the escalation)
     bound: arb | None = None
+    #: set when the lower bound stayed unbounded below (-inf) on the whole box budget: what blows up, on
+    #: which box (a subdivision and geometry matter, not the precision: the claim stops escalating)
+    unbounded: str = ""
 
     @property
     def binding(self) -> str:
@@ -155,6 +158,29 @@ def _origin_counterexample(g: Gimbal, n: int = 64) -> tuple[Fraction, arb] | Non
     return None
 
 
+def _what_blows_up(g: Gimbal, leaves: list, lb) -> str:
+    """Why the lower bound of V over N is -inf: on the first leaf where it is, which enclosure is not
+    usable (gamma, V's coefficient of r^2, not certainly > 0; alpha or beta, or |B|, unbounded)."""
+    xs, pi = g.c.x2_star, arb.pi()
+    bad = [b for b in leaves if not lb({"u": b.ball("u"), "s": b.ball("s")}).is_finite()]
+    if not bad:
+        return "the lower bound over the boxes is unbounded below"
+    box = bad[0]
+    X, T = xs * box.ball("u"), pi * box.ball("s")
+    A, B = vdot_polar(g, X, T)
+    alpha, beta, gamma = v_polar(g, X, T)
+    where = (f"on {len(bad)} of {len(leaves)} boxes of (x2, t), e.g. x2/x2* in [{float(box.interval('u')[0]):.6g}, "
+             f"{float(box.interval('u')[1]):.6g}], t/pi in [{float(box.interval('s')[0]):.6g}, {float(box.interval('s')[1]):.6g}]")
+    if not (gamma.lower().is_finite() and certainly_positive(gamma.lower())):
+        what = (f"gamma = ((h cos t + mu sin t)^2 + S sin^2 t)/2, V's coefficient of r^2, is not certainly positive "
+                f"({enclosure_text(gamma, 4)}; h = H cos x2/B0 = {enclosure_text(g.c.H * X.cos() / g.c.B0, 4)})")
+    elif not (alpha.is_finite() and beta.is_finite()):
+        what = "V's coefficients alpha = mu F, beta = f3 sin t are unbounded"
+    else:
+        what = f"|B| is unbounded ({enclosure_text(B, 4)})"
+    return what + " " + where
+
+
 def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
     """Certified bounds c_lower <= c_max <= c_upper (see the module docstring), at the current
     precision, on at most min(``max_pieces``, BOX_BUDGET) boxes of (x2, t)."""
@@ -198,6 +224,8 @@ def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
         out.reason = ("no positive lower bound of V over {Vdot >= 0, (x1, x3) != 0, |x2| <= x2*} was certified "
                       f"(best {enclosure_text(best.bound, 6)} on {best.boxes} boxes)")
         out.bound = best.bound
+        if not best.bound.is_finite():
+            out.unbounded = _what_blows_up(g, best.leaves, lb)
         return out
     out.n_lower = decimal_bounds(best.bound, 12)[0]      # each end rounded to its own 12 digits: still > 0
     out.leaves, out.boxes = best.leaves, best.boxes
