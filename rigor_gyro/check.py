@@ -20,7 +20,7 @@ What is checked:
   the checker cannot re-verify is reported as such and makes the check fail).
 
 * every text the certificate states (each claim's reason, details and counterexample, the quantities,
-  ``extra``, ``notes``, ``formulas``, the witnesses, the precisions): re-derived by running the prover
+  the audit rows, ``extra``, ``notes``, ``formulas``, the witnesses, the precisions): re-derived by running the prover
   again on the certificate's scene at its stored ``settings`` and compared field by field (the prover
   is deterministic: CI reproduces the built-in certificates byte for byte). This check is not
   independent of the prover: it says the text is what rigor_gyro writes for these parameters, while
@@ -29,8 +29,8 @@ What is checked:
   wording aside. A certificate written by another version of rigor_gyro is not compared (the check
   says so).
 
-The audit of the paper (rows about the source, never a verdict) is covered by the digest only: the
-certificate does not carry the scene's ``[paper]`` table it was computed from.
+The audit of the paper (rows about the source, never a verdict) is re-derived by that check only, from
+the ``[paper]`` table the scene block carries (no independent path).
 
 Every output kind has a JSON Schema in ``rigor_gyro/schemas/`` (certificate, paving, threshold, scan), and
 :func:`check_certificate` dispatches on the file's ``schema``: each file is first validated against its

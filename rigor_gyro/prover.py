@@ -249,7 +249,7 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
     for row in final.paper:
         if row.status is AuditStatus.UNDECIDED and f"row:{row.id}" in hopeless:
             row.note += f" [undecided: {hopeless[f'row:{row.id}']}]"
-    return Certificate(scene=scene.header(), precision_bits=esc.prec, claims=final.claims,
+    return Certificate(scene=scene.header(paper=True), precision_bits=esc.prec, claims=final.claims,
                        quantities=final.quantities, paper=final.paper,
                        timings={"total_s": round(elapsed, 4), "attempts_s": attempt_seconds,
                                 "final_attempt_phases_s": {k: round(v, 4) for k, v in final.phase_seconds.items()},

@@ -1,7 +1,8 @@
 """Re-derive every text of a certificate by proving its scene again (the checker's ``texts`` check).
 
 A certificate states more than its verdicts: each claim's reason, details and counterexample, the
-quantities, ``extra`` (roots, moduli, the moment formula), ``notes``, ``formulas``, the witnesses. The
+quantities, the audit rows, ``extra`` (roots, moduli, the moment formula), ``notes``, ``formulas``, the
+witnesses. The
 kinds' checkers re-decide the verdicts by their own path; this module makes every other field a
 re-derived one: it runs :func:`~rigor_gyro.prover.prove_scene` on the certificate's scene at its
 stored ``settings`` and compares the two certificates field by field. The prover is deterministic (CI
@@ -9,8 +10,8 @@ reproduces the built-in certificates byte for byte), so any edit of these fields
 it looks and whatever digest it carries, is named here.
 
 Not independent of the prover: a wrong reason written by the prover itself would be reproduced. Not
-compared: ``scene``, ``software``, ``settings``, ``integrity`` (checked elsewhere) and ``paper`` (the
-audit rows: the certificate does not carry the ``[paper]`` table they were computed from).
+compared: ``scene``, ``software``, ``settings``, ``integrity`` (checked elsewhere). The audit rows are
+re-derived from the ``[paper]`` table the certificate's scene block carries.
 
 A run stopped by ``--time-limit`` is re-derived from its last finished attempt: the prover runs again
 with ``maxprec`` = the certificate's ``precision_bits`` and no limit, and the two agree up to the
@@ -28,8 +29,8 @@ from .version import __version__
 __all__ = ["reproduction", "COMPARED"]
 
 #: the fields compared, in the order a difference is reported
-COMPARED = ("verdict", "precision_bits", "precisions_tried", "claims", "quantities", "formulas", "notes", "extra",
-            "witnesses")
+COMPARED = ("verdict", "precision_bits", "precisions_tried", "claims", "quantities", "paper", "formulas", "notes",
+            "extra", "witnesses")
 _HINT = " [undecided at every precision tried:"
 _TIME = "time limit of "
 
@@ -109,5 +110,5 @@ def reproduction(data: dict, scene) -> tuple[bool, str]:
         if where:
             return False, (f"{where} is not what the prover writes for this scene at these settings (re-proved at "
                            f"prec {settings['prec']}, maxprec {maxprec}): an edited or foreign certificate")
-    return True, ("every reason, detail, counterexample, quantity, note, formula and extra field re-derived by "
+    return True, ("every reason, detail, counterexample, quantity, audit row, note, formula and extra field re-derived by "
                   "proving the scene again" + (" (its last finished attempt, the time limit aside)" if fired else ""))

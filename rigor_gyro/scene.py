@@ -68,20 +68,25 @@ class Scene:
 
     @classmethod
     def from_header(cls, sc: dict[str, Any]) -> "Scene":
-        """The scene a certificate's ``scene`` block (:meth:`header`) describes, without its ``[paper]``
-        table (a header does not carry it). KeyError, TypeError or SceneError when the block is malformed."""
+        """The scene a certificate's ``scene`` block (:meth:`header`) describes (its ``[paper]`` table when
+        the block carries one). KeyError, TypeError or SceneError when the block is malformed."""
         return cls(name=sc["name"], kind=sc["kind"], source=sc.get("source", ""), parameters=dict(sc["parameters"]),
-                   claims_only=sc.get("claims_only"), options=dict(sc.get("options") or {}), paper={},
-                   path=sc.get("file"))
+                   claims_only=sc.get("claims_only"), options=dict(sc.get("options") or {}),
+                   paper=dict(sc.get("paper") or {}), path=sc.get("file"))
 
-    def header(self) -> dict[str, Any]:
+    def header(self, paper: bool = False) -> dict[str, Any]:
         """The ``scene`` block of a certificate: everything the result depends on (parameters exactly as
-        written, the options and the claims asked for), so two certificates of different settings differ."""
-        return {"name": self.name, "kind": self.kind, "source": self.source,
-                "parameters": dict(self.parameters),
-                "options": {k: (v if isinstance(v, (str, int)) else str(v)) for k, v in self.options.items()},
-                "claims_only": list(self.claims_only) if self.claims_only is not None else None,
-                "file": self.path}
+        written, the options and the claims asked for), so two certificates of different settings differ;
+        with ``paper``, also the ``[paper]`` table (a point certificate's audit and its escalation depend on
+        it, and the checker re-derives them from it)."""
+        out = {"name": self.name, "kind": self.kind, "source": self.source,
+               "parameters": dict(self.parameters),
+               "options": {k: (v if isinstance(v, (str, int)) else str(v)) for k, v in self.options.items()},
+               "claims_only": list(self.claims_only) if self.claims_only is not None else None,
+               "file": self.path}
+        if paper and self.paper:
+            out["paper"] = dict(self.paper)
+        return out
 
 
 def _builtin_dir():

@@ -24,7 +24,7 @@ EXPECTED = {
     "relay_no_root_below_t_max": {"half_period": "proved", "orbit_genuine": "inconclusive"},
     "relay_unstable": {"orbit_genuine": "proved", "stable": "refuted"},
     "relay_multiplier_near_one": {"orbit_genuine": "proved", "stable": "refuted"},
-    "lyap_radius_above_sup_psi1": {"vdot_nonpositive": "refuted"},
+    "lyap_radius_above_sup_psi1": {"psi_test": "refuted"},        # Vdot <= 0 holds there (direct test)
     "lyap_radius_above_sup_psi2": {"vdot_nonpositive": "refuted"},
     "lyap_v_not_positive": {"v_positive": "refuted", "damping_condition": "refuted"},
     "lyap_region_far_too_large": {"vdot_nonpositive": "refuted"},
@@ -53,7 +53,7 @@ def test_planted_outcome_and_never_proved(certs, name):
 
 
 def test_the_refutations_carry_the_right_counterexamples(certs):
-    psi1 = next(c for c in certs["lyap_radius_above_sup_psi1"]["claims"] if c["id"] == "vdot_nonpositive")
+    psi1 = next(c for c in certs["lyap_radius_above_sup_psi1"]["claims"] if c["id"] == "psi_test")
     assert psi1["counterexample"]["psi"] == "Psi1"        # Psi1, not Psi2, binds at mu = 0.025
     psi2 = next(c for c in certs["lyap_radius_above_sup_psi2"]["claims"] if c["id"] == "vdot_nonpositive")
     assert "vdot" in psi2["counterexample"]               # Psi2 binds at mu = 0.014: Vdot > 0 on x1 = 0

@@ -118,6 +118,8 @@ ALTERATIONS = {
     "a point moved": (_undecided, lambda d: _claim(d)["points"][0]["point"].update(eps="11/100"),
                       [("nu_bounds", "not the midpoints")]),
     "a point dropped": (_refuted, lambda d: _claim(d)["points"].pop(), [("bracket_2", "not the midpoints")]),
+    "every point dropped, no time limit": (_refuted, lambda d: _claim(d)["points"].clear(),
+                                           [("bracket_2", "not the midpoints")]),
     "a refuted claim relabelled inconclusive": (_refuted, lambda d: _claim(d).update(status="inconclusive"),
                                                 [("bracket_2", "but the sub-boxes give 'refuted'")]),
     "an undecided claim relabelled proved": (_undecided, lambda d: _claim(d).update(status="proved"),

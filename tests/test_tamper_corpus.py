@@ -205,3 +205,13 @@ def test_a_genuine_time_limited_run_that_finished_in_time_is_confirmed():
     assert cert["settings"]["time_limit"] == 600
     report = check_certificate(cert)
     assert report.ok, report.first_failure
+
+
+def test_an_audit_row_forged_is_rejected(certs):
+    """The audit rows are re-derived from the [paper] table the certificate's scene block carries."""
+    data = copy.deepcopy(certs["rudenko1976"])
+    assert data["scene"]["paper"], "the scene block carries the paper's printed numbers"
+    row = next(r for r in data["paper"] if r["status"] == "disagrees")
+    row.update(status="agrees", note="agrees to every printed digit")
+    texts = next(r for r in check_certificate(reseal(data)).results if r.item == "texts")
+    assert not texts.ok and texts.message.startswith("paper[")

@@ -519,6 +519,19 @@ MUTANTS = [
      "        direct = A - R * abs(B)\n", "        direct = A - R * abs(B).mid()\n",
      "the radius of |B| dropped from A - R |B| (direct_margin: vdot_direct, best_mu_direct and the checker): a "
      "box's lower bound above the minimum of A - R |B| over it, so Vdot < 0 certified where it may fail"),
+    # issue 36 part 1: the checker's re-derivation of what a certificate or a paving states
+    ("texts_not_compared", "rigor_gyro/reproduce.py",
+     "        where = _first_difference(stored.get(key), derived.get(key), key)\n", "        where = None\n",
+     "a certificate's reasons, details, counterexamples, extra and notes confirmed without comparing them with "
+     "the prover's re-derivation (the forged texts of the tamper corpus confirmed)"),
+    ("paving_points_waived_without_a_stop", "rigor_gyro/margins/check.py",
+     '        if isinstance(data.get("stopped"), str) and data["stopped"] and not stored:',
+     "        if not stored:",
+     "a paving with its point proofs (the refuted boxes' re-checkable counterexamples) removed confirmed, "
+     "though no time limit stopped it"),
+    ("paving_reasons_not_compared", "rigor_gyro/margins/check.py",
+     '        ok = c.get("reasons") == dict(sorted(reasons.items()))', "        ok = True",
+     "a paving's reasons (the report's 'why' of each sub-box status) confirmed without re-deriving them"),
 ]
 
 
