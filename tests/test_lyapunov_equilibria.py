@@ -164,7 +164,10 @@ def test_each_stability_agrees_with_the_eigenvalues_in_mpmath(variant):
         elif p.stability == "unstable":
             assert re_max > mpmath.mpf(10) ** -30, (variant, case, x2, re_max)
         else:
-            assert p.stability == "undecided" and abs(re_max) < mpmath.mpf(10) ** -30, (variant, case, x2, re_max)
+            # undecided, or (at x2 = +-pi/2, the linearisation in closed form) "not hyperbolic": a real part 0 exactly
+            assert p.stability == "undecided" or p.stability.startswith("not hyperbolic") and case == "cos x2 = 0", \
+                (variant, case, p.stability)
+            assert abs(re_max) < mpmath.mpf(10) ** -30, (variant, case, x2, re_max)
     got = [p.stability for p in eq.points]
     assert "undecided" not in got or variant.startswith(("C1 = 54.2", "C1 = 44.6", "C1 = 1e6", "linear law, C1"))
 
