@@ -473,13 +473,20 @@ def vdot_witness(g: Gimbal, R: arb, x2_points: list[arb]) -> tuple[arb, arb, arb
                 th = 2 * math.pi * j / 48
                 x1 = Fraction(math.cos(th)).limit_denominator(10 ** 6) * r
                 x3 = Fraction(math.sin(th)).limit_denominator(10 ** 6) * r
-                if not x1 * x1 + x3 * x3 < Rq * Rq:
-                    continue
-                b1, b3 = arb(fmpq(x1.numerator, x1.denominator)), arb(fmpq(x3.numerator, x3.denominator))
-                v = g.vdot(b1, x2, b3)
-                if certainly_positive(v):
-                    return b1, x2, b3, v
+                found = _vdot_positive_at(g, x1, x2, x3, Rq)
+                if found is not None:
+                    return found
     return None
+
+
+def _vdot_positive_at(g: Gimbal, x1: Fraction, x2: arb, x3: Fraction, Rq: Fraction):
+    """(x1, x2, x3, Vdot) as balls when the exact point (x1, x3) lies inside the disc of radius Rq and Vdot
+    > 0 there is certified; None otherwise (a candidate only: nothing is claimed)."""
+    if not x1 * x1 + x3 * x3 < Rq * Rq:
+        return None
+    b1, b3 = arb(fmpq(x1.numerator, x1.denominator)), arb(fmpq(x3.numerator, x3.denominator))
+    v = g.vdot(b1, x2, b3)
+    return (b1, x2, b3, v) if certainly_positive(v) else None
 
 
 def psi_counterexample(g: Gimbal, x2: arb, R: arb, which: int):
@@ -611,12 +618,9 @@ def _direct_point(g: Gimbal, xs: arb, R: arb, witness: dict | None):
         r = Rq * shrink
         p1 = Fraction(sgn * float(t.cos().mid())).limit_denominator(10 ** 15) * r
         p3 = Fraction(sgn * float(t.sin().mid())).limit_denominator(10 ** 15) * r
-        if not p1 * p1 + p3 * p3 < Rq * Rq:
-            continue
-        b1, b3 = arb(fmpq(p1.numerator, p1.denominator)), arb(fmpq(p3.numerator, p3.denominator))
-        v = g.vdot(b1, x2, b3)
-        if certainly_positive(v):
-            return b1, x2, b3, v
+        found = _vdot_positive_at(g, p1, x2, p3, Rq)
+        if found is not None:
+            return found
     return None
 
 
