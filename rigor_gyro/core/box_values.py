@@ -1,0 +1,52 @@
+"""A quantity over a parameter box: the interface each kind's ``boxes`` module gives the margins layer.
+
+A kind's ``boxes`` module that certifies numbers over boxes (not only verdicts) exports
+
+* ``BOX_QUANTITIES``: ``{quantity_id: QuantitySpec}`` in report order;
+* ``quantities_box(model, box, names) -> {quantity_id: BoxValue}``: for each requested quantity it can
+  enclose on ``box`` at the current precision, a :class:`BoxValue` whose ``value`` ball contains q(P) for
+  every parameter value P in the box, and (optionally) whose ``gradient`` balls contain dq/dP_k for every P
+  in the box, for each box parameter k. A quantity it cannot enclose on this box (the object it measures
+  not certified to exist there, or the enclosure not finite) is left out of the dict; it never raises for
+  that. Called on a box whose edges are points (lo == hi) it gives the value at that point (a tight ball).
+
+A ``margin`` quantity is one whose sign decides a claim (``QuantitySpec.claim``): the claim holds where the
+margin is > 0. Its certified minimum over a box is the worst case an engineer designs with.
+
+Guarantee: the caller (``rigor_gyro.margins.ranges``) turns these into statements over a box: the outer
+range is the union of the ``value`` balls over sub-boxes that tile the box; the inner range is spanned by
+values at two exact points of the box (continuity of q on the box is the kind's theorem where it states
+the quantity is enclosed on the whole box).
+
+Fails when: never here; this module only names the interface.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from flint import arb
+
+__all__ = ["QuantitySpec", "BoxValue"]
+
+
+@dataclass(frozen=True)
+class QuantitySpec:
+    """What a quantity is: a description for the report, its unit ("" when none), and for a margin the claim
+    whose truth its sign decides (the claim holds where the margin is > 0); None for a plain value."""
+
+    description: str
+    unit: str = ""
+    claim: str | None = None
+
+    @property
+    def is_margin(self) -> bool:
+        return self.claim is not None
+
+
+@dataclass(frozen=True)
+class BoxValue:
+    """A quantity's enclosure over a box: ``value`` contains q(P) for every P in the box; ``gradient`` (may be
+    empty) maps a box parameter k to a ball containing dq/dP_k for every P in the box."""
+
+    value: arb
+    gradient: dict[str, arb] = field(default_factory=dict)
