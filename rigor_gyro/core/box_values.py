@@ -1,6 +1,7 @@
-"""A quantity over a parameter box: the interface each kind's ``boxes`` module gives the margins layer.
+"""A quantity over a parameter box: the interface each kind's ``box_quantities`` module gives the margins layer.
 
-A kind's ``boxes`` module that certifies numbers over boxes (not only verdicts) exports
+A kind that certifies numbers over boxes (not only verdicts) has a module ``kinds/<kind>/box_quantities.py``
+(beside its ``boxes`` module, which decides the claims) that exports
 
 * ``BOX_QUANTITIES``: ``{quantity_id: QuantitySpec}`` in report order;
 * ``quantities_box(model, box, names) -> {quantity_id: BoxValue}``: for each requested quantity it can
