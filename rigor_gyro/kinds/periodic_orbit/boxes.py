@@ -70,6 +70,7 @@ from ...core.family_roots import newton_family_root, newton_family_root_complex,
 from ...core.polyroots import isolate_polynomial
 from .. import box_outcomes, require_box_claims
 from .claims import CLAIMS, attempt
+from .box_orbit import continued_outcomes
 from .jacobian_box import centred_jacobian, centred_terms, eigen_coordinate_multipliers
 from .flow import AMPLITUDE_PARAMETERS, PARAMETER_NAMES, amplitude_similarity, DegenerateSpectrum, NearZeroSeries, RelayParams, Spectrum, nutation_cubic
 
@@ -215,8 +216,12 @@ def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str
     mid = box.midpoint()
     Pmid = dataclasses.replace(model.params, **{k: _q(v) for k, v in mid.items()})
     boxed = dataclasses.replace(model, params=Pmid, paper={})
-    a = attempt(boxed, list(claims), 0, spectrum=lambda: BoxSpectrum(Pb, Pmid))
-    out = box_outcomes(a, claims)
+    out = continued_outcomes(dataclasses.replace(boxed, params=dataclasses.replace(Pmid, **fixed)), box, claims)
+    rest = [c for c in claims if c not in out]
+    if rest:
+        a = attempt(boxed, rest, 0, spectrum=lambda: BoxSpectrum(Pb, Pmid))
+        out.update(box_outcomes(a, rest))
+    out = {c: out[c] for c in claims}
     spread = [k for k in fixed if box.interval(k)[0] != box.interval(k)[1]]
     if spread:      # the statuses hold on the whole box; amplitudes quoted in the reasons (x(0)) do not
         tag = (f" [evaluated at the box's lower end of {', '.join(spread)}: the status holds for every value "

@@ -1,0 +1,85 @@
+"""``orbit_genuine`` and ``stable`` over a box by continuing the centre's orbit (:mod:`.continuation`).
+
+Both claims assert existence: some genuine orbit (``orbit_genuine``), some genuine orbit with every multiplier
+modulus < 1 (``stable``). Over a box it is therefore enough to exhibit, for every member, one such orbit: the
+point analysis at the box's centre (exact rationals) proposes the orbit (a genuine root, for ``stable`` one
+certified stable there; with a tracked orbit (a model attribute ``orbit``, when the scene names one) the
+tracked one), and :func:`.continuation.continue_orbit` proves, for every parameter in the box, that the
+continued root theta*(P) is unique in its interval, genuine, and (for ``stable``) stable.
+
+Guarantee: a claim returned here is ``proved`` for every parameter in the box; claims that this sufficient
+test does not decide are left out of the result (the caller decides them otherwise; a failure here never
+refutes). Precision: the current working precision. Fails when: never raises for a box it cannot decide.
+"""
+from __future__ import annotations
+
+from flint import acb, arb
+
+from ...core.balls import ball, current_precision
+from ...core.boxes import Box
+from ...core.polyroots import isolate_polynomial
+from .claims import analyse
+from .continuation import continue_orbit
+from .flow import nutation_cubic
+from .parametric import PHYSICAL
+
+__all__ = ["continued_outcomes", "centre_orbits", "box_directions"]
+
+
+def box_directions(box: Box) -> list[str]:
+    """The physical parameters the box varies (S, p, K never: see :mod:`.boxes`)."""
+    return [k for k in box.names if k in PHYSICAL and box.interval(k)[0] != box.interval(k)[1]]
+
+
+def _fmt(x: arb, digits: int = 10) -> str:
+    return f"[{x.lower().str(digits, radius=False)}, {x.upper().str(digits, radius=False)}]"
+
+
+def centre_orbits(model, want_stable: bool):
+    """The genuine roots of the point analysis at the model's parameters (the box's centre), the ones to
+    continue first: the tracked orbit if the model names one, else the stable ones first (only those with
+    ``want_stable``). Returns (analysis, [RootVerdict])."""
+    an = analyse(model)
+    genuine = [v for v in an.roots if v.kind == "genuine"]
+    tracked = getattr(model, "orbit", None)
+    if tracked is not None and genuine:
+        t = ball(tracked.fmpq() if hasattr(tracked, "fmpq") else tracked)
+        genuine = sorted(genuine, key=lambda v: float(abs(v.theta - t).mid()))[:1]
+    if want_stable:
+        genuine = [v for v in genuine if v.stable is True]
+    else:
+        genuine = sorted(genuine, key=lambda v: v.stable is not True)
+    return an, genuine
+
+
+def continued_outcomes(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str]]:
+    """{claim: ("proved", reason)} for the claims among orbit_genuine and stable that the continuation
+    proves on the box (module docstring); the others are left out."""
+    wanted = [c for c in ("orbit_genuine", "stable") if c in claims]
+    if not wanted:
+        return {}
+    dirs = box_directions(box)
+    balls = {k: box.ball(k) for k in dirs}
+    iso = isolate_polynomial(nutation_cubic(model.params))
+    if not (iso.verified and iso.squarefree):
+        return {}
+    guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
+    out: dict[str, tuple[str, str]] = {}
+    _, orbits = centre_orbits(model, want_stable="stable" in wanted)
+    if "stable" not in wanted:
+        orbits = orbits[:1]
+    for v in orbits:
+        o = continue_orbit(model.params, balls, dirs, guesses, v.theta, stability="stable" in wanted)
+        if not o.genuine:
+            continue
+        head = (f"for every parameter in the box, the orbit continued from the centre's theta* = {_fmt(v.theta, 12)}: "
+                f"theta*(P) in {_fmt(o.theta)} is the only root of g there (parametric interval Newton on G = g K, "
+                f"second-order forms in (theta, P), {current_precision()} bits); ")
+        if "orbit_genuine" in wanted and "orbit_genuine" not in out:
+            out["orbit_genuine"] = ("proved", head + o.genuine_reason)
+        if "stable" in wanted and o.stable is True:
+            out["stable"] = ("proved", head + f"max multiplier modulus in {_fmt(o.max_modulus)} < 1 "
+                             f"(stability margin >= {(1 - o.max_modulus).lower().str(6, radius=False)}); "
+                             + o.genuine_reason)
+            break
+    return out

@@ -1,0 +1,332 @@
+"""One symmetric orbit of the relay followed over a parameter box: theta*(P) as an implicit function, its
+sign condition and its multipliers, all in centred forms (issue 37 part 1; the parametric Krawczyk / interval
+Newton plan).
+
+Given a box of the physical parameters (A, B, H, tau, sigma, n; S, p, K fixed, see :mod:`.boxes`), its centre
+c and a root theta_c of g(., c) (from the point analysis at the centre):
+
+1. theta*(P). With the jets of :mod:`.parametric`, for a candidate interval Theta around theta_c (a point),
+   the parametric interval Newton operator N = theta_c - G0 / G_theta, where G0 = g(theta_c, c) +
+   sum_k g_Pk(Theta x box) (P_k - c_k) contains g(theta_c, P) for every P (mean value theorem in P) and
+   G_theta contains dg/dtheta on Theta x box. For each P, g(theta, P) = g(theta_c, P) + g_theta(xi, P)
+   (theta - theta_c), so when G_theta excludes 0 and N lies inside Theta, g(., P) has exactly one root
+   theta*(P) in Theta, and it lies in N (one-dimensional interval Newton, member by member). Its
+   gradient over the box is enclosed as -g_P / g_theta over Theta x box (implicit function theorem), and
+   theta* as theta*(c) + that gradient times the deviations (intersected with N). The root is the same
+   continuous branch for every member: the one through theta_c.
+2. orbit_genuine for every P: beta(t; P) > 0 on (0, theta*(P)), with beta(0) = beta(theta*(P)) = 0 exactly.
+   beta(t; theta*(P), P) and beta'(t; ...) are enclosed on (t piece) x box by the centred form in (t, P) whose
+   P-gradient is the total derivative (theta* a jet with its implicit gradient): beta' > 0 on [0, d1],
+   beta' < 0 on [Theta_lo - d2, Theta_hi] (which holds [Theta_lo - d2, theta*(P)] for each P), beta > 0 on
+   [d1, Theta_lo - d2] by bisection in t.
+3. stable: the Jacobian of the half-period map J(theta*(P), P) in centred form, J(c) + sum_k (dJ/dP_k)
+   (box) (P_k - c_k) with the total derivatives, and its eigenvalues for every member by Rump's method in
+   the centre's eigenvector coordinates (:func:`.jacobian_box.eigen_coordinate_multipliers`) or on the
+   ball matrix itself, the narrower; every modulus certainly < 1 proves the orbit stable for every P.
+   Their product is checked against Liouville's -exp(-(1/tau + 1/sigma) theta*) over the box (a bug check).
+
+Guarantee: a returned :class:`OrbitOverBox` holds what it says for every parameter in the box; any step
+that does not decide returns the reason (never a refutation: a failed sufficient test decides nothing).
+Precision: the current working precision. Fails when: the cubic's roots are not isolated over the box,
+Newton does not contract, or a sign is not certain: ``OrbitOverBox.problem`` says which.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from flint import acb, acb_mat, arb, arb_mat
+
+from ...core.balls import certainly_lt, certainly_negative, certainly_nonzero, certainly_positive, interval
+from ...core.jets import Jet, base, second_order_gradient, second_order_value
+from .flow import DegenerateSpectrum, PARAMETER_NAMES, RelayParams
+from .jacobian_box import centred_terms, eigen_coordinate_multipliers
+from .parametric import RelayJets, nested_parameter_jets, nested_variable, parameter_jets
+
+__all__ = ["OrbitOverBox", "continue_orbit", "MAX_PIECES"]
+
+#: t pieces the sign condition may use on the middle of (0, theta*)
+MAX_PIECES = 4000
+
+
+@dataclass
+class OrbitOverBox:
+    """What was certified over the box for the orbit continued from the centre's root theta_c."""
+
+    theta_c: arb
+    theta: arb | None = None                  # theta*(P) for every P
+    theta_gradient: list[arb] = field(default_factory=list)    # dtheta*/dP_k over the box, per direction
+    genuine: bool = False
+    genuine_reason: str = ""
+    multipliers: list[acb] = field(default_factory=list)
+    moduli: list[arb] = field(default_factory=list)
+    max_modulus: arb | None = None
+    stable: bool | None = None                # True: every modulus < 1 for every P; None: not decided
+    problem: str = ""
+
+
+def _fmt(x: arb, digits: int = 10) -> str:
+    if not x.is_finite():
+        return str(x)
+    return f"[{x.lower().str(digits, radius=False)}, {x.upper().str(digits, radius=False)}]"
+
+
+def _real_centred(centre: arb, box: Jet, devs: list[arb]) -> arb:
+    """centre + sum grad_k dev_k (the real part), intersected with the direct value where both are finite."""
+    out = centre
+    for d, dev in zip(box.d, devs):
+        out = out + d.real * dev
+    v = box.v.real
+    if v.is_finite() and out.is_finite():
+        if not v.overlaps(out):
+            raise AssertionError(f"a centred form {out} misses the direct enclosure {v}: a bug")
+        return out.intersection(v)
+    return out if out.is_finite() else v
+
+
+class _Models:
+    """The jets of one box: ``centre`` (first order, at the centre point: values and gradients there),
+    ``box`` (first order over the box) and ``nested`` (second order over the box), each with the box's
+    parameters as directions followed by one extra direction (theta, or t)."""
+
+    def __init__(self, centre: RelayParams, box: dict[str, arb], dirs: list[str], guesses: list[acb]):
+        self.dirs = dirs
+        m = len(dirs) + 1
+        self.m = m
+        cvals = {k: _point(getattr(centre, k)) for k in PARAMETER_NAMES}
+        self.centre = RelayJets(parameter_jets(cvals, dirs, 1), m, guesses)
+        bvals = {k: (box[k] if k in dirs else cvals[k]) for k in PARAMETER_NAMES}
+        self.devs = [box[k] - cvals[k] for k in dirs]
+        first = parameter_jets(bvals, dirs, 1)
+        self.box = RelayJets(first, m, guesses, centre=self.centre.lams, devs=self.devs + [arb(0)])
+        self.nested = RelayJets(nested_parameter_jets(first, dirs, 1), m, lams=self.box.lam_jets)
+        self.bvals = bvals
+
+
+def _point(q) -> arb:
+    from ...core.balls import ball
+    return ball(q)
+
+
+def _centre_root(models: _Models, theta0: arb) -> arb | None:
+    """The root of G(., c) near theta0, by interval Newton at the centre (G' over the candidate)."""
+    k = models.m - 1
+    G = lambda X: models.centre.G(Jet.variable(acb(X), k, models.m))
+    x = theta0
+    for _ in range(30):
+        c = arb(x.mid())
+        r = (2 * arb(x.rad()) + abs(c) * arb(2) ** -60).upper()
+        X = arb(c, r)
+        dg = G(X).d[k].real
+        if not certainly_nonzero(dg):
+            return None
+        N = c - G(c).v.real / dg
+        if not N.is_finite():
+            return None
+        if certainly_lt(X.lower(), N.lower()) and certainly_lt(N.upper(), X.upper()):
+            for _ in range(4):        # contract inside the verified ball
+                c = arb(N.mid())
+                M = c - G(c).v.real / G(N).d[k].real
+                if not (M.is_finite() and M.overlaps(N)):
+                    break
+                M = M.intersection(N)
+                if M.rad() > 0.9 * N.rad():
+                    N = M
+                    break
+                N = M
+            return N
+        x = N
+    return None
+
+
+def _theta_over_box(models: _Models, tc_ball: arb):
+    """((Theta, gradient, centre gradient, nested theta*), "") of theta*(P) over the box (step 1 of the module
+    docstring; second-order forms in (theta, P)), or (None, reason)."""
+    tc = arb(tc_ball.mid())
+    k = len(models.dirs)
+    m = models.m
+    zero_devs = models.devs + [arb(0)]
+    Gc = models.centre.G(Jet.variable(acb(tc), k, m))
+    r = 2 * arb(tc_ball.rad()) + abs(tc) * arb(2) ** -60
+    for _ in range(16):
+        Theta = arb(tc, r.upper())
+        Gn = models.nested.G(nested_variable(Theta, k, m))
+        G0 = second_order_value(Gc, Gn, zero_devs)
+        grads = second_order_gradient(Gc, Gn, models.devs + [Theta - tc])
+        gth = grads[k]
+        if not certainly_nonzero(gth):
+            return None, f"dG/dtheta = {_fmt(gth, 6)} may vanish on theta in {_fmt(Theta)} over the box"
+        N = tc - G0 / gth
+        if not N.is_finite():
+            return None, "the Newton image is not finite"
+        if certainly_lt(Theta.lower(), N.lower()) and certainly_lt(N.upper(), Theta.upper()):
+            break
+        r = 2 * (abs(N - tc).upper()).max(r.upper())
+    else:
+        return None, f"parametric interval Newton on G did not contract around theta = {_fmt(tc_ball)}"
+    # theta*'s gradient over the box: -G_P / G_theta on Theta x box
+    grad = [-g / gth for g in grads[:k]]
+    cen = tc_ball
+    for gk, dev in zip(grad, models.devs):
+        cen = cen + gk * dev
+    if not cen.overlaps(N):
+        raise AssertionError(f"theta*'s centred form {cen} misses its Newton image {N}: a bug")
+    Theta = N.intersection(cen)
+    # at the centre: theta*(c) and its gradient -G_P(c) / G_theta(c)
+    Gcc = models.centre.G(Jet.variable(acb(tc_ball), k, m))
+    cgrad = [-(Gcc.d[i].real) / Gcc.d[k].real for i in range(k)]
+    # second derivatives of theta* over the box: the same quotient in first-order jet arithmetic, with
+    # theta the first-order jet (Theta, grad) (implicit differentiation once more)
+    inner = Jet(acb(Theta), [acb(g) for g in grad] + [acb(0)])
+    Gt = models.nested.G(Jet(inner, [acb(0)] * k + [acb(1)]))
+    inner_grads = []
+    for i in range(k):
+        q = -(Gt.d[i].real) / Gt.d[k].real
+        qv = q.v.real
+        if not (qv.is_finite() and qv.overlaps(grad[i])):
+            return None, "the implicit second derivatives of theta* are not finite over the box"
+        inner_grads.append(Jet(acb(qv.intersection(grad[i])), q.d))
+    nested_theta = Jet(inner, inner_grads + [acb(0)])
+    centre_theta = Jet(acb(tc_ball), [acb(g) for g in cgrad] + [acb(0)])
+    return (Theta, grad, centre_theta, nested_theta), ""
+
+
+def continue_orbit(centre: RelayParams, box: dict[str, arb], dirs: list[str], guesses: list[acb],
+                   theta0: arb, genuine: bool = True, stability: bool = True) -> OrbitOverBox:
+    """The orbit through the centre's root near ``theta0`` over the box (module docstring). ``box``:
+    {name: ball containing the interval} for the names in ``dirs`` (the parameters the box varies);
+    ``guesses``: approximate roots of the centre's cubic (real ones, then the complex one with Im > 0)."""
+    out = OrbitOverBox(theta_c=theta0)
+    try:
+        models = _Models(centre, box, dirs, guesses)
+    except DegenerateSpectrum as e:
+        out.problem = str(e)
+        return out
+    tc = _centre_root(models, theta0)
+    if tc is None:
+        out.problem = f"the centre's root near {_fmt(theta0)} was not verified by interval Newton"
+        return out
+    out.theta_c = tc
+    res, why = _theta_over_box(models, tc)
+    if res is None:
+        out.problem = why
+        return out
+    out.theta, out.theta_gradient, th_c, th_n = res
+    x0n = models.nested.x0(th_n)
+    x0c = models.centre.x0(th_c)
+    if genuine or stability:
+        ok, why = _sign_condition(models, x0n, x0c, out.theta)
+        out.genuine, out.genuine_reason = ok, why
+        if not ok:
+            out.problem = why
+            return out
+    if stability:
+        _stability(models, out, th_n, th_c, x0n, x0c)
+    return out
+
+
+def _sign_condition(models: _Models, x0n, x0c, Theta: arb) -> tuple[bool, str]:
+    """Step 2 of the module docstring: (True, reason) when beta > 0 on (0, theta*(P)) for every P."""
+    k = len(models.dirs)
+    m = models.m
+    comp_n = models.nested.component(0, x0n)
+    comp_c = models.centre.component(0, x0c)
+    devs = models.devs
+
+    def enc(lo: arb, hi: arb, derivative: int) -> arb:
+        T = interval(lo, hi)
+        tcp = arb(T.mid())
+        centre = RelayJets.evaluate(comp_c, Jet.variable(acb(tcp), k, m), derivative)
+        box = RelayJets.evaluate(comp_n, nested_variable(T, k, m), derivative)
+        out = second_order_value(centre, box, devs + [T - tcp])
+        direct = base(box).real
+        if direct.is_finite() and out.is_finite():
+            if not direct.overlaps(out):
+                raise AssertionError(f"beta's second-order form {out} misses its direct enclosure {direct}: a bug")
+            return out.intersection(direct)
+        return out
+
+    th_lo, th_hi = Theta.lower(), Theta.upper()
+    d1 = d2 = None
+    for j in range(1, 40):
+        d = th_lo * arb(2) ** (-j)
+        if certainly_positive(enc(arb(0), d, 1)):
+            d1 = d
+            break
+    for j in range(1, 40):
+        d = th_lo * arb(2) ** (-j)
+        if certainly_negative(enc((th_lo - d).lower(), th_hi, 1)):
+            d2 = d
+            break
+    if d1 is None or d2 is None:
+        return False, "the sign of beta' near the switchings was not certified over the box"
+    lo, hi = d1, (th_lo - d2).lower()
+    pieces = 0
+    if certainly_lt(lo, hi):
+        stack = [(lo, hi)]
+        while stack:
+            a, b = stack.pop()
+            pieces += 1
+            if pieces > MAX_PIECES:
+                return False, f"beta > 0 on the middle not decided in {MAX_PIECES} pieces over the box"
+            v = enc(a, b, 0)
+            if certainly_positive(v):
+                continue
+            mid = ((a + b) / 2).mid()
+            if not (certainly_lt(a, mid) and certainly_lt(mid, b)):
+                return False, "beta > 0 on the middle not decided (piece at the precision limit)"
+            stack += [(mid, b), (a, mid)]
+        middle = f"beta > 0 on [{_fmt(lo, 6)}, {_fmt(hi, 6)}] ({pieces} t pieces)"
+    else:
+        middle = "the two end intervals cover (0, theta*)"
+    return True, (f"beta' > 0 on [0, {_fmt(d1, 6)}], beta' < 0 on [theta*_lo - {_fmt(d2, 6)}, theta*_hi], "
+                  f"{middle}, each for every parameter in the box (second-order forms in t and P)")
+
+
+def _stability(models: _Models, out: OrbitOverBox, th_n: Jet, th_c: Jet, x0n, x0c) -> None:
+    """Step 3 of the module docstring: fills out.multipliers, moduli, max_modulus, stable."""
+    k = len(models.dirs)
+    Jn = models.nested.jacobian(th_n, x0n)
+    Jcj = models.centre.jacobian(th_c, x0c)
+    Jc = arb_mat([[Jcj[i][j].v.real for j in range(4)] for i in range(4)])
+    devs0 = models.devs + [arb(0)]
+    grads = [[second_order_gradient(Jcj[i][j], Jn[i][j], devs0) for j in range(4)] for i in range(4)]
+    terms = [(arb_mat([[grads[i][j][q] for j in range(4)] for i in range(4)]), models.devs[q]) for q in range(k)]
+    candidates = []
+    eig = eigen_coordinate_multipliers(None, None, (Jc, terms))
+    if eig is not None:
+        candidates.append(eig)
+    J = arb_mat([[second_order_value(Jcj[i][j], Jn[i][j], devs0) for j in range(4)] for i in range(4)])
+    try:
+        candidates.append(list(acb_mat(J).eig(algorithm="rump")))
+    except ValueError:
+        pass
+    # the exponential-based centred form of jacobian_box on Theta x box (theta a separate direction)
+    Pb = RelayParams(**models.bvals)
+    parts = centred_terms(Pb, out.theta)
+    if parts is not None:
+        other = eigen_coordinate_multipliers(Pb, out.theta, parts)
+        if other is not None:
+            candidates.append(other)
+    candidates = [c for c in candidates if len(c) == 4 and all(z.is_finite() for z in c)]
+    if not candidates:
+        out.problem = "the four multipliers were not isolated over the box"
+        return
+    eig = min(candidates, key=lambda c: max(float(z.real.rad()) + float(z.imag.rad()) for z in c))
+    prod = acb(1)
+    for z in eig:
+        prod *= z
+    tau, sigma = models.bvals["tau"], models.bvals["sigma"]
+    liou = -((-(1 / tau + 1 / sigma)) * out.theta).exp()
+    if not prod.real.overlaps(liou):
+        raise AssertionError(f"Liouville check failed over the box: prod {prod}, expected {liou}: a bug")
+    order = sorted(range(4), key=lambda i: -float(abs(eig[i]).mid()))
+    out.multipliers = [eig[i] for i in order]
+    out.moduli = [abs(z) for z in out.multipliers]
+    mx = out.moduli[0]
+    for mm in out.moduli[1:]:
+        mx = mx.max(mm)
+    out.max_modulus = mx
+    if all(certainly_lt(mm, 1) for mm in out.moduli):
+        out.stable = True
+    else:
+        out.problem = f"max multiplier modulus {_fmt(mx)} not certainly < 1 over the box"
