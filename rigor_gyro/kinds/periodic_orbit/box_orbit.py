@@ -13,6 +13,8 @@ refutes). Precision: the current working precision. Fails when: never raises for
 """
 from __future__ import annotations
 
+import dataclasses
+
 from flint import acb, arb
 
 from ...core.balls import ball, current_precision
@@ -39,7 +41,9 @@ def centre_orbits(model, want_stable: bool):
     """The genuine roots of the point analysis at the model's parameters (the box's centre), the ones to
     continue first: the tracked orbit if the model names one, else the stable ones first (only those with
     ``want_stable``). Returns (analysis, [RootVerdict])."""
-    an = analyse(model)
+    # a fresh cache of decided root-search pieces: the model's own one (shared by dataclasses.replace) may
+    # hold pieces decided at other parameters, keyed only by the searched range
+    an = analyse(dataclasses.replace(model, decided={}))
     genuine = [v for v in an.roots if v.kind == "genuine"]
     tracked = getattr(model, "orbit", None)
     if tracked is not None and genuine:

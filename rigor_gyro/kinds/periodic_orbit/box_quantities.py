@@ -1,0 +1,70 @@
+"""The relay's quantities over a parameter box (issue 37 part 2; the interface of :mod:`rigor_gyro.core.box_values`).
+
+The orbit measured is the centre's stable genuine orbit (the tracked one when the model names an ``orbit``;
+else, when none is certified stable at the centre, the first genuine one), continued over the box by
+:func:`.continuation.continue_orbit`: theta*(P) is the unique root of g in the certified interval for every
+P, on the branch through the centre's root, genuine for every P. Quantities:
+
+* ``theta_star`` (s): its half-period, with dtheta*/dP_k over the box (implicit function, -g_P / g_theta);
+* ``period`` (s): 2 theta*, gradient twice theta*'s (the point certificate's ``period`` is 2 theta* in s too);
+* ``max_modulus``: the largest multiplier modulus for every P (no gradient);
+* ``stability_margin``: 1 - max_modulus, the margin of claim ``stable`` (> 0 where it holds).
+
+Guarantee: each returned value ball contains the quantity for every parameter in the box; a quantity not
+certified on the box (the orbit not continued, its sign condition or multipliers not decided) is left
+out. Precision: the current working precision. Fails when: never raises for a box it cannot enclose.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+from flint import acb, arb
+
+from ...core.box_values import BoxValue, QuantitySpec
+from ...core.boxes import Box
+from ...core.polyroots import isolate_polynomial
+from .box_orbit import box_directions, centre_orbits
+from .continuation import continue_orbit
+from .flow import AMPLITUDE_PARAMETERS, nutation_cubic
+
+__all__ = ["BOX_QUANTITIES", "quantities_box"]
+
+BOX_QUANTITIES = {
+    "theta_star": QuantitySpec("half-period theta* of the centre's stable genuine orbit, continued over the box", "s"),
+    "period": QuantitySpec("period 2 theta* of that orbit", "s"),
+    "max_modulus": QuantitySpec("largest multiplier modulus of that orbit"),
+    "stability_margin": QuantitySpec("stability margin 1 - largest multiplier modulus", claim="stable"),
+}
+
+
+def _q(x):
+    from flint import fmpq
+    return fmpq(x.numerator, x.denominator)
+
+
+def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
+    """{quantity: BoxValue} for the requested names it can enclose on the box (module docstring)."""
+    names = [k for k in names if k in BOX_QUANTITIES]
+    if not names:
+        return {}
+    mid = box.midpoint()
+    fixed = {k: _q(box.interval(k)[0]) for k in AMPLITUDE_PARAMETERS if k in box.names}
+    Pc = dataclasses.replace(model.params, **{k: _q(v) for k, v in mid.items()}, **fixed)
+    centre = dataclasses.replace(model, params=Pc, paper={}, decided={})
+    iso = isolate_polynomial(nutation_cubic(Pc))
+    if not (iso.verified and iso.squarefree):
+        return {}
+    _, orbits = centre_orbits(centre, want_stable=False)
+    if not orbits:
+        return {}
+    dirs = box_directions(box)
+    guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
+    o = continue_orbit(Pc, {k: box.ball(k) for k in dirs}, dirs, guesses, orbits[0].theta)
+    if o.theta is None or not o.genuine:
+        return {}
+    grad = dict(zip(dirs, o.theta_gradient))
+    out = {"theta_star": BoxValue(o.theta, grad), "period": BoxValue(2 * o.theta, {k: 2 * g for k, g in grad.items()})}
+    if o.max_modulus is not None and o.max_modulus.is_finite():
+        out["max_modulus"] = BoxValue(o.max_modulus)
+        out["stability_margin"] = BoxValue(1 - o.max_modulus)
+    return {k: v for k, v in out.items() if k in names}
