@@ -34,6 +34,11 @@ PYTEST = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", 
 
 #: (name, file, original text, mutated text, what it breaks)
 MUTANTS = [
+    ("continuation_newton_ignores_box", "rigor_gyro/kinds/periodic_orbit/continuation.py",
+     "        G0 = second_order_value(Gc, Gn, zero_devs)\n", "        G0 = Gc.v.real\n",
+     "theta*'s box Newton operator ignores how g(theta_c, P) moves over the box (relay box continuation)"),
+    ("jets_hessian_dropped", "rigor_gyro/core/jets.py", "            out = out + _hessian(box, k, j) * dd / 2\n",
+     "            pass\n", "the second-order form of a jet forgets its Lagrange remainder"),
     ("certainly_lt_to_possibly", "rigor_gyro/core/balls.py", "    if x < y:\n        return -1",
      "    if not (x > y):\n        return -1", "a certainty predicate weakened to 'possibly' (compare / certainly_lt)"),
     ("certainly_le_to_possibly", "rigor_gyro/core/balls.py", "return bool(x.is_finite() and y.is_finite() and x <= y)",
