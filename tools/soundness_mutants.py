@@ -537,6 +537,13 @@ MUTANTS = [
     ("paving_reasons_not_compared", "rigor_gyro/margins/check.py",
      '        ok = c.get("reasons") == dict(sorted(reasons.items()))', "        ok = True",
      "a paving's reasons (the report's 'why' of each sub-box status) confirmed without re-deriving them"),
+    ("lyap_inside_point_beyond_the_end", "rigor_gyro/kinds/lyapunov/model.py",
+     "        if x.rad().is_zero() and certainly_positive(x) and certainly_le(x, xs):\n            out.append(x)",
+     "        out.append(arb(fmpq(*_pair(exact_fraction(w.upper())))))",
+     "a v_positive / Psi counterexample placed at the upper end of the x2* ball (beyond the range |x2| <= x2*)"),
+    ("lyap_no_rational_point_inside", "rigor_gyro/kinds/lyapunov/model.py",
+     "    for j in INSIDE_STEPS:      # lo,", "    for j in ():      # lo,",
+     "no rational point inside the range tried: v_positive stays inconclusive where psi <= 0 reaches x2* (issue 37)"),
 ]
 
 

@@ -66,7 +66,7 @@ from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
 from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_psi_test, certify_vdot_nonpositive,
                     closed_form_constants, cylinder_lower_bound, damping_margin, direct_margin, faces_minimiser_inside, hypot_ball,
-                    mean_value_enclosure, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
+                    mean_value_enclosure, rational_points_inside, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
 from .moments import MOMENTS
 from .paper import PAPER_SCHEMA, audit as audit_paper
 
@@ -541,9 +541,10 @@ def _v_positive_claim(ctx: _Ctx) -> Claim:
             record[key] = pieces_text(kept)
             ctx.witnesses["v_positive"] = record
             continue
-        if (r.status is Status.REFUTED and key == "psi" and r.witness.rad().is_zero()
-                and certainly_gt(r.witness, 0) and certainly_le(r.witness, xs)):
-            x2 = r.witness
+        # a rational point of (0, x2*] (the witness may be the irrational end x2*: issue 37 part 3)
+        for x2 in (rational_points_inside(r.witness, xs) if r.status is Status.REFUTED and key == "psi" else ()):
+            if not certainly_positive(x2):
+                continue
             x1, x3 = g.phi_minimiser(x2)
             x1q, x3q = (_q(_fmpq(exact_fraction(y.mid()))) for y in (x1, x3))
             v = g.V(x1q, x2, x3q)

@@ -52,7 +52,7 @@ from .moments import MomentLaw
 
 __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ball", "psi_min_functions", "vdot_witness",
            "VdotVerdict", "certify_vdot_nonpositive", "certify_psi_test", "psi_counterexample", "closed_form_constants", "cylinder_lower_bound",
-           "DAMPING_THRESHOLDS", "damping_margin",
+           "DAMPING_THRESHOLDS", "damping_margin", "rational_points_inside",
            "CIRCLE_DIRECTIONS", "cylinder_points", "faces_minimiser_inside", "c_star_lower", "c_star_upper",
            "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "symmetric_in_x2",
            "law_is_odd", "v_polar", "sublevel_lower_bound", "slice_extent", "slice_in_region"]
@@ -511,6 +511,39 @@ def psi_counterexample(g: Gimbal, x2: arb, R: arb, which: int):
     return None
 
 
+#: the rational candidates of a refutation near an irrational end (x2*): its exact lower end, then that end
+#: rounded down to j binary digits after the point
+INSIDE_STEPS = (0, 48, 40, 30, 20, 12)
+
+
+def rational_points_inside(w: arb, xs: arb) -> list[arb]:
+    """Exact rational points of [-x2*, x2*] near a point ``w`` where a refutation found f <= 0: ``w`` itself when
+    it is an exact point, otherwise (the end ball x2* = pi/6, never exact) the exact lower end of the ball, then that end
+    rounded down to 48, 40, 30, 20, 12 binary digits (each further inside). Only candidates: each is kept only when it lies certainly
+    in (0, x2*], and the caller still certifies its counterexample at it (issue 37 part 3: an irrational end
+    as the only witness left v_positive inconclusive at every precision)."""
+    if w is None or not w.is_finite():
+        return []
+    if w.rad().is_zero():
+        return [w] if certainly_le(abs(w), xs) else []
+    if certainly_negative(w):          # the mirror image: the same candidates, negated
+        return [-x for x in rational_points_inside(-w, xs)]
+    if not certainly_positive(w):
+        return []
+    out = []
+    lo = exact_fraction(w.lower())
+    for j in INSIDE_STEPS:      # lo, then lo rounded down to j binary digits (exact at >= 64 bits)
+        q = lo if j == 0 else Fraction(math.floor(lo * 2 ** j), 2 ** j)
+        x = arb(fmpq(*_pair(q)))
+        if x.rad().is_zero() and certainly_positive(x) and certainly_le(x, xs):
+            out.append(x)
+    return out
+
+
+def _pair(q: Fraction) -> tuple[int, int]:
+    return q.numerator, q.denominator
+
+
 @dataclass
 class VdotVerdict:
     """The outcome of :func:`certify_vdot_nonpositive`: status, the reason as the report prints it, the
@@ -572,11 +605,12 @@ def certify_psi_test(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: int,
     for name, r in results.items():
         if r.status is not Status.REFUTED:
             continue
-        w = r.witness            # an exact point of [-x2*, x2*]: the ends of the range are balls, take inside
-        w = w if w.rad().is_zero() else (w.lower() if certainly_positive(w) else w.upper())
-        if not certainly_le(abs(w), xs):
-            continue
-        point = psi_counterexample(g, w, R, 0 if name == "Psi1" else 1)
+        # an exact point of [-x2*, x2*]: the ends of the range are balls, take rational points inside
+        point = None
+        for w in rational_points_inside(r.witness, xs):
+            point = psi_counterexample(g, w, R, 0 if name == "Psi1" else 1)
+            if point is not None:
+                break
         if point is not None:
             x1, x2, x3, val = point
             exact = {"x1": ball_text(x1), "x2": ball_text(x2), "x3": ball_text(x3)}
