@@ -91,9 +91,11 @@ def _parser() -> argparse.ArgumentParser:
                          "margin: tolerance boxes and the papers' general claims, pavings that take minutes; stress: the "
                          "stiff and extreme catalog)")
     pr.add_argument("--prec", type=int, default=DEFAULT_PREC,
-                    help=f"starting precision in bits, {MIN_PREC}..{MAX_PREC} (default {DEFAULT_PREC})")
+                    help=f"starting precision in bits, {MIN_PREC}..{MAX_PREC} (default {DEFAULT_PREC}); for a scene "
+                         "with tolerances, of its point proofs (the sub-boxes use the scene's box_prec)")
     pr.add_argument("--maxprec", type=int, default=DEFAULT_MAXPREC,
-                    help=f"highest precision to escalate to, --prec..{MAX_PREC} (default {DEFAULT_MAXPREC})")
+                    help=f"highest precision to escalate to, --prec..{MAX_PREC} (default {DEFAULT_MAXPREC}); a paving's "
+                         "point proofs too")
     pr.add_argument("-o", "--out", default="proofs", help="output folder (default: ./proofs)")
     pr.add_argument("-q", "--quiet", action="store_true", help="print only the verdict line of each scene, no progress")
     pr.add_argument("--plots", action="store_true",
@@ -122,7 +124,8 @@ def _parser() -> argparse.ArgumentParser:
     mg.add_argument("--param", required=True, help="the parameter to move")
     mg.add_argument("--lo", default=None, help="lower end of the search (exact number; default: value / 2)")
     mg.add_argument("--hi", default=None, help="upper end of the search (exact number; default: 2 value)")
-    mg.add_argument("--claim", default=None, help="the claim (default: the scene's first claim)")
+    mg.add_argument("--claim", default=None, help="the claim whose change to bracket (needed unless the scene has one "
+                    "claim; a --scan without it proves every claim)")
     mg.add_argument("--width", default=None, help="relative width of the threshold bracket (default 1e-6)")
     mg.add_argument("-o", "--out", default=None, help="also write margin_<scene>_<param>.json/.md here")
     mg.add_argument("-q", "--quiet", action="store_true", help="no progress display")
@@ -413,6 +416,7 @@ def _pave(bs, executor, args) -> int:
     from .margins.report import write_paving
     from .progress import progress_bar
 
+    bs.point_prec, bs.point_maxprec = args.prec, args.maxprec     # the point proofs' precisions
     with progress_bar(bs.scene.name, unit="box", enabled=not args.quiet) as bar:
         def progress(done, queued, result):
             vols = [c.volume(bs.box) for c in result.values()]

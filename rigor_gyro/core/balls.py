@@ -47,7 +47,7 @@ __all__ = [
     "DEFAULT_PREC", "DEFAULT_MAXPREC", "working_precision", "current_precision", "ball", "is_finite",
     "certainly_lt", "certainly_le", "certainly_gt", "certainly_ge", "certainly_positive",
     "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
-    "overlaps", "certainly_within", "interval", "exact_fraction", "exponent10", "decimal_bounds", "enclosure_text", "rational_text", "interval_text",
+    "overlaps", "certainly_within", "interval", "exact_fraction", "exponent10", "decimal_bounds", "enclosure_text", "rational_text", "interval_text", "inward_interval_text",
     "width_text", "about_text", "Quantity", "as_quantity", "quantity", "stored_hull",
     "rel_width_at_most", "sqrt_of_nonnegative", "exact_endpoints", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
 ]
@@ -336,6 +336,13 @@ def interval_text(lo: Fraction, hi: Fraction, digits: int | None = None) -> tupl
         digits = 6 if top == 0 or hi == lo else max(6, exponent10(top) - exponent10(hi - lo) + 3)
     l, h = _round_decimal(lo, digits, "down"), _round_decimal(hi, digits, "up")
     return l, h, Fraction(l) != lo or Fraction(h) != hi
+
+
+def inward_interval_text(lo: Fraction, hi: Fraction, digits: int) -> tuple[str, str]:
+    """Decimals (l, h) with lo <= l and h <= hi: each end rounded inward to ``digits`` significant digits
+    (for an interval certified to lie inside a set). When [lo, hi] is narrower than the rounding, l > h:
+    the caller checks before stating [l, h]."""
+    return _round_decimal(Fraction(lo), digits, "up"), _round_decimal(Fraction(hi), digits, "down")
 
 
 def width_text(w: Fraction) -> str:

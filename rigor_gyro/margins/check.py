@@ -24,6 +24,7 @@ from fractions import Fraction
 from typing import Any
 
 from ..certificate import digest
+from ..core.balls import MAX_PREC, MIN_PREC
 from ..core.boxes import Box, fraction_text, tiles_by_bisection
 from ..core.errors import RigorGyroError
 from ..scene import Scene
@@ -57,8 +58,14 @@ def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
         add(CheckResult("scene", False, f"the paving's scene is not a valid box scene: {e}"))
         return out
     add(CheckResult("box", data["box"] == bs.box.to_json(), "the box re-derived from the scene"))
-    settings = {"box_resolution": fraction_text(bs.resolution), "max_boxes": bs.max_boxes, "box_prec": bs.prec,
-                "max_points": bs.max_points, "unsplit": list(bs.frozen)}
+    st = data.get("settings") if isinstance(data.get("settings"), dict) else {}
+    if "point_prec" in st or "point_maxprec" in st:     # chosen on the command line, not by the scene
+        pp, pm = st.get("point_prec"), st.get("point_maxprec")
+        if not (isinstance(pp, int) and isinstance(pm, int) and MIN_PREC <= pp <= pm <= MAX_PREC):
+            add(CheckResult("settings", False, f"the point proofs' precisions {pp}, {pm} are out of range"))
+            return out
+        bs.point_prec, bs.point_maxprec = pp, pm
+    settings = bs.settings()
     add(CheckResult("settings", data["settings"] == settings, "the settings re-derived from the scene"))
     ok = data.get("point_parameters") == dict(bs.points)
     add(CheckResult("point_parameters", ok, "the point parameters re-derived from the scene" if ok else
@@ -125,7 +132,8 @@ def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
                         else "the stored point proofs are not the midpoints of the paving's refuted and undecided sub-boxes"))
         wrong = []
         for p in c["points"] if stored == expected else []:
-            redo = point_task(bs.scene.kind, json.dumps(p["point"], sort_keys=True), oj, cid)
+            redo = point_task(bs.scene.kind, json.dumps(p["point"], sort_keys=True), oj, cid, bs.point_prec,
+                              bs.point_maxprec)
             got = redo["status"]
             if got != p["status"]:
                 wrong.append(f"point {p['point']}: stored {p['status']}, re-proved {got}")
@@ -142,4 +150,35 @@ def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     verdict = "refuted" if "refuted" in statuses else "proved" if statuses and all(s == "proved" for s in statuses) \
         else "inconclusive"
     add(CheckResult("verdict", data.get("verdict") == verdict, f"verdict {data.get('verdict')!r}"))
+    if any(k in data for k in ("quantities", "range_tiles", "range_points")):
+        add(_check_ranges(bs, data, pj, oj, mj))
     return out
+
+
+def _check_ranges(bs, data: dict[str, Any], pj: str, oj: str, mj: str) -> tuple[str, bool, str]:
+    """The quantities' ranges: the stored tiles tile the box, every tile and cited point is re-evaluated
+    with the kind's box rigour at the stored precision, and every stated number (outer and inner ranges,
+    worst cases, sensitivities) is derived again from those evaluations alone (:func:`.ranges.summarise`)."""
+    from .ranges import quantities_module, range_task, summarise
+    mod = quantities_module(bs.scene.kind)
+    if mod is None:
+        return CheckResult("quantities", False, f"kind {bs.scene.kind!r} certifies no quantity over a box")
+    if not all(k in data for k in ("quantities", "range_tiles", "range_points")):
+        return CheckResult("quantities", False, "quantities, range_tiles and range_points go together")
+    try:
+        tiles = [Box.from_json(t) for t in data["range_tiles"]]
+        points = [{k: Fraction(v) for k, v in p.items()} for p in data["range_points"]]
+    except (TypeError, ValueError, ZeroDivisionError, AttributeError) as e:
+        return CheckResult("quantities", False, f"a stored tile or point is not exact: {e}")
+    if not tiles_by_bisection(bs.box, tiles, bs.frozen):
+        return CheckResult("quantities", False, "the range tiles do not tile the box")
+    for p in points:
+        if set(p) != set(bs.box.names) or any(not lo <= p[k] <= hi for k, lo, hi in bs.box.edges):
+            return CheckResult("quantities", False, f"the point {p} is not a point of the box")
+    from .ranges import point_box
+    tv = [(b, range_task(bs.scene.kind, pj, oj, mj, json.dumps(b.to_json()), bs.prec)) for b in tiles]
+    pv = [(p, range_task(bs.scene.kind, pj, oj, mj, json.dumps(point_box(p).to_json()), bs.prec)) for p in points]
+    want = summarise(bs.box, mod.BOX_QUANTITIES, tv, pv)
+    ok = data["quantities"] == want
+    return CheckResult("quantities", ok, f"{len(want)} quantity ranges re-derived from {len(tiles)} tiles and "
+                       f"{len(points)} points" if ok else "the stated ranges are not the re-evaluated tiles' and points' own")

@@ -26,7 +26,6 @@ its box; the paving is identical for every executor and worker count.
 """
 from __future__ import annotations
 
-import functools
 import importlib
 import json
 import time
@@ -34,7 +33,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from ..core.balls import working_precision
+from ..core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, working_precision
 from ..core.boxes import Box, fraction_text, split_parameters
 from ..core.deadline import Budget, check_time_limit
 from ..core.errors import ParameterError, SceneError
@@ -42,11 +41,14 @@ from ..core.exact import option_count, option_number
 from ..kinds import KINDS, kind_module
 from ..scene import Scene
 from .executors import Executor
+from .models import scene_model as _model
+from .ranges import quantities_module, search_ranges
 
 __all__ = ["MARGIN_OPTIONS", "BoxScene", "Paving", "box_scene", "pave", "has_tolerances", "boxes_module",
            "evaluate_task", "point_task"]
 
-MARGIN_OPTIONS = {"box_resolution": "1/64", "max_boxes": "20000", "box_prec": "128", "max_points": "16"}
+MARGIN_OPTIONS = {"box_resolution": "1/64", "max_boxes": "20000", "box_prec": "128", "max_points": "16",
+                  "range_boxes": "64", "range_gap": "1/100"}
 SCHEMA = "rigor-gyro/paving/1"
 
 
@@ -80,6 +82,19 @@ class BoxScene:
     max_points: int
     skipped: list[str] = field(default_factory=list)   # requested by default, not decidable over a box
     frozen: tuple[str, ...] = ()     # box parameters the kind's box claims do not depend on (never split)
+    range_boxes: int = 64            # tile evaluations for the quantities' ranges (:mod:`.ranges`); 0: none
+    range_gap: Fraction = Fraction(1, 100)
+    #: the point proofs' starting and largest precision (``prove --prec/--maxprec``; the box evaluations use
+    #: ``prec``, the scene's ``box_prec``)
+    point_prec: int = DEFAULT_PREC
+    point_maxprec: int = DEFAULT_MAXPREC
+
+    def settings(self) -> dict[str, Any]:
+        """The settings a paving certificate states (the checker re-derives them from the scene)."""
+        return {"box_resolution": fraction_text(self.resolution), "max_boxes": self.max_boxes, "box_prec": self.prec,
+                "max_points": self.max_points, "unsplit": list(self.frozen), "range_boxes": self.range_boxes,
+                "range_gap": fraction_text(self.range_gap), "point_prec": self.point_prec,
+                "point_maxprec": self.point_maxprec}
 
     def point_parameters(self, point: dict[str, Fraction]) -> dict[str, str]:
         return {**{k: v for k, v in self.points.items()}, **{k: fraction_text(q) for k, q in point.items()}}
@@ -145,6 +160,8 @@ def box_scene(scene: Scene) -> BoxScene:
     max_boxes = option_count(m["max_boxes"], "max_boxes", 1, 10 ** 7)
     prec = option_count(m["box_prec"], "box_prec", 32, 4096)
     max_points = option_count(m["max_points"], "max_points", 0, 10 ** 4)
+    range_boxes = option_count(m["range_boxes"], "range_boxes", 0, 10 ** 6)
+    range_gap = option_number(m["range_gap"], "range_gap", above="0", at_most="1").rational
     mid = Scene(name=scene.name, kind=scene.kind, source=scene.source,
                 parameters={**points, **{k: fraction_text(q) for k, q in box.midpoint().items()}},
                 claims_only=scene.claims_only, options=kind_opts, paper={}, path=scene.path)
@@ -168,18 +185,10 @@ def box_scene(scene: Scene) -> BoxScene:
     if len(frozen) == len(box.names):
         frozen = frozen[1:]           # something must be splittable; the first frozen edge is
     return BoxScene(scene, points, box, kind_opts, claims, resolution, max_boxes, prec, max_points, skipped,
-                    frozen)
+                    frozen, range_boxes, range_gap)
 
 
 # --------------------------------------------------------------------------- tasks (run in workers)
-
-@functools.lru_cache(maxsize=8)
-def _model(kind: str, points_json: str, options_json: str, mid_json: str):
-    module = kind_module(kind)
-    params = {**json.loads(points_json), **json.loads(mid_json)}
-    return module.validate(Scene(name="box", kind=kind, source="", parameters=params,
-                                 options=json.loads(options_json)))
-
 
 def evaluate_task(kind: str, points_json: str, options_json: str, mid_json: str, box_json: str,
                   claims: tuple[str, ...], prec: int) -> dict[str, list[str]]:
@@ -191,12 +200,13 @@ def evaluate_task(kind: str, points_json: str, options_json: str, mid_json: str,
     return {k: [v[0], v[1]] for k, v in out.items()}
 
 
-def point_task(kind: str, params_json: str, options_json: str, claim: str) -> dict[str, Any]:
-    """The point prover on one claim at one exact parameter point."""
+def point_task(kind: str, params_json: str, options_json: str, claim: str, prec: int = DEFAULT_PREC,
+               maxprec: int = DEFAULT_MAXPREC) -> dict[str, Any]:
+    """The point prover on one claim at one exact parameter point, from ``prec`` up to ``maxprec`` bits."""
     from ..prover import prove_scene
     scene = Scene(name="point", kind=kind, source="margin point", parameters=json.loads(params_json),
                   claims_only=[claim], options=json.loads(options_json))
-    c = prove_scene(scene).claim(claim)
+    c = prove_scene(scene, prec=prec, maxprec=maxprec).claim(claim)
     return {"status": c.status.value, "reason": c.reason, "precision_bits": c.precision_bits}
 
 
@@ -237,6 +247,8 @@ class Paving:
     executor: str = ""
     #: why the paving stopped before its resolution (the time limit), or "" when it ran its course
     stopped: str = ""
+    #: the tiles and points of the quantities' ranges (:mod:`.ranges`), None when the kind has none
+    ranges: Any = None
 
     @property
     def verdict(self) -> str:
@@ -303,12 +315,18 @@ def pave(bs: BoxScene, executor: Executor | None = None, progress=None, time_lim
         for outcome in ("refuted", "undecided"):
             for b, s in [x for x in cp.boxes if x[1] == outcome][:bs.max_points]:
                 params = bs.point_parameters(b.midpoint())
-                ptasks.append((bs.scene.kind, json.dumps(params, sort_keys=True), oj, c))
+                ptasks.append((bs.scene.kind, json.dumps(params, sort_keys=True), oj, c, bs.point_prec,
+                               bs.point_maxprec))
                 owners.append((c, b, outcome, params))
     for (c, b, outcome, params), res in zip(owners, ex.map(point_task, ptasks)):
         if outcome == "refuted" and res["status"] == "proved":   # a box refuted everywhere, proved at a point
             raise AssertionError(f"claim {c}: box {b.to_json()} refuted for every parameter, but its midpoint "
                                  f"is proved: an unsound box or point evaluation")
         result[c].points.append({"box_outcome": outcome, "point": params, **res})
+    ranges = None
+    qmod = quantities_module(bs.scene.kind)
+    if qmod is not None and bs.range_boxes and not stopped:
+        ranges = search_ranges(bs.scene.kind, whole, bs.frozen, pj, oj, mj, bs.prec, list(qmod.BOX_QUANTITIES),
+                               bs.range_boxes, bs.range_gap, ex, budget)
     return Paving(bs, [result[c] for c in bs.claims], evaluated, levels, budget_hit,
-                  time.perf_counter() - t0, ex.label, stopped)
+                  time.perf_counter() - t0, ex.label, stopped, ranges)

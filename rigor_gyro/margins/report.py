@@ -18,6 +18,7 @@ from ..core.boxes import fraction_text
 from ..report import write_pair
 from ..version import __version__
 from .paving import SCHEMA, Paving
+from .ranges import quantities_module, summarise
 
 __all__ = ["claim_numbers", "decimal_text", "paving_json", "render_paving", "write_paving"]
 
@@ -37,6 +38,22 @@ def claim_numbers(vol: dict[str, Fraction], statuses: list[str]) -> dict[str, di
             "sub_boxes": {k: sum(1 for s in statuses if s == k) for k in ("proved", "refuted", "undecided")}}
 
 
+def ranges_json(bs, search) -> dict[str, Any]:
+    """The quantities' ranges (:func:`.ranges.summarise`), the tiles they were enclosed on and the points
+    they cite (only those: the checker re-evaluates each, and the summary of the cited points is the
+    summary of all the points evaluated, whose minima and maxima they are)."""
+    specs = quantities_module(bs.scene.kind).BOX_QUANTITIES
+    items = summarise(bs.box, specs, search.tiles, search.points)
+    cited = []
+    for it in items:
+        for end in ("low", "high"):
+            pt = it.get("points", {}).get(end, {}).get("point")
+            if pt is not None and pt not in cited:
+                cited.append(pt)
+    return {"quantities": items, "range_tiles": [b.to_json() for b, _ in search.tiles],
+            "range_points": cited}
+
+
 def paving_json(p: Paving) -> dict[str, Any]:
     bs = p.bs
     claims = []
@@ -54,8 +71,7 @@ def paving_json(p: Paving) -> dict[str, Any]:
         "software": {"rigor_gyro": __version__},
         "box": bs.box.to_json(),
         "point_parameters": dict(bs.points),
-        "settings": {"box_resolution": fraction_text(bs.resolution), "max_boxes": bs.max_boxes,
-                     "box_prec": bs.prec, "max_points": bs.max_points, "unsplit": list(bs.frozen)},
+        "settings": bs.settings(),
         "verdict": p.verdict,
         "boxes_evaluated": p.evaluated, "levels": p.levels, "budget_exhausted": p.budget_hit,
         "claims": claims,
@@ -63,6 +79,8 @@ def paving_json(p: Paving) -> dict[str, Any]:
     }
     if p.stopped:       # only then, so that a paving that ran its course is byte-identical to before
         data["stopped"] = p.stopped
+    if p.ranges is not None:
+        data.update(ranges_json(bs, p.ranges))
     data["integrity"] = {"sha256": digest(data)}
     return data
 
@@ -79,6 +97,7 @@ def render_paving(data: dict[str, Any]) -> str:
         out.append(f"| {c['id']} | **{c['status']}** | {v['proved']} | {v['refuted']} | {v['undecided']} | "
                    f"{n['proved']}/{n['refuted']}/{n['undecided']} |")
     out.append("")
+    out.extend(_render_ranges(data))
     for c in data["claims"]:
         out.append(f"## {c['id']}: {c['status']}")
         out.append("")
@@ -119,6 +138,50 @@ def render_paving(data: dict[str, Any]) -> str:
                f"(schema `{data['schema']}`).")
     out.append("")
     return "\n".join(out)
+
+
+def _point_text(point: dict[str, str]) -> str:
+    return ", ".join(f"{k} = {decimal_text(Fraction(v), 8)}" for k, v in point.items())
+
+
+def _render_ranges(data: dict[str, Any]) -> list[str]:
+    """The numbers over the box: worst-case margins first, then every quantity's ranges and sensitivities."""
+    items = data.get("quantities")
+    if not items:
+        return []
+    out = []
+    for it in items:
+        w = it.get("worst_case")
+        if w is None:
+            continue
+        where = "" if it["enclosed_fraction"] == "1" else f" (on the {decimal_text(Fraction(it['enclosed_fraction']), 4)} of the box's volume where it was enclosed)"
+        rel = f", relative gap {w['relative_gap']}" if w["relative_gap"] is not None else ""
+        out.append(f"- **{it['description']} >= {w['lower_bound']}** for every parameter value in the box{where} "
+                   f"(certified); a value <= {w['attained_at_most']} is attained at {_point_text(it['points']['low']['point'])} "
+                   f"(gap {w['gap']}{rel}).")
+    if out:
+        out = ["Worst cases over the box (claim margins: the claim holds where the margin is > 0):", ""] + out + [""]
+    out.append("| quantity | unit | every value in the box lies in (certified) | every value here is taken (certified) | "
+               "largest effect of a tolerance |")
+    out.append("|---|---|---|---|---|")
+    for it in items:
+        o = it["outer"]
+        outer = "not enclosed" if o is None else f"[{o['lo']}, {o['hi']}]"
+        if o is not None and it["enclosed_fraction"] != "1":
+            outer += f" on {decimal_text(Fraction(it['enclosed_fraction']), 4)} of the volume"
+        inner = it.get("inner")
+        inner = "-" if not inner else f"[{inner['lo']}, {inner['hi']}]"
+        sens = it.get("sensitivities") or []
+        top = "-" if not sens else "; ".join(
+            f"{s['parameter']}: <= {s['effect_at_most']}" + (f" ({s['monotone']})" if s["monotone"] else "")
+            for s in sens[:3])
+        out.append(f"| {it['id']}: {it['description']} | {it['unit'] or '-'} | {outer} | {inner} | {top} |")
+    out.append("")
+    out.append(f"Ranges from {len(data['range_tiles'])} sub-boxes tiling the box (each enclosure contains the quantity over "
+               "its whole sub-box) and certified values at sub-box midpoints; a tolerance's effect is at most the largest "
+               "|dq/dk| over the box times k's half-width (monotone: the derivative's sign is certain on the whole box).")
+    out.append("")
+    return out
 
 
 def write_paving(p: Paving, out_dir: str | Path) -> tuple[Path, Path]:

@@ -180,10 +180,15 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
     else:
         module.validate(scene)
     claims = list(module.CLAIMS) if scene.claims_only is None else [c for c in module.CLAIMS if c in scene.claims_only]
-    claim = claim or claims[0]
+    independent = getattr(module, "CLAIMS_INDEPENDENT_OF", {})
+    if claim is None:           # only a scene of one claim says which; otherwise ask (a default could be
+        if len(claims) != 1:    # a claim that never changes, such as a constant or a root count)
+            depends = [c for c in claims if c not in independent.get(param, ())]
+            raise ParameterError(f"name the claim whose change in {param!r} to bracket: --claim CLAIM; the scene's "
+                                 f"claims that depend on {param!r}: {', '.join(depends)}")
+        claim = claims[0]
     if claim not in module.CLAIMS:
         raise ParameterError(f"--claim {claim!r}: kind {scene.kind!r} has {list(module.CLAIMS)}")
-    independent = getattr(module, "CLAIMS_INDEPENDENT_OF", {})
     if claim in independent.get(param, ()):
         raise ParameterError(f"claim {claim!r} does not depend on {param!r}: no threshold to find")
     lo_q, hi_q = search_range(scene, param, lo, hi)

@@ -1,0 +1,168 @@
+"""Quantity ranges over a box (rigor_gyro.margins.ranges): the stated numbers follow from the tiles'
+and points' enclosures, and the checker re-derives them and rejects every edit.
+
+A stand-in quantities module (exact closed forms over the eigenfrequency kind's (eps, Omega2) box) makes
+the expected ranges known exactly, so these tests see the aggregation, the report and the checker, not
+a kind's enclosures (each kind's own tests sample its enclosures in mpmath)."""
+import json
+import types
+from fractions import Fraction
+
+import pytest
+from flint import arb
+
+from rigor_gyro.check import check_file
+from rigor_gyro.core.box_values import BoxValue, QuantitySpec
+from rigor_gyro.core.boxes import Box
+from rigor_gyro.margins import paving as mpaving, ranges as mranges, report as mreport
+from rigor_gyro.margins.paving import box_scene, pave
+from rigor_gyro.margins.ranges import summarise
+from rigor_gyro.margins.report import paving_json, render_paving, write_paving
+from rigor_gyro.scene import parse_scene
+
+from .forgery import reseal
+
+SCENE = """
+name = "ranges_box"
+kind = "eigenfrequencies"
+source = "ranges over a small box"
+[parameters]
+a = "15.08"
+b = "6.154"
+eps = "[0.1, 0.12]"
+Omega2 = "0.625 +- 0.025"
+[claims]
+only = ["roots"]
+[options]
+range_boxes = "24"
+"""
+
+
+def _fake_module():
+    """q1 = eps + Omega2 (gradient 1, 1); margin m = 1 - 4 eps^2 - Omega2 (decreasing in both);
+    'partial' enclosed only where eps <= 0.11."""
+    specs = {"sum": QuantitySpec("eps + Omega2"),
+             "m": QuantitySpec("the stand-in margin", claim="roots"),
+             "partial": QuantitySpec("eps, where eps <= 0.11")}
+
+    def quantities_box(model, box, names):
+        e, o = box.ball("eps"), box.ball("Omega2")
+        out = {"sum": BoxValue(e + o, {"eps": arb(1), "Omega2": arb(1)}),
+               "m": BoxValue(1 - 4 * e * e - o, {"eps": -8 * e, "Omega2": arb(-1)})}
+        if box.interval("eps")[1] <= Fraction(11, 100):
+            out["partial"] = BoxValue(e)
+        return {k: v for k, v in out.items() if k in names}
+    return types.SimpleNamespace(BOX_QUANTITIES=specs, quantities_box=quantities_box)
+
+
+@pytest.fixture
+def fake(monkeypatch):
+    mod = _fake_module()
+    for m in (mranges, mpaving, mreport):
+        monkeypatch.setattr(m, "quantities_module", lambda kind: mod)
+    return mod
+
+
+@pytest.fixture
+def paving(fake):
+    return pave(box_scene(parse_scene(SCENE)))
+
+
+def _q(data, qid):
+    return next(q for q in data["quantities"] if q["id"] == qid)
+
+
+def test_outer_and_inner_ranges_bracket_the_exact_range(paving):
+    data = paving_json(paving)
+    s = _q(data, "sum")
+    lo, hi = Fraction(s["outer"]["lo"]), Fraction(s["outer"]["hi"])
+    exact_lo, exact_hi = Fraction(1, 10) + Fraction(6, 10), Fraction(12, 100) + Fraction(65, 100)
+    assert lo <= exact_lo and hi >= exact_hi                      # outer contains the true range
+    ilo, ihi = Fraction(s["inner"]["lo"]), Fraction(s["inner"]["hi"])
+    assert exact_lo <= ilo <= ihi <= exact_hi                      # inner inside it
+    assert (ihi - ilo) >= Fraction(9, 10) * (exact_hi - exact_lo)  # and not a sliver: the search widened it
+
+
+def test_a_margins_worst_case_is_a_certified_lower_bound_with_a_small_gap(paving):
+    m = _q(paving_json(paving), "m")
+    true_min = 1 - 4 * Fraction(12, 100) ** 2 - Fraction(65, 100)
+    w = m["worst_case"]
+    assert Fraction(w["lower_bound"]) <= true_min <= Fraction(w["attained_at_most"])
+    assert Fraction(w["relative_gap"]) <= Fraction(2, 100)
+    sens = {s["parameter"]: s for s in m["sensitivities"]}
+    assert sens["eps"]["monotone"] == "decreasing" and sens["Omega2"]["monotone"] == "decreasing"
+    # effects: |dm/deps| <= 8 * 0.12 times 0.01, |dm/dOmega2| = 1 times 0.025: Omega2 ranks first
+    assert [s["parameter"] for s in m["sensitivities"]] == ["Omega2", "eps"]
+
+
+def test_a_quantity_enclosed_on_part_of_the_box_states_no_inner_range(paving):
+    p = _q(paving_json(paving), "partial")
+    assert Fraction(p["enclosed_fraction"]) == Fraction(1, 2)
+    assert p["inner"] is None
+    assert Fraction(p["outer"]["hi"]) >= Fraction(11, 100)
+
+
+def test_the_report_leads_with_the_worst_case(paving):
+    text = render_paving(paving_json(paving))
+    head = text.split("## ")[0]
+    assert "the stand-in margin >= " in head and "every value in the box lies in" in head
+
+
+def test_summarise_uses_only_the_enclosures_given():
+    whole = Box.of({"x": (Fraction(0), Fraction(1))})
+    spec = {"q": QuantitySpec("q", claim="c")}
+    left, right = whole.split(whole)
+    tiles = [(left, {"q": {"value": ["-1", "2"], "gradient": {}}}), (right, {"q": {"value": ["0", "3"], "gradient": {}}})]
+    points = [({"x": Fraction(1, 4)}, {"q": {"value": ["1/2", "1/2"], "gradient": {}}}),
+              ({"x": Fraction(3, 4)}, {"q": {"value": ["5/2", "5/2"], "gradient": {}}})]
+    (q,) = summarise(whole, spec, tiles, points)
+    assert q["outer"] == {"lo": "-1", "hi": "3"}
+    assert q["inner"] == {"lo": "0.5", "hi": "2.5"}
+    assert q["worst_case"]["lower_bound"] == "-1" and q["worst_case"]["attained_at_most"] == "0.5"
+    assert "sensitivities" not in q
+
+
+def test_the_checker_confirms_the_ranges_and_rejects_each_edit(paving, fake, tmp_path):
+    js, _ = write_paving(paving, tmp_path)
+    rep = check_file(js)
+    assert all(r.ok for r in rep.results), [r for r in rep.results if not r.ok]
+    data = json.loads(js.read_text())
+
+    def rejected(edit):
+        d = json.loads(json.dumps(data))
+        edit(d)
+        p = tmp_path / "t.json"
+        p.write_text(json.dumps(reseal(d)))
+        bad = [r for r in check_file(p).results if not r.ok]
+        return bad and any(r.item == "quantities" or "schema" in r.item for r in bad)
+
+    assert rejected(lambda d: _q(d, "sum")["outer"].update(lo="0.71"))          # narrower than the truth
+    assert rejected(lambda d: _q(d, "m")["worst_case"].update(lower_bound="0.3"))
+    assert rejected(lambda d: _q(d, "sum")["inner"].update(hi="0.8"))
+    assert rejected(lambda d: _q(d, "m")["sensitivities"][0].update(monotone="increasing"))
+    assert rejected(lambda d: d["range_tiles"].pop())                            # no longer tiles the box
+    assert rejected(lambda d: d["range_points"][0].update(eps="1/5"))            # outside the box
+    assert rejected(lambda d: _q(d, "partial").update(enclosed_fraction="1"))
+
+
+def test_a_pavings_point_proofs_keep_to_the_precisions_asked(tmp_path):
+    """Issue 37 part 3: `prove --maxprec` bounds a paving's point proofs (they ran to 4096 bits before)."""
+    from rigor_gyro.cli import main
+    scene = tmp_path / "box.toml"
+    scene.write_text(SCENE.replace('only = ["roots"]', 'only = ["bracket_2"]')
+                     .replace('Omega2 = "0.625 +- 0.025"', 'Omega2 = "[0.0070, 0.0072]"')
+                     .replace('range_boxes = "24"', 'range_boxes = "0"\nbox_resolution = "1/2"\nmax_points = "2"'))
+    assert main(["prove", str(scene), "-q", "-o", str(tmp_path), "--prec", "32", "--maxprec", "48"]) in (1, 3)
+    data = json.loads((tmp_path / "ranges_box.json").read_text())
+    assert data["settings"]["point_prec"] == 32 and data["settings"]["point_maxprec"] == 48
+    points = [p for c in data["claims"] for p in c["points"]]
+    assert points and all(p["precision_bits"] <= 48 for p in points)
+    assert check_file(tmp_path / "ranges_box.json").ok
+
+
+def test_a_threshold_without_a_claim_asks_for_one_unless_the_scene_has_one():
+    from rigor_gyro.core.errors import ParameterError
+    from rigor_gyro.margins.threshold import find_threshold
+    from rigor_gyro.scene import load_scene
+    with pytest.raises(ParameterError, match="--claim CLAIM.*damping_condition"):
+        find_threshold(load_scene("agafonov2013"), "k")
