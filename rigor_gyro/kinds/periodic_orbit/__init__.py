@@ -4,10 +4,12 @@ seed 001).
 * :mod:`.flow`: the exact flow between switchings (spectral form in balls), the half-period function
   g, Taylor-model enclosures, the tail bound;
 * :mod:`.claims`: the claims (half-period roots, genuineness, initial point, multipliers, stability);
+* :mod:`.tracked`, :mod:`.tracked_claims`: option ``orbit``, the claims about the root of g nearest a given
+  half-period (certified nearest), with their own statements (:func:`statements`);
 * :mod:`.paper`: the paper's own forms (a_ij, determinant (12), Tables 2-4, (25)) and the audit;
 * :mod:`.boxes`: the claims over a box of parameters (for :mod:`rigor_gyro.margins`);
 * :mod:`.approx`: numpy/scipy/mpmath cross-checks (never a verdict); :mod:`.plots`: the figure.
 """
-from .claims import CLAIMS, HEADLINE, CLAIMS_INDEPENDENT_OF, OPTIONS, PARAMETERS, attempt, validate
+from .claims import CLAIMS, HEADLINE, CLAIMS_INDEPENDENT_OF, OPTIONS, PARAMETERS, attempt, statements, validate
 
-__all__ = ["CLAIMS", "HEADLINE", "CLAIMS_INDEPENDENT_OF", "PARAMETERS", "OPTIONS", "validate", "attempt"]
+__all__ = ["CLAIMS", "HEADLINE", "CLAIMS_INDEPENDENT_OF", "PARAMETERS", "OPTIONS", "validate", "attempt", "statements"]

@@ -19,6 +19,9 @@ stored outcome of that search, at twice the certificate's precision:
 * the multipliers of the scene's orbit: the Jacobian recomputed at the checker's own enclosure of
   theta*, its eigenvalues by a different algorithm (van der Hoeven-Mourrain) with the smallest
   through the exact Liouville product; stability re-decided on these moduli;
+* with option ``orbit`` (:mod:`.tracked`): the root nearest the option re-chosen and its nearness
+  re-certified on the checker's own root enclosures; the four claims that follow it re-decided for
+  that root only (genuine / spurious by its re-verified classification, stable by its own moduli);
 * every stored quantity contains the checker's recomputed enclosure.
 """
 from __future__ import annotations
@@ -29,6 +32,8 @@ from ...check import CheckResult
 from ...core.balls import (ball, certainly_gt, certainly_lt, certainly_negative, certainly_positive, interval)
 from ...core.stored import encloses, fmpq_of, interval as stored_interval, number
 from .claims import TAYLOR_ORDER, RootVerdict
+from .tracked import nearest_root
+from .tracked_claims import TRACKED
 from .flow import (DegenerateSpectrum, Spectrum, g_coeffs, half_period_jacobian, moment_zero_orders, pole_free_coeffs,
                    orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure, x0_at)
 from .paper import orbit_quantities
@@ -248,6 +253,40 @@ def _multipliers(sp: Spectrum, theta: arb) -> list[acb] | None:
     return out
 
 
+def _tracked(model, w: dict, roots: list[arb]) -> tuple | None:
+    """(Nearest, kind) of the root the checker certifies nearest the option ``orbit`` among its own
+    re-verified root enclosures ([T, oo) a rival when the search stopped at T), or None (no root)."""
+    beyond = None if w["covers_all"] else _pt(w["T"])
+    nr = nearest_root(ball(model.orbit.fmpq()), roots, (), beyond)
+    if nr.index is None:
+        return None
+    return nr, w["roots"][nr.index]["kind"]
+
+
+def _tracked_verdict(cid: str, st: str, tracked, main, moduli_main, others_ok: bool,
+                     no_root: bool) -> tuple[bool, str]:
+    """Re-decide a claim that follows the tracked orbit (option ``orbit``): proved needs the root the
+    checker certifies nearest to be genuine with the stored theta*; refuted needs it certified nearest
+    and spurious, or (stable) a modulus of its own multipliers > 1, or g without a root on (0, oo)."""
+    certified = tracked is not None and tracked[0].certified
+    spurious = certified and tracked[1] == "spurious"
+    if st == "proved":
+        if cid in ("orbit_genuine", "initial_point"):
+            ok = certified and main is not None
+        elif cid == "multipliers":
+            ok = certified and main is not None and moduli_main is not None and others_ok
+        else:
+            ok = certified and main is not None and moduli_main is not None and all(certainly_lt(m, 1) for m in moduli_main)
+        return ok, "the root certified nearest the option orbit, re-verified " + ("genuine" + (
+            " and stable" if cid == "stable" else "") if ok else "NOT as stored")
+    unstable = cid == "stable" and certified and main is not None and moduli_main is not None \
+        and any(certainly_gt(m, 1) for m in moduli_main)
+    ok = spurious or no_root or unstable
+    return ok, ("the root certified nearest the option orbit, re-verified " + ("spurious" if spurious else "unstable")
+                if spurious or unstable else "g has no root on (0, oo), re-verified" if no_root
+                else "the refutation of the tracked orbit is NOT re-verified")
+
+
 def check(model, data: dict) -> list[CheckResult]:
     """Re-decide every claim of a periodic-orbit certificate; see the module docstring."""
     res: list[CheckResult] = []
@@ -326,12 +365,18 @@ def check(model, data: dict) -> list[CheckResult]:
         why = "; ".join(f"{name}: {'ok' if ok else 'FAILED'}" for name, ok in steps)
     genuine = [th for th, rw in zip(roots, (w or {}).get("roots", [])) if rw["kind"] == "genuine"] if half_ok else []
     main = None
-    if "theta_star" in q and genuine:
+    tracked = _tracked(model, w, roots) if half_ok and getattr(model, "orbit", None) is not None else None
+    if getattr(model, "orbit", None) is not None:
+        # option orbit: the scene's orbit is the root the checker itself certifies nearest, when genuine
+        if tracked is not None and tracked[1] == "genuine" and "theta_star" in q \
+                and encloses(stored_interval(q["theta_star"]), roots[tracked[0].index]):
+            main = roots[tracked[0].index]
+    elif "theta_star" in q and genuine:
         s = stored_interval(q["theta_star"])
         main = next((th for th in genuine if encloses(s, th)), None)
-        if main is not None:
-            verified.add("theta_star")
-            contains("period", 2 * main)
+    if main is not None:
+        verified.add("theta_star")
+        contains("period", 2 * main)
     moduli_main, mults_main = None, None
     if main is not None:
         x0 = x0_at(sp, main)
@@ -368,6 +413,9 @@ def check(model, data: dict) -> list[CheckResult]:
         st = c["status"]
         if st == "inconclusive":
             say(cid, True, "inconclusive: claims nothing")
+        elif cid in TRACKED and getattr(model, "orbit", None) is not None:
+            say(cid, *_tracked_verdict(cid, st, tracked, main, moduli_main, len(other_moduli) == len(others),
+                                       exhaustive and not roots))
         elif cid == "half_period":
             say(cid, st == "proved" and half_ok, why)
         elif cid == "orbit_genuine":

@@ -57,13 +57,16 @@ from ...core.roots import Isolation, RootPiece, RootStatus, enclose_f_df, merge_
 from ...core.stored import exact_text
 from ...core.subdivision import certify_positive
 from .. import Attempt, Phases
+from .texts import complex_text as _fmt_c, interval_text as _fmt, modulus_text as _fmt1, stored_bounds as _bounds
+from .tracked import statements as tracked_statements
+from .tracked_claims import choose, tracked_claims, tracked_extra
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table, orbit_quantities
 from .flow import (AMPLITUDE_PARAMETERS, PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, envelope_margin, g_coeffs, pole_free_coeffs,
                    moment_zero_orders, orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure,
                    x0_at)
 
 __all__ = ["CLAIMS", "PARAMETERS", "OPTIONS", "RelayModel", "RootVerdict", "Analysis", "validate", "attempt",
-           "analyse", "classify_root"]
+           "analyse", "classify_root", "statements"]
 
 PARAMETERS = {
     "A": "moment of inertia of the outer ring with object, gyro and motor armature (kg m s^2)",
@@ -76,7 +79,9 @@ PARAMETERS = {
     "p": "amplifier gain (dimensionless)",
     "S": "relay output S sign(beta) (A)",
 }
-OPTIONS = {"T_max": "auto", "theta_width": "1e-12"}
+#: ``orbit``: "" (no tracked orbit) or an exact t > 0: the claims after half_period are about the root of g
+#: nearest t (:mod:`.tracked`; their statements say so, :func:`statements`)
+OPTIONS = {"T_max": "auto", "theta_width": "1e-12", "orbit": ""}
 
 #: the numbers a report's summary opens with (quantity name -> what it is), in this order
 #: theta_star and its quantities belong to the stable genuine orbit when exactly one is stable, else to
@@ -130,6 +135,8 @@ class RelayModel:
     T_max: Exact | None           # None: auto (the certified tail point)
     theta_width: Exact
     paper: dict
+    #: option ``orbit``: the claims follow the root of g nearest this value (None: not set)
+    orbit: Exact | None = None
     #: root-search pieces decided by an earlier attempt of the same proof (lower precision), keyed by the
     #: searched function and range: a later attempt resumes where that one stopped (the pieces are
     #: theorems about the exact g at any precision; the checker re-verifies them at its own)
@@ -156,33 +163,23 @@ def validate(scene) -> RelayModel:
     if opts["T_max"] != "auto":
         T_max = option_number(opts["T_max"], "T_max (or \"auto\")", above="0", at_most="1e6")
     tw = option_number(opts["theta_width"], "theta_width", above="0", at_most="1")
+    orbit = None
+    if opts["orbit"].strip():
+        orbit = option_number(opts["orbit"].strip(), "orbit (a half-period theta > 0, or \"\" for none)",
+                              above="0", at_most="1e6")
     check_printed(scene.paper, PAPER_SCHEMA)
     params = RelayParams(**{k: v[k].fmpq() for k in PARAMETER_NAMES})
-    return RelayModel(params, v, T_max, tw, dict(scene.paper))
+    return RelayModel(params, v, T_max, tw, dict(scene.paper), orbit)
+
+
+def statements(model: RelayModel) -> dict[str, str]:
+    """The statement of each claim for this scene: :data:`CLAIMS`, or with option ``orbit`` the statements
+    of :data:`.tracked.TRACKED_STATEMENTS` for the claims that follow that orbit (the certificate's
+    ``statement`` fields; a checker compares against these, not against CLAIMS, for such a scene)."""
+    return tracked_statements(CLAIMS, model.orbit.text if model.orbit is not None else None)
 
 
 # ------------------------------------------------------------------------------ per-root analysis
-
-def _fmt(x: arb, digits: int = 12) -> str:
-    lo, hi = decimal_bounds(x, digits)
-    return f"[{lo}, {hi}]"
-
-
-def _bounds(x: arb) -> list[str]:
-    """[lo, hi] as outward-rounded decimals to the ball's accuracy (the form a counterexample is
-    stored in: a modulus certainly > 1 keeps the digits that show it)."""
-    return list(decimal_bounds(x))
-
-
-def _fmt1(x: arb, digits: int) -> str:
-    """A modulus as [lo, hi], with the extra digits that keep it apart from 1 when it certainly is."""
-    lo, hi = decimal_bounds_apart(x, 1, digits)
-    return f"[{lo}, {hi}]"
-
-
-def _fmt_c(z: acb, digits: int = 12) -> str:
-    return f"{_fmt(z.real, digits)} + {_fmt(z.imag, digits)} i"
-
 
 @dataclass
 class RootVerdict:
@@ -817,6 +814,10 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
     if "half_period" in wanted:
         claims.append(_claim("half_period", *hp, pieces=an.pieces, roots=len(an.roots)))
     main, why_main = _select(genuine)
+    tracked = None
+    if model.orbit is not None:     # option orbit: the scene's orbit is the root of g nearest it, or none
+        tracked = choose(model, an)
+        main, why_main = tracked.genuine, tracked.label
     # ---- orbit_genuine
     if main is not None:
         og = (Status.PROVED, f"{why_main}, theta* = {_fmt(main.theta, 16)}: {main.reason}"
@@ -828,7 +829,7 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
         og = (Status.REFUTED, text, no_orbit) if exhaustive else (Status.INCONCLUSIVE, text + beyond)
     else:
         og = (Status.INCONCLUSIVE, "no genuine orbit certified and not every root classified: " + hp[1])
-    if "orbit_genuine" in wanted:
+    if "orbit_genuine" in wanted and tracked is None:
         claims.append(_claim("orbit_genuine", *og))
     none_exists = main is None and exhaustive
     # ---- quantities of the scene's orbit
@@ -840,7 +841,7 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
         for name, k in (("beta_dot_0", 1), ("Omega_0", 2), ("i_0", 3), ("I_0", 4)):
             quantities[name] = main.x0[k]
         widths_met = certainly_le(2 * main.theta.rad(), ball(model.theta_width.fmpq()))
-    if "initial_point" in wanted:
+    if "initial_point" in wanted and tracked is None:
         if main is not None:
             st = (Status.PROVED, f"x(0) of {why_main}: beta' = {_fmt(main.x0[1], 14)}, Omega = {_fmt(main.x0[2], 14)}, "
                   f"i = {_fmt(main.x0[3], 14)}, I = {_fmt(main.x0[4], 14)} (beta = g(theta*) = 0 exactly)")
@@ -862,7 +863,7 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
         quantities[f"theta_star_{k}"] = v.theta
         if v.margin is not None:
             quantities[f"stability_margin_{k}"] = v.margin
-    if "multipliers" in wanted:
+    if "multipliers" in wanted and tracked is None:
         bad = [v for v in genuine if not v.moduli]
         if genuine and not bad:
             parts = []
@@ -876,7 +877,7 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
             st = (Status.INCONCLUSIVE, "; ".join(v.multiplier_reason for v in bad) or
                   "no genuine orbit certified yet" + beyond)
         claims.append(_claim("multipliers", *st))
-    if "stable" in wanted:
+    if "stable" in wanted and tracked is None:
         stable = [v for v in genuine if v.stable is True]
         if stable:
             s = stable[0] if main not in stable else main
@@ -899,6 +900,10 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
             st = (Status.INCONCLUSIVE, "stability of the genuine orbits not decided at this precision"
                   if genuine else "no genuine orbit certified yet" + beyond)
         claims.append(_claim("stable", *st))
+    if tracked is not None:
+        claims.extend(tracked_claims(statements(model), an, tracked, wanted, exhaustive=exhaustive, no_orbit=no_orbit,
+                                     searched=rng, search_open="" if hp[0] is Status.PROVED else hp[1]))
+        extra["tracked_orbit"] = tracked_extra(tracked)
     # what would decide the claims left open by an undecided piece of the range: g over that piece (the
     # prover stops escalating when doubling the precision no longer shrinks it, e.g. at a depth limit)
     if complete and not an.covers_all:      # everything in (0, T_max] decided: precision cannot add more
