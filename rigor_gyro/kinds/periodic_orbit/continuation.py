@@ -41,11 +41,14 @@ from ...core.jets import Jet, base, second_order_gradient, second_order_value
 from .flow import DegenerateSpectrum, PARAMETER_NAMES, RelayParams
 from .jacobian_box import centred_terms, eigen_coordinate_multipliers
 from .parametric import RelayJets, nested_parameter_jets, nested_variable, parameter_jets
+from .subbox_union import band_root, gradient_union, split_counts
 
 __all__ = ["OrbitOverBox", "continue_orbit", "MAX_PIECES"]
 
 #: t pieces the sign condition may use on the middle of (0, theta*)
 MAX_PIECES = 4000
+#: cells of (theta, parameter) sub-boxes whose union encloses G's gradient when the whole-box form fails, in turn
+SUBBOX_CELLS = (8, 32)
 
 
 @dataclass
@@ -100,6 +103,7 @@ class _Models:
         self.box = RelayJets(first, m, guesses, centre=self.centre.lams, devs=self.devs + [arb(0)])
         self.nested = RelayJets(nested_parameter_jets(first, dirs, 1), m, lams=self.box.lam_jets)
         self.bvals = bvals
+        self.cvals = cvals
 
 
 def _point(q) -> arb:
@@ -138,31 +142,124 @@ def _centre_root(models: _Models, theta0: arb) -> arb | None:
     return None
 
 
-def _theta_over_box(models: _Models, tc_ball: arb):
+def _refined(grads: list[arb], union: list[arb] | None) -> list[arb]:
+    """The gradient balls intersected with the sub-box union's (both enclose the same values)."""
+    if union is None:
+        return grads
+    out = []
+    for g, u in zip(grads, union):
+        if g.is_finite() and u.is_finite():
+            if not g.overlaps(u):
+                raise AssertionError(f"a gradient form {g} misses its sub-box union {u}: a bug")
+            out.append(g.intersection(u))
+        else:
+            out.append(g if g.is_finite() else u)
+    return out
+
+
+def _band(models: _Models, tc: arb, Gc: Jet, cells: int, make_models) -> arb | None:
+    """theta*(P) over the box by :func:`.subbox_union.band_root` (the centre's tangent as predictor, one
+    Newton step in the offset u over the whole box, ``cells`` parameter cells for the enclosures): a ball
+    containing theta*(P) for every P, the band's unique root, or None."""
+    k = len(models.dirs)
+    slope = [arb((-(Gc.d[i].real) / Gc.d[k].real).mid()) for i in range(k)]
+    weights = [float(dev.rad()) * abs(float(Gc.d[i].real.mid())) for i, dev in enumerate(models.devs)]
+    counts = split_counts(weights, cells)
+    rho = abs(tc) * arb(2) ** -40
+    for _ in range(12):
+        res = band_root(make_models, models.cvals, models.bvals, models.dirs, tc, slope, rho, counts)
+        if res is None:
+            return None
+        image = res[0]
+        if not image.is_finite():
+            return None
+        if certainly_lt(-rho, image.lower()) and certainly_lt(image.upper(), rho):
+            out = tc + image
+            for s, dev in zip(slope, models.devs):
+                out = out + s * dev
+            return out
+        rho = (2 * abs(image).upper()).max(2 * rho)
+    return None
+
+
+def _theta_over_box(models: _Models, tc_ball: arb, cells: int = 1, make_models=None):
     """((Theta, gradient, centre gradient, nested theta*), "") of theta*(P) over the box (step 1 of the module
-    docstring; second-order forms in (theta, P)), or (None, reason)."""
+    docstring; second-order forms in (theta, P)), or (None, reason). With ``cells`` > 1 the gradient of G
+    over Theta x box is also enclosed as a union over that many cells (:mod:`.subbox_union`)."""
     tc = arb(tc_ball.mid())
     k = len(models.dirs)
     m = models.m
     zero_devs = models.devs + [arb(0)]
     Gc = models.centre.G(Jet.variable(acb(tc), k, m))
     r = 2 * arb(tc_ball.rad()) + abs(tc) * arb(2) ** -60
-    for _ in range(16):
-        Theta = arb(tc, r.upper())
+    weights = [float(dev.rad()) * abs(float(Gc.d[i].real.mid())) for i, dev in enumerate(models.devs)]
+    C = 1 / arb(Gc.d[k].real.mid())          # Krawczyk's preconditioner: 1 / dG/dtheta at the centre (a point)
+
+    def images(Theta: arb):
+        """(Newton image or None, Krawczyk image or None, gradient balls over Theta x box); each image
+        contains every root theta*(P) in Theta (Theta must contain tc)."""
         Gn = models.nested.G(nested_variable(Theta, k, m))
         G0 = second_order_value(Gc, Gn, zero_devs)
         grads = second_order_gradient(Gc, Gn, models.devs + [Theta - tc])
+        if cells > 1:
+            rr = float(abs(Theta - tc).upper())
+            counts = split_counts(weights + [rr * abs(float(Gc.d[k].real.mid()))], cells)
+            union = gradient_union(make_models, models.cvals, models.bvals, models.dirs, Theta, counts)
+            grads = _refined(grads, union)
+            if union is not None:
+                # G(tc, P) by the mean value theorem in P with the union's G_P (it covers {tc} x box)
+                G0 = _refined([G0], [Gc.v.real + sum((u * d for u, d in zip(union, models.devs)), arb(0))])[0]
+        gth = grads[k]
+        N = tc - G0 / gth if certainly_nonzero(gth) else None
+        K = tc - C * G0 + (1 - C * gth) * (Theta - tc)
+        return (N if N is not None and N.is_finite() else None), (K if K.is_finite() else None), grads
+
+    def inside(X, Theta):
+        return X is not None and certainly_lt(Theta.lower(), X.lower()) and certainly_lt(X.upper(), Theta.upper())
+
+    band = _band(models, tc, Gc, cells, make_models) if cells > 1 else None
+    if band is not None:
+        # the band's root enclosure; unique in Theta too when G_theta excludes 0 on Theta x box
+        N = band
+        Theta = N.union(tc)
+        _, _, grads = images(Theta)
+        gth = grads[k]
+        if not certainly_nonzero(gth):
+            band = None
+    for _ in range(0 if band is not None else 24):
+        Theta = arb(tc, r.upper())
+        N, K, grads = images(Theta)
         gth = grads[k]
         if not certainly_nonzero(gth):
             return None, f"dG/dtheta = {_fmt(gth, 6)} may vanish on theta in {_fmt(Theta)} over the box"
-        N = tc - G0 / gth
-        if not N.is_finite():
-            return None, "the Newton image is not finite"
-        if certainly_lt(Theta.lower(), N.lower()) and certainly_lt(N.upper(), Theta.upper()):
+        ok = [X for X in (N, K) if inside(X, Theta)]
+        if ok:
+            # one unique root theta*(P) in Theta for every P (interval Newton, or Krawczyk's K inside Theta);
+            # it lies in both images: contract while that narrows it
+            N = ok[0].intersection(ok[-1])
+            for _ in range(3):
+                T2 = N.union(tc)
+                N2, K2, g2 = images(T2)
+                new = [X for X in (N2, K2) if X is not None]
+                if not new or not certainly_nonzero(g2[k]):
+                    break
+                M = N
+                for X in new:
+                    if not X.overlaps(M):
+                        raise AssertionError(f"a Newton / Krawczyk image {X} misses the root's enclosure {M}: a bug")
+                    M = M.intersection(X)
+                Theta, grads, gth = T2, g2, g2[k]
+                shrunk = M.rad() < 0.8 * N.rad()
+                N = M
+                if not shrunk:
+                    break
             break
-        r = 2 * (abs(N - tc).upper()).max(r.upper())
+        if N is None:
+            return None, "the Newton image is not finite"
+        r = (3 * abs(N - tc).upper() / 2).max(3 * r.upper() / 2)
     else:
-        return None, f"parametric interval Newton on G did not contract around theta = {_fmt(tc_ball)}"
+        if band is None:
+            return None, f"parametric interval Newton on G did not contract around theta = {_fmt(tc_ball)}"
     # theta*'s gradient over the box: -G_P / G_theta on Theta x box
     grad = [-g / gth for g in grads[:k]]
     cen = tc_ball
@@ -178,9 +275,11 @@ def _theta_over_box(models: _Models, tc_ball: arb):
     # theta the first-order jet (Theta, grad) (implicit differentiation once more)
     inner = Jet(acb(Theta), [acb(g) for g in grad] + [acb(0)])
     Gt = models.nested.G(Jet(inner, [acb(0)] * k + [acb(1)]))
+    # each partial's value ball over the box also lies in its gradient enclosure ``grads`` (theta*(P) in Theta)
+    parts = [_with_value(Gt.d[i].real, grads[i]) for i in range(k + 1)]
     inner_grads = []
     for i in range(k):
-        q = -(Gt.d[i].real) / Gt.d[k].real
+        q = -parts[i] / parts[k]
         qv = q.v.real
         if not (qv.is_finite() and qv.overlaps(grad[i])):
             return None, "the implicit second derivatives of theta* are not finite over the box"
@@ -188,6 +287,18 @@ def _theta_over_box(models: _Models, tc_ball: arb):
     nested_theta = Jet(inner, inner_grads + [acb(0)])
     centre_theta = Jet(acb(tc_ball), [acb(g) for g in cgrad] + [acb(0)])
     return (Theta, grad, centre_theta, nested_theta), ""
+
+
+def _with_value(j: Jet, enclosure: arb) -> Jet:
+    """The jet ``j`` with its (real) value ball intersected with ``enclosure``, another enclosure of it."""
+    v = j.v.real
+    if v.is_finite() and enclosure.is_finite():
+        if not v.overlaps(enclosure):
+            raise AssertionError(f"a jet's value {v} misses its enclosure {enclosure}: a bug")
+        v = v.intersection(enclosure)
+    elif enclosure.is_finite():
+        v = enclosure
+    return Jet(acb(v), j.d)
 
 
 def continue_orbit(centre: RelayParams, box: dict[str, arb], dirs: list[str], guesses: list[acb],
@@ -207,10 +318,23 @@ def continue_orbit(centre: RelayParams, box: dict[str, arb], dirs: list[str], gu
         return out
     out.theta_c = tc
     res, why = _theta_over_box(models, tc)
+    for cells in SUBBOX_CELLS:
+        if res is not None:
+            break
+        res, why = _theta_over_box(models, tc, cells, lambda c, b: _Models(c, b, dirs, guesses))
     if res is None:
         out.problem = why
         return out
     out.theta, out.theta_gradient, th_c, th_n = res
+    _decide(models, out, th_c, th_n, genuine, stability)
+    if (genuine or stability) and (not out.genuine or (stability and out.stable is not True)):
+        from .cellwise import decide_by_cells
+        decide_by_cells(centre, box, dirs, guesses, out, genuine, stability)
+    return out
+
+
+def _decide(models: _Models, out: OrbitOverBox, th_c: Jet, th_n: Jet, genuine: bool, stability: bool) -> None:
+    """Steps 2 and 3 of the module docstring over the models' box, given theta*'s jets: fills ``out``."""
     x0n = models.nested.x0(th_n)
     x0c = models.centre.x0(th_c)
     if genuine or stability:
@@ -218,10 +342,9 @@ def continue_orbit(centre: RelayParams, box: dict[str, arb], dirs: list[str], gu
         out.genuine, out.genuine_reason = ok, why
         if not ok:
             out.problem = why
-            return out
+            return
     if stability:
         _stability(models, out, th_n, th_c, x0n, x0c)
-    return out
 
 
 def _sign_condition(models: _Models, x0n, x0c, Theta: arb) -> tuple[bool, str]:

@@ -1,0 +1,103 @@
+"""Steps 2 and 3 of :mod:`.continuation` (the sign condition, the multipliers) decided cell by cell once step 1
+(theta*(P), unique in Theta for every P of the whole box) is proved (issue 37 part 1: one relay box of +-1 %).
+
+Why: the sign condition and the multipliers are properties of each member's orbit. Their second-order forms
+over the whole box carry the Hessian balls' excess (first order in the width, ~30x for A, B, H at +-1 %), so
+over a wide box they decide nothing. Cutting the parameter box into cells and running steps 1-3 of
+:mod:`.continuation` on each cell (its own centre, its own theta* jets) shrinks the excess with the cell's
+width; the box is still decided in one piece (one Newton step proves theta*(P) over the whole box, one
+result is returned), only these enclosures are subdivided.
+
+Guarantee: each cell's root enclosure is required to lie inside the whole box's Theta, where G(., P) has one
+root for every P, so every cell follows the same orbit theta*(P); then ``out.genuine`` is set only when
+every cell proves the sign condition, ``out.stable`` only when every cell proves every modulus < 1, and
+the multipliers / moduli are the unions of the cells' balls (index by index, each cell sorted by modulus),
+which contain the four multipliers of every member. Precision: the current working precision. Fails when:
+a cell is not decided (``out`` keeps the whole-box result and its problem; a failure never refutes).
+"""
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+from flint import arb
+
+from ...core.balls import certainly_lt
+from .flow import DegenerateSpectrum, PARAMETER_NAMES
+from .subbox_union import _grid, cells, split_counts
+
+__all__ = ["decide_by_cells", "CELL_COUNTS"]
+
+#: parameter cells tried in turn (powers of 2, split along the directions that move G most)
+CELL_COUNTS = (4, 16)
+
+
+def decide_by_cells(centre, box: dict[str, arb], dirs: list[str], guesses, out, genuine: bool,
+                    stability: bool) -> None:
+    """Decide ``out`` (an :class:`.continuation.OrbitOverBox` whose step 1 holds over the whole box) cell by
+    cell (module docstring); ``out`` is changed only when every cell decides."""
+    from .continuation import OrbitOverBox, SUBBOX_CELLS, _Models, _centre_root, _decide, _point, _theta_over_box
+    Theta = out.theta
+    cvals = {k: _point(getattr(centre, k)) for k in PARAMETER_NAMES}
+    devs = [box[d] - cvals[d] for d in dirs]
+    weights = [float(dv.rad()) * float(abs(g).upper()) for dv, g in zip(devs, out.theta_gradient)]
+    for total in CELL_COUNTS:
+        counts = split_counts(weights, total)
+        results = []
+        for pc in _grid([cells(box[d], counts[i]) for i, d in enumerate(dirs)]):
+            cv = dict(cvals)
+            cb = {}
+            for d, (cell, mid) in zip(dirs, pc):
+                cv[d] = mid
+                cb[d] = cell
+            ns = SimpleNamespace(**cv)
+            try:
+                models = _Models(ns, cb, dirs, guesses)
+            except DegenerateSpectrum:
+                results = None
+                break
+            guess = out.theta_c
+            for g, d in zip(out.theta_gradient, dirs):
+                guess = guess + arb(g.mid()) * (cv[d] - cvals[d])
+            tc = _centre_root(models, arb(guess.mid()))
+            if tc is None or not Theta.contains(tc):
+                results = None
+                break
+            res, _ = _theta_over_box(models, tc)
+            for n in SUBBOX_CELLS:
+                if res is not None:
+                    break
+                res, _ = _theta_over_box(models, tc, n, lambda c, b: _Models(c, b, dirs, guesses))
+            if res is None or not Theta.contains(res[0]):
+                results = None
+                break
+            o = OrbitOverBox(theta_c=tc)
+            o.theta, o.theta_gradient, th_c, th_n = res
+            _decide(models, o, th_c, th_n, genuine, stability)
+            if not o.genuine or (stability and o.stable is not True):
+                results = None
+                break
+            results.append(o)
+        if results is None:
+            continue
+        out.genuine = True
+        out.genuine_reason = (results[0].genuine_reason.split(", each for every")[0]
+                              + f" (on the first of {len(results)} parameter cells), each for every parameter in "
+                              f"its cell, in {len(results)} cells covering the box (second-order forms in t and P "
+                              f"about each cell's centre)")
+        if stability:
+            out.multipliers = [_union([o.multipliers[i] for o in results]) for i in range(4)]
+            out.moduli = [_union([o.moduli[i] for o in results]) for i in range(4)]
+            mx = results[0].max_modulus
+            for o in results[1:]:
+                mx = mx.union(o.max_modulus)
+            out.max_modulus = mx
+            out.stable = all(certainly_lt(mm, 1) for mm in out.moduli)
+        out.problem = "" if (not stability or out.stable) else out.problem
+        return
+
+
+def _union(balls):
+    u = balls[0]
+    for b in balls[1:]:
+        u = u.union(b)
+    return u
