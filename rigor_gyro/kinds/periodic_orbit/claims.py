@@ -28,6 +28,12 @@ Guarantee: every claim is decided by Arb balls over the exact rational parameter
   no other eigenvalue's ball (the Jacobian is real, so the spectrum is closed under conjugation).
 * ``stable``: every modulus certainly < 1 for some genuine orbit (named).
 
+With option ``orbit = "t"`` (an exact t > 0; :mod:`.tracked`, :mod:`.tracked_claims`) orbit_genuine,
+initial_point, multipliers and stable are about one orbit only: the root of g on (0, oo) nearest t,
+certified nearest (a gap to every other root, undecided piece and unsearched range); their statements
+say so (:func:`statements`), and the orbit quantities (theta_star, multiplier_*, stability_margin) are
+that root's. A nearness that is not certified leaves them inconclusive, never refuted.
+
 Precision: the prover's, escalated until every claim is decided and theta* has width <= option
 ``theta_width`` (default 1e-12; Newton usually gives ~2^-prec relative).
 
@@ -85,7 +91,8 @@ OPTIONS = {"T_max": "auto", "theta_width": "1e-12", "orbit": ""}
 
 #: the numbers a report's summary opens with (quantity name -> what it is), in this order
 #: theta_star and its quantities belong to the stable genuine orbit when exactly one is stable, else to
-#: the shortest genuine orbit (claims._select); the others are theta_star_2, ... with their own margins
+#: the shortest genuine orbit (claims._select); the others are theta_star_2, ... with their own margins.
+#: With option orbit: to the root of g certified nearest it when that root is genuine (else no theta_star)
 HEADLINE = {"theta_star": "half-period theta* (s)", "period": "period 2 theta* (s)",
             "multiplier_modulus_1": "largest multiplier modulus", "multiplier_modulus_2": "multiplier modulus 2",
             "multiplier_modulus_3": "multiplier modulus 3", "multiplier_modulus_4": "multiplier modulus 4",
