@@ -28,7 +28,7 @@ from .subbox_union import _grid, cells, split_counts
 __all__ = ["decide_by_cells", "CELL_COUNTS"]
 
 #: parameter cells tried in turn (powers of 2, split along the directions that move G most)
-CELL_COUNTS = (4, 16)
+CELL_COUNTS = (4, 16, 64)
 
 
 def decide_by_cells(centre, box: dict[str, arb], dirs: list[str], guesses, out, genuine: bool,

@@ -1,0 +1,79 @@
+"""Relay boxes of +-1 % in one parameter (issue 37 part 1): theta*(P) by the band Newton step with sub-box
+unions (kinds/periodic_orbit/subbox_union.py), the sign condition and multipliers cell by cell (cellwise.py).
+Every certified range holds mpmath samples of the box."""
+from __future__ import annotations
+
+from fractions import Fraction
+
+import pytest
+from flint import acb, arb
+
+from rigor_gyro.core.balls import ball, working_precision
+from rigor_gyro.core.jets import Jet
+from rigor_gyro.core.polyroots import isolate_polynomial
+from rigor_gyro.kinds.periodic_orbit.continuation import _Models
+from rigor_gyro.kinds.periodic_orbit.flow import PARAMETER_NAMES, nutation_cubic
+from rigor_gyro.kinds.periodic_orbit.subbox_union import cells, gradient_union, split_counts
+from tests.test_relay_box_continuation import _continued, _model, _params, _q, _theta_mp
+
+mp = pytest.importorskip("mpmath")
+approx = pytest.importorskip("rigor_gyro.kinds.periodic_orbit.approx")
+
+
+def test_cells_cover_the_ball_with_exact_ends():
+    X = arb(1, 0.25)
+    for n in (1, 2, 3, 8):
+        cs = cells(X, n)
+        assert len(cs) == n
+        assert cs[0][0].lower() <= X.lower() and cs[-1][0].upper() >= X.upper()
+        for (a, ma), (b, mb) in zip(cs, cs[1:]):
+            assert a.upper() >= b.lower()             # consecutive cells touch
+        for c, mid in cs:
+            assert mid.rad() == 0 and c.contains(mid)
+
+
+def test_split_counts_halves_the_heaviest_direction():
+    assert split_counts([1.0, 0.0], 8) == [8, 1]
+    assert split_counts([1.0, 1.0], 16) == [4, 4]
+    assert split_counts([0.0], 8) == [1]
+
+
+def test_gradient_union_holds_point_gradients():
+    """The union of G's gradient over Theta x (B +-1 %) contains the gradient at sampled points, each
+    evaluated as a point jet (its own ball, independent of the cells)."""
+    m = _model()
+    P = m.params
+    B = Fraction(int(P.B.p), int(P.B.q))
+    with working_precision(128):
+        iso = isolate_polynomial(nutation_cubic(P))
+        guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
+        cvals = {k: ball(getattr(P, k)) for k in PARAMETER_NAMES}
+        box = dict(cvals, B=ball(_q(B * Fraction(99, 100))).union(ball(_q(B * Fraction(101, 100)))))
+        Theta = arb("0.1383", "0.0015")
+        u = gradient_union(lambda c, b: _Models(c, b, ["B"], guesses), cvals, box, ["B"], Theta, [4, 2])
+        assert u is not None and not u[1].contains(0)
+        for i in range(5):
+            for j in range(3):
+                Bx = B * (Fraction(99, 100) + Fraction(2, 100) * Fraction(i, 4))
+                th = Theta.lower() + (Theta.upper() - Theta.lower()) * j / 2
+                pv = dict(cvals, B=ball(_q(Bx)))
+                from types import SimpleNamespace
+                mod = _Models(SimpleNamespace(**pv), {"B": pv["B"]}, ["B"], guesses)
+                g = mod.centre.G(Jet.variable(acb(th), 1, 2))
+                assert u[0].overlaps(g.d[0].real) and u[1].overlaps(g.d[1].real)
+                assert u[0].contains(arb(g.d[0].real.mid())) and u[1].contains(arb(g.d[1].real.mid()))
+
+
+@pytest.mark.parametrize("name", ["B", pytest.param("H", marks=pytest.mark.slow), pytest.param("A", marks=pytest.mark.slow)])
+def test_one_percent_box_genuine_and_stable_holds_mpmath_samples(name):
+    m, o, lo, hi = _continued(name, Fraction(1, 100))
+    assert o.genuine and o.stable is True, o.problem
+    assert o.max_modulus.upper() < 1
+    for k in range(5):
+        x = lo + (hi - lo) * Fraction(k, 4)
+        th = _theta_mp(_params(m, **{name: x}), float(o.theta.lower()) - 1e-6, float(o.theta.upper()) + 1e-6)
+        assert o.theta.contains(arb(mp.nstr(th, 30))), (x, th, o.theta)
+        mods = sorted((abs(z) for z in approx.approx_multipliers(_params(m, **{name: x}), float(th))), reverse=True)
+        assert o.max_modulus.lower() < mods[0] < o.max_modulus.upper(), (x, mods[0], o.max_modulus)
+        for ball_, v in zip(o.moduli, mods):
+            assert ball_.lower() - 1e-12 < v < ball_.upper() + 1e-12
