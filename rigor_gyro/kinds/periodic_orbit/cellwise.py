@@ -23,7 +23,7 @@ from flint import arb
 
 from ...core.balls import certainly_lt
 from .flow import DegenerateSpectrum, PARAMETER_NAMES
-from .subbox_union import _grid, cells, split_counts
+from .subbox_union import cells, grid, split_counts
 
 __all__ = ["decide_by_cells", "CELL_COUNTS"]
 
@@ -32,10 +32,13 @@ CELL_COUNTS = (4, 16, 64)
 
 
 def decide_by_cells(centre, box: dict[str, arb], dirs: list[str], guesses, out, genuine: bool,
-                    stability: bool) -> None:
+                    stability: bool, steps) -> None:
     """Decide ``out`` (an :class:`.continuation.OrbitOverBox` whose step 1 holds over the whole box) cell by
-    cell (module docstring); ``out`` is changed only when every cell decides."""
-    from .continuation import OrbitOverBox, SUBBOX_CELLS, _Models, _centre_root, _decide, _point, _theta_over_box
+    cell (module docstring); ``out`` is changed only when every cell decides. ``steps``: continuation's
+    steps (attributes OrbitOverBox, SUBBOX_CELLS, models, centre_root, decide, point, theta_over_box),
+    passed in so that this module does not import continuation (which calls it)."""
+    OrbitOverBox, SUBBOX_CELLS, _Models = steps.OrbitOverBox, steps.SUBBOX_CELLS, steps.models
+    _centre_root, _decide, _point, _theta_over_box = steps.centre_root, steps.decide, steps.point, steps.theta_over_box
     Theta = out.theta
     cvals = {k: _point(getattr(centre, k)) for k in PARAMETER_NAMES}
     devs = [box[d] - cvals[d] for d in dirs]
@@ -43,7 +46,7 @@ def decide_by_cells(centre, box: dict[str, arb], dirs: list[str], guesses, out, 
     for total in CELL_COUNTS:
         counts = split_counts(weights, total)
         results = []
-        for pc in _grid([cells(box[d], counts[i]) for i, d in enumerate(dirs)]):
+        for pc in grid([cells(box[d], counts[i]) for i, d in enumerate(dirs)]):
             cv = dict(cvals)
             cb = {}
             for d, (cell, mid) in zip(dirs, pc):

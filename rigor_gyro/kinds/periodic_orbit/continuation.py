@@ -33,6 +33,7 @@ Newton does not contract, or a sign is not certain: ``OrbitOverBox.problem`` say
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from types import SimpleNamespace
 
 from flint import acb, acb_mat, arb, arb_mat
 
@@ -41,6 +42,7 @@ from ...core.jets import Jet, base, second_order_gradient, second_order_value
 from .flow import DegenerateSpectrum, PARAMETER_NAMES, RelayParams
 from .jacobian_box import centred_terms, eigen_coordinate_multipliers
 from .parametric import RelayJets, nested_parameter_jets, nested_variable, parameter_jets
+from .cellwise import decide_by_cells
 from .subbox_union import band_root, gradient_union, split_counts
 
 __all__ = ["OrbitOverBox", "continue_orbit", "MAX_PIECES"]
@@ -328,8 +330,9 @@ def continue_orbit(centre: RelayParams, box: dict[str, arb], dirs: list[str], gu
     out.theta, out.theta_gradient, th_c, th_n = res
     _decide(models, out, th_c, th_n, genuine, stability)
     if (genuine or stability) and (not out.genuine or (stability and out.stable is not True)):
-        from .cellwise import decide_by_cells
-        decide_by_cells(centre, box, dirs, guesses, out, genuine, stability)
+        steps = SimpleNamespace(OrbitOverBox=OrbitOverBox, SUBBOX_CELLS=SUBBOX_CELLS, models=_Models,
+                                centre_root=_centre_root, decide=_decide, point=_point, theta_over_box=_theta_over_box)
+        decide_by_cells(centre, box, dirs, guesses, out, genuine, stability, steps)
     return out
 
 

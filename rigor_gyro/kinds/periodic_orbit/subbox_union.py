@@ -26,7 +26,7 @@ from flint import acb, arb
 from ...core.jets import Jet, second_order_gradient, second_order_value
 from .flow import DegenerateSpectrum, PARAMETER_NAMES
 
-__all__ = ["split_counts", "cells", "gradient_union", "band_root"]
+__all__ = ["split_counts", "cells", "grid", "gradient_union", "band_root"]
 
 
 def split_counts(weights: list[float], total: int) -> list[int]:
@@ -52,7 +52,8 @@ def cells(X: arb, n: int) -> list[tuple[arb, arb]]:
     return out
 
 
-def _grid(lists):
+def grid(lists):
+    """Every combination of one entry from each list (the cells of a product of subdivisions)."""
     out = [[]]
     for ls in lists:
         out = [o + [c] for o in out for c in ls]
@@ -69,7 +70,7 @@ def gradient_union(make_models, centre_values: dict[str, arb], box: dict[str, ar
     from .parametric import nested_variable
     k = len(dirs)
     m = k + 1
-    pcells = _grid([cells(box[d], counts[i]) for i, d in enumerate(dirs)])
+    pcells = grid([cells(box[d], counts[i]) for i, d in enumerate(dirs)])
     tcells = cells(Theta, counts[k])
     out = None
     for pc in pcells:
@@ -115,7 +116,7 @@ def band_root(make_models, centre_values: dict[str, arb], box: dict[str, arb], d
     k = len(dirs)
     m = k + 1
     slope_acb = [acb(s) for s in slope] + [acb(1)]
-    pcells = _grid([cells(box[d], counts[i]) for i, d in enumerate(dirs)])
+    pcells = grid([cells(box[d], counts[i]) for i, d in enumerate(dirs)])
     U = arb(0, rho.upper())
     F0 = gu = None
     for pc in pcells:
