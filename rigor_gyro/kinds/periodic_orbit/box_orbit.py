@@ -77,8 +77,8 @@ def continued_outcomes(model, box: Box, claims: list[str]) -> dict[str, tuple[st
         if not o.genuine:
             continue
         head = (f"for every parameter in the box, the orbit continued from the centre's theta* = {_fmt(v.theta, 12)}: "
-                f"theta*(P) in {_fmt(o.theta)} is the only root of g there (parametric interval Newton on G = g K, "
-                f"second-order forms in (theta, P), {current_precision()} bits); ")
+                f"theta*(P) in {_fmt(o.theta)} is the only root of g there ({o.theta_method}, "
+                f"{current_precision()} bits); ")
         if "orbit_genuine" in wanted and "orbit_genuine" not in out:
             out["orbit_genuine"] = ("proved", head + o.genuine_reason)
         if "stable" in wanted and o.stable is True:

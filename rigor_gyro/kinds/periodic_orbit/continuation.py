@@ -14,6 +14,14 @@ c and a root theta_c of g(., c) (from the point analysis at the centre):
    gradient over the box is enclosed as -g_P / g_theta over Theta x box (implicit function theorem), and
    theta* as theta*(c) + that gradient times the deviations (intersected with N). The root is the same
    continuous branch for every member: the one through theta_c.
+   When these whole-box forms do not decide (their Hessian balls carry the complex-ball excess of
+   exp(lambda theta), ~30x over A, B, H at +-1 %), step 1 runs again with G's derivatives enclosed as unions
+   over cells of Theta x box (:mod:`.subbox_union`, ``SUBBOX_CELLS``): first the band Newton step
+   (:func:`.subbox_union.band_root`: u = theta - tc - slope . (P - c) with the centre's tangent as slope, one
+   Newton step in u over the whole box, its residual F(0, P) second order in the width), then uniqueness in
+   the resulting Theta because dG/dtheta excludes 0 on Theta x box; failing that, the interval Newton and
+   Krawczyk (preconditioner 1 / G_theta(c)) images over Theta, contracted while they narrow. Only the
+   derivative bounds are subdivided: the Newton step is one step over the whole box.
 2. orbit_genuine for every P: beta(t; P) > 0 on (0, theta*(P)), with beta(0) = beta(theta*(P)) = 0 exactly.
    beta(t; theta*(P), P) and beta'(t; ...) are enclosed on (t piece) x box by the centred form in (t, P) whose
    P-gradient is the total derivative (theta* a jet with its implicit gradient): beta' > 0 on [0, d1],
@@ -24,6 +32,9 @@ c and a root theta_c of g(., c) (from the point analysis at the centre):
    the centre's eigenvector coordinates (:func:`.jacobian_box.eigen_coordinate_multipliers`) or on the
    ball matrix itself, the narrower; every modulus certainly < 1 proves the orbit stable for every P.
    Their product is checked against Liouville's -exp(-(1/tau + 1/sigma) theta*) over the box (a bug check).
+
+Steps 2 and 3 over the whole box fall back to :mod:`.cellwise` (each parameter cell its own centre and jets,
+every cell's root required inside the whole box's Theta) when they do not decide.
 
 Guarantee: a returned :class:`OrbitOverBox` holds what it says for every parameter in the box; any step
 that does not decide returns the reason (never a refutation: a failed sufficient test decides nothing).
@@ -59,6 +70,7 @@ class OrbitOverBox:
 
     theta_c: arb
     theta: arb | None = None                  # theta*(P) for every P
+    theta_method: str = ""                    # how theta*(P) was proved unique in ``theta``
     theta_gradient: list[arb] = field(default_factory=list)    # dtheta*/dP_k over the box, per direction
     genuine: bool = False
     genuine_reason: str = ""
@@ -288,7 +300,14 @@ def _theta_over_box(models: _Models, tc_ball: arb, cells: int = 1, make_models=N
         inner_grads.append(Jet(acb(qv.intersection(grad[i])), q.d))
     nested_theta = Jet(inner, inner_grads + [acb(0)])
     centre_theta = Jet(acb(tc_ball), [acb(g) for g in cgrad] + [acb(0)])
-    return (Theta, grad, centre_theta, nested_theta), ""
+    if band is not None:
+        method = (f"one interval Newton step in the offset from the centre's tangent over the whole box, G's "
+                  f"derivatives as unions over {cells} cells; unique in Theta as dG/dtheta excludes 0 on it")
+    elif cells > 1:
+        method = f"parametric interval Newton / Krawczyk on G = g K, G's derivatives as unions over {cells} cells"
+    else:
+        method = "parametric interval Newton on G = g K, second-order forms in (theta, P)"
+    return (Theta, grad, centre_theta, nested_theta), method
 
 
 def _with_value(j: Jet, enclosure: arb) -> Jet:
@@ -328,6 +347,7 @@ def continue_orbit(centre: RelayParams, box: dict[str, arb], dirs: list[str], gu
         out.problem = why
         return out
     out.theta, out.theta_gradient, th_c, th_n = res
+    out.theta_method = why
     _decide(models, out, th_c, th_n, genuine, stability)
     if (genuine or stability) and (not out.genuine or (stability and out.stable is not True)):
         steps = SimpleNamespace(OrbitOverBox=OrbitOverBox, SUBBOX_CELLS=SUBBOX_CELLS, models=_Models,
