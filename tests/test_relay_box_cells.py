@@ -77,3 +77,62 @@ def test_one_percent_box_genuine_and_stable_holds_mpmath_samples(name):
         assert o.max_modulus.lower() < mods[0] < o.max_modulus.upper(), (x, mods[0], o.max_modulus)
         for ball_, v in zip(o.moduli, mods):
             assert ball_.lower() - 1e-12 < v < ball_.upper() + 1e-12
+
+
+def _b_box(rel=Fraction(1, 100)):
+    m = _model()
+    P = m.params
+    B = Fraction(int(P.B.p), int(P.B.q))
+    iso = isolate_polynomial(nutation_cubic(P))
+    guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
+    cvals = {k: ball(getattr(P, k)) for k in PARAMETER_NAMES}
+    box = dict(cvals, B=ball(_q(B * (1 - rel))).union(ball(_q(B * (1 + rel)))))
+    return m, B, guesses, cvals, box
+
+
+def test_band_residual_holds_point_residuals():
+    """band_root's F0 contains F(0, P) = G(tc + slope (P - c), P) at sampled P (point evaluations), and its
+    image, when inside the band, holds the offset of theta*(P) from the tangent (mpmath theta*)."""
+    from types import SimpleNamespace
+    from rigor_gyro.kinds.periodic_orbit.subbox_union import band_root
+    m, B, guesses, cvals, box = _b_box()
+    with working_precision(128):
+        from rigor_gyro.kinds.periodic_orbit.continuation import _centre_root
+        models = _Models(m.params, {"B": box["B"]}, ["B"], guesses)
+        tc = arb(_centre_root(models, arb("0.138133574136")).mid())
+        Gc = models.centre.G(Jet.variable(acb(tc), 1, 2))
+        slope = [arb((-(Gc.d[0].real) / Gc.d[1].real).mid())]        # the centre's tangent
+        res = band_root(lambda c, b: _Models(c, b, ["B"], guesses), cvals, box, ["B"], tc, slope, arb("1e-4"), [8])
+        assert res is not None
+        image, F0, gu = res
+        assert not gu.contains(0) and arb(-1e-4) < image < arb(1e-4)     # inside the band: theta*(P) is there
+        for i in range(9):
+            Bx = B * (Fraction(99, 100) + Fraction(2, 100) * Fraction(i, 8))
+            pv = dict(cvals, B=ball(_q(Bx)))
+            mod = _Models(SimpleNamespace(**pv), {"B": pv["B"]}, ["B"], guesses)
+            th = tc + slope[0] * (pv["B"] - cvals["B"])
+            val = mod.centre.G(Jet.variable(acb(th), 1, 2)).v.real
+            assert F0.contains(arb(val.mid())), (Bx, val, F0)
+            t = _theta_mp(_params(m, B=Bx), float(th.mid()) - 2e-3, float(th.mid()) + 2e-3)
+            off = arb(mp.nstr(t, 30)) - th
+            assert image.contains(arb(off.mid())), (Bx, off, image)
+
+
+def test_accepted_band_image_lies_inside_its_band(monkeypatch):
+    """The band Newton step over B +-1 % is accepted only when its image lies inside the band it assumed."""
+    import rigor_gyro.kinds.periodic_orbit.continuation as cont
+    calls = []
+    real = cont.band_root
+
+    def recording(*a):
+        out = real(*a)
+        calls.append((a[6], out))
+        return out
+    monkeypatch.setattr(cont, "band_root", recording)
+    _, o, _, _ = _continued("B", Fraction(1, 100))
+    assert o.genuine and "offset from the centre's tangent" in o.theta_method
+    accepted = [(rho, res) for rho, res in calls if res is not None and -rho < res[0] < rho]
+    assert accepted, "no band image inside its band"
+    # the run stopped at the first image inside its band: every earlier call's image was outside
+    first_inside = next(i for i, (rho, res) in enumerate(calls) if res is not None and -rho < res[0] < rho)
+    assert len(calls) == first_inside + 1

@@ -44,7 +44,7 @@ MUTANTS = [
      "            out = cellg if out is None else [a.union(b) for a, b in zip(out, cellg)]\n",
      "            out = cellg\n", "the derivative union over a relay box keeps only its last cell"),
     ("cellwise_max_modulus_first_cell", "rigor_gyro/kinds/periodic_orbit/cellwise.py",
-     "                mx = mx.union(o.max_modulus)\n", "                pass\n",
+     "            mx = mx.union(o.max_modulus)\n", "            pass\n",
      "a relay box's max multiplier modulus decided cell by cell keeps only the first cell's"),
     ("band_root_first_image_trusted", "rigor_gyro/kinds/periodic_orbit/continuation.py",
      "        if certainly_lt(-rho, image.lower()) and certainly_lt(image.upper(), rho):\n",

@@ -25,10 +25,12 @@ from ...core.balls import certainly_lt
 from .flow import DegenerateSpectrum, PARAMETER_NAMES
 from .subbox_union import cells, grid, split_counts
 
-__all__ = ["decide_by_cells", "CELL_COUNTS"]
+__all__ = ["decide_by_cells", "CELL_COUNTS", "MAX_CELLS"]
 
-#: parameter cells tried in turn (powers of 2, split along the directions that move G most)
-CELL_COUNTS = (4, 16, 64)
+#: the first grid of parameter cells (a power of 2, split along the directions that move theta* most); a cell
+#: that does not decide is bisected along its heaviest direction, up to MAX_CELLS cells decided in all
+CELL_COUNTS = (4,)
+MAX_CELLS = 64
 
 
 def decide_by_cells(centre, box: dict[str, arb], dirs: list[str], guesses, out, genuine: bool,
@@ -43,60 +45,75 @@ def decide_by_cells(centre, box: dict[str, arb], dirs: list[str], guesses, out, 
     cvals = {k: _point(getattr(centre, k)) for k in PARAMETER_NAMES}
     devs = [box[d] - cvals[d] for d in dirs]
     weights = [float(dv.rad()) * float(abs(g).upper()) for dv, g in zip(devs, out.theta_gradient)]
-    for total in CELL_COUNTS:
-        counts = split_counts(weights, total)
-        results = []
-        for pc in grid([cells(box[d], counts[i]) for i, d in enumerate(dirs)]):
-            cv = dict(cvals)
-            cb = {}
-            for d, (cell, mid) in zip(dirs, pc):
-                cv[d] = mid
-                cb[d] = cell
-            ns = SimpleNamespace(**cv)
-            try:
-                models = _Models(ns, cb, dirs, guesses)
-            except DegenerateSpectrum:
-                results = None
+
+    def one_cell(cb: dict[str, arb]):
+        """(OrbitOverBox of the cell, "") when steps 1-3 decide it, (None, "split") when a finer cell might,
+        (None, "stop") when the cell does not follow the whole box's orbit (nothing finer can help)."""
+        cv = dict(cvals)
+        for d in dirs:
+            cv[d] = arb(cb[d].mid())
+        try:
+            models = _Models(SimpleNamespace(**cv), cb, dirs, guesses)
+        except DegenerateSpectrum:
+            return None, "split"
+        guess = out.theta_c
+        for g, d in zip(out.theta_gradient, dirs):
+            guess = guess + arb(g.mid()) * (cv[d] - cvals[d])
+        tc = _centre_root(models, arb(guess.mid()))
+        if tc is None or not Theta.contains(tc):
+            return None, "stop"
+        res, _ = _theta_over_box(models, tc)
+        for n in SUBBOX_CELLS[:1]:           # a cell is narrow: the first count suffices or a finer cell
+            if res is not None:
                 break
-            guess = out.theta_c
-            for g, d in zip(out.theta_gradient, dirs):
-                guess = guess + arb(g.mid()) * (cv[d] - cvals[d])
-            tc = _centre_root(models, arb(guess.mid()))
-            if tc is None or not Theta.contains(tc):
-                results = None
-                break
-            res, _ = _theta_over_box(models, tc)
-            for n in SUBBOX_CELLS:
-                if res is not None:
-                    break
-                res, _ = _theta_over_box(models, tc, n, lambda c, b: _Models(c, b, dirs, guesses))
-            if res is None or not Theta.contains(res[0]):
-                results = None
-                break
-            o = OrbitOverBox(theta_c=tc)
-            o.theta, o.theta_gradient, th_c, th_n = res
-            _decide(models, o, th_c, th_n, genuine, stability)
-            if not o.genuine or (stability and o.stable is not True):
-                results = None
-                break
+            res, _ = _theta_over_box(models, tc, n, lambda c, b: _Models(c, b, dirs, guesses))
+        if res is None or not Theta.contains(res[0]):    # a finer cell narrows its root's enclosure
+            return None, "split"
+        o = OrbitOverBox(theta_c=tc)
+        o.theta, o.theta_gradient, th_c, th_n = res
+        _decide(models, o, th_c, th_n, genuine, stability)
+        if not o.genuine or (stability and o.stable is not True):
+            return None, "split"
+        return o, ""
+
+    counts = split_counts(weights, CELL_COUNTS[0])
+    stack = []
+    for pc in grid([cells(box[d], counts[i]) for i, d in enumerate(dirs)]):
+        stack.append(({d: cell for d, (cell, _) in zip(dirs, pc)}, [w / c for w, c in zip(weights, counts)]))
+    results = []
+    evaluated = 0
+    while stack:
+        cb, wts = stack.pop()
+        evaluated += 1
+        if evaluated > MAX_CELLS:
+            return
+        o, why = one_cell(cb)
+        if o is not None:
             results.append(o)
-        if results is None:
             continue
-        out.genuine = True
-        out.genuine_reason = (results[0].genuine_reason.split(", each for every")[0]
-                              + f" (on the first of {len(results)} parameter cells), each for every parameter in "
-                              f"its cell, in {len(results)} cells covering the box (second-order forms in t and P "
-                              f"about each cell's centre)")
-        if stability:
-            out.multipliers = [_union([o.multipliers[i] for o in results]) for i in range(4)]
-            out.moduli = [_union([o.moduli[i] for o in results]) for i in range(4)]
-            mx = results[0].max_modulus
-            for o in results[1:]:
-                mx = mx.union(o.max_modulus)
-            out.max_modulus = mx
-            out.stable = all(certainly_lt(mm, 1) for mm in out.moduli)
-        out.problem = "" if (not stability or out.stable) else out.problem
+        if why == "stop":
+            return
+        # bisect the cell along its heaviest direction (exact dyadic cut) and decide both halves
+        i = max(range(len(dirs)), key=lambda j: wts[j])
+        halves = wts[:i] + [wts[i] / 2] + wts[i + 1:]
+        for half, _ in cells(cb[dirs[i]], 2):
+            stack.append((dict(cb, **{dirs[i]: half}), halves))
+    if not results:
         return
+    out.genuine = True
+    out.genuine_reason = (results[0].genuine_reason.split(", each for every")[0]
+                          + f" (on the first of {len(results)} parameter cells), each for every parameter in "
+                          f"its cell, in {len(results)} cells covering the box (second-order forms in t and P "
+                          f"about each cell's centre)")
+    if stability:
+        out.multipliers = [_union([o.multipliers[i] for o in results]) for i in range(4)]
+        out.moduli = [_union([o.moduli[i] for o in results]) for i in range(4)]
+        mx = results[0].max_modulus
+        for o in results[1:]:
+            mx = mx.union(o.max_modulus)
+        out.max_modulus = mx
+        out.stable = all(certainly_lt(mm, 1) for mm in out.moduli)
+    out.problem = "" if (not stability or out.stable) else out.problem
 
 
 def _union(balls):
