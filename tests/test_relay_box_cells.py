@@ -136,3 +136,15 @@ def test_accepted_band_image_lies_inside_its_band(monkeypatch):
     # the run stopped at the first image inside its band: every earlier call's image was outside
     first_inside = next(i for i, (rho, res) in enumerate(calls) if res is not None and -rho < res[0] < rho)
     assert len(calls) == first_inside + 1
+
+
+def test_claims_over_a_one_percent_box_in_A():
+    """evaluate_box decides orbit_genuine and stable over A +-1 % in one box (no paving split)."""
+    from rigor_gyro.core.boxes import Box
+    from rigor_gyro.kinds.periodic_orbit.boxes import evaluate_box
+    m = _model()
+    A = Fraction(int(m.params.A.p), int(m.params.A.q))
+    with working_precision(128):
+        out = evaluate_box(m, Box.of({"A": (A * Fraction(99, 100), A * Fraction(101, 100))}), ["orbit_genuine", "stable"])
+    assert out["orbit_genuine"][0] == "proved" and out["stable"][0] == "proved", out
+    assert "cells" in out["stable"][1]
