@@ -241,7 +241,7 @@ def _structure(data: Any) -> None:
 def check_certificate(data: Any, file: str = "<data>") -> CheckReport:
     """Check a certificate given as parsed JSON; see the module docstring."""
     from .core.balls import MAX_PREC, working_precision
-    from .kinds import checker, kind_module
+    from .kinds import checker, claim_statements, kind_module
     from .prover import requested_claims
     from .scene import Scene
 
@@ -302,8 +302,9 @@ def check_certificate(data: Any, file: str = "<data>") -> CheckReport:
     ids = [c["id"] for c in data["claims"]]
     add(CheckResult("claims", ids == wanted, "the claims the scene asks for" if ids == wanted else
                     f"claims {ids} but the scene asks for {wanted}"))
+    statements = claim_statements(module, model)
     for c in data["claims"]:
-        if c["id"] in module.CLAIMS and c["statement"] != module.CLAIMS[c["id"]]:
+        if c["id"] in statements and c["statement"] != statements[c["id"]]:
             add(CheckResult(c["id"], False, "the statement is not the kind's statement of this claim"))
     prec = data["precision_bits"]
     if not isinstance(prec, int) or not 16 <= prec <= 32768:

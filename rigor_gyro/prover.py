@@ -31,7 +31,7 @@ from .core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, Escalation, check_precisi
 from .core.deadline import TimeLimitReached, check_time_limit, time_limit as _time_limit
 from .core.errors import ParameterError, SceneError
 from .core.outcome import AuditStatus, Claim, Status
-from .kinds import Attempt, Phases, kind_module
+from .kinds import Attempt, Phases, claim_statements, kind_module
 from .scene import Scene
 
 __all__ = ["prove_scene", "requested_claims"]
@@ -218,7 +218,7 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
     elapsed = time.perf_counter() - t0
     timed_out = esc is None or (budget.expired() and not esc.result.settled)
     if esc is None:
-        esc = _interrupted(history, module.CLAIMS, wanted, p0, budget.reason())
+        esc = _interrupted(history, claim_statements(module, model), wanted, p0, budget.reason())
     final = esc.result
     for claim in final.claims:
         claim.precision_bits = esc.prec

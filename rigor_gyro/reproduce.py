@@ -68,8 +68,10 @@ def _without_time_wording(cert: dict) -> dict:
 
 def _nothing_finished(data: dict, seconds: float) -> tuple[bool, str]:
     """A run whose first attempt did not finish: every claim inconclusive for the time limit, nothing else."""
-    from .kinds import kind_module
-    statements = kind_module(data["scene"]["kind"]).CLAIMS
+    from .kinds import claim_statements, kind_module
+    from .scene import Scene
+    module = kind_module(data["scene"]["kind"])
+    statements = claim_statements(module, module.validate(Scene.from_header(data["scene"])))
     why = f"time limit of {seconds:g} s reached (--time-limit)"
     p0 = data["precisions_tried"][0] if data.get("precisions_tried") else None
     bad = [c["id"] for c in data["claims"]

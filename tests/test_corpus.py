@@ -24,6 +24,7 @@ EXPECTED = {
     "relay_no_root_below_t_max": {"half_period": "proved", "orbit_genuine": "inconclusive"},
     "relay_unstable": {"orbit_genuine": "proved", "stable": "refuted"},
     "relay_multiplier_near_one": {"orbit_genuine": "proved", "stable": "refuted"},
+    "relay_tracked_orbit_0266": {"orbit_genuine": "proved", "stable": "refuted"},
     "lyap_radius_above_sup_psi1": {"psi_test": "refuted"},        # Vdot <= 0 holds there (direct test)
     "lyap_radius_above_sup_psi2": {"vdot_nonpositive": "refuted"},
     "lyap_v_not_positive": {"v_positive": "refuted", "damping_condition": "refuted"},

@@ -185,13 +185,14 @@ def _verdict(stable):
     return RootVerdict(arb(1), [], "genuine", "", stable=stable)
 
 
-def test_the_selected_orbit_is_the_only_stable_one_or_the_shortest():
+def test_the_selected_orbit_is_a_stable_one_whenever_one_is():
+    """Issue 37: a margin is never reported of an unstable orbit while `stable` holds by another."""
     a, b, c = _verdict(None), _verdict(True), _verdict(False)
     v, why = _select([a, b, c])
     assert v is b and why == "the stable genuine orbit"
     d = _verdict(True)
     v, why = _select([a, b, d])
-    assert v is a and why == "the shortest genuine orbit (several are stable)"
+    assert v is b and why == "the shortest stable genuine orbit (several are stable)"
     v, why = _select([a, c])
     assert v is a and why == "the shortest genuine orbit (none is certified stable)"
     assert _select([]) == (None, "no genuine orbit")

@@ -33,7 +33,7 @@ from flint import arb
 from ..core.errors import ParameterError, SceneError
 from ..core.outcome import AuditRow, AuditStatus, Claim, Status
 
-__all__ = ["KINDS", "PLANNED_KINDS", "Attempt", "Phases", "kind_module", "plots_hook", "checker", "require_box_claims",
+__all__ = ["KINDS", "PLANNED_KINDS", "Attempt", "Phases", "kind_module", "claim_statements", "plots_hook", "checker", "require_box_claims",
            "box_outcomes"]
 
 #: kind -> package implementing it (imported only when a scene of that kind is proved)
@@ -94,6 +94,13 @@ class Attempt:
     def settled(self) -> bool:
         return (self.widths_met and all(c.status is not Status.INCONCLUSIVE for c in self.claims)
                 and all(r.status is not AuditStatus.UNDECIDED for r in self.paper))
+
+
+def claim_statements(module: ModuleType, model: Any) -> dict[str, str]:
+    """``{claim_id: statement}`` for this model: the kind's ``statements(model)`` where a scene's options
+    change what a claim states (a relay scene's option ``orbit``), otherwise its ``CLAIMS``."""
+    statements = getattr(module, "statements", None)
+    return module.CLAIMS if statements is None else statements(model)
 
 
 def require_box_claims(claims: list[str], box_claims) -> None:

@@ -113,8 +113,10 @@ class Scan:
         rows = [f"# {self.lines()[0]}", ""] + [f"- {x.strip()}" for x in self.lines()[1:]] + [
             "", "Each cell is a point proof at that exact value (the other parameters as in the scene); the "
             "quantities are certified enclosures of what the scene reports there (for the relay kind: of the orbit "
-            "theta_star, the stable genuine orbit when exactly one is stable, else the shortest genuine orbit; the "
-            "`stable` claim holds when some genuine orbit is stable).",
+            "theta_star, the shortest stable genuine orbit when one is stable, else the shortest genuine orbit; the "
+            "`stable` claim holds when some genuine orbit is stable; with the scene's option `orbit` every claim "
+            "and quantity is about the one root of g nearest that half-period, so that a scan follows one orbit "
+            "instead of whichever is stable at each point).",
             "", f"| {self.param} | " + " | ".join(cols) + " |", "|---" * (len(cols) + 1) + "|"]
         for v, r in zip(self.values, self.results):
             cells = [r["claims"][c]["status"] for c in self.claims]

@@ -90,7 +90,7 @@ PARAMETERS = {
 OPTIONS = {"T_max": "auto", "theta_width": "1e-12", "orbit": ""}
 
 #: the numbers a report's summary opens with (quantity name -> what it is), in this order
-#: theta_star and its quantities belong to the stable genuine orbit when exactly one is stable, else to
+#: theta_star and its quantities belong to the shortest stable genuine orbit when one is stable, else to
 #: the shortest genuine orbit (claims._select); the others are theta_star_2, ... with their own margins.
 #: With option orbit: to the root of g certified nearest it when that root is genuine (else no theta_star)
 HEADLINE = {"theta_star": "half-period theta* (s)", "period": "period 2 theta* (s)",
@@ -766,11 +766,16 @@ def _claim(cid: str, status: Status, reason: str, counterexample: dict | None = 
 
 
 def _select(genuine: list[RootVerdict]) -> tuple[RootVerdict | None, str]:
+    """The orbit the headline quantities (theta*, period, moduli, stability margin) are about: a stable
+    genuine orbit whenever one is certified stable (the shortest when several are), so that a margin is
+    never reported of an unstable orbit while ``stable`` holds by another; else the shortest genuine one."""
     stable = [v for v in genuine if v.stable is True]
     if len(stable) == 1:
         return stable[0], "the stable genuine orbit"
+    if stable:
+        return stable[0], "the shortest stable genuine orbit (several are stable)"
     if genuine:
-        return genuine[0], ("the shortest genuine orbit (" + ("several are stable" if stable else "none is certified stable") + ")")
+        return genuine[0], "the shortest genuine orbit (none is certified stable)"
     return None, "no genuine orbit"
 
 
