@@ -6,6 +6,13 @@ formed from the box's balls), so each enclosure the claims compute (m and M as m
 k_min, R1, R2, R, min over the disc of Psi1 and Psi2 on each x2 piece, Vdot at a point) contains the
 value for every parameter in the box; the claims of :mod:`.claims` then run unchanged on it.
 
+``vdot_nonpositive`` is tried first by :mod:`.box_vdot`: the Psi test with each parameter's own R coupled to
+its Psi, bounded below over the box at faces where it is certified monotone and by centred forms
+(:mod:`.box_forms`); this decides boxes of engineering width (the example with every parameter at +-5 % on 127
+boxes) where the balls below lose the correlations (R2's mu H cos^2 x2* - A0 m is 150 - 100 in the example).
+m and M (which depend on A, A1, A2, C1, a only) are shared by every box with the same intervals of those, and
+enclosed to BOX_REL_WIDTH plus the box's own width; C enters no claim and is never split (UNSPLIT_PARAMETERS).
+
 Guarantee: ``proved`` means the claim holds for every parameter value in the box: for
 ``vdot_nonpositive``, Vdot <= 0 on region (17) with each parameter's own R (the disc minimum of Psi
 decreases in R, and so does A - R |B| of the direct test, its fallback; R's ball contains every R of the
@@ -30,14 +37,25 @@ from ...core.boxes import Box
 from ...core.errors import ParameterError
 from ...core.balls import current_precision
 from .. import box_outcomes, require_box_claims
+from .box_vdot import decide_vdot_box
 from .claims import CLAIMS, RATIONAL, attempt
 from .model import Gimbal, ParameterBalls
 
-__all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "BoxGimbal", "validate_box", "evaluate_box"]
+__all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "BoxGimbal", "validate_box", "evaluate_box", "raw_intervals", "boxed_model"]
 
 BOX_CLAIMS = {c: CLAIMS[c] for c in ("damping_condition", "vdot_nonpositive", "v_positive")}
 BOX_PARAMETERS = RATIONAL
 BOX_MAX_PIECES = 4000
+#: box parameters no box claim depends on (C, the rotor's polar inertia, enters neither A0, B0, C0 nor the
+#: claims): the paving never splits them
+UNSPLIT_PARAMETERS = ("C",)
+#: the relative width m and M are enclosed to over a box (the box's own width dominates long before the
+#: point scene's rel_width: a tighter tolerance only spends the piece budget)
+BOX_REL_WIDTH = fmpq(1, 1000)
+#: the parameters m and M depend on (D through A0, C0; f through a); their enclosures over a box are shared by
+#: every box with the same intervals of these (a paving's split in k, mu, H or B1 reuses them)
+EXTREMA_PARAMETERS = ("A", "A1", "A2", "C1", "a")
+_EXTREMA_CACHE: dict = {}
 
 
 class BoxGimbal(Gimbal):
@@ -46,6 +64,11 @@ class BoxGimbal(Gimbal):
     def __init__(self, base: Gimbal, raw: dict[str, tuple]):
         super().__init__(base.A0, base.B0, base.C0, base.H, base.k, base.a, base.mu, base.x2_star, base.law)
         self.raw = raw          # name -> (lo, hi) exact rationals, for every rational parameter
+        # m and M (claims._Ctx) are shared through this cache by boxes with the same intervals of the
+        # parameters they depend on (and the same law and x2*)
+        self.extrema_cache = _EXTREMA_CACHE
+        self.extrema_key = (base.law.name, str(base.x2_star.ball().mid()),
+                            tuple((k, raw[k]) for k in EXTREMA_PARAMETERS))
 
     @property
     def c(self) -> ParameterBalls:
@@ -60,7 +83,9 @@ class BoxGimbal(Gimbal):
         raise NotImplementedError("best_mu is not decided over a box")
 
 
-def _raw(model, box: Box) -> dict[str, tuple]:
+def raw_intervals(model, box: Box) -> dict[str, tuple]:
+    """name -> (lo, hi) exact rationals for every rational parameter: the box's edges, the scene's point values
+    (lo == hi) for the rest."""
     out = {}
     for k in RATIONAL:
         if k in box.names:
@@ -71,12 +96,15 @@ def _raw(model, box: Box) -> dict[str, tuple]:
     return out
 
 
+_raw = raw_intervals
+
+
 def validate_box(model, box: Box) -> None:
     bad = [n for n in box.names if n not in BOX_PARAMETERS]
     if bad:
         raise ParameterError(f"parameter {bad[0]!r}: kind 'lyapunov' takes a tolerance only for {list(BOX_PARAMETERS)}; "
                              f"write {bad[0]!r} as a single value")
-    r = _raw(model, box)
+    r = raw_intervals(model, box)
     for k in ("A", "C", "H", "k", "a", "mu"):
         if not r[k][0] > 0:
             raise ParameterError(f"parameter {k!r}: need {k} > 0 on the whole box (its lower end is {r[k][0]})")
@@ -87,10 +115,28 @@ def validate_box(model, box: Box) -> None:
         raise ParameterError("parameters 'A2', 'C1': need A0 > C0, i.e. A2 + C1 > 0, on the whole box")
 
 
+def boxed_model(model, raw: dict[str, tuple]):
+    """The scene's model with a :class:`BoxGimbal` of ``raw``'s intervals (no paper audit, the piece budget
+    capped at BOX_MAX_PIECES, maxima enclosed to BOX_REL_WIDTH)."""
+    return dataclasses.replace(model, gimbal=BoxGimbal(model.gimbal, raw), paper={},
+                               max_pieces=min(model.max_pieces, BOX_MAX_PIECES),
+                               rel_width=max(model.rel_width, BOX_REL_WIDTH))
+
+
 def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str]]:
-    """{claim: (status, reason)} over the box (see the module docstring)."""
+    """{claim: (status, reason)} over the box (see the module docstring). ``vdot_nonpositive`` is first tried
+    by the coupled Psi test of :mod:`.box_vdot` (each parameter's R with its own Psi, centred forms and
+    monotone faces); where that does not prove it, by the claims' own evaluation on the box's balls."""
     require_box_claims(claims, BOX_CLAIMS)
-    g = BoxGimbal(model.gimbal, _raw(model, box))
-    boxed = dataclasses.replace(model, gimbal=g, paper={}, max_pieces=min(model.max_pieces, BOX_MAX_PIECES))
-    a = attempt(boxed, list(claims), current_precision())
-    return box_outcomes(a, claims)
+    raw = raw_intervals(model, box)
+    out: dict[str, tuple[str, str]] = {}
+    rest = list(claims)
+    if "vdot_nonpositive" in rest:
+        v = decide_vdot_box(model, raw, min(model.max_pieces, BOX_MAX_PIECES))
+        if v is not None:
+            out["vdot_nonpositive"] = v
+            rest.remove("vdot_nonpositive")
+    if rest:
+        a = attempt(boxed_model(model, raw), rest, current_precision())
+        out.update(box_outcomes(a, rest))
+    return {c: out[c] for c in claims}

@@ -70,7 +70,7 @@ from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_p
 from .moments import MOMENTS
 from .paper import PAPER_SCHEMA, audit as audit_paper
 
-__all__ = ["CLAIMS", "PARAMETERS", "LyapunovModel", "validate", "attempt", "gimbal_from_parameters"]
+__all__ = ["CLAIMS", "PARAMETERS", "LyapunovModel", "validate", "attempt", "gimbal_from_parameters", "maximum_M"]
 
 PARAMETERS = {"A": "equatorial moment of inertia of the rotor", "C": "polar moment of inertia of the rotor",
               "A1": "inner ring", "B1": "inner ring", "C1": "inner ring", "A2": "outer ring about its axis",
@@ -257,9 +257,29 @@ class _Ctx:
         return self.g.c.x2_star
 
     def tol(self, value: arb) -> arb:
-        return abs(value) * _q(self.m.rel_width) / 4 + arb(2) ** (-self.prec)
+        """The width a maximum is enclosed to: rel_width of it, and over a box (a gimbal with an extrema
+        cache) also 4 radii of the value at a point, which the box's own width gives and no subdivision of
+        x2 removes (the point prover's tolerance is unchanged)."""
+        t = abs(value) * _q(self.m.rel_width) / 4 + arb(2) ** (-self.prec)
+        if getattr(self.g, "extrema_cache", None) is not None:
+            t = t + 4 * value.rad()
+        return t
 
     # ------------------------------------------------------------------ constants
+    def shared(self, name: str, run):
+        """``run()`` memoised in this attempt, and across attempts in the gimbal's ``extrema_cache`` when it has
+        one (a box's gimbal: m and M depend only on the parameters its ``extrema_key`` names, so every box with
+        the same intervals of those gets the very same enclosure; the point prover has no such cache)."""
+        cache = getattr(self.g, "extrema_cache", None)
+        if cache is None:
+            return self.memo(name, run)
+        key = (name, self.g.extrema_key, self.prec, self.m.max_pieces, self.m.rel_width.p, self.m.rel_width.q)
+        if key not in cache:
+            if len(cache) >= 512:
+                cache.clear()
+            cache[key] = run()
+        return self.memo(name, lambda: cache[key])
+
     def m_max(self):
         def run():
             # where cos f' / D > 0 on the whole range (certified), |.| is itself: use the mean-value form
@@ -268,13 +288,13 @@ class _Ctx:
             if certify_positive(signed, 0, self.xs, max_pieces=200).status is Status.PROVED:
                 fn = signed
             return enclose_max(fn, 0, self.xs, abs_tol=self.tol(fn(arb(0))), max_pieces=self.m.max_pieces)
-        return self.memo("m", run)
+        return self.shared("m", run)
 
     def M_max(self):
         def run():
             v = self.g.q(self.xs)
             return enclose_max(self.g.q, 0, self.xs, abs_tol=self.tol(v), max_pieces=self.m.max_pieces)
-        return self.memo("M", run)
+        return self.shared("M", run)
 
     def constants(self) -> dict[str, arb]:
         def run():
@@ -968,6 +988,12 @@ def _best_mu_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
 
 
 # ------------------------------------------------------------------------------------ attempt
+
+def maximum_M(model: LyapunovModel, prec: int):
+    """The certified maximum M of q over [0, x2*] (an Extremum), as ``constants`` computes it (shared through a
+    box gimbal's extrema cache)."""
+    return _Ctx(model, prec).M_max()
+
 
 def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
     """Evaluate the requested claims at the current precision (set by the prover)."""
