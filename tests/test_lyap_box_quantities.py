@@ -122,3 +122,16 @@ def test_the_damping_margin_lower_bound_is_below_a_float_optimisers_minimum_with
     best = minimize(f, x0, bounds=bounds, method="L-BFGS-B", options={"maxiter": 50}).fun
     assert lower <= best
     assert best - lower <= 1e-3 * abs(best), (lower, best)
+
+
+def test_the_psi_margin_contains_every_sampled_value_on_a_one_percent_box(model):
+    """psi_margin = R_sup/R - 1 over a +-1 % box of every parameter: enclosed, and every sampled value (mpmath
+    R_sup by the approx module's search) inside; its lower end is positive (the Psi test holds on the box)."""
+    box = _box(F(1, 100))
+    with working_precision(128):
+        q = BQ.quantities_box(model, box, ["psi_margin"])
+    ball = q["psi_margin"].value
+    assert ball.lower() > 0
+    for p in _samples(box, 6, 5):
+        x = mp_quantities(p, psi=True)["psi_margin"]
+        assert _inside(ball, x, rel=1e-9), (p, float(x), ball)
