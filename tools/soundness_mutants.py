@@ -600,9 +600,10 @@ MUTANTS = [
     ("lyap_damping_lower_wrong_mu_end", "rigor_gyro/kinds/lyapunov/box_quantities.py",
      "klo / (mhi * A0hi)]", "klo / (mlo * A0hi)]",
      "the damping margin's lower bound over a box taken at mu's lower end (k/(mu A0) decreases in mu)"),
-    ("lyap_psi_margin_upper_from_lower_end", "rigor_gyro/kinds/lyapunov/box_quantities.py",
-     "u = -ratio.lower() - 1", "u = -ratio.upper() - 1",
-     "the Psi margin's upper end over a box from the ratio's lower bound (below the margin)"),
+    ("lyap_psi_margin_bisection_swapped", "rigor_gyro/kinds/lyapunov/box_quantities.py",
+     "        if holds(m):\n            a = m\n        else:\n            b = m",
+     "        if holds(m):\n            b = m\n        else:\n            a = m",
+     "the Psi margin's lower end over a box raised where ci0 - (1 + t) R |.| > 0 was not proved"),
 ]
 
 
