@@ -28,7 +28,8 @@ from .subbox_union import cells, grid, split_counts
 __all__ = ["decide_by_cells", "CELL_COUNTS", "MAX_CELLS"]
 
 #: the first grid of parameter cells (a power of 2, split along the directions that move theta* most); a cell
-#: that does not decide is bisected along its heaviest direction, up to MAX_CELLS cells decided in all
+#: that does not decide is bisected along its heaviest direction, up to MAX_CELLS cells decided in all (a
+#: quarter of that for a box in more than two parameters); none further when no cell of the grid is genuine
 CELL_COUNTS = (4,)
 MAX_CELLS = 64
 
@@ -47,8 +48,9 @@ def decide_by_cells(centre, box: dict[str, arb], dirs: list[str], guesses, out, 
     weights = [float(dv.rad()) * float(abs(g).upper()) for dv, g in zip(devs, out.theta_gradient)]
 
     def one_cell(cb: dict[str, arb]):
-        """(OrbitOverBox of the cell, "") when steps 1-3 decide it, (None, "split") when a finer cell might,
-        (None, "stop") when the cell does not follow the whole box's orbit (nothing finer can help)."""
+        """(OrbitOverBox of the cell, "") when steps 1-3 decide it, (that, "split") when it is genuine but not
+        proved stable and (None, "split") when not genuine (a finer cell might decide them), (None, "stop")
+        when the cell does not follow the whole box's orbit (nothing finer can help)."""
         cv = dict(cvals)
         for d in dirs:
             cv[d] = arb(cb[d].mid())
@@ -72,40 +74,48 @@ def decide_by_cells(centre, box: dict[str, arb], dirs: list[str], guesses, out, 
         o = OrbitOverBox(theta_c=tc)
         o.theta, o.theta_gradient, th_c, th_n = res
         _decide(models, o, th_c, th_n, genuine, stability)
-        if not o.genuine or (stability and o.stable is not True):
+        if not o.genuine:
             return None, "split"
-        return o, ""
+        return o, ("split" if stability and o.stable is not True else "")
 
     counts = split_counts(weights, CELL_COUNTS[0])
+    # (cell, weights, genuine already proved on a cell containing it); the stack's cells and the decided
+    # ones always cover the box
     stack = []
     for pc in grid([cells(box[d], counts[i]) for i, d in enumerate(dirs)]):
-        stack.append(({d: cell for d, (cell, _) in zip(dirs, pc)}, [w / c for w, c in zip(weights, counts)]))
+        stack.append(({d: cell for d, (cell, _) in zip(dirs, pc)}, [w / c for w, c in zip(weights, counts)], False))
     results = []
+    reason = ""
     evaluated = 0
-    while stack:
-        cb, wts = stack.pop()
+    first = len(stack)
+    budget = MAX_CELLS if len(dirs) <= 2 else MAX_CELLS // 4    # a cell of a k-D box costs ~ (k + 1)^2
+    while stack and evaluated < budget:
+        if evaluated == first and not reason:
+            return                  # no cell of the first grid is even genuine: finer cells are unlikely to be
+        cb, wts, known = stack.pop(0)         # breadth first: every cell of the grid gets its turn
         evaluated += 1
-        if evaluated > MAX_CELLS:
-            return
         o, why = one_cell(cb)
-        if o is not None:
-            results.append(o)
-            continue
         if why == "stop":
             return
+        if o is not None and not reason:
+            reason = o.genuine_reason
+        if why == "":
+            results.append(o)
+            continue
         # bisect the cell along its heaviest direction (exact dyadic cut) and decide both halves
         i = max(range(len(dirs)), key=lambda j: wts[j])
         halves = wts[:i] + [wts[i] / 2] + wts[i + 1:]
         for half, _ in cells(cb[dirs[i]], 2):
-            stack.append((dict(cb, **{dirs[i]: half}), halves))
-    if not results:
-        return
+            stack.append((dict(cb, **{dirs[i]: half}), halves, known or o is not None))
+    if not all(known for _, _, known in stack) or not reason:
+        return                      # some part of the box has no cell proved genuine
     out.genuine = True
-    out.genuine_reason = (results[0].genuine_reason.split(", each for every")[0]
-                          + f" (on the first of {len(results)} parameter cells), each for every parameter in "
-                          f"its cell, in {len(results)} cells covering the box (second-order forms in t and P "
-                          f"about each cell's centre)")
-    if stability:
+    out.genuine_reason = (reason.split(", each for every")[0]
+                          + f" (on the first parameter cell decided), each for every parameter in its cell, in "
+                          f"{evaluated} cells covering the box (second-order forms in t and P about each cell's "
+                          f"centre)")
+    out.problem = ""
+    if stability and not stack:
         out.multipliers = [_union([o.multipliers[i] for o in results]) for i in range(4)]
         out.moduli = [_union([o.moduli[i] for o in results]) for i in range(4)]
         mx = results[0].max_modulus
@@ -113,7 +123,8 @@ def decide_by_cells(centre, box: dict[str, arb], dirs: list[str], guesses, out, 
             mx = mx.union(o.max_modulus)
         out.max_modulus = mx
         out.stable = all(certainly_lt(mm, 1) for mm in out.moduli)
-    out.problem = "" if (not stability or out.stable) else out.problem
+    if stability and out.stable is not True:
+        out.problem = f"the multipliers were not decided in {evaluated} parameter cells"
 
 
 def _union(balls):

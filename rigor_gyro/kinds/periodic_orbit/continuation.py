@@ -339,7 +339,7 @@ def continue_orbit(centre: RelayParams, box: dict[str, arb], dirs: list[str], gu
         return out
     out.theta_c = tc
     res, why = _theta_over_box(models, tc)
-    for cells in SUBBOX_CELLS:
+    for cells in SUBBOX_CELLS[:1] if len(dirs) > 2 else SUBBOX_CELLS:    # the nested jets cost ~ (k + 1)^2
         if res is not None:
             break
         res, why = _theta_over_box(models, tc, cells, lambda c, b: _Models(c, b, dirs, guesses))
