@@ -148,3 +148,15 @@ def test_claims_over_a_one_percent_box_in_A():
         out = evaluate_box(m, Box.of({"A": (A * Fraction(99, 100), A * Fraction(101, 100))}), ["orbit_genuine", "stable"])
     assert out["orbit_genuine"][0] == "proved" and out["stable"][0] == "proved", out
     assert "cells" in out["stable"][1]
+
+
+def test_cells_left_undecided_keep_orbit_genuine_unproved(monkeypatch):
+    """Over H +-1 % the whole-box sign condition does not decide; with a budget of 2 cells for a first grid
+    of 4, two parts of the box have no cell proved genuine: orbit_genuine must stay unproved."""
+    import rigor_gyro.kinds.periodic_orbit.cellwise as cw
+    monkeypatch.setattr(cw, "MAX_CELLS", 2)
+    _, o, _, _ = _continued("H", Fraction(1, 100))
+    assert o.theta is not None and not o.genuine and o.stable is not True
+    monkeypatch.setattr(cw, "MAX_CELLS", 64)
+    _, o, _, _ = _continued("H", Fraction(1, 100))
+    assert o.genuine and o.stable is True
