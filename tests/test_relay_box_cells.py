@@ -69,8 +69,10 @@ def test_one_percent_box_genuine_and_stable_holds_mpmath_samples(name):
     m, o, lo, hi = _continued(name, Fraction(1, 100))
     assert o.genuine and o.stable is True, o.problem
     assert o.max_modulus.upper() < 1
-    for k in range(5):
-        x = lo + (hi - lo) * Fraction(k, 4)
+    # the max modulus ranges over the whole box like the largest modulus does (every cell's, not one's)
+    assert o.max_modulus.lower() <= o.moduli[0].lower() + 1e-9 and o.max_modulus.upper() >= o.moduli[0].upper() - 1e-9
+    for k in range(9):
+        x = lo + (hi - lo) * Fraction(k, 8)
         th = _theta_mp(_params(m, **{name: x}), float(o.theta.lower()) - 1e-6, float(o.theta.upper()) + 1e-6)
         assert o.theta.contains(arb(mp.nstr(th, 30))), (x, th, o.theta)
         mods = sorted((abs(z) for z in approx.approx_multipliers(_params(m, **{name: x}), float(th))), reverse=True)
