@@ -57,8 +57,10 @@ classified and hold across the fold.
 ``orbit_genuine`` and ``stable`` are first tried by continuing the centre's orbit over the whole box
 (:mod:`.box_orbit`, :mod:`.continuation`, with the band Newton step of :mod:`.subbox_union` and the cell
 fallback of :mod:`.cellwise`). Measured at 128 bits (one box, no paving split, evaluate_box; 2026-12-06): both
-claims proved at +-10 % in n, +-10 % in sigma, +-5 % in A and B, +-4 % in tau, +-2 % in H, each in 0.1-5 s user;
-tau +-5 % fails at the cubic's family Newton, H +-3 % and A, B +-10 % at the band step.
+claims proved at +-1 % in each of A, B, H, tau, sigma, n (0.1-1 s user each), and at most at +-20 % in n,
++-10 % in sigma, +-5 % in A and B, +-4 % in tau, +-2 % in H (0.3-5 s); tau +-5 % fails at the cubic's family
+Newton, H +-3 %, A, B +-10 % and sigma +-20 % at the band step. All six at once: +-0.1 % both (2.3 s),
++-0.25 % orbit_genuine only (8 s), +-0.5 % neither (2 s).
 
 Fails when: the domain fails somewhere in the box (every parameter > 0): ParameterError. A box where
 the cubic's roots cannot be separated, or -1/sigma may be one of them, is undecided (the paving splits it).
