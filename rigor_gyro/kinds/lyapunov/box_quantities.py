@@ -5,8 +5,9 @@ Quantities, named as the point certificate names them (:mod:`.claims`):
 
 * ``A0``, ``B0``, ``C0``: the sums of the raw inertias, exactly (their ends are the boxes' corner sums);
 * ``mu_max`` = k/A0 (the upper end of (16)), exact at the corners, with its gradient;
-* ``k_min`` = p A0/H and ``mu_min`` = p/H, p = max(M, A0 m / cos^2 x2*) = max(M, w / cos^2 x2*) / ... with
-  w = A0 m: monotone in A0, H and in the maxima M and w, whose enclosures over the box bound them;
+* ``k_min`` = p A0/H and ``mu_min`` = p/H, p = max(M, A0 m / cos^2 x2*) = max(M, w / cos^2 x2*) with w = A0 m:
+  monotone in A0, H and in the maxima M and w, whose enclosures over the box bound them (no gradient: M and w
+  are maxima);
 * ``R1`` (13), ``R2`` (14), ``R`` = min(R1, R2): the region's radius, by monotonicity at faces and centred forms
   (:func:`.box_vdot.radius_bounds`); given only where k/A0 - mu > 0 and mu H cos^2 x2* - A0 m > 0 are certified
   over the box (the closed forms' signs); R1's gradient (it does not involve m);
