@@ -282,9 +282,6 @@ def test_tracked_claims_over_a_tau_box():
             assert a <= F(mp.nstr(mod, 20)) <= b
 
 
-@pytest.mark.xfail(strict=True, reason="box_orbit.continued_outcomes (helper R1) proves the tracked claims on a "
-                   "box by continuing the nearest GENUINE orbit (picked by floats) without certifying that it is "
-                   "the root of g nearest the option for every member; here the nearest root (0.127) is spurious")
 def test_a_box_never_proves_the_tracked_claims_about_a_farther_orbit():
     """orbit = "0.127" near tau = 0.05: the root of g nearest 0.127 is spurious (the point proof refutes
     orbit_genuine and stable, test_a_spurious_tracked_root_refutes); a box around that point must not

@@ -60,7 +60,9 @@ def continued_outcomes(model, box: Box, claims: list[str]) -> dict[str, tuple[st
     """{claim: ("proved", reason)} for the claims among orbit_genuine and stable that the continuation
     proves on the box (module docstring); the others are left out."""
     wanted = [c for c in ("orbit_genuine", "stable") if c in claims]
-    if not wanted:
+    if not wanted or getattr(model, "orbit", None) is not None:
+        # a tracked orbit (option orbit) is the root of g certified NEAREST the option for every member: the
+        # continuation does not certify nearness over the box, so those claims go to the whole-range search
         return {}
     dirs = box_directions(box)
     balls = {k: box.ball(k) for k in dirs}

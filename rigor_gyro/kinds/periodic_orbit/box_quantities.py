@@ -1,7 +1,8 @@
 """The relay's quantities over a parameter box (issue 37 part 2; the interface of :mod:`rigor_gyro.core.box_values`).
 
-The orbit measured is the centre's stable genuine orbit (the tracked one when the model names an ``orbit``;
-else, when none is certified stable at the centre, the first genuine one), continued over the box by
+The orbit measured is the only genuine orbit at the box's centre (the centre's every other root of g certified
+spurious; nothing is enclosed when the centre has several genuine or unclassified roots, or when the scene
+tracks an orbit with option ``orbit``, whose nearness the continuation does not certify), continued over the box by
 :func:`.continuation.continue_orbit`: theta*(P) is the unique root of g in the certified interval for every
 P, on the branch through the centre's root, genuine for every P. Quantities:
 
@@ -30,7 +31,7 @@ from .flow import AMPLITUDE_PARAMETERS, nutation_cubic
 __all__ = ["BOX_QUANTITIES", "quantities_box"]
 
 BOX_QUANTITIES = {
-    "theta_star": QuantitySpec("half-period theta* of the centre's stable genuine orbit, continued over the box", "s"),
+    "theta_star": QuantitySpec("half-period theta* of the orbit (the only genuine one at each sub-box's centre, continued over it)", "s"),
     "period": QuantitySpec("period 2 theta* of that orbit", "s"),
     "max_modulus": QuantitySpec("largest multiplier modulus of that orbit"),
     "stability_margin": QuantitySpec("stability margin 1 - largest multiplier modulus", claim="stable"),
@@ -54,9 +55,11 @@ def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
     iso = isolate_polynomial(nutation_cubic(Pc))
     if not (iso.verified and iso.squarefree):
         return {}
-    _, orbits = centre_orbits(centre, want_stable=False)
-    if not orbits:
-        return {}
+    if getattr(model, "orbit", None) is not None:
+        return {}           # a tracked orbit's nearness is not certified over a box (box_orbit.continued_outcomes)
+    an, orbits = centre_orbits(centre, want_stable=False)
+    if len(orbits) != 1 or sum(v.kind != "spurious" for v in an.roots) != 1:
+        return {}           # the orbit must be the centre's only one, so that every sub-box measures the same
     dirs = box_directions(box)
     guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
     o = continue_orbit(Pc, {k: box.ball(k) for k in dirs}, dirs, guesses, orbits[0].theta)
