@@ -28,16 +28,21 @@ from fractions import Fraction
 
 from flint import arb, arb_poly, fmpq
 
-from ...core.balls import certainly_ge, certainly_gt, certainly_le, certainly_lt, certainly_positive
+from ...core.balls import (certainly_ge, certainly_gt, certainly_le, certainly_lt, certainly_nonzero,
+                           certainly_positive)
 from ...core.boxes import Box
+from ...core.centred_forms import sign_over_box
+from ...core.dual_balls import constant, variable
+from ...core.implicit_roots import parametric_newton
 from ...core.errors import ParameterError
 from ...core.family_roots import family_real_roots
 from ...core.polyroots import isolate_polynomial
 from .. import require_box_claims
 from .model import NotReal, Params, bracket, characteristic_quartic, nu_bounds, nu_quadratics
 from .claims import CLAIMS, REQUIRED
+from .slack_forms import GapSet, Roots, nu_value, quartic_value
 
-__all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "validate_box", "evaluate_box"]
+__all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "validate_box", "evaluate_box", "box_roots"]
 
 #: the claims decidable over a box, with what each states at every point of it (approximations: their
 #: errors are quantities, not statements; roots: without the point claim's relative width)
@@ -84,6 +89,35 @@ def _balls(model, box: Box) -> Params:
 def _midpoint(model, box: Box) -> list[fmpq]:
     mid = box.midpoint()
     return [fmpq(mid[k].numerator, mid[k].denominator) if k in mid else model.q(k) for k in REQUIRED]
+
+
+def _dual_params(model, box: Box) -> dict:
+    """{a, b, eps, Omega2} as Duals: variables over the box's edges, constants elsewhere (in this order)."""
+    def one(k):
+        if k not in box.names:
+            return constant(arb(model.q(k)))
+        lo, hi = box.interval(k)
+        return variable(k, box.ball(k)) if hi > lo else constant(box.ball(k))
+    return {k: one(k) for k in REQUIRED}
+
+
+def _parametric_roots(G, guesses: list[arb], dp: dict, leading: arb) -> list[arb] | None:
+    """Where one interval Newton step for the whole family fails (a wide box), each root verified around its
+    linear predictor (:func:`rigor_gyro.core.implicit_roots.parametric_newton`): balls each holding exactly
+    one root of every member; all the roots when there are as many as the degree (the caller's guesses are
+    the midpoint's roots, all of them), the leading coefficient certainly nonzero, disjoint and certainly
+    increasing (the labels); None otherwise."""
+    if not certainly_nonzero(leading):
+        return None
+    out = []
+    for g in guesses:
+        r = parametric_newton(G, g, dp)
+        if r is None:
+            return None
+        out.append(r)
+    if any(not certainly_lt(out[i], out[i + 1]) for i in range(len(out) - 1)):
+        return None
+    return out
 
 
 def _quartic_family(p: Params):
@@ -168,47 +202,92 @@ def _guesses(poly) -> list[arb] | None:
     return pr.real if pr.verified and not pr.nonreal else None
 
 
+def box_roots(model, box: Box, omegas: bool = True, nus: bool = True) -> tuple[Roots, Params]:
+    """The whole box's root balls (``Roots``; each ball holds exactly one root of every member, verified by
+    one family interval Newton proof: :func:`rigor_gyro.core.family_roots.family_real_roots`, the family's
+    value in centred form; where that fails, each root around its linear predictor, :func:`_parametric_roots`;
+    the four omegas certainly positive) and the parameter balls. The midpoint's exact roots are only the
+    starting guesses."""
+    p = _balls(model, box)
+    a, b, e, W = _midpoint(model, box)
+    dp = _dual_params(model, box)
+    ws = None
+    guesses = _guesses(characteristic_quartic(a, b, e, W)) if omegas else None
+    if guesses is not None and len(guesses) == 4:
+        fam, leading = _quartic_family(p)
+        G = lambda x, q: quartic_value(x, Params(*(q[k] for k in REQUIRED)))
+        ws = family_real_roots(fam, guesses, leading=leading)
+        if ws is None:
+            ws = _parametric_roots(G, guesses, dp, leading)
+    if ws is not None and not all(certainly_positive(w) for w in ws):
+        ws = None
+    ns = None
+    if nus:
+        q14, q26 = nu_quadratics(a, b, e)
+        g14, g26 = _guesses(q14), _guesses(q26)
+        (f14, l14), (f26, l26) = _nu_family(p, "14"), _nu_family(p, "26")
+        r14 = r26 = None
+        if g14 is not None and len(g14) == 2:
+            r14 = family_real_roots(f14, g14, leading=l14) or _parametric_roots(
+                lambda x, q: nu_value("14", x, Params(*(q[k] for k in REQUIRED))), g14, dp, l14)
+        if g26 is not None and len(g26) == 2:
+            r26 = family_real_roots(f26, g26, leading=l26) or _parametric_roots(
+                lambda x, q: nu_value("26", x, Params(*(q[k] for k in REQUIRED))), g26, dp, l26)
+        if r14 is not None and r26 is not None:
+            ns = {1: r14[0], 2: r26[0], 4: r14[1], 6: r26[1]}
+    return Roots(ws, ns), p
+
+
 def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str]]:
     """{claim: (status, reason)} over the box; status is 'proved', 'refuted' or 'undecided' (see the
     module docstring for what each means)."""
     require_box_claims(claims, BOX_CLAIMS)
-    p = _balls(model, box)
-    a, b, e, W = _midpoint(model, box)
     out: dict[str, tuple[str, str]] = {}
-    # the four roots, one interval Newton proof for the whole family
     need_roots = any(c in ("roots", "branches") or c.startswith("bracket_") for c in claims)
-    guesses = _guesses(characteristic_quartic(a, b, e, W)) if need_roots else None
-    omegas = None
-    if guesses is not None and len(guesses) == 4:
-        fam, leading = _quartic_family(p)
-        omegas = family_real_roots(fam, guesses, leading=leading)
-    if omegas is not None and not all(certainly_positive(w) for w in omegas):
-        omegas = None
-    roots_ok = omegas is not None
-    # the nus
-    q14, q26 = nu_quadratics(a, b, e)
     need_nus = any(c in ("nu_ordering", "branches", "nu_bounds") for c in claims)
-    g14, g26 = (_guesses(q14), _guesses(q26)) if need_nus else (None, None)
-    (f14, l14), (f26, l26) = _nu_family(p, "14"), _nu_family(p, "26")
-    r14 = family_real_roots(f14, g14, leading=l14) if g14 is not None and len(g14) == 2 else None
-    r26 = family_real_roots(f26, g26, leading=l26) if g26 is not None and len(g26) == 2 else None
+    roots, p = box_roots(model, box, need_roots, need_nus)
+    omegas, roots_ok = roots.omegas, roots.omegas is not None
     nus = None
-    if r14 is not None and r26 is not None:
-        nus = {1: r14[0], 2: r26[0], 3: 1 / (p.b - 1), 4: r14[1], 5: p.b / (p.b - 1), 6: r26[1]}
+    if roots.nus is not None:
+        nus = {**roots.nus, 3: 1 / (p.b - 1), 5: p.b / (p.b - 1)}
+    gaps = GapSet(model, box, roots)
     for cid in claims:
         if cid == "roots":
             out[cid] = ("proved", "four disjoint positive root balls, each verified by one interval Newton step for "
                         "every parameter in the box (leading coefficient certainly nonzero)") if roots_ok else \
                 ("undecided", "the family's roots were not separated on this box")
         elif cid == "nu_ordering":
-            out[cid] = _ordering(nus)
+            out[cid] = _parametric(_ordering(nus), nus is not None, gaps.ordering_gaps, box)
         elif cid == "branches":
-            out[cid] = _branches(omegas, nus)
+            out[cid] = _parametric(_branches(omegas, nus), omegas is not None and nus is not None,
+                                   gaps.branch_gaps, box)
         elif cid == "nu_bounds":
-            out[cid] = _nu_bounds(p, nus)
+            out[cid] = _parametric(_nu_bounds(p, nus), nus is not None, gaps.bound_gaps, box)
         elif cid.startswith("bracket_"):
-            out[cid] = _bracket(int(cid[-1]), p, omegas)
+            j = int(cid[-1])
+            out[cid] = _parametric(_bracket(j, p, omegas), omegas is not None, lambda j=j: gaps.bracket_gaps(j), box)
     return out
+
+
+def _parametric(direct: tuple[str, str], enclosed: bool, gaps, box: Box) -> tuple[str, str]:
+    """The direct verdict, or where it is undecided and the roots are enclosed, the verdict of the claim's
+    gaps (each must be > 0, or >= 0) in centred form with monotone faces decided exactly
+    (:func:`rigor_gyro.core.centred_forms.sign_over_box`): refuted when one gap is certainly negative on the
+    whole box, proved when every gap is certainly positive (non-negative)."""
+    if direct[0] != "undecided" or not enclosed:
+        return direct
+    hows, open_ = [], []
+    for label, f, strict in gaps():
+        st, how, _, _ = sign_over_box(f, box, strict)
+        if st == "negative":
+            return "refuted", f"{label} < 0 for every parameter in the box: {how} (parametric form)"
+        if st == "undecided":
+            open_.append(label)
+        else:
+            hows.append(f"{label}: {how}")
+    if open_:
+        return "undecided", f"{', '.join(open_)} undecided on this box (direct and centred forms)"
+    return "proved", "for every parameter in the box (parametric form): " + "; ".join(hows)
 
 
 def _ordering(nus) -> tuple[str, str]:
