@@ -91,7 +91,7 @@ def test_the_certified_worst_slack_is_the_corner_minimum_where_monotone():
     import itertools
     box = Box(tuple((k, v * Fr(995, 1000), v * Fr(1005, 1000)) for k, v in EXAMPLE.items()))
     with working_precision(128):
-        vals = quantities_box(_model(box), box, [f"bracket_{j}_slack" for j in range(1, 5)])
+        vals = quantities_box(_model(box), box, [f"bracket_{j}_slack" for j in range(1, 5)], refine=6)
     corners = [_mp_quantities(dict(zip(NAMES, c))) for c in itertools.product(*((lo, hi) for _, lo, hi in box.edges))]
     for j, gap in zip(range(1, 5), (1e-6, 1e-6, 3e-2, 3e-2)):
         best = min(c[f"bracket_{j}_slack"] for c in corners)
@@ -108,7 +108,7 @@ def test_the_certified_worst_slack_is_below_a_float_optimisers_minimum_within_a_
     scipy_opt = pytest.importorskip("scipy.optimize")
     box = Box(tuple((k, v * Fr(995, 1000), v * Fr(1005, 1000)) for k, v in EXAMPLE.items()))
     with working_precision(128):
-        vals = quantities_box(_model(box), box, list(BOX_QUANTITIES))
+        vals = quantities_box(_model(box), box, list(BOX_QUANTITIES), refine=6)
     bounds = [(float(lo), float(hi)) for _, lo, hi in box.edges]
 
     def slack(x, j):

@@ -47,16 +47,12 @@ BOX_QUANTITIES = {
 }
 
 
-#: bisections spent narrowing each minimum and maximum (:func:`rigor_gyro.core.centred_forms.refined_extreme`)
-REFINE = 6
-
-
-def _range(f, box: Box) -> tuple[arb, arb, dict] | None:
+def _range(f, box: Box, refine: int) -> tuple[arb, arb, dict] | None:
     """(ball containing min f, ball containing max f, gradient over the box) or None."""
     enc = enclose(f, box)
     if enc is None:
         return None
-    lo, hi = refined_extreme(f, box, -1, REFINE), refined_extreme(f, box, +1, REFINE)
+    lo, hi = refined_extreme(f, box, -1, refine), refined_extreme(f, box, +1, refine)
     mn = lo if lo is not None else enc.value
     mx = hi if hi is not None else enc.value
     return mn, mx, enc.gradient
@@ -67,8 +63,10 @@ def _value(mn: arb, mx: arb) -> arb:
     return arb(mn.lower()).union(arb(mx.upper()))
 
 
-def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
-    """{quantity: BoxValue} for the requested names it can enclose on the box (module docstring)."""
+def quantities_box(model, box: Box, names, refine: int = 0) -> dict[str, BoxValue]:
+    """{quantity: BoxValue} for the requested names it can enclose on the box (module docstring). ``refine``:
+    bisections spent narrowing each minimum and maximum inside the box
+    (:func:`rigor_gyro.core.centred_forms.refined_extreme`); 0 (the margins layer tiles the box itself)."""
     names = [k for k in names if k in BOX_QUANTITIES]
     if not names:
         return {}
@@ -81,19 +79,19 @@ def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
     for j in range(1, 5):
         w = lambda d, j=j: gaps.omega(j, d)
         if f"omega_{j}" in names:
-            r = _range(w, box)
+            r = _range(w, box, refine)
             if r is not None:
                 out[f"omega_{j}"] = BoxValue(_value(r[0], r[1]), r[2])
         if f"freq_hz_{j}" in names and hz is not None:
             def f(d, w=w):
                 x = w(d)
                 return None if x is None else hz * x.sqrt()
-            r = _range(f, box)
+            r = _range(f, box, refine)
             if r is not None:
                 out[f"freq_hz_{j}"] = BoxValue(_value(r[0], r[1]), r[2])
         if f"bracket_{j}_slack" in names:
             (_, f_lo, _), (_, f_hi, _) = gaps.bracket_gaps(j)
-            r_lo, r_hi = _range(f_lo, box), _range(f_hi, box)
+            r_lo, r_hi = _range(f_lo, box, refine), _range(f_hi, box, refine)
             if r_lo is None or r_hi is None:
                 continue
             # min over the box of min(s_lo, s_hi) = min(min s_lo, min s_hi); its max is at most min(max, max)

@@ -8,7 +8,15 @@ proof for all members at once (the midpoint's exact roots are only the starting 
 (4) are enclosed the same way from the two quadratics; nu3, nu5, the bounds (5) and the brackets are
 the model's formulas evaluated on the balls. At Newton's exact points the quartic's and the quadratics'
 values are also enclosed in a centred (mean-value) form in the parameters, second order in the box
-width, intersected with the direct enclosure.
+width, intersected with the direct enclosure. Where that one Newton step fails (a wide box), each root is
+verified around its linear predictor (:func:`rigor_gyro.core.implicit_roots.parametric_newton`).
+
+Where the direct evaluation leaves a claim undecided, the claim is read as its sign conditions (gaps:
+omega_j - lower_j and upper_j - omega_j for a bracket, nu_{k+1} - nu_k for the ordering, the branch and
+bound gaps; :mod:`.slack_forms`), each a function of the parameters with the roots as implicit functions,
+and each decided by :func:`rigor_gyro.core.centred_forms.sign_over_box`: its centred form (derivatives by
+forward-mode AD in balls), and where its derivative has a certain sign in a parameter, its minimum (or
+maximum) on that face, exactly at a corner when every parameter is monotone; the reason says which.
 
 Guarantee: ``proved`` for a claim means the claim holds for every parameter value in the box;
 ``refuted`` means it fails for every value in the box (a certified strict violation over the whole
