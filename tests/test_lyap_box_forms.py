@@ -107,3 +107,14 @@ def test_a_fixed_R_option_is_left_to_the_claims_own_box_evaluation(model):
     from flint import fmpq
     with working_precision(128):
         assert decide_vdot_box(dataclasses.replace(model, R_option=fmpq(1, 100)), WORST, 4000) is None
+
+
+@pytest.mark.slow
+def test_the_all_parameters_five_percent_scene_is_proved_by_the_paving():
+    """margin_agafonov_all_5_percent (every rational parameter +-5 %): every claim proved over the whole box
+    (127 box evaluations, about 30 s of CPU on one worker; issue 37's target)."""
+    from rigor_gyro.margins.paving import box_scene, pave
+    bs = box_scene(load_scene("margin_agafonov_all_5_percent"))
+    p = pave(bs)
+    assert p.verdict == "proved", [(c.id, c.status) for c in p.claims]
+    assert p.evaluated <= 200
