@@ -14,7 +14,7 @@ from flint import arb
 from rigor_gyro.check import check_file
 from rigor_gyro.core.box_values import BoxValue, QuantitySpec
 from rigor_gyro.core.boxes import Box
-from rigor_gyro.margins import paving as mpaving, ranges as mranges, report as mreport
+from rigor_gyro.margins import paving as mpaving, ranges as mranges
 from rigor_gyro.margins.paving import box_scene, pave
 from rigor_gyro.margins.ranges import summarise
 from rigor_gyro.margins.report import paving_json, render_paving, write_paving
@@ -58,7 +58,7 @@ def _fake_module():
 @pytest.fixture
 def fake(monkeypatch):
     mod = _fake_module()
-    for m in (mranges, mpaving, mreport):
+    for m in (mranges, mpaving):
         monkeypatch.setattr(m, "quantities_module", lambda kind: mod)
     return mod
 

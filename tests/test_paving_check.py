@@ -35,7 +35,8 @@ def _refuted():
 
 def _undecided():
     """The bounds (5) undecided on every sub-box at resolution 1/2; the point proofs prove them."""
-    return _paving(RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #').replace('"1/16"', '"1/2"'))
+    return _paving(RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #').replace('"1/16"', '"1/2"')
+                   .replace('"[0.1, 0.12]"', '"[0.1, 2]"'))
 
 
 def _mixed():
@@ -184,7 +185,7 @@ def test_a_paving_whose_data_cannot_be_read_fails_at_data():
 def test_a_pavings_counters_and_budget_are_what_it_did():
     data = _undecided()                     # resolution 1/2: the whole box, 2 halves, 4 quarters
     assert (data["boxes_evaluated"], data["levels"], data["budget_exhausted"]) == (7, 3, False)
-    short = _paving(RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #')
+    short = _paving(RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #').replace('"[0.1, 0.12]"', '"[0.1, 2]"')
                     .replace('box_resolution = "1/16"', 'box_resolution = "1/16"\nmax_boxes = "7"'))
     assert short["budget_exhausted"] is True and short["boxes_evaluated"] <= 7
     assert _failures(short) == []
@@ -248,7 +249,7 @@ def test_the_report_states_what_the_paving_holds_answer_first(make):
 
 
 def test_the_report_says_when_the_budget_ran_out_and_which_edges_were_not_split():
-    short = _paving(RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #')
+    short = _paving(RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #').replace('"[0.1, 0.12]"', '"[0.1, 2]"')
                     .replace('box_resolution = "1/16"', 'box_resolution = "1/16"\nmax_boxes = "7"'))
     assert any(ln.startswith("Settings:") and ln.endswith("levels; the box budget was exhausted.")
                for ln in _report_lines(short))

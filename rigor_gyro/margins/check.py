@@ -159,7 +159,7 @@ def _check_ranges(bs, data: dict[str, Any], pj: str, oj: str, mj: str) -> tuple[
     """The quantities' ranges: the stored tiles tile the box, every tile and cited point is re-evaluated
     with the kind's box rigour at the stored precision, and every stated number (outer and inner ranges,
     worst cases, sensitivities) is derived again from those evaluations alone (:func:`.ranges.summarise`)."""
-    from .ranges import quantities_module, range_task, summarise
+    from .ranges import quantities_module, quantity_specs, range_task, summarise
     mod = quantities_module(bs.scene.kind)
     if mod is None:
         return CheckResult("quantities", False, f"kind {bs.scene.kind!r} certifies no quantity over a box")
@@ -178,7 +178,7 @@ def _check_ranges(bs, data: dict[str, Any], pj: str, oj: str, mj: str) -> tuple[
     from .ranges import point_box
     tv = [(b, range_task(bs.scene.kind, pj, oj, mj, json.dumps(b.to_json()), bs.prec)) for b in tiles]
     pv = [(p, range_task(bs.scene.kind, pj, oj, mj, json.dumps(point_box(p).to_json()), bs.prec)) for p in points]
-    want = summarise(bs.box, mod.BOX_QUANTITIES, tv, pv)
+    want = summarise(bs.box, quantity_specs(bs.scene.kind, pj, oj, mj), tv, pv)
     ok = data["quantities"] == want
     return CheckResult("quantities", ok, f"{len(want)} quantity ranges re-derived from {len(tiles)} tiles and "
                        f"{len(points)} points" if ok else "the stated ranges are not the re-evaluated tiles' and points' own")

@@ -42,7 +42,7 @@ from ..kinds import KINDS, kind_module
 from ..scene import Scene
 from .executors import Executor
 from .models import scene_model as _model
-from .ranges import quantities_module, search_ranges
+from .ranges import quantities_module, quantity_specs, search_ranges
 
 __all__ = ["MARGIN_OPTIONS", "BoxScene", "Paving", "box_scene", "pave", "has_tolerances", "boxes_module",
            "evaluate_task", "point_task"]
@@ -326,7 +326,8 @@ def pave(bs: BoxScene, executor: Executor | None = None, progress=None, time_lim
     ranges = None
     qmod = quantities_module(bs.scene.kind)
     if qmod is not None and bs.range_boxes and not stopped:
-        ranges = search_ranges(bs.scene.kind, whole, bs.frozen, pj, oj, mj, bs.prec, list(qmod.BOX_QUANTITIES),
+        ranges = search_ranges(bs.scene.kind, whole, bs.frozen, pj, oj, mj, bs.prec,
+                               list(quantity_specs(bs.scene.kind, pj, oj, mj)),
                                bs.range_boxes, bs.range_gap, ex, budget)
     return Paving(bs, [result[c] for c in bs.claims], evaluated, levels, budget_hit,
                   time.perf_counter() - t0, ex.label, stopped, ranges)

@@ -43,7 +43,7 @@ from ..core.boxes import Box, fraction_text
 from ..kinds import KINDS
 from .models import scene_model
 
-__all__ = ["RANGE_OPTIONS", "quantities_module", "range_task", "RangeSearch", "search_ranges", "summarise"]
+__all__ = ["RANGE_OPTIONS", "quantities_module", "quantity_specs", "range_task", "RangeSearch", "search_ranges", "summarise"]
 
 #: the ranges' options in a scene's [options]: the tile evaluations spent, the relative gap aimed at
 RANGE_OPTIONS = {"range_boxes": "64", "range_gap": "1/100"}
@@ -61,6 +61,18 @@ def quantities_module(kind: str):
         if e.name == f"{KINDS[kind]}.box_quantities":
             return None
         raise
+
+
+def quantity_specs(kind: str, points_json: str, options_json: str, mid_json: str) -> dict:
+    """The scene's quantities: ``{id: QuantitySpec}`` of the kind's ``BOX_QUANTITIES``, restricted by its
+    optional ``quantity_names(model)`` (a quantity the scene does not define, such as a frequency in Hz
+    without a scale, is not listed)."""
+    mod = quantities_module(kind)
+    pick = getattr(mod, "quantity_names", None)
+    if pick is None:
+        return dict(mod.BOX_QUANTITIES)
+    names = set(pick(scene_model(kind, points_json, options_json, mid_json)))
+    return {k: v for k, v in mod.BOX_QUANTITIES.items() if k in names}
 
 
 def point_box(point: dict[str, Fraction]) -> Box:
@@ -83,7 +95,7 @@ def range_task(kind: str, points_json: str, options_json: str, mid_json: str, bo
     box = Box.from_json(json.loads(box_json))
     out: dict[str, Any] = {}
     with working_precision(prec):
-        values = mod.quantities_box(model, box, list(mod.BOX_QUANTITIES))
+        values = mod.quantities_box(model, box, list(quantity_specs(kind, points_json, options_json, mid_json)))
         for q, bv in values.items():
             v = _interval(bv.value)
             if v is None:
@@ -105,6 +117,7 @@ class RangeSearch:
     tiles: list[tuple[Box, dict[str, Any]]]
     points: list[tuple[dict[str, Fraction], dict[str, Any]]]
     evaluated: int
+    specs: dict = None          # the scene's quantities (:func:`quantity_specs`)
 
 
 def _gap_open(q: str, tiles, points, gap: Fraction) -> tuple[bool, bool]:
@@ -196,7 +209,7 @@ def search_ranges(kind: str, whole: Box, frozen: tuple[str, ...], pj: str, oj: s
         gone = set(chosen)
         tiles = [t for i, t in enumerate(tiles) if i not in gone] + new_tiles
         points = points + new_points + more
-    return RangeSearch(tiles, points, evaluated)
+    return RangeSearch(tiles, points, evaluated, quantity_specs(kind, pj, oj, mj))
 
 
 def _is_point(b: Box, frozen: tuple[str, ...]) -> bool:

@@ -18,7 +18,7 @@ from ..core.boxes import fraction_text
 from ..report import write_pair
 from ..version import __version__
 from .paving import SCHEMA, Paving
-from .ranges import quantities_module, summarise
+from .ranges import summarise
 
 __all__ = ["claim_numbers", "decimal_text", "paving_json", "render_paving", "write_paving"]
 
@@ -42,8 +42,7 @@ def ranges_json(bs, search) -> dict[str, Any]:
     """The quantities' ranges (:func:`.ranges.summarise`), the tiles they were enclosed on and the points
     they cite (only those: the checker re-evaluates each, and the summary of the cited points is the
     summary of all the points evaluated, whose minima and maxima they are)."""
-    specs = quantities_module(bs.scene.kind).BOX_QUANTITIES
-    items = summarise(bs.box, specs, search.tiles, search.points)
+    items = summarise(bs.box, search.specs, search.tiles, search.points)
     cited = []
     for it in items:
         for end in ("low", "high"):

@@ -35,7 +35,7 @@ from ...core.dual_balls import constant
 from .boxes import box_roots
 from .slack_forms import GapSet
 
-__all__ = ["BOX_QUANTITIES", "quantities_box"]
+__all__ = ["BOX_QUANTITIES", "quantity_names", "quantities_box"]
 
 BOX_QUANTITIES = {
     **{f"omega_{j}": QuantitySpec(f"omega_{j}, root {j} of the characteristic quartic") for j in range(1, 5)},
@@ -45,6 +45,11 @@ BOX_QUANTITIES = {
                                           "absolute", claim=f"bracket_{j}")
        for j, eq in zip(range(1, 5), ("(7)", "(8)", "(9)", "(10)"))},
 }
+
+
+def quantity_names(model) -> list[str]:
+    """The quantities this scene has: the frequencies in Hz only when it gives ``hz_scale``."""
+    return [k for k in BOX_QUANTITIES if model.hz_scale is not None or not k.startswith("freq_hz_")]
 
 
 def _range(f, box: Box, refine: int) -> tuple[arb, arb, dict] | None:

@@ -50,7 +50,7 @@ def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
         return {}
     mid = box.midpoint()
     fixed = {k: _q(box.interval(k)[0]) for k in AMPLITUDE_PARAMETERS if k in box.names}
-    Pc = dataclasses.replace(model.params, **{k: _q(v) for k, v in mid.items()}, **fixed)
+    Pc = dataclasses.replace(model.params, **{**{k: _q(v) for k, v in mid.items()}, **fixed})
     centre = dataclasses.replace(model, params=Pc, paper={}, decided={})
     iso = isolate_polynomial(nutation_cubic(Pc))
     if not (iso.verified and iso.squarefree):
