@@ -204,7 +204,7 @@ def test_a_paving_out_of_time_leaves_undecided_leaves_that_check():
     from rigor_gyro.margins.paving import box_scene, pave
     from rigor_gyro.margins.report import paving_json
     from rigor_gyro.scene import load_scene
-    bs = box_scene(load_scene("margin_rudenko_brackets_tolerance"))
+    bs = box_scene(load_scene("margin_rudenko_general_eps_omega2"))     # not decided on the first level
     p = pave(bs, time_limit=1e-6)
     assert p.levels == 1 and p.verdict != "refuted"
     for c in p.claims:

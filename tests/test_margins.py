@@ -247,7 +247,9 @@ def _agafonov_text(**changes):
     src = src[:src.index("[paper]")]
     for k, v in changes.items():
         src = re.sub(rf'^{k} = "[^"]*"', f'{k} = "{v}"', src, flags=re.M)
-    return src.replace('name = "agafonov2013"', 'name = "agafonov_box"')
+    src = src.replace('name = "agafonov2013"', 'name = "agafonov_box"')
+    return src.replace("[options]\n", '[options]\nrange_boxes = "0"\n') if "[options]" in src else \
+        src + '\n[options]\nrange_boxes = "0"\n'      # these tests are about the claims, not the ranges
 
 
 def test_a_parameter_the_kind_cannot_box_is_bad_input(tmp_path):
