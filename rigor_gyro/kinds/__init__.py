@@ -33,7 +33,7 @@ from flint import arb
 from ..core.errors import ParameterError, SceneError
 from ..core.outcome import AuditRow, AuditStatus, Claim, Status
 
-__all__ = ["KINDS", "PLANNED_KINDS", "Attempt", "Phases", "kind_module", "claim_statements", "plots_hook", "checker", "require_box_claims",
+__all__ = ["KINDS", "PLANNED_KINDS", "Attempt", "Phases", "kind_module", "claim_statements", "optional_module", "plots_hook", "checker", "require_box_claims",
            "box_outcomes"]
 
 #: kind -> package implementing it (imported only when a scene of that kind is proved)
@@ -128,17 +128,23 @@ def kind_module(kind: str) -> ModuleType:
         raise SceneError(f"unknown kind {kind!r}; known kinds: {', '.join(KINDS)}") from None
 
 
-def _optional(kind: str, name: str, attr: str) -> Callable[..., list] | None:
-    """``attr`` of the kind's optional module ``name`` (imported now), or None when the kind has none."""
+def optional_module(kind: str, name: str) -> ModuleType | None:
+    """The kind's optional module ``name`` (``boxes``, ``box_quantities``, ``check``, ``plots``), imported now,
+    or None when the kind has none (an import error inside an existing module propagates)."""
     if kind not in KINDS:
         raise SceneError(f"unknown kind {kind!r}; known kinds: {', '.join(KINDS)}")
     try:
-        module = importlib.import_module(f"{KINDS[kind]}.{name}")
+        return importlib.import_module(f"{KINDS[kind]}.{name}")
     except ModuleNotFoundError as e:
         if e.name == f"{KINDS[kind]}.{name}":
             return None
         raise
-    return getattr(module, attr)
+
+
+def _optional(kind: str, name: str, attr: str) -> Callable[..., list] | None:
+    """``attr`` of the kind's optional module ``name`` (imported now), or None when the kind has none."""
+    module = optional_module(kind, name)
+    return None if module is None else getattr(module, attr)
 
 
 def plots_hook(kind: str) -> Callable[..., list] | None:

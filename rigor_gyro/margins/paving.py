@@ -26,7 +26,6 @@ its box; the paving is identical for every executor and worker count.
 """
 from __future__ import annotations
 
-import importlib
 import json
 import time
 from dataclasses import dataclass, field
@@ -38,7 +37,7 @@ from ..core.boxes import Box, fraction_text, split_parameters
 from ..core.deadline import Budget, check_time_limit
 from ..core.errors import ParameterError, SceneError
 from ..core.exact import option_count, option_number
-from ..kinds import KINDS, kind_module
+from ..kinds import KINDS, kind_module, optional_module
 from ..scene import Scene
 from .executors import Executor
 from .models import scene_model as _model
@@ -59,12 +58,7 @@ def has_tolerances(scene: Scene) -> bool:
 
 def boxes_module(kind: str):
     """The kind's ``boxes`` module (its rigour over parameter boxes), or None when it has none."""
-    try:
-        return importlib.import_module(f"{KINDS[kind]}.boxes")
-    except ModuleNotFoundError as e:
-        if e.name == f"{KINDS[kind]}.boxes":
-            return None
-        raise
+    return optional_module(kind, "boxes")
 
 
 @dataclass

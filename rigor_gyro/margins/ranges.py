@@ -32,7 +32,6 @@ the box); the kind's ParameterError propagates.
 """
 from __future__ import annotations
 
-import importlib
 import json
 from dataclasses import dataclass
 from fractions import Fraction
@@ -40,7 +39,7 @@ from typing import Any
 
 from ..core.balls import exact_endpoints, inward_interval_text, interval_text, working_precision
 from ..core.boxes import Box, fraction_text
-from ..kinds import KINDS
+from ..kinds import optional_module
 from .models import scene_model
 
 __all__ = ["RANGE_OPTIONS", "quantities_module", "quantity_specs", "range_task", "RangeSearch", "search_ranges", "summarise"]
@@ -55,12 +54,7 @@ Interval = tuple[Fraction, Fraction]
 
 def quantities_module(kind: str):
     """The kind's ``box_quantities`` module, or None when it certifies no quantity over a box."""
-    try:
-        return importlib.import_module(f"{KINDS[kind]}.box_quantities")
-    except ModuleNotFoundError as e:
-        if e.name == f"{KINDS[kind]}.box_quantities":
-            return None
-        raise
+    return optional_module(kind, "box_quantities")
 
 
 def quantity_specs(kind: str, points_json: str, options_json: str, mid_json: str) -> dict:

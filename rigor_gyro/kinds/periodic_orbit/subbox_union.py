@@ -74,15 +74,10 @@ def gradient_union(make_models, centre_values: dict[str, arb], box: dict[str, ar
     tcells = cells(Theta, counts[k])
     out = None
     for pc in pcells:
-        cv = dict(centre_values)
-        cb = {}
-        for d, (cell, mid) in zip(dirs, pc):
-            cv[d] = mid
-            cb[d] = cell
-        try:
-            models = make_models(SimpleNamespace(**{n: cv[n] for n in PARAMETER_NAMES}), cb)
-        except DegenerateSpectrum:
+        cell = _cell_models(make_models, centre_values, dirs, pc)
+        if cell is None:
             return None
+        cv, cb, models = cell
         for T, tm in tcells:
             Gc = models.centre.G(Jet.variable(acb(tm), k, m))
             Gn = models.nested.G(nested_variable(T, k, m))
@@ -103,6 +98,20 @@ def gradient_union(make_models, centre_values: dict[str, arb], box: dict[str, ar
     return out
 
 
+def _cell_models(make_models, centre_values: dict[str, arb], dirs: list[str], pc):
+    """(centre values, cell balls, models) of one parameter cell ``pc`` (pairs of cell ball and its centre per
+    direction), or None when the cell's spectrum is degenerate."""
+    cv = dict(centre_values)
+    cb = {}
+    for d, (cell, mid) in zip(dirs, pc):
+        cv[d] = mid
+        cb[d] = cell
+    try:
+        return cv, cb, make_models(SimpleNamespace(**{n: cv[n] for n in PARAMETER_NAMES}), cb)
+    except DegenerateSpectrum:
+        return None
+
+
 def band_root(make_models, centre_values: dict[str, arb], box: dict[str, arb], dirs: list[str], tc: arb,
               slope: list[arb], rho: arb, counts: list[int]):
     """theta*(P) in the band tc + slope . (P - c) + U, U = [-rho, rho], by one interval Newton step in u for
@@ -114,21 +123,15 @@ def band_root(make_models, centre_values: dict[str, arb], box: dict[str, arb], d
     for every P, u*(P) in the image (1-D interval Newton member by member). None when a cell fails.
     ``tc``, ``slope`` exact points; c = the box's centre ``centre_values``."""
     k = len(dirs)
-    m = k + 1
     slope_acb = [acb(s) for s in slope] + [acb(1)]
     pcells = grid([cells(box[d], counts[i]) for i, d in enumerate(dirs)])
     U = arb(0, rho.upper())
     F0 = gu = None
     for pc in pcells:
-        cv = dict(centre_values)
-        cb = {}
-        for d, (cell, mid) in zip(dirs, pc):
-            cv[d] = mid
-            cb[d] = cell
-        try:
-            models = make_models(SimpleNamespace(**{n: cv[n] for n in PARAMETER_NAMES}), cb)
-        except DegenerateSpectrum:
+        cell = _cell_models(make_models, centre_values, dirs, pc)
+        if cell is None:
             return None
+        cv, cb, models = cell
         shift_c = tc + sum((s * (cv[d] - centre_values[d]) for s, d in zip(slope, dirs)), arb(0))
         shift_b = tc + sum((s * (cb[d] - centre_values[d]) for s, d in zip(slope, dirs)), arb(0))
         th_c = Jet(acb(shift_c), slope_acb)
