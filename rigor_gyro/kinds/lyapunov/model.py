@@ -558,6 +558,17 @@ class VdotVerdict:
     decides: arb | None = None
 
 
+
+def _refuted_at(how: str, R: arb, w, pieces: int) -> "VdotVerdict":
+    """Vdot <= 0 refuted at the certified point ``w`` = (x1, x2, x3, Vdot) of the region of radius R."""
+    x1, x2, x3, v = w
+    point = {"x1": _fmt(x1, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3, 20), "vdot": _fmt(v, 8)}
+    exact = {"x1": ball_text(x1), "x2": ball_text(x2), "x3": ball_text(x3)}
+    return VdotVerdict(Status.REFUTED,
+                       f"{how} = {_fmt(R)}: grad V . f = {_fmt(v, 6)} > 0 at the point x1 = {_fmt(x1)}, "
+                       f"x2 = {_fmt(x2)}, x3 = {_fmt(x3)} of the region (certified)", pieces,
+                       {"witness": point}, w, {"point": exact, "vdot": _fmt(v, 20), "radius": _fmt(R, 20)})
+
 def certify_psi_test(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: int,
                      record: dict | None = None) -> VdotVerdict:
     """Decide the paper's test Psi1 > 0 and Psi2 > 0 on |x2| <= x2*, x1^2 + x3^2 <= R^2 (which gives
@@ -593,13 +604,7 @@ def certify_psi_test(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: int,
     points += [arb(fmpq((xq * j / 8).numerator, (xq * j / 8).denominator)) for j in range(-8, 9)]
     w = vdot_witness(g, R, points)
     if w is not None:
-        x1, x2, x3, v = w
-        point = {"x1": _fmt(x1, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3, 20), "vdot": _fmt(v, 8)}
-        exact = {"x1": ball_text(x1), "x2": ball_text(x2), "x3": ball_text(x3)}
-        return VdotVerdict(Status.REFUTED,
-                           f"{how} = {_fmt(R)}: grad V . f = {_fmt(v, 6)} > 0 at the point x1 = {_fmt(x1)}, "
-                           f"x2 = {_fmt(x2)}, x3 = {_fmt(x3)} of the region (certified)", pieces,
-                           {"witness": point}, w, {"point": exact, "vdot": _fmt(v, 20), "radius": _fmt(R, 20)})
+        return _refuted_at(how, R, w, pieces)
     # no point with Vdot > 0: the statement's "Psi1 > 0 and Psi2 > 0 on the region" may still fail at a
     # certified point (the paper's test, sufficient, not necessary)
     for name, r in results.items():
@@ -691,13 +696,7 @@ def certify_vdot_nonpositive(g: Gimbal, xs: arb, R: arb, how: str, max_pieces: i
                            {"pieces": psi.pieces, "boxes": len(cert.leaves), "test": "direct"})
     w = _direct_point(g, xs, R, cert.witness) if cert.status is Status.REFUTED else None
     if w is not None:
-        x1, x2, x3, v = w
-        point = {"x1": _fmt(x1, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3, 20), "vdot": _fmt(v, 8)}
-        exact = {"x1": ball_text(x1), "x2": ball_text(x2), "x3": ball_text(x3)}
-        return VdotVerdict(Status.REFUTED,
-                           f"{how} = {_fmt(R)}: grad V . f = {_fmt(v, 6)} > 0 at the point x1 = {_fmt(x1)}, "
-                           f"x2 = {_fmt(x2)}, x3 = {_fmt(x3)} of the region (certified)", psi.pieces,
-                           {"witness": point}, w, {"point": exact, "vdot": _fmt(v, 20), "radius": _fmt(R, 20)})
+        return _refuted_at(how, R, w, psi.pieces)
     stuck = cert.witness_value if cert.status is Status.REFUTED else None
     return VdotVerdict(Status.INCONCLUSIVE,
                        f"{how} = {_fmt(R)}: the Psi test does not decide ({psi_why[:300]}); the direct test "
