@@ -18,15 +18,61 @@ with ``maxprec`` = the certificate's ``precision_bits`` and no limit, and the tw
 time-limit wording (the bracketed hint of an undecided claim, the time-limit note). A run in which no
 attempt finished must say exactly that, with nothing else.
 
-Cost: one proof of the scene.
+Cost: one proof of the scene. A process keeps its last few re-proofs (:data:`KEPT`), keyed by the scene
+block and the two precisions, so that checking several certificates of one scene (edited copies, a
+campaign) proves it once; :func:`forget` empties that store (the tests do, around any test that patches
+the prover).
 """
 from __future__ import annotations
 
+import json
+from collections import OrderedDict
 from typing import Any
 
 from .version import __version__
 
-__all__ = ["reproduction", "COMPARED"]
+__all__ = ["reproduction", "COMPARED", "forget"]
+
+#: how many re-proved certificates a process keeps (each a few hundred kB of JSON at most)
+KEPT = 4
+_KEPT: OrderedDict[tuple[str, int, int], dict] = OrderedDict()
+
+
+def forget() -> None:
+    """Empty the store of re-proved certificates (after the prover's code was patched, say)."""
+    _KEPT.clear()
+
+
+def _key(scene_block: dict, prec: int, maxprec: int) -> tuple[str, int, int]:
+    return json.dumps(scene_block, sort_keys=True), prec, maxprec
+
+
+def keep(certificate: dict) -> None:
+    """Store ``certificate``, exactly as :meth:`Certificate.to_json` returned it from ``prove_scene`` at its
+    own settings (no time limit), as the re-proof of its scene: for callers that have just proved the scene
+    and will check its certificate (the tests). Storing anything else would let the ``texts`` check
+    compare against it: never call this on a certificate read from a file."""
+    st = certificate["settings"]
+    if st.get("time_limit") is None:
+        _KEPT[_key(certificate["scene"], st["prec"], st["maxprec"])] = certificate
+        while len(_KEPT) > KEPT:
+            _KEPT.popitem(last=False)
+
+
+def _reproved(data: dict, scene, prec: int, maxprec: int) -> dict:
+    """The certificate the prover writes for ``scene`` (the one ``data['scene']`` describes) at these
+    precisions: from the store when the same scene block was re-proved at them before in this process.
+    The returned dict is shared: read it, never change it."""
+    from .prover import prove_scene
+    key = _key(data["scene"], prec, maxprec)
+    if key in _KEPT:
+        _KEPT.move_to_end(key)
+        return _KEPT[key]
+    again = prove_scene(scene, prec=prec, maxprec=maxprec).to_json()
+    _KEPT[key] = again
+    while len(_KEPT) > KEPT:
+        _KEPT.popitem(last=False)
+    return again
 
 #: the fields compared, in the order a difference is reported
 COMPARED = ("verdict", "precision_bits", "precisions_tried", "claims", "quantities", "paper", "formulas", "notes",
@@ -92,7 +138,6 @@ def _nothing_finished(data: dict, seconds: float) -> tuple[bool, str]:
 def reproduction(data: dict, scene) -> tuple[bool, str]:
     """(ok, message) of the ``texts`` check for the certificate ``data`` of ``scene`` (already validated
     against its schema): see the module docstring."""
-    from .prover import prove_scene
     written_by = (data.get("software") or {}).get("rigor_gyro")
     if written_by != __version__:
         return True, (f"not re-derived: written by rigor_gyro {written_by}, this is {__version__} (the verdicts are "
@@ -105,7 +150,7 @@ def reproduction(data: dict, scene) -> tuple[bool, str]:
     maxprec = data["precision_bits"] if fired else settings["maxprec"]
     if not settings["prec"] <= maxprec:
         return False, f"settings prec {settings['prec']} above the last attempt's {maxprec} bits"
-    again = prove_scene(scene, prec=settings["prec"], maxprec=maxprec).to_json()
+    again = _reproved(data, scene, settings["prec"], maxprec)
     stored, derived = (_without_time_wording(data), _without_time_wording(again)) if fired else (data, again)
     for key in COMPARED:
         where = _first_difference(stored.get(key), derived.get(key), key)

@@ -34,6 +34,19 @@ def _precision_is_restored():
     assert (ctx.prec, ctx.cap) == before, f"a test leaked ctx.prec, ctx.cap = {ctx.prec}, {ctx.cap} (was {before})"
 
 
+@pytest.fixture(autouse=True)
+def _reproductions_forgotten_around_patches(request):
+    """The checker keeps its last re-proofs of a scene (rigor_gyro.reproduce): a test that patches the
+    prover's code must neither see a re-proof made before its patch nor leave one made under it."""
+    from rigor_gyro import reproduce
+    patched = "monkeypatch" in request.fixturenames
+    if patched:
+        reproduce.forget()
+    yield
+    if patched:
+        reproduce.forget()
+
+
 def pytest_addoption(parser):
     parser.addoption("--runslow", action="store_true", default=False,
                      help="also run tests marked slow (long campaigns, stiff and extreme cases)")

