@@ -58,6 +58,17 @@ def _seconds(text: str) -> float:
         raise argparse.ArgumentTypeError(str(e)) from None
 
 
+def _nonnegative_int(text: str) -> int:
+    """An option's count >= 0 (argparse turns the error into a usage error, exit 2)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"{value} is negative: give 0 or more")
+    return value
+
+
 def _epilog(examples: str, status: str = EXIT_CODES_HELP) -> str:
     return f"examples:\n{examples}\n\n{status}"
 
@@ -187,6 +198,9 @@ def _parser() -> argparse.ArgumentParser:
                                        "result of rigor-gyro\n  4  internal error"))
     ck.add_argument("certs", nargs="+", metavar="CERT.json", help="certificate files written by 'prove'")
     ck.add_argument("-q", "--quiet", action="store_true", help="print only one line per certificate")
+    ck.add_argument("--samples", type=_nonnegative_int, default=None, metavar="N",
+                    help="pavings: decided sub-boxes per claim that the point prover cross-checks at their "
+                         "midpoint and extreme corners (default 8; 0: none)")
     ck.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     return p
 
@@ -541,7 +555,7 @@ def _cmd_check(args) -> int:
     codes = []
     for path in args.certs:
         try:
-            report = check_file(path)
+            report = check_file(path, samples=args.samples)
         except CertificateError as e:
             _say(f"rigor-gyro: {e}", err=True)
             codes.append(EXIT_BAD_INPUT)

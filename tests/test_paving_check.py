@@ -104,6 +104,7 @@ ALTERATIONS = {
     "the last proved sub-box relabelled refuted": (       # after undecided ones: each decided box is re-evaluated
         _mixed, lambda d: _last_proved(_claim(d)).update(status="refuted"),
         [("bracket_2", "volume fractions or sub-box counts"), ("bracket_2", "stored refuted, re-evaluated proved"),
+         ("bracket_2", "the point prover proved the claim at the midpoint"),
          ("bracket_2", "not the midpoints"), ("bracket_2", "but the sub-boxes give 'refuted'"),
          ("verdict", "verdict")]),
     "a proved sub-box dropped": (_mixed, lambda d: _claim(d)["boxes"].remove(_last_proved(_claim(d))),
@@ -274,3 +275,29 @@ def test_the_paving_files_are_the_data_as_written_and_the_timings_beside_them(tm
     timings = json.loads((tmp_path / "timings" / jpath.name).read_text())
     assert set(timings) == {"total_s", "executor"} and timings["executor"] == p.executor
     assert timings["total_s"] == round(p.seconds, 3) and "total_s" not in jpath.read_text()
+
+
+def test_a_box_rigour_that_proves_a_false_claim_is_caught_by_the_point_prover(monkeypatch):
+    """The issue-36 scenario: a bug in the kind's box code (here: every box 'proved') is re-evaluated by
+    that same code, and confirmed by it; the point prover, asked at sampled points of the decided
+    sub-boxes, refutes the claim there and the check fails, naming the sub-box."""
+    from rigor_gyro.kinds.eigenfrequencies import boxes
+    text = (RUDENKO_BOX.replace('"[0.1, 0.12]"', '"0.1076"').replace('"0.625 +- 0.025"', '"[0.001, 0.005]"')
+            .replace('only = [', 'only = ["bracket_2"] #'))
+    assert _refuted()["claims"][0]["status"] == "refuted"          # (8) fails on this box
+    monkeypatch.setattr(boxes, "evaluate_box", lambda model, box, claims: {c: ("proved", "sabotaged") for c in claims})
+    data = _paving(text)
+    assert data["claims"][0]["status"] == "proved"
+    got = _failures(data)
+    assert [item for item, _ in got] == ["bracket_2"], got
+    assert "the point prover refuted the claim at the midpoint" in got[0][1]
+    assert "the box rigour and the point rigour disagree" in got[0][1]
+
+
+def test_the_point_prover_cross_check_can_be_turned_off_and_says_so():
+    from rigor_gyro.check import check_certificate as check
+    data = _proved()
+    on = [r.message for r in check(data).results]
+    off = [r.message for r in check(data, samples=0).results]
+    assert sum("the point prover (code apart from the box rigour) agrees at 3 of 3 points" in m for m in on) == 2
+    assert sum("not cross-checked by the point prover" in m for m in off) == 2

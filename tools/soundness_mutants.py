@@ -34,6 +34,17 @@ PYTEST = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", 
 
 #: (name, file, original text, mutated text, what it breaks)
 MUTANTS = [
+    ("sampled_contradiction_ignored", "rigor_gyro/margins/sampled.py",
+     "            if got == _CONTRADICTS[status]:\n", "            if False:\n",
+     "the paving checker's point-prover cross-check never reports a point that contradicts its sub-box"),
+    ("sampled_midpoint_only", "rigor_gyro/margins/sampled.py",
+     "    out = [(\"midpoint\", box.midpoint()), (\"lower corner\", lower), (\"upper corner\", upper)]\n",
+     "    out = [(\"midpoint\", box.midpoint())]\n",
+     "the paving checker's point-prover cross-check asks only the sub-boxes' midpoints"),
+    ("sampled_first_boxes_only", "rigor_gyro/margins/sampled.py",
+     "    return [boxes[(i * (n - 1)) // (count - 1)] for i in range(count)]\n",
+     "    return list(boxes[:count])\n",
+     "the paving checker's point-prover cross-check asks only the first decided sub-boxes, not a spread"),
     ("continuation_newton_ignores_box", "rigor_gyro/kinds/periodic_orbit/continuation.py",
      "        G0 = second_order_value(Gc, Gn, zero_devs)\n", "        G0 = Gc.v.real\n",
      "theta*'s box Newton operator ignores how g(theta_c, P) moves over the box (relay box continuation)"),

@@ -11,11 +11,14 @@ The texts the report prints are re-derived too: the point parameters (the scene'
 parameters without tolerances), each claim's reasons (the first sub-box of each status in the order
 pave evaluates: the whole box, then the stored leaves; or the time limit that stopped it), and each
 point proof's whole record (status, reason, precision).
+A second path beside the box rigour: decided sub-boxes are cross-checked by the point prover at their
+midpoints and extreme corners (:mod:`.sampled`: a spread of ``samples`` of them per claim); a point
+verdict that contradicts its sub-box fails the check.
 Not checked: what describes the run rather than the box (the boxes evaluated, the levels, the budget
 flag); the report prints them as such.
 
-Cost: one box evaluation per decided sub-box and one of the whole box (no search, no splitting), and
-one point proof per stored point.
+Cost: one box evaluation per decided sub-box and one of the whole box (no search, no splitting), one
+point proof per stored point, and up to 3 ``samples`` point proofs per claim.
 """
 from __future__ import annotations
 
@@ -28,6 +31,7 @@ from ..core.balls import MAX_PREC, MIN_PREC
 from ..core.boxes import Box, fraction_text, tiles_by_bisection
 from ..core.errors import RigorGyroError
 from ..scene import Scene
+from .sampled import SAMPLED_BOXES, cross_check
 
 __all__ = ["check_paving"]
 
@@ -42,8 +46,9 @@ def CheckResult(item: str, ok: bool, message: str) -> tuple[str, bool, str]:
     return item, bool(ok), message
 
 
-def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
-    """The checks of a paving certificate, as (item, ok, message) triples (see the module docstring)."""
+def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES) -> list[tuple[str, bool, str]]:
+    """The checks of a paving certificate, as (item, ok, message) triples (see the module docstring);
+    ``samples``: decided sub-boxes per claim cross-checked by the point prover (0: none)."""
     from .paving import boxes_module, box_scene, evaluate_task, point_task
     from .report import claim_numbers
     out: list = []
@@ -113,6 +118,11 @@ def check_paving(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
             if got != s:
                 bad.append(f"{b.to_json()}: stored {s}, re-evaluated {got}")
         add(CheckResult(cid, not bad, "every decided sub-box re-evaluated" if not bad else bad[0]))
+
+        def prove_at(point, cid=cid):
+            return point_task(bs.scene.kind, json.dumps(bs.point_parameters(point), sort_keys=True), oj, cid,
+                              bs.point_prec, bs.point_maxprec)["status"]
+        add(CheckResult(cid, *cross_check(cid, boxes, samples, prove_at)))
         if isinstance(data.get("stopped"), str) and data["stopped"] and "undecided" in c.get("reasons", {}) \
                 and any(s == "undecided" for _, s in boxes):
             reasons["undecided"] = data["stopped"]
