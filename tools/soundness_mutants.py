@@ -34,6 +34,18 @@ PYTEST = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", 
 
 #: (name, file, original text, mutated text, what it breaks)
 MUTANTS = [
+    ("safe_set_any_proved_is_safe", "rigor_gyro/margins/safe_set.py",
+     "    if statuses and all(s == \"proved\" for s in statuses.values()):\n",
+     "    if statuses and any(s == \"proved\" for s in statuses.values()):\n",
+     "a piece of a paving counted safe when only some of the selected claims are proved on it"),
+    ("yield_lower_counts_undecided", "rigor_gyro/margins/safe_set.py",
+     "        lo, hi = mass[\"proved\"], 1 - mass[\"refuted\"]\n",
+     "        lo, hi = mass[\"proved\"] + mass[\"undecided\"], 1 - mass[\"refuted\"]\n",
+     "the certified yield's lower bound counts the undecided pieces as safe"),
+    ("normal_law_untruncated", "rigor_gyro/margins/safe_set.py",
+     "        part = (_phi(z(hi)) - _phi(z(lo))) / (_phi(z(whi)) - _phi(z(wlo)))\n",
+     "        part = _phi(z(hi)) - _phi(z(lo))\n",
+     "a truncated normal tolerance law's probabilities not renormalised to the interval"),
     ("sampled_contradiction_ignored", "rigor_gyro/margins/sampled.py",
      "            if got == _CONTRADICTS[status]:\n", "            if False:\n",
      "the paving checker's point-prover cross-check never reports a point that contradicts its sub-box"),
