@@ -29,7 +29,8 @@ from typing import Any
 
 from ..core.figure_style import COUNTEREXAMPLE_COLOUR, OKABE_ITO, STATUS_COLOURS, declutter_ticks
 
-__all__ = ["paving_plots", "margin_plot", "build_paving_figure", "build_margin_figure", "COLOURS"]
+__all__ = ["paving_plots", "margin_plot", "build_paving_figure", "build_margin_figure", "build_safe_set_figure",
+           "safe_set_plot", "COLOURS"]
 
 COLOURS = {k: STATUS_COLOURS[k] for k in ("proved", "refuted", "undecided")}
 BOX_GID = "paving-boxes"
@@ -62,32 +63,60 @@ def _slim_ticks(ax, axes: str = "both") -> None:
         axis.set_major_formatter(fmt)
 
 
-def build_paving_figure(data: dict[str, Any], claim: dict[str, Any]):
-    """The Figure of one claim of a paving (``paving_json``): one patch per sub-box (the PatchCollection
-    with gid ``paving-boxes``), the point proofs as markers, a legend of the outcomes."""
-    plt = _pyplot()
-    from matplotlib.collections import PatchCollection
-    from matplotlib.lines import Line2D
-    from matplotlib.patches import Patch, Rectangle
-
+def _axes(data: dict[str, Any], axes: tuple[str, ...] | None) -> tuple[str, str | None]:
+    """The parameters drawn along x and y: ``axes`` (one or two box parameters) or the box's first two."""
     names = list(data["box"])
-    x, y = names[0], (names[1] if len(names) > 1 else None)
+    if axes:
+        unknown = [a for a in axes if a not in names]
+        if unknown or not 1 <= len(axes) <= 2 or len(set(axes)) != len(axes):
+            from ..core.errors import ParameterError
+            raise ParameterError(f"--axes {','.join(axes)}: name one or two distinct box parameters "
+                                 f"({', '.join(names)})")
+        return axes[0], (axes[1] if len(axes) > 1 else None)
+    return names[0], (names[1] if len(names) > 1 else None)
+
+
+def _draw_boxes(ax, data: dict[str, Any], boxes: list[tuple[dict, str]], x: str, y: str | None) -> None:
+    """One patch per box ({name: [lo, hi]}, status) projected onto (x, y), in the status colours; an
+    edge only where the box is wide enough to show its colour (1/40 of the range)."""
+    from matplotlib.collections import PatchCollection
+    from matplotlib.patches import Rectangle
     xlo, xhi = (_f(v) for v in data["box"][x])
     ylo, yhi = (_f(v) for v in data["box"][y]) if y else (0.0, 1.0)
-    fig, ax = plt.subplots(figsize=(9.0, 5.0) if y else (9.5, 2.4))
     rects, colours, widths = [], [], []
-    for b in claim["boxes"]:
-        x0, x1 = (_f(v) for v in b["box"][x])
-        y0, y1 = (_f(v) for v in b["box"][y]) if y else (0.0, 1.0)
+    for box, status in boxes:
+        x0, x1 = (_f(v) for v in box[x])
+        y0, y1 = (_f(v) for v in box[y]) if y else (0.0, 1.0)
         rects.append(Rectangle((x0, y0), x1 - x0, y1 - y0))
-        colours.append(COLOURS[b["status"]])
-        # an edge only where the box is wide enough to show its colour inside it (1/40 of the range): a
-        # sliver's edge would hide its colour
+        colours.append(COLOURS[status])
         thick = (x1 - x0) >= (xhi - xlo) / 40 and (not y or (y1 - y0) >= (yhi - ylo) / 40)
         widths.append(0.3 if thick else 0.0)
     coll = PatchCollection(rects, facecolors=colours, edgecolors="#333333", linewidths=widths)
     coll.set_gid(BOX_GID)
     ax.add_collection(coll)
+    ax.set_xlim(xlo, xhi)
+    ax.set_ylim(ylo, yhi)
+    ax.set_xlabel(x)
+    if y:
+        ax.set_ylabel(y)
+        _slim_ticks(ax)
+    else:
+        ax.set_yticks([])
+        _slim_ticks(ax, "x")
+
+
+def build_paving_figure(data: dict[str, Any], claim: dict[str, Any], axes: tuple[str, ...] | None = None):
+    """The Figure of one claim of a paving (``paving_json``): one patch per sub-box (the PatchCollection
+    with gid ``paving-boxes``), the point proofs as markers, a legend of the outcomes; ``axes``: the one
+    or two box parameters to draw (default: the first two; more parameters are projected)."""
+    plt = _pyplot()
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    names = list(data["box"])
+    x, y = _axes(data, axes)
+    fig, ax = plt.subplots(figsize=(9.0, 5.0) if y else (9.5, 2.4))
+    _draw_boxes(ax, data, [(b["box"], b["status"]) for b in claim["boxes"]], x, y)
 
     handles = []
     n, v = claim["sub_boxes"], claim["volume_fraction_decimal"]
@@ -108,16 +137,8 @@ def build_paving_figure(data: dict[str, Any], claim: dict[str, Any]):
                 markerfacecolor=face, markeredgecolor=edge, gid=f"points-{st}")
         handles.append(Line2D([], [], linestyle="none", marker=marker, markerfacecolor=face, markeredgecolor=edge,
                               label=f"{label}: {len(pts)}"))
-    ax.set_xlim(xlo, xhi)
-    ax.set_ylim(ylo, yhi)
-    ax.set_xlabel(x)
-    if y:
-        ax.set_ylabel(y)
-        _slim_ticks(ax)
-    else:
-        ax.set_yticks([])
-        _slim_ticks(ax, "x")
-    extra = f" (projection onto {x}, {y} of {len(names)} parameters)" if len(names) > 2 else ""
+    drawn = [n for n in (x, y) if n]
+    extra = f" (projection onto {', '.join(drawn)} of {len(names)} parameters)" if len(names) > len(drawn) else ""
     ax.set_title(f"{data['scene']['name']}: {claim['id']}: {claim['status']} over the box{extra}\n"
                  "(a float drawing of the certified paving)", fontsize=9)
     ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
@@ -134,16 +155,70 @@ def _short(dec: str) -> str:
         return dec
 
 
-def paving_plots(data: dict[str, Any], out_dir: str | Path) -> list[Path]:
-    """Save :func:`build_paving_figure` of every claim as ``<out>/<name>_<claim>.png``; the paths."""
+def paving_plots(data: dict[str, Any], out_dir: str | Path, axes: tuple[str, ...] | None = None,
+                 formats: tuple[str, ...] = ("png",)) -> list[Path]:
+    """Save :func:`build_paving_figure` of every claim as ``<out>/<name>_<claim>.<format>`` for each of
+    ``formats`` (png, svg, pdf); the paths."""
     plt = _pyplot()
     paths = []
     for c in data["claims"]:
-        fig = build_paving_figure(data, c)
-        path = Path(out_dir) / f"{data['scene']['name']}_{c['id']}.png"
-        fig.savefig(path, dpi=120, bbox_inches="tight")
+        fig = build_paving_figure(data, c, axes)
+        paths.extend(_save(fig, Path(out_dir) / f"{data['scene']['name']}_{c['id']}", formats))
         plt.close(fig)
-        paths.append(path)
+    return paths
+
+
+def _save(fig, stem: Path, formats: tuple[str, ...]) -> list[Path]:
+    out = []
+    for fmt in formats:
+        if fmt not in ("png", "svg", "pdf"):
+            from ..core.errors import ParameterError
+            raise ParameterError(f"figure format {fmt!r}: choose png, svg or pdf")
+        path = stem.with_name(f"{stem.name}.{fmt}")
+        fig.savefig(path, dpi=120, bbox_inches="tight", metadata={"Date": None} if fmt == "svg" else None)
+        out.append(path)
+    return out
+
+
+def build_safe_set_figure(data: dict[str, Any], safe: dict[str, Any], axes: tuple[str, ...] | None = None):
+    """The Figure of a paving's safe set (:func:`rigor_gyro.margins.safe_set.safe_set`): each piece of the
+    claims' common refinement coloured by the status of "every selected claim holds", the certified
+    yield in the legend."""
+    plt = _pyplot()
+    from matplotlib.patches import Patch
+    x, y = _axes(data, axes)
+    fig, ax = plt.subplots(figsize=(9.0, 5.0) if y else (9.5, 2.4))
+    _draw_boxes(ax, data, [(b.to_json(), st) for b, st in safe["pieces"]], x, y)
+    labels = {"proved": "safe: every claim proved", "refuted": "some claim refuted",
+              "undecided": "undecided"}
+    handles = [Patch(facecolor=COLOURS[st], edgecolor="#333333", linewidth=0.3,
+                     label=f"{labels[st]}: {safe['counts'][st]} piece(s)") for st in ("proved", "refuted", "undecided")]
+    vol, yl = safe["volume"], safe["yield"]
+    handles.append(Patch(facecolor="none", edgecolor="none",
+                         label=f"volume fraction safe: [{vol['lower']}, {vol['upper']}]"))
+    laws = sorted(set(safe["laws"].values()))
+    if laws != ["uniform"]:
+        handles.append(Patch(facecolor="none", edgecolor="none",
+                             label=f"yield ({'; '.join(f'{k}: {v}' for k, v in safe['laws'].items())}): "
+                                   f"[{yl['lower']}, {yl['upper']}]"))
+    names = list(data["box"])
+    drawn = [n for n in (x, y) if n]
+    extra = f" (projection onto {', '.join(drawn)} of {len(names)} parameters)" if len(names) > len(drawn) else ""
+    ax.set_title(f"{data['scene']['name']}: where {', '.join(safe['claims'])} all hold{extra}\n"
+                 "(a float drawing of the certified paving)", fontsize=9)
+    ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
+    fig.tight_layout()
+    declutter_ticks(fig)
+    return fig
+
+
+def safe_set_plot(data: dict[str, Any], safe: dict[str, Any], out_dir: str | Path,
+                  axes: tuple[str, ...] | None = None, formats: tuple[str, ...] = ("png",)) -> list[Path]:
+    """Save :func:`build_safe_set_figure` as ``<out>/<name>_safe_set.<format>``; the paths."""
+    plt = _pyplot()
+    fig = build_safe_set_figure(data, safe, axes)
+    paths = _save(fig, Path(out_dir) / f"{data['scene']['name']}_safe_set", formats)
+    plt.close(fig)
     return paths
 
 
