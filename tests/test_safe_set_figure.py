@@ -36,6 +36,6 @@ def test_axes_are_chosen_by_name_and_a_wrong_name_is_bad_input(tmp_path):
         with pytest.raises(ParameterError):
             build_paving_figure(data, data["claims"][0], axes=bad)
     paths = paving_plots(data, tmp_path, formats=("svg", "pdf"))
-    assert sorted(p.suffix for p in paths) == [".pdf", ".svg"] and all(p.stat().st_size > 0 for p in paths)
+    assert sorted(p.suffix for p in paths) == [".pdf", ".pdf", ".svg", ".svg"] and all(p.stat().st_size > 0 for p in paths)
     with pytest.raises(ParameterError):
         paving_plots(data, tmp_path, formats=("gif",))
