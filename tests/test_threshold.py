@@ -128,3 +128,28 @@ def test_a_search_range_that_is_not_two_rationals_in_order_is_refused(value, lo,
 def test_a_relative_width_outside_0_1_is_refused(width):
     with pytest.raises(ParameterError, match="--width"):
         find_threshold(_agafonov(), "mu", lo="0.02", hi="0.5", width=width)
+
+
+def test_an_inconclusive_midpoint_is_stepped_around_and_the_bracket_still_reaches_its_width(monkeypatch):
+    """A stand-in claim that holds below 7/5 and is inconclusive within 1/100 of 3/2 (the first midpoint
+    of [1, 2]): the search steps around 3/2 and certifies [p, r] around 7/5 to the requested width; where
+    every point tried around a midpoint is inconclusive it stops there (never a refutation)."""
+    from rigor_gyro.margins import threshold as th
+    window = Fraction(1, 100)
+
+    def fake(scene, param, value, claim, seconds=None):
+        if abs(value - Fraction(3, 2)) < window:
+            return "inconclusive", "stand-in: undecided near 3/2"
+        return ("proved", "below") if value < Fraction(7, 5) else ("refuted", "above")
+    monkeypatch.setattr(th, "_status", fake)
+    scene = _agafonov(k="3")
+    res = find_threshold(scene, "k", lo="1", hi="2", claim="damping_condition", width="1e-6")
+    assert res.certified and res.proved_at < Fraction(7, 5) <= res.refuted_at
+    assert (res.refuted_at - res.proved_at) <= Fraction(1, 10 ** 6) * res.refuted_at
+    values = [Fraction(s["value"]) for s in res.steps]
+    assert values[2] == Fraction(3, 2) and values[3] == 1 + Fraction(3, 8)     # 3/8 of the way from 1 to 2
+    window = Fraction(1, 2)              # now every point tried around 3/2 is inconclusive
+    res = find_threshold(scene, "k", lo="1", hi="2", claim="damping_condition", width="1e-6")
+    assert not res.certified and res.exit_code == 3
+    assert "inconclusive at k = 1.5 and at the 6 points around it tried" in res.stopped
+    assert len(res.steps) == 2 + 1 + 6

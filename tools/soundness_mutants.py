@@ -34,6 +34,10 @@ PYTEST = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", 
 
 #: (name, file, original text, mutated text, what it breaks)
 MUTANTS = [
+    ("threshold_step_around_wrong_end", "rigor_gyro/margins/threshold.py",
+     "        if st == \"proved\":\n            return x, r\n",
+     "        if st == \"proved\":\n            return p, x\n",
+     "a threshold search that steps around an inconclusive midpoint moves its refuted end to a proved point"),
     ("safe_set_any_proved_is_safe", "rigor_gyro/margins/safe_set.py",
      "    if statuses and all(s == \"proved\" for s in statuses.values()):\n",
      "    if statuses and any(s == \"proved\" for s in statuses.values()):\n",

@@ -9,8 +9,12 @@ result is a theorem about two exact points: the claim holds at one end and fails
 outcome changes somewhere in [l, r]. It does not say the change is unique (a claim may switch more
 than once); a paving of the interval (a scene with a tolerance) says what happens between points.
 
+An inconclusive midpoint does not stop the search: it tries the points :data:`AROUND` in the bracket
+(3/8, 5/8, 1/4, 3/4, 1/8 and 7/8 of the way from the proved end) and goes on from the first one decided;
+only when all are inconclusive does it stop there.
+
 Exit status: 0 a bracket to the requested width was certified; 3 the search stopped (both ends the
-same outcome, an inconclusive point, or the bisection budget): never 1, a search is not a refutation;
+same outcome, inconclusive points, or the bisection budget): never 1, a search is not a refutation;
 2 bad input (the parameter is absent, not rational, not one the claim depends on; lo >= hi; an end
 outside the kind's domain; a width out of range).
 """
@@ -34,6 +38,9 @@ __all__ = ["Threshold", "find_threshold", "search_range", "write_threshold", "ch
 
 SCHEMA = "rigor-gyro/threshold/1"
 MAX_STEPS = 200
+#: where the search tries next, as fractions of the way from the proved end to the refuted end, when a
+#: midpoint is inconclusive: any decided point in between still halves part of the bracket
+AROUND = (Fraction(3, 8), Fraction(5, 8), Fraction(1, 4), Fraction(3, 4), Fraction(1, 8), Fraction(7, 8))
 
 
 @dataclass
@@ -227,12 +234,34 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
             res.stopped = f"{budget.reason()} during the proof at {param} = {_d(m)}: the bracket certified so far is kept"
             break
         else:
-            res.stopped = f"the claim is inconclusive at {param} = {_d(m)}: {why[:200]}"
-            break
+            moved = _step_around(res, scene, param, claim, p, r, budget)
+            if moved is None:
+                res.stopped = (f"the claim is inconclusive at {param} = {_d(m)} and at the {len(AROUND)} points "
+                               f"around it tried: {why[:200]}")
+                break
+            p, r = moved
     else:
         res.stopped = f"bisection budget of {MAX_STEPS} point proofs reached"
     res.proved_at, res.refuted_at = p, r
     return res
+
+
+def _step_around(res: Threshold, scene: Scene, param: str, claim: str, p: Fraction, r: Fraction,
+                 budget: Budget) -> tuple[Fraction, Fraction] | None:
+    """After an inconclusive midpoint: the claim at the points of :data:`AROUND` between ``p`` (proved)
+    and ``r`` (refuted), until one is decided; the new (p, r), or None when none was (or time ran out).
+    Each point tried is a step of the search."""
+    for t in AROUND:
+        if budget.expired():
+            return None
+        x = p + (r - p) * t
+        st, why = _status(scene, param, x, claim, budget.remaining())
+        res.steps.append({"value": fraction_text(x), "status": st, "reason": why[:300]})
+        if st == "proved":
+            return x, r
+        if st == "refuted":
+            return p, x
+    return None
 
 
 def write_threshold(res: Threshold, out_dir: str) -> list[Path]:
