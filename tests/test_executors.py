@@ -146,3 +146,35 @@ def test_a_scheduler_that_cannot_be_reached_is_bad_input():
         X.Executor(1, "bogus")                  # not an address: refused at once (a closed port waits 10 s)
     with pytest.raises(ParameterError, match=r"--scheduler 'bogus'"):
         X.make_executor(1, "bogus")
+
+
+_UNGUARDED = """
+import sys
+sys.path.insert(0, {root!r})
+from rigor_gyro.margins.executors import Executor
+from rigor_gyro.margins.paving import evaluate_task
+ex = Executor(2, {scheduler!r})
+print(ex.map(divmod, [(i, 3) for i in range(8)]))
+print(ex.label)
+ex.close()
+"""
+
+
+@pytest.mark.parametrize("scheduler", [None, "local"])
+def test_a_script_without_a_main_guard_runs_the_pool_and_the_local_cluster(tmp_path, scheduler):
+    """A user's script that makes an Executor at its top level, with no ``if __name__ == '__main__'``: the
+    workers must not run the script again (Dask's would fail to start: 'Nanny failed to start')."""
+    import subprocess
+    import sys
+    from pathlib import Path
+    if scheduler:
+        pytest.importorskip("dask.distributed")
+    root = str(Path(__file__).resolve().parent.parent)
+    script = tmp_path / "user_script.py"
+    script.write_text(_UNGUARDED.format(root=root, scheduler=scheduler))
+    run = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr[-2000:]
+    lines = run.stdout.splitlines()
+    assert lines[0] == str([divmod(i, 3) for i in range(8)])
+    assert lines[1] == ("dask (local)" if scheduler else "process pool (2 workers)")
+    assert "Nanny failed" not in run.stderr and "Port 8787 is already in use" not in run.stderr

@@ -8,13 +8,25 @@ Dask is an optional extra (``pip install 'rigor_gyro[dask]'``): ``--scheduler AD
 existing scheduler (``tcp://host:8786``), ``--scheduler local`` starts a ``LocalCluster`` of
 ``workers`` processes for the run.
 
+A library call needs no ``if __name__ == "__main__":`` guard: the worker processes are started with the
+calling script hidden from them (:func:`_main_hidden`; Python's spawn and forkserver start methods would
+otherwise run the script again in each worker, and Dask's workers fail to start), and the pool forks
+where the platform can. Tasks are functions of this package, so the workers never need the script.
+
+Dask always runs an HTTP server beside its scheduler, even with ``dashboard_address=None`` (an upstream
+bug, dask/distributed#8136): the local cluster binds it, and the scheduler, to 127.0.0.1 on a free
+port, so it neither collides with a running dashboard on :8787 nor listens beyond this machine.
+
 Fails when: Dask is asked for and not installed: :class:`~rigor_gyro.core.errors.ParameterError`
 naming the extra (exit 2).
 """
 from __future__ import annotations
 
+import contextlib
+import multiprocessing
 import os
-from typing import Any, Callable, Sequence
+import sys
+from typing import Any, Callable, Iterator, Sequence
 
 from ..core.errors import ParameterError
 
@@ -33,6 +45,29 @@ def default_workers() -> int:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # pragma: no cover (not Linux)
         return max(1, os.cpu_count() or 1)
+
+
+@contextlib.contextmanager
+def _main_hidden() -> Iterator[None]:
+    """While worker processes start: ``__main__`` without ``__file__`` and with ``__spec__`` None, so that a
+    spawned or forkserver child does not import and run the calling script again (see the module docstring)."""
+    main = sys.modules.get("__main__")
+    saved = {k: getattr(main, k) for k in ("__file__", "__spec__") if main is not None and hasattr(main, k)}
+    try:
+        if "__file__" in saved:
+            del main.__file__
+        if "__spec__" in saved:
+            main.__spec__ = None
+        yield
+    finally:
+        for k, v in saved.items():
+            setattr(main, k, v)
+
+
+def _pool_context():
+    """fork where the platform has it (no script is re-run, the parent's imports are inherited); else the
+    platform's default start method."""
+    return multiprocessing.get_context("fork") if "fork" in multiprocessing.get_all_start_methods() else None
 
 
 def _run_batch(fn: Callable, batch: list) -> list:
@@ -54,8 +89,9 @@ class Executor:
             except ImportError:
                 raise ParameterError("--scheduler needs Dask distributed: pip install 'rigor_gyro[dask]'") from None
             if scheduler == "local":
-                self._cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1, processes=True,
-                                             dashboard_address=None)
+                with _main_hidden():
+                    self._cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1, processes=True,
+                                                 host="127.0.0.1", dashboard_address="127.0.0.1:0")
                 self._client = Client(self._cluster)
             else:
                 try:
@@ -66,7 +102,7 @@ class Executor:
                                          "scheduler, or 'local'") from None
         elif self.workers > 1:
             from concurrent.futures import ProcessPoolExecutor   # only when used: 20 ms of every start-up
-            self._pool = ProcessPoolExecutor(max_workers=self.workers)
+            self._pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=_pool_context())
 
     @property
     def label(self) -> str:
