@@ -148,8 +148,8 @@ def _named_mutants():
 
 
 def test_the_named_mutant_runs_put_last_times_killer_first_and_keep_every_test(tmp_path, monkeypatch):
-    """tools/pytest_first.py only reorders (the same tests run); soundness_mutants reads each mutant's latest
-    'killed by' node id from the tables (an order hint: a stale one moves nothing)."""
+    """tools/pytest_first.py only reorders (the same tests run); soundness_mutants reads each mutant's last
+    killer from tools/mutant_kills.json (an order hint: a stale one moves nothing) and --record writes it."""
     plugin = _tool("pytest_first")
 
     class Item:
@@ -162,13 +162,58 @@ def test_the_named_mutant_runs_put_last_times_killer_first_and_keep_every_test(t
     monkeypatch.setenv("PYTEST_FIRST", "")
     plugin.pytest_collection_modifyitems(None, None, items)
     assert [it.nodeid[-1] for it in items] == ["4", "]", "2", "0", "1", "3", "5"]
-    md = tmp_path / "m.md"
-    md.write_text("| mutant | what | outcome | s |\n|---|---|---|---|\n"
-                  "| `a` | x | killed by tests/t.py::t1[p q] (error) | 3 |\n| `b` | y | SURVIVED | 1 |\n"
-                  "| `a` | x | killed by tests/u.py::t2 | 3 |\nprose `c` | killed by tests/v.py::t |\n")
-    assert _tool("soundness_mutants").killer_hints(md) == {"a": "tests/u.py::t2"}
-    md.write_text("| `a` | x | killed by tests/t.py::t1[p q] (error) | 3 |\n")
-    assert _tool("soundness_mutants").killer_hints(md) == {"a": "tests/t.py::t1[p q]"}
+    tool = _tool("soundness_mutants")
+    # three mutants of one file, one of another: a new name takes the group of its file's mutants
+    by_file = {}
+    for name, file, *_ in tool.MUTANTS:
+        by_file.setdefault(file, []).append(name)
+    a, b, c = next(ns for ns in by_file.values() if len(ns) >= 3)[:3]
+    d = next(ns for f, ns in by_file.items() if a not in ns)[0]
+    kills = tmp_path / "kills.json"
+    tool.write_kills({a: {"group": "g", "killed_by": "tests/t.py::t1[p q]", "run": "whole", "date": "x"},
+                      b: {"group": "g", "killed_by": None, "run": "whole", "date": "x"},
+                      d: {"group": "h", "killed_by": "tests/v.py", "run": "targeted", "date": "x"}}, kills)
+    assert tool.killer_hints(kills) == {a: "tests/t.py::t1[p q]", d: "tests/v.py"}
+    rows = [(a, "", "killed by tests/u.py::t2 (error)", 1.0), (b, "", "killed by tests/u.py::t3", 1.0),
+            (c, "", "SURVIVED", 1.0), (d, "", "NOT RUN (pytest exit 4)", 1.0)]
+    got = tool.record_kills(rows, None, targeted=True, path=kills, today="2026-12-06")
+    assert got == tool.read_kills(kills)
+    assert got[a] == {"group": "g", "killed_by": "tests/u.py::t2", "run": "targeted", "date": "2026-12-06"}
+    assert got[b]["killed_by"] == "tests/u.py::t3"
+    assert got[c] == {"group": "g", "killed_by": None, "run": "targeted", "date": "2026-12-06"}
+    assert got[d] == {"group": "h", "killed_by": "tests/v.py", "run": "targeted", "date": "x"}
+    assert list(got) == [a, b, d, c]
+    assert tool.killer_hints(kills) == {a: "tests/u.py::t2", b: "tests/u.py::t3", d: "tests/v.py"}
+
+
+def _mutation_md_groups() -> dict[str, int]:
+    """The group table of proofs/mutation.md: | `group` | what | mutants | ... |, and its total row."""
+    out = {}
+    for line in (PKG.parent / "proofs" / "mutation.md").read_text(encoding="utf-8").splitlines():
+        cells = [c.strip().strip("*") for c in line.split("|")]
+        if len(cells) > 4 and re.fullmatch(r"`\w+`|all", cells[1]) and cells[3].isdigit():
+            out[cells[1].strip("`")] = int(cells[3])
+    return out
+
+
+def test_every_named_mutant_is_recorded_killed_and_its_group_counted_in_mutation_md():
+    """tools/mutant_kills.json holds one entry per mutant of tools/soundness_mutants.py, each with the test
+    that killed it (a recorded survivor fails here), and proofs/mutation.md counts each group."""
+    tool = _tool("soundness_mutants")
+    names = [m[0] for m in tool.MUTANTS]
+    kills = tool.read_kills()
+    how = ("run `python tools/soundness_mutants.py --only NAME ... --tests FILE ... --record [--group GROUP]` "
+           "and count the mutant in its group's row of proofs/mutation.md")
+    assert not [n for n in names if n not in kills], f"mutants without a kill record: {how}"
+    assert not [n for n in kills if n not in names], "tools/mutant_kills.json names mutants no longer listed"
+    assert not [n for n, e in kills.items() if not e.get("killed_by")], "mutants recorded as surviving"
+    assert all(e.get("run") in ("whole", "targeted") and e.get("date") for e in kills.values())
+    counts = {}
+    for e in kills.values():
+        counts[e["group"]] = counts.get(e["group"], 0) + 1
+    table = _mutation_md_groups()
+    assert table.pop("all", None) == len(names), "proofs/mutation.md's total row"
+    assert table == counts, f"proofs/mutation.md's group rows: {how}"
 
 
 @pytest.mark.parametrize("mutant", _named_mutants(), ids=lambda m: m[0])

@@ -1,21 +1,31 @@
 """Named soundness mutants: each weakens one step a proof rests on; the default tests must kill all.
 
     python tools/soundness_mutants.py [--only NAME ...] [--tests FILE ...] [--in-order] [--list] [--out FILE]
+                                      [--record [--group GROUP]]
 
 Each mutant is one textual substitution in one file. It is applied to a fresh copy of the files git
 tracks, as they are in the working tree (in a temporary folder), and the README's test command runs
 there (``python -m pytest -x``, the ``ci`` hypothesis profile, with the copy first on ``sys.path``). A
-mutant is *killed* when the tests fail. The tests that killed it last time (the latest "killed by" of
-its row in proofs/mutation.md) run first (tools/pytest_first.py: the same tests, only in another order),
-so that ``-x`` stops within seconds when they kill it again; ``--in-order`` keeps pytest's order. The
+mutant is *killed* when the tests fail. The test that killed it last time (its ``killed_by`` in
+tools/mutant_kills.json) runs first (tools/pytest_first.py: the same tests, only in another order),
+so that ``-x`` stops within seconds when it kills it again; ``--in-order`` keeps pytest's order. The
 unmutated copy must pass the same tests first (otherwise the run stops, exit 4: a test failing there
 would "kill" every mutant); a pytest exit of 4 or 5 (a broken run) is "NOT RUN", never a kill.
 ``test_rules``' check of this list's texts is left out of both runs (see ``RULE``). Prints a table
 (and writes it with ``--out``); exits 1 if any mutant survives or was not run.
+
+``--record`` writes this run's outcomes into tools/mutant_kills.json (the record proofs/mutation.md
+summarises by group): for each mutant killed, the first failing test, the date and whether the run was the
+whole default command or ``--tests`` files; a survivor's ``killed_by`` becomes null; a mutant not applied
+or not run keeps its entry. A mutant new to the file takes ``--group``, else the group of the mutants of
+the same file already there (``tests/test_rules.py`` checks that every mutant has an entry and that
+proofs/mutation.md counts each group).
 """
 from __future__ import annotations
 
 import argparse
+import datetime
+import json
 import os
 import shutil
 import subprocess
@@ -25,6 +35,9 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+#: mutant name -> {"group", "killed_by" (a test node id, or a test file where only the file is known; null
+#: after a survival), "run" ("whole": the default command, or "targeted": --tests files), "date"}
+KILLS = ROOT / "tools" / "mutant_kills.json"
 #: tests/test_rules.py checks that each mutant's target text occurs once in the tree: in a mutated copy
 #: the applied mutant's text is gone, so that check would "kill" every mutant whose own test runs after
 #: it (test_sublevel, test_subdivision): it is left out of these runs (it is about this list, not soundness)
@@ -697,22 +710,50 @@ MUTANTS = [
 ]
 
 
-def killer_hints(path: Path = ROOT / "proofs" / "mutation.md") -> dict[str, str]:
-    """name -> the node id of the test that killed the mutant in its latest row of ``path``'s tables
-    (``| `name` | ... | killed by NODEID | ... |``); only an order hint, never an outcome."""
-    hints: dict[str, str] = {}
-    if not path.is_file():
-        return hints
-    for line in path.read_text().splitlines():
-        cells = [c.strip() for c in line.split("|")]
-        if len(cells) >= 5 and cells[1].startswith("`") and cells[1].endswith("`"):
-            for cell in cells[3:]:
-                if cell.startswith("killed by tests/"):
-                    hints[cells[1].strip("`")] = cell.removeprefix("killed by ").removesuffix(" (error)")
-    return hints
+def read_kills(path: Path = KILLS) -> dict[str, dict]:
+    """The record of tools/mutant_kills.json (empty if the file is missing)."""
+    return json.loads(path.read_text(encoding="utf-8")) if path.is_file() else {}
 
 
-def run(names: list[str] | None, out: str | None, tests: list[str] | None = None, in_order: bool = False) -> int:
+def write_kills(kills: dict[str, dict], path: Path = KILLS) -> None:
+    """One mutant a line, in the record's own order (new names last), so that a run's diff is its changes."""
+    lines = [f"  {json.dumps(name)}: {json.dumps(entry, ensure_ascii=False)}" for name, entry in kills.items()]
+    path.write_text("{\n" + ",\n".join(lines) + "\n}\n", encoding="utf-8")
+
+
+def killer_hints(path: Path = KILLS) -> dict[str, str]:
+    """name -> the node id (or test file) that killed the mutant last time, from ``path``; only an order
+    hint for tools/pytest_first.py (a stale one moves nothing), never an outcome."""
+    return {name: e["killed_by"] for name, e in read_kills(path).items() if e.get("killed_by")}
+
+
+def record_kills(rows: list[tuple[str, str, str, float]], group: str | None, targeted: bool,
+                 path: Path = KILLS, today: str | None = None) -> dict[str, dict]:
+    """Update ``path`` with the outcomes of ``rows`` (name, what, outcome, seconds), as ``--record`` says."""
+    kills = read_kills(path)
+    files = {name: file for name, file, *_ in MUTANTS}
+    today = today or datetime.date.today().isoformat()
+    for name, _what, outcome, _secs in rows:
+        if outcome.startswith("killed by "):
+            killed_by = outcome.removeprefix("killed by ").removesuffix(" (error)")
+        elif outcome == "SURVIVED":
+            killed_by = None
+        else:                       # NOT APPLIED / NOT RUN: nothing was measured
+            continue
+        entry = kills.get(name)
+        if entry is None:
+            same_file = [e["group"] for n, e in kills.items() if files.get(n) == files.get(name)]
+            entry = {"group": group or (max(set(same_file), key=same_file.count) if same_file else "ungrouped")}
+        elif group:
+            entry["group"] = group
+        entry.update(killed_by=killed_by, run="targeted" if targeted else "whole", date=today)
+        kills[name] = entry
+    write_kills(kills, path)
+    return kills
+
+
+def run(names: list[str] | None, out: str | None, tests: list[str] | None = None, in_order: bool = False,
+        record: bool = False, group: str | None = None) -> int:
     rows, survivors = [], []
     # one snapshot of the tree, taken now: edits made while the mutants run do not leak into them
     snapshot = Path(tempfile.mkdtemp(prefix="mutants-snapshot-"))
@@ -775,6 +816,9 @@ def run(names: list[str] | None, out: str | None, tests: list[str] | None = None
     print(text)
     if out:
         Path(out).write_text(text + "\n")
+    if record:
+        record_kills(rows, group, targeted=bool(tests))
+        print(f"recorded in {KILLS.relative_to(ROOT)}")
     return 1 if survivors else 0
 
 
@@ -786,12 +830,14 @@ def main() -> int:
     ap.add_argument("--tests", nargs="*", help="run only these test files (a quick targeted run; the default "
                                                 "is the README's whole test command)")
     ap.add_argument("--in-order", action="store_true", help="pytest's own order (not last time's killers first)")
+    ap.add_argument("--record", action="store_true", help="write the outcomes into tools/mutant_kills.json")
+    ap.add_argument("--group", help="with --record: the group of the mutants run (for names new to the file)")
     args = ap.parse_args()
     if args.list:
         for name, path, *_rest, what in MUTANTS:
             print(f"{name:36s} {path}: {what}")
         return 0
-    return run(args.only, args.out, args.tests, args.in_order)
+    return run(args.only, args.out, args.tests, args.in_order, args.record, args.group)
 
 
 if __name__ == "__main__":
