@@ -746,8 +746,6 @@ def record_kills(rows: list[tuple[str, str, str, float]], group: str | None, tar
         if entry is None:
             same_file = [e["group"] for n, e in kills.items() if files.get(n) == files.get(name)]
             entry = {"group": group or (max(set(same_file), key=same_file.count) if same_file else "ungrouped")}
-        elif group:
-            entry["group"] = group
         entry.update(killed_by=killed_by, run="targeted" if targeted else "whole", date=today)
         kills[name] = entry
     write_kills(kills, path)
