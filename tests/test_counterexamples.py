@@ -88,7 +88,9 @@ def test_search_finds_counterexamples_far_from_the_first_16_undecided_leaves(pav
     bs, claim = paved
     undecided = [i for i, (_, s) in enumerate(claim.boxes) if s == "undecided"]
     first16 = set(undecided[:16])
-    assert claim.points and not any(p["status"] == "refuted" for p in claim.points)   # what the paving found
+    mids = [cx.Candidate(claim.boxes[i][0].midpoint(), i, "undecided", None) for i in undecided[:16]]
+    at_mids = cx.prove_candidates(bs, claim.boxes, "bracket_1", mids)      # what today's paving asks
+    assert len(at_mids) == 16 and not cx.certified_counterexamples(at_mids)
     cands = cx.candidate_points(bs, claim.boxes, "bracket_1", 4, samples=64)
     assert cands and all(c.probe != "proved" for c in cands)
     proofs = cx.prove_candidates(bs, claim.boxes, "bracket_1", cands)
@@ -108,6 +110,10 @@ def test_the_search_is_deterministic(paved):
     one = cx.candidate_points(bs, claim.boxes, "bracket_1", 3, samples=32)
     assert one == cx.candidate_points(bs, claim.boxes, "bracket_1", 3, samples=32)
     assert cx.failing_fraction_estimate(bs, samples=20, seed=3) == cx.failing_fraction_estimate(bs, samples=20, seed=3)
+    with cx.Executor(2) as ex:                                   # the same wherever the probes and proofs run
+        assert cx.candidate_points(bs, claim.boxes, "bracket_1", 3, samples=32, executor=ex) == one
+        assert cx.failing_fraction_estimate(bs, samples=20, seed=3, executor=ex) == \
+            cx.failing_fraction_estimate(bs, samples=20, seed=3)
 
 
 def test_local_steps_stay_in_the_leaf_and_never_rank_worse(paved):
