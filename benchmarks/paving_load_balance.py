@@ -82,7 +82,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--overhead-ms", type=float, default=0.3, help="fixed cost per batch (default 0.3 ms)")
     args = ap.parse_args(argv)
     ns = [int(n) for n in args.workers.split(",")]
-    print(f"| paving | boxes | levels | serial s | " + " | ".join(f"N={n} (no barrier)" for n in ns) + " |")
+    print("| paving | boxes | levels | serial s | " + " | ".join(f"N={n} (no barrier)" for n in ns) + " |")
     print("|---|---|---|---|" + "---|" * len(ns))
     for name in args.scenes:
         ex = TimingExecutor()
