@@ -51,7 +51,8 @@ from ..kinds import optional_module
 from .executors import Executor
 from .models import scene_model
 
-__all__ = ["PROBE_PREC", "MARGIN_PROVIDERS", "Candidate", "probe_task", "candidate_points", "prove_candidates",
+__all__ = ["PROBE_PREC", "MARGIN_PROVIDERS", "Candidate", "probe_task", "candidate_points", "shortest_decimal",
+           "prove_candidates", "search_claim",
            "certified_counterexamples", "contains", "wilson_interval", "failing_fraction_estimate",
            "agrees_with_paving"]
 
@@ -187,13 +188,14 @@ def _improve(bs, cand: Candidate, leaf: Box, claim: str, steps: int, prec: int, 
 
 def candidate_points(bs, leaves: list[tuple[Box, str]], claim: str, n: int, samples: int | None = None,
                      prec: int = PROBE_PREC, improve_steps: int = 2, executor: Executor | None = None,
-                     outcomes: tuple[str, ...] = ("undecided",)) -> list[Candidate]:
+                     outcomes: tuple[str, ...] = ("undecided",), tidy: bool = True) -> list[Candidate]:
     """Up to ``n`` candidate counterexamples to ``claim`` over the leaves whose status is in ``outcomes``
     (``leaves``: the claim's leaves as the paving stores them, ``(box, status)``; :attr:`Candidate.leaf`
     indexes this list). ``samples`` Halton points (default ``32 n``) spread over those leaves by volume are
     probed; candidates are the points whose probe is not ``proved``, best first (probe refuted, then the
     smallest margin), one per leaf before any second one in a leaf; the best ``n`` that are not refuted by
-    their probe take ``improve_steps`` rounds of local search. Deterministic; never decides."""
+    their probe take ``improve_steps`` rounds of local search; with ``tidy``, each is then moved to short
+    decimals nearby where its probe ranks no worse (:func:`shortest_decimal`). Deterministic; never decides."""
     ex = executor or Executor(1)
     idx = [i for i, (_, s) in enumerate(leaves) if s in outcomes]
     if n <= 0 or not idx:
@@ -211,7 +213,38 @@ def candidate_points(bs, leaves: list[tuple[Box, str]], claim: str, n: int, samp
     chosen = ranked[:n]
     chosen = [c if c.probe == "refuted" or c.margin is None
               else _improve(bs, c, leaves[c.leaf][0], claim, improve_steps, prec, ex) for c in chosen]
+    if tidy:
+        chosen = _tidied(bs, chosen, leaves, claim, prec, ex)
     return [c for c in sorted(chosen, key=Candidate.key) if c.probe != "proved"]
+
+
+def shortest_decimal(lo: Fraction, hi: Fraction) -> Fraction:
+    """The decimal with the fewest digits after the point in [lo, hi] (the smallest such; exact); lo when
+    there is none with up to 40 digits (lo == hi, or a very narrow interval)."""
+    for digits in range(41):
+        step = Fraction(1, 10 ** digits)
+        c = math.ceil(lo / step) * step
+        if c <= hi:
+            return c
+    return lo
+
+
+def _tidied(bs, cands: list[Candidate], leaves: list[tuple[Box, str]], claim: str, prec: int,
+            ex: Executor) -> list[Candidate]:
+    """Each candidate moved to the shortest decimals within 1/32 of its leaf's edge (inside the leaf), so
+    that a counterexample reads like one a person would write; kept there only when the probe ranks it no
+    worse (status first), else left where it was."""
+    tidy = []
+    for c in cands:
+        box = leaves[c.leaf][0]
+        tidy.append({k: shortest_decimal(max(lo, c.point[k] - (hi - lo) / 32), min(hi, c.point[k] + (hi - lo) / 32))
+                     for k, lo, hi in box.edges})
+    probes = _probe(bs, tidy, (claim,), prec, ex)
+    out = []
+    for c, p, r in zip(cands, tidy, probes):
+        t = Candidate(p, c.leaf, r[claim][0], r[claim][1])
+        out.append(t if _RANK[t.probe] <= _RANK[c.probe] else c)
+    return out
 
 
 # --------------------------------------------------------------------------- 2. point proofs
@@ -251,6 +284,21 @@ def prove_candidates(bs, leaves: list[tuple[Box, str]], claim: str, candidates: 
 def certified_counterexamples(proofs: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """The point proofs that certify a counterexample: those the point prover refuted (never a probe)."""
     return [p for p in proofs if p["status"] == "refuted"]
+
+
+def search_claim(bs, leaves: list[tuple[Box, str]], claim: str, n: int, samples: int | None = None,
+                 prec: int = PROBE_PREC, improve_steps: int = 2, executor: Executor | None = None) -> dict[str, Any]:
+    """Steps 1 and 2 for one claim, as a paving certificate would store them: ``{"settings": {points, samples,
+    probe_prec, improve_steps, sequence}, "undecided_leaves", "proofs": prove_candidates(...), "refuted",
+    "leaves": the distinct leaves holding a certified counterexample}``."""
+    count = samples if samples is not None else 32 * n
+    cands = candidate_points(bs, leaves, claim, n, count, prec, improve_steps, executor)
+    proofs = prove_candidates(bs, leaves, claim, cands, executor)
+    found = certified_counterexamples(proofs)
+    return {"settings": {"points": n, "samples": count, "probe_prec": prec, "improve_steps": improve_steps,
+                         "sequence": "halton"},
+            "undecided_leaves": sum(1 for _, s in leaves if s == "undecided"), "proofs": proofs,
+            "refuted": len(found), "leaves": sorted({p["leaf"] for p in found})}
 
 
 # --------------------------------------------------------------------------- 3. Monte Carlo
