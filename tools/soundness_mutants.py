@@ -709,6 +709,28 @@ MUTANTS = [
     ("halton_point_in_first_box", "rigor_gyro/core/halton.py",
      "        box = boxes[k]\n", "        box = boxes[0]\n",
      "a volume-weighted Halton point placed in the first box while reported in the box it picked"),
+    # the checker's side of the counterexample search and the Monte Carlo cross-check (issue 38)
+    ("cxc_reproof_unread", "rigor_gyro/margins/counterexample_check.py",
+     "            if got.get(key) != p.get(key):\n", "            if False:\n",
+     "a stored search point's status, reason or precision accepted without the point prover giving them again"),
+    ("cxc_leaf_containment_skipped", "rigor_gyro/margins/counterexample_check.py",
+     "        if not contains(box, point):\n", "        if False:\n",
+     "a stored counterexample accepted in a leaf that does not contain it"),
+    ("cxc_leaf_status_unchecked", "rigor_gyro/margins/counterexample_check.py",
+     "        if p.get(\"leaf_status\") != status:\n", "        if False:\n",
+     "a search point's stored leaf status accepted without comparing it with the leaf"),
+    ("cxc_contradiction_ignored", "rigor_gyro/margins/counterexample_check.py",
+     "        if {status, got[\"status\"]} == _CONTRADICTORY:\n", "        if False:\n",
+     "the checker accepts a counterexample inside a leaf stored proved"),
+    ("cxc_counts_unchecked", "rigor_gyro/margins/counterexample_check.py",
+     "    if search.get(\"refuted\") != refuted or search.get(\"leaves\") != sorted(refuted_leaves):\n",
+     "    if False:\n", "a search's stated number of counterexamples and their leaves not re-derived from its proofs"),
+    ("cxc_mc_interval_unchecked", "rigor_gyro/margins/counterexample_check.py",
+     "        if not (_close(stored[\"fraction\"], k / n if n else 0.0) and _close(lo_s, lo) and _close(hi_s, hi)):\n",
+     "        if False:\n", "a Monte Carlo fraction or interval that does not follow from its counts accepted"),
+    ("cxc_mc_rerun_ignored", "rigor_gyro/margins/counterexample_check.py",
+     "        if (fresh[\"samples\"], fresh[\"failing\"], fresh[\"unknown\"]) != (n, k, u):\n", "        if False:\n",
+     "a Monte Carlo estimate whose counts a re-run with its seed does not give accepted"),
 ]
 
 
