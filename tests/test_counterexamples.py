@@ -181,3 +181,19 @@ def test_unknown_samples_widen_the_interval(paved, monkeypatch):
     monkeypatch.setattr(cx, "_point_statuses", lambda *a: {"bracket_1": "inconclusive"})
     est = cx.failing_fraction_estimate(bs, samples=10)["bracket_1"]
     assert est["failing"] == 0 and est["unknown"] == 10 and est["interval"][0] == 0.0 and est["interval"][1] == 1.0
+
+
+def test_paving_searches_gives_each_claim_its_search_and_estimate(paved):
+    bs, claim = paved
+    out = cx.paving_searches(bs, [claim], 2, samples=16, mc_samples=30, seed=4)["bracket_1"]
+    assert out["counterexample_search"]["refuted"] >= 1 and out["monte_carlo"]["samples"] == 30
+    assert out["monte_carlo"]["consistent"] is True
+
+    class Spent:
+        def expired(self):
+            return True
+
+        def reason(self):
+            return "time limit of 1 s reached (--time-limit)"
+    spent = cx.paving_searches(bs, [claim], 2, mc_samples=30, budget=Spent())["bracket_1"]
+    assert spent == {"counterexample_search": {"skipped": Spent().reason()}, "monte_carlo": {"skipped": Spent().reason()}}

@@ -54,7 +54,7 @@ from .models import scene_model
 __all__ = ["PROBE_PREC", "MARGIN_PROVIDERS", "Candidate", "probe_task", "candidate_points", "shortest_decimal",
            "prove_candidates", "search_claim",
            "certified_counterexamples", "contains", "wilson_interval", "failing_fraction_estimate",
-           "agrees_with_paving"]
+           "agrees_with_paving", "paving_searches"]
 
 #: bits of the probes (the box rigour on a point box): a proposal only, so low
 PROBE_PREC = 64
@@ -378,3 +378,33 @@ def agrees_with_paving(volume: dict[str, Fraction], estimate: dict[str, Any]) ->
             f"certifies a failing fraction in [{float(lo_c):.4f}, {float(hi_c):.4f}]: "
             + ("consistent" if ok else "INCONSISTENT"))
     return ok, text
+
+
+# --------------------------------------------------------------------------- 4. for the paving
+
+def paving_searches(bs, claims: list, n: int, samples: int | None = None, mc_samples: int = 0, seed: int = 0,
+                    prec: int = PROBE_PREC, executor: Executor | None = None, budget=None) -> dict[str, dict[str, Any]]:
+    """What a paving adds per claim (``claims``: the paving's claim results, each with ``id``, ``boxes`` (the
+    leaves) and ``volume(whole)``): ``{"counterexample_search": search_claim(...)}`` for a claim with undecided
+    leaves, and with ``mc_samples`` > 0 ``{"monte_carlo": failing_fraction_estimate(...) plus "consistent":
+    agrees_with_paving(...)}``. With a ``budget`` (:class:`rigor_gyro.core.deadline.Budget`) that has run
+    out, what is left is skipped (``{"skipped": reason}``): a search never decides, so skipping one loses
+    nothing certified."""
+    ex = executor or Executor(1)
+    out: dict[str, dict[str, Any]] = {c.id: {} for c in claims}
+    for c in claims:
+        if any(s == "undecided" for _, s in c.boxes) and n > 0:
+            if budget is not None and budget.expired():
+                out[c.id]["counterexample_search"] = {"skipped": budget.reason()}
+            else:
+                out[c.id]["counterexample_search"] = search_claim(bs, c.boxes, c.id, n, samples, prec, executor=ex)
+    if mc_samples > 0:
+        if budget is not None and budget.expired():
+            for c in claims:
+                out[c.id]["monte_carlo"] = {"skipped": budget.reason()}
+        else:
+            est = failing_fraction_estimate(bs, [c.id for c in claims], mc_samples, seed, executor=ex)
+            for c in claims:
+                out[c.id]["monte_carlo"] = {**est[c.id],
+                                            "consistent": agrees_with_paving(c.volume(bs.box), est[c.id])[0]}
+    return out
