@@ -39,10 +39,12 @@ from ...check import CheckResult
 from ...core.balls import certainly_gt, certainly_le, certainly_lt, certainly_positive, exact_endpoints, working_precision
 from ...core.stored import encloses, fmpq_of, interval as stored_interval, number
 from ...core.boxes import Box, tiles_by_bisection
+from ...core.exact import Exact
 from ...core.roots import RootStatus, enclose_f_df, newton_root
 from .claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
 from .equilibria import Equilibrium, classify as classify_equilibrium, pi_text
+from .natural_domain import band_function, exact_range, natural_lower_bound, positivity_functions, with_range
 from .model import (DIRECT_DOMAIN, c_star_lower, c_star_upper, closed_form_constants, cylinder_lower_bound,
                     damping_margin, direct_margin, faces_minimiser_inside, mean_value_enclosure, psi_min_functions, slice_extent,
                     slice_in_region, sublevel_lower_bound, symmetric_in_x2, vdot_polar)
@@ -583,6 +585,13 @@ def check(model, data: dict) -> list[CheckResult]:
     if wl and sc.get("status") == "proved":
         sub_ok, sub_msg = _check_sublevel(g, xs, wl, sc.get("details", {}), q, verified, cert_prec)
 
+    # ---------------------------------------------------------------- the natural sublevel set
+    nat_ok, nat_msg = False, "no stored witness"
+    wn = W.get("natural_sublevel")
+    ncl = claims.get("natural_sublevel", {})
+    if wn and ncl.get("status") == "proved":
+        nat_ok, nat_msg = _check_natural(g, wn, ncl.get("details", {}), q, verified, cert_prec)
+
     # ---------------------------------------------------------------- equilibria
     eq_ok, eq_msg = False, "no stored pieces"
     we = W.get("equilibria")
@@ -659,6 +668,8 @@ def check(model, data: dict) -> list[CheckResult]:
                     t = None
                 A = vdot_polar(g, arb(0), arb.pi() * arb(fmpq_of(t)))[0] if t is not None else arb("nan")
                 say(cid, certainly_lt(A, 0), "A(0, t) < 0 at the stored t re-evaluated (Vdot > 0 arbitrarily near 0)")
+        elif cid == "natural_sublevel":
+            say(cid, st == "proved" and nat_ok, nat_msg)
         elif cid == "v_positive":
             if st == "proved":
                 say(cid, v_ok, "S, f/x, psi > 0 on every stored piece of [0, x2*], re-evaluated")
@@ -761,6 +772,67 @@ def _check_sublevel(g, xs: arb, w: dict, details: dict, q: dict, verified: set, 
         return False, "the set {Vdot >= 0} is said to bind, but its level is not below the faces'"
     return True, (f"c_max bounds re-derived: {len(boxes)} (x2, t) boxes tile the domain, the lower bound re-evaluated "
                   "on each; faces in closed form; the point of {Vdot > 0} re-evaluated")
+
+
+def _check_natural(g, w: dict, details: dict, q: dict, verified: set, cert_prec: int) -> tuple[bool, str]:
+    """Re-derive the natural sublevel bounds from the stored pieces: V > 0 (S, f/x, psi > 0 on stored pieces
+    covering [0, X], X read exactly from its stored text, inside (0, pi/2)), phi > c_max_upper on stored pieces covering
+    [X_c, X], the stored (x2, t) boxes tiling the domain over |x2| <= X_c with the lower bound of V over
+    {Vdot >= 0} >= c_max_lower on each, and Vdot > 0, V <= c_max_upper at the stored point (|x2| <= X_c).
+    Each stated bound is compared with its exact decimal."""
+    try:
+        lo_t, hi_t = (number(details[k]) for k in ("c_max_lower", "c_max_upper"))
+        Xe = exact_range(str(w["X"]))
+        band_lo = number(w["band_lo"])
+        stated_lo = number(details["band_lo"])
+    except (KeyError, TypeError, ValueError, ZeroDivisionError):
+        return False, "the bounds, X or X_c are missing or not numbers"
+    if details.get("X") != w["X"] or stated_lo != band_lo:
+        return False, "the details' X or X_c differ from the witness's"
+    for name, t in (("natural_c_max_lower", lo_t), ("natural_c_max_upper", hi_t)):
+        iv = stored_interval(q[name]) if name in q else None
+        if iv is None or not encloses(iv, arb(fmpq_of(t))) or (iv[1] - iv[0]) > abs(t) * Fraction(1, 2 ** 40):
+            return False, f"the stored {name} is not the stated decimal"
+        verified.add(name)
+    if not (0 < lo_t <= hi_t):
+        return False, "natural c_max_lower is not positive, or above c_max_upper"
+    X = Xe.ball()
+    if not (certainly_positive(X) and certainly_lt(X, arb.pi() / 2)):
+        return False, "X is not inside (0, pi/2)"
+    if "natural_X" not in q or not encloses(stored_interval(q["natural_X"]), X):
+        return False, "the stored natural_X does not contain X"
+    verified.add("natural_X")
+    for name, fn in positivity_functions(g).items():
+        pieces = (w.get("positivity") or {}).get(name) or []
+        if not (_covers(pieces, arb(0), X) and _all_positive(fn, pieces)):
+            return False, f"{name} > 0 is not re-derived on stored pieces covering [0, X]"
+    xc = arb(fmpq_of(band_lo))
+    if not (band_lo > 0 and certainly_lt(xc, X)):
+        return False, "X_c is not inside (0, X)"
+    level = arb(fmpq_of(hi_t))
+    if not (_covers(w.get("band") or [], xc, X) and _all_positive(band_function(g, level), w["band"])):
+        return False, "phi > c_max_upper is not re-derived on stored pieces covering [X_c, X]"
+    gC = with_range(g, Exact(band_lo, 0, str(band_lo)))
+    boxes = [Box.from_json(b) for b in w.get("boxes", [])]
+    if not tiles_by_bisection(Box.of(DIRECT_DOMAIN), boxes):
+        return False, "the stored (x2, t) boxes over |x2| <= X_c do not tile the domain"
+    lo_q = fmpq_of(lo_t)
+    for b, low in zip(boxes, _box_lower_ends(lambda: symmetric_in_x2(gC, natural_lower_bound(gC)), boxes, cert_prec)):
+        if not (float(low) == float("inf") or (low.is_finite() and low >= lo_q)):
+            return False, f"on the box {b.to_json()} the lower bound of V over {{Vdot >= 0}} is below {details['c_max_lower']}"
+    pt = w.get("point") or {}
+    try:
+        x1, x2, x3 = (_b(_pair(pt[k])) for k in ("x1", "x2", "x3"))
+    except (KeyError, TypeError, ValueError, ZeroDivisionError):
+        return False, "no stored point of {Vdot > 0}"
+    if not (certainly_le(abs(x2), xc) and certainly_positive(x1 * x1 + x3 * x3) and certainly_positive(g.vdot(x1, x2, x3))):
+        return False, "the stored point is not certainly in {Vdot > 0, x1^2 + x3^2 > 0, |x2| <= X_c}"
+    v = g.V(x1, x2, x3).upper()
+    if not (v.is_finite() and v <= level):
+        return False, "V at the stored point exceeds c_max_upper"
+    return True, (f"natural c_max bounds re-derived: V > 0 on [0, X] and phi > c_max_upper on [X_c, X] re-evaluated on "
+                  f"the stored pieces, {len(boxes)} (x2, t) boxes tile the domain with the lower bound re-evaluated on "
+                  "each, the point of {Vdot > 0} re-evaluated")
 
 
 def _decided_roots(fn, pieces, pi: arb):

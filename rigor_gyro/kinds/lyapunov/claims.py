@@ -64,13 +64,14 @@ from .. import Attempt, Phases
 from .equilibria import equilibria
 from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
+from .natural_domain import NATURAL_GAP, natural_sublevel
 from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_psi_test, certify_vdot_nonpositive,
                     closed_form_constants, cylinder_lower_bound, damping_margin, direct_margin, faces_minimiser_inside, hypot_ball,
                     mean_value_enclosure, rational_points_inside, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
 from .moments import MOMENTS
 from .paper import PAPER_SCHEMA, audit as audit_paper
 
-__all__ = ["CLAIMS", "PARAMETERS", "LyapunovModel", "validate", "attempt", "gimbal_from_parameters", "maximum_M"]
+__all__ = ["CLAIMS", "OPT_IN_CLAIMS", "ALL_CLAIMS", "PARAMETERS", "LyapunovModel", "validate", "attempt", "gimbal_from_parameters", "maximum_M"]
 
 PARAMETERS = {"A": "equatorial moment of inertia of the rotor", "C": "polar moment of inertia of the rotor",
               "A1": "inner ring", "B1": "inner ring", "C1": "inner ring", "A2": "outer ring about its axis",
@@ -86,12 +87,13 @@ DIRECT_MU_GAP = "5e-7"
 DIRECT_MU_PIECES = 400
 #: the box budget of the direct test at the searched mu_direct (past it, the scene's mu is tried)
 DIRECT_MU_BOXES = 2000
-OPTIONS = {"rel_width": "1e-15", "R": "", "max_pieces": "20000"}
+OPTIONS = {"rel_width": "1e-15", "R": "", "max_pieces": "20000", "natural_sublevel": ""}
 MAX_PIECES_LIMIT = 1_000_000
 
 #: the numbers a report's summary opens with (quantity name -> what it is), in this order
 HEADLINE = {"R_used": "radius R of region (17) used", "c_star": "level c* of the invariant estimate {V < c*}",
             "c_max_lower": "certified lower bound of the largest sublevel level c_max",
+            "natural_c_max_lower": "certified lower bound of c_max over the natural range |x2| <= X (V > 0 there)",
             "R_direct": "radius with Vdot < 0 certified directly (scene's mu)",
             "R_direct_upper": "Vdot > 0 at a certified point of this radius",
             "R_max": "certified radius R_max at mu_best (Psi test)", "mu_best": "mu_best (a search result)",
@@ -149,6 +151,28 @@ CLAIMS = {
 }
 
 
+#: claims a scene must ask for by name (claims_only): not in the default list (CLAIMS), since they cost seconds
+OPT_IN_CLAIMS = {
+    "natural_sublevel": "V > 0 off the origin for |x2| <= X (X = pi/2 (1 - 2^-j), or a rational below a point where that test fails; S, f/x, psi > 0 on (0, X], "
+                        "independent of x2*, m, M and (16)-(18)); c_max(X), the infimum of V over the set where Vdot >= 0 "
+                        "with (x1, x3) != (0, 0) and |x2| <= X, and over the faces |x2| = X, lies in [natural_c_max_lower, "
+                        "natural_c_max_upper]; phi(x2) > natural_c_max_upper on X_c <= |x2| <= X (so c_max(X') is the same "
+                        "number for every X' in [X_c, X] and the component of {V < c} around 0 lies in |x2| < X_c for "
+                        "c <= natural_c_max_upper). For every c <= natural_c_max_lower that component has Vdot <= 0 on it, "
+                        "with equality only where x1 = x3 = 0 (LaSalle, x2 f(x2) > 0: positively invariant, bounded, "
+                        "inside the domain of attraction). The bracket aims at the relative gap of the scene option "
+                        "natural_sublevel (default 1e-6).",
+}
+
+#: every claim in report order, the opt-in ones at their place (after largest_sublevel): the order attempt emits
+#: them in, so a scene whose claims_only names an opt-in claim gets its claims in this order
+ALL_CLAIMS = {}
+for _cid, _text in CLAIMS.items():
+    ALL_CLAIMS[_cid] = _text
+    if _cid == "largest_sublevel":
+        ALL_CLAIMS.update(OPT_IN_CLAIMS)
+
+
 @dataclass
 class LyapunovModel:
     gimbal: Gimbal
@@ -158,6 +182,8 @@ class LyapunovModel:
     R_option: fmpq | None
     max_pieces: int
     paper: dict
+    #: the relative gap the natural_sublevel claim aims at ("" = not asked by option)
+    natural_gap: str = ""
 
 
 def _err(name, text, need):
@@ -207,7 +233,11 @@ def validate(scene) -> LyapunovModel:
     R = option_number(opts["R"], "R", above="0", at_most="1e6").fmpq() if opts["R"] else None
     pieces = option_count(opts["max_pieces"], "max_pieces", 1, MAX_PIECES_LIMIT)
     check_printed(scene.paper, PAPER_SCHEMA)
-    return LyapunovModel(g, v, dict(scene.parameters), rel, R, pieces, dict(scene.paper))
+    nat = ""
+    if opts["natural_sublevel"]:
+        option_number(opts["natural_sublevel"], "natural_sublevel", above="0", at_most="1/2")
+        nat = str(opts["natural_sublevel"])
+    return LyapunovModel(g, v, dict(scene.parameters), rel, R, pieces, dict(scene.paper), nat)
 
 
 # ------------------------------------------------------------------------------------ helpers
@@ -508,6 +538,65 @@ def _largest_sublevel(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
                   f"c_max in [{r.c_lower}, {r.c_upper}]; faces: min phi(+-x2*) = {_fmt(r.face, 12)}; {vd}; {bind}{cmp}",
                   c_max_lower=r.c_lower, c_max_upper=r.c_upper, vdot_level_lower=r.n_lower,
                   vdot_level_upper=r.n_upper, binds=r.binding, boxes=r.boxes)
+
+
+# ------------------------------------------------------------------------------------ natural c_max
+
+def _natural_claim(status: Status, reason: str, decides: arb | None = None, **details) -> Claim:
+    return Claim("natural_sublevel", OPT_IN_CLAIMS["natural_sublevel"], status, reason, details=details,
+                 counterexample=None, decides=decides)
+
+
+def _natural_sublevel(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
+    gap = ctx.m.natural_gap or NATURAL_GAP
+    r = natural_sublevel(ctx.g, ctx.m.max_pieces, gap)
+    if r.c_lower is None:
+        claim = _natural_claim(Status.INCONCLUSIVE, r.reason + "; try a larger max_pieces or --maxprec", decides=r.bound)
+        if r.bound is None:
+            claim.precision_cannot_help = r.reason
+        return claim
+    lo, hi = _q(_fmpq(Fraction(r.c_lower))), _q(_fmpq(Fraction(r.c_upper)))
+    X = r.X
+    quantities["natural_c_max_lower"], quantities["natural_c_max_upper"] = lo, hi
+    quantities["natural_X"] = X.ball()
+    ctx.witnesses["natural_sublevel"] = {
+        "X": X.text, "band_lo": str(r.band_lo), "positivity": r.positivity, "band": r.band,
+        "boxes": [b.to_json() for b in r.leaves],
+        "point": {n: ball_text(x) for n, x in zip(("x1", "x2", "x3"), r.point)}}
+    rel = (hi - lo) / lo
+    g = ctx.g
+    pt = r.point
+    cmp = []
+    if "c_star" in quantities and quantities["c_star"].is_finite():
+        cs = quantities["c_star"]
+        cmp.append(f"c* = {_fmt(cs, 10)} of invariant_estimate (natural_c_max_lower / c* = {_fmt(lo / cs, 6)})")
+    if "c_max_lower" in quantities:
+        cl, cu = quantities["c_max_lower"], quantities["c_max_upper"]
+        cmp.append(f"c_max(x2*) in [{_fmt(cl, 10)}, {_fmt(cu, 10)}] of largest_sublevel (natural_c_max_lower / "
+                   f"c_max_upper(x2*) = {_fmt(lo / cu, 6)})")
+    if "R_used" in quantities:
+        printed = ctx.m.paper.get("R")
+        cmp.append(f"region (17) of invariant_estimate has |x2| <= x2* = {_fmt(ctx.xs, 8)} and radius R = "
+                   f"{_fmt(quantities['R_used'], 6)}" + (f" (printed R = {printed})" if printed else ""))
+    larger = ("; compared: " + "; ".join(cmp)) if cmp else ""
+    if r.limit is None:
+        why = ("X cannot reach pi/2: there h = H cos x2 / B0 = 0, V does not depend on x1, and (-f(pi/2)/k, pi/2, 0) "
+               "is an equilibrium")
+    else:
+        why = (f"X cannot reach x2 = {_fmt(r.limit[0], 10)}: {r.limit[1]} <= 0 there (certified), so the test of "
+               "v_positive fails")
+    reached = "reached" if r.gap_reached else "not reached (box budget): the bracket is wider"
+    return _natural_claim(
+        Status.PROVED,
+        f"V > 0 off the origin for |x2| <= X = {X.text} = {_fmt(X.ball(), 12)} (S, f/x, psi > 0 on "
+        f"{sum(len(v) for v in r.positivity.values())} pieces; {why}); c_max(X) in "
+        f"[{r.c_lower}, {r.c_upper}] (relative gap {_fmt(rel, 3)}; {r.boxes} boxes of (x2, t) over |x2| <= X_c, "
+        f"aiming {gap}: {reached}), the upper end V = {_fmt(g.V(*pt), 12)} at the point x1 = {_fmt(pt[0], 8)}, "
+        f"x2 = {_fmt(pt[1], 8)}, x3 = {_fmt(pt[2], 8)} where Vdot = {_fmt(g.vdot(*pt), 4)} > 0; phi > "
+        f"{r.c_upper} on X_c = {r.band_lo} <= |x2| <= X ({len(r.band)} pieces): the faces do not bind and the set "
+        f"lies in |x2| < X_c = {float(r.band_lo):.6f}" + larger,
+        c_max_lower=r.c_lower, c_max_upper=r.c_upper, X=X.text, band_lo=str(r.band_lo), boxes=r.boxes,
+        gap=gap, gap_reached=r.gap_reached)
 
 
 # ------------------------------------------------------------------------------------ equilibria
@@ -1093,6 +1182,10 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
     if "largest_sublevel" in wanted:
         with phase("largest_sublevel"):
             claims.append(_largest_sublevel(ctx, quantities))
+    # opt-in (about 2 s and 1e4 boxes on the example): only when claims_only names it (OPT_IN_CLAIMS)
+    if "natural_sublevel" in wanted:
+        with phase("natural_sublevel"):
+            claims.append(_natural_sublevel(ctx, quantities))
     if "equilibria" in wanted:
         with phase("equilibria"):
             inv = next((c for c in claims if c.id == "invariant_estimate" and c.status is Status.PROVED), None)

@@ -236,3 +236,15 @@ def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
     else:
         out.c_upper = out.n_upper
     return out
+
+
+def search_over_n(g: Gimbal) -> tuple[float, float, float, float]:
+    """The float-free point search of :func:`largest_sublevel` for the minimum of V over N (x2* of ``g``):
+    (value, u, s, r) with x2 = u x2*, t = pi s. A heuristic: it decides nothing."""
+    return _search(g)
+
+
+def certified_point_of_n(g: Gimbal, u: float, s: float, r: float) -> tuple[tuple[arb, arb, arb], arb] | None:
+    """A certified point of N near the search's (u, s, r) (exact rationals, |x2| <= x2* of ``g``, Vdot > 0
+    certainly) with V's enclosure there; None if none was found (see :func:`largest_sublevel`)."""
+    return _point_of_n(g, u, s, r)
