@@ -69,6 +69,14 @@ def _nonnegative_int(text: str) -> int:
     return value
 
 
+def _positive_int(text: str) -> int:
+    """An option's count >= 1 (argparse turns the error into a usage error, exit 2)."""
+    value = _nonnegative_int(text)
+    if value < 1:
+        raise argparse.ArgumentTypeError("0: give 1 or more")
+    return value
+
+
 def _epilog(examples: str, status: str = EXIT_CODES_HELP) -> str:
     return f"examples:\n{examples}\n\n{status}"
 
@@ -94,7 +102,9 @@ def _parser() -> argparse.ArgumentParser:
                                        "  rigor-gyro prove rudenko1976 -o out -q      one scene, one line\n"
                                        "  rigor-gyro prove mine.toml --maxprec 8192 --time-limit 120\n"
                                        "  rigor-gyro prove --group margin -j 2        the tolerance boxes on 2 processes\n"
-                                       "several scenes: the worst status wins, in the order 4, 2, 1, 3, 0"))
+                                       "  rigor-gyro prove box.toml --box-budget 5000 -o out; rigor-gyro prove --resume out/box.json -o out\n"
+                                       "several scenes: the worst status wins, in the order 4, 2, 1, 3, 0; a paving stopped by Ctrl-C: 130, "
+                                       "its paving so far written"))
     pr.add_argument("scenes", nargs="*", metavar="SCENE", help="built-in scene name or path to a TOML file")
     pr.add_argument("--all", action="store_true", help="prove every built-in scene of the papers")
     pr.add_argument("--group", choices=("paper", "demo", "margin", "stress", "all"), default=None,
@@ -120,6 +130,23 @@ def _parser() -> argparse.ArgumentParser:
     pr.add_argument("--time-limit", type=_seconds, default=None, metavar="SECONDS",
                     help="wall-clock budget per scene: when it runs out, every claim not yet decided is "
                          "inconclusive (reason: time limit) and the certificate is written")
+    pr.add_argument("--box-budget", type=_positive_int, default=None, metavar="N",
+                    help="pavings: stop after about N sub-box evaluations in this run (checked between batches of "
+                         "evaluations) and write the paving so far: its decided sub-boxes and the pending ones, "
+                         "undecided until --resume continues them")
+    pr.add_argument("--priority", choices=("volume", "boundary"), default=None,
+                    help="pavings: the order sub-boxes are evaluated in: volume (the largest first, breadth-first; "
+                         "the default) or boundary (those next to a region already decided first)")
+    pr.add_argument("--resume", default=None, metavar="PAVING.json",
+                    help="continue a paving that stopped early (a budget, Ctrl-C, the checkpoint of a killed run) "
+                         "into --out; it is verified first by the checker's rules. Same leaves and verdict as an "
+                         "uninterrupted run")
+    pr.add_argument("--refine", default=None, metavar="RESOLUTION",
+                    help="with --resume: split the paving's undecided sub-boxes again, down to this box_resolution "
+                         "(at most the paving's, e.g. 1/256); its decided sub-boxes are kept")
+    pr.add_argument("--checkpoint-every", type=float, default=60.0, metavar="SECONDS",
+                    help="pavings: write the paving so far to --out every SECONDS while it runs, a partial "
+                         "certificate that --resume continues if the run is killed (default 60; 0: never)")
     pr.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     mg = sub.add_parser("margin", help="certified threshold: where a claim stops holding as one parameter moves",
                         description="Bracket the value of one parameter where a claim changes from proved to "
@@ -261,6 +288,10 @@ def _cmd_prove(args) -> int:
     from .margins.paving import box_scene, has_tolerances
     from .scene import builtin_scenes, load_scene
 
+    if args.resume is not None:
+        return _cmd_resume(args)
+    if args.refine is not None:
+        return _bad("--refine splits the undecided sub-boxes of a paving: give it with --resume PAVING.json")
     if (args.all or args.group) and args.scenes or (args.all and args.group):
         return _bad("give scene names, --all or --group, one of them")
     refs = list(builtin_scenes()) if args.all else list(builtin_scenes(args.group)) if args.group else args.scenes
@@ -304,6 +335,9 @@ def _cmd_prove(args) -> int:
     if args.scheduler is not None and not boxes:
         return _bad("--scheduler runs the sub-boxes of scenes with tolerances, and none of these scenes has "
                     "tolerances: drop --scheduler (point scenes run on --workers processes)")
+    for flag, given in (("--box-budget", args.box_budget), ("--priority", args.priority)):
+        if given is not None and not boxes:
+            return _bad(f"{flag} applies to pavings (scenes with tolerances), and none of these scenes has tolerances")
     if args.scheduler is not None and boxes < len(scenes):
         _say("rigor-gyro: warning: --scheduler applies to the scenes with tolerances only; the point scenes "
              "run here, on --workers processes", err=True)
@@ -316,6 +350,9 @@ def _cmd_prove(args) -> int:
                 from .margins.executors import make_executor
                 executor = make_executor(args.workers, args.scheduler)
             codes.append(_pave(scene, executor, args))
+            if codes[-1] == EXIT_INTERRUPTED:       # Ctrl-C: the paving so far is written; no further scene
+                executor.close()
+                return EXIT_INTERRUPTED
         except RigorGyroError as e:
             _say(_input_error(ref, e), err=True)
             codes.append(EXIT_BAD_INPUT)
@@ -424,13 +461,54 @@ def _prove_point(ref: str, scene, args, show_progress: bool = True) -> int:
     return code
 
 
-def _pave(bs, executor, args) -> int:
-    """Pave one scene with tolerances; print its claims and verdict; write its paving pair."""
-    from .margins.paving import pave
+def _cmd_resume(args) -> int:
+    """``prove --resume PAVING.json [--refine RES]``: continue a paving (verified first) into --out."""
+    import json
+    from .margins.resume import resume_state
+    from .report import output_paths
+    if args.scenes or args.all or args.group:
+        return _bad("--resume continues the paving it names: give no scene, --all or --group with it")
+    try:
+        data = json.loads(Path(args.resume).read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, ValueError, RecursionError) as e:
+        return _bad(f"--resume {args.resume[:200]!r}: not a readable paving ({type(e).__name__})")
+    problem = _check_out(args.out)
+    if problem:
+        return _bad(problem)
+    if args.workers is not None and not 1 <= args.workers <= 256:
+        return _bad(f"need 1 <= --workers <= 256 (got {args.workers})")
+    from .margins.executors import make_executor
+    executor = make_executor(args.workers, args.scheduler)
+    try:
+        bs, state = resume_state(data, executor, refine=args.refine, priority=args.priority)
+        output_paths(bs.scene.name, args.out)
+        return _pave(bs, executor, args, state)
+    except RigorGyroError as e:
+        _say(f"rigor-gyro: --resume {args.resume[:200]}: {e}", err=True)
+        return EXIT_BAD_INPUT
+    except OSError as e:
+        _say(f"rigor-gyro: cannot write to --out {args.out!r}: {e.strerror or e}", err=True)
+        return EXIT_BAD_INPUT
+    finally:
+        executor.close()
+
+
+#: the exit status of a paving stopped by Ctrl-C (its partial certificate written), as of any interrupted run
+EXIT_INTERRUPTED = 130
+
+
+def _pave(bs, executor, args, state=None) -> int:
+    """Pave one scene with tolerances (or continue ``state``, :mod:`.margins.resume`); print its claims and
+    verdict; write its paving pair, and while it runs, every --checkpoint-every seconds, the paving so far."""
+    from .margins.paving import INTERRUPTED, pave
     from .margins.report import write_paving
     from .progress import progress_bar
 
-    bs.point_prec, bs.point_maxprec = args.prec, args.maxprec     # the point proofs' precisions
+    if state is None:
+        bs.point_prec, bs.point_maxprec = args.prec, args.maxprec     # the point proofs' precisions
+        if args.priority is not None:
+            bs.priority = args.priority
+    every = args.checkpoint_every if args.checkpoint_every > 0 else None
     with progress_bar(bs.scene.name, unit="box", enabled=not args.quiet) as bar:
         def progress(done, queued, result):
             vols = [c.volume(bs.box) for c in result.values()]
@@ -440,7 +518,8 @@ def _pave(bs, executor, args) -> int:
             bar.status(f"{queued} queued; least proved claim: {float(worst['proved']):.3f} proved, "
                        f"{float(worst['refuted']):.3f} refuted")
         progress.done = 0
-        paving = pave(bs, executor, progress, time_limit=args.time_limit)
+        paving = pave(bs, executor, progress, time_limit=args.time_limit, box_budget=args.box_budget, state=state,
+                      checkpoint=lambda p: write_paving(p, args.out), checkpoint_every=every)
     jpath, mpath = write_paving(paving, args.out)
     if not args.quiet:
         for c in paving.claims:
@@ -449,6 +528,12 @@ def _pave(bs, executor, args) -> int:
                  f"refuted {float(v['refuted']):.4g}, undecided {float(v['undecided']):.4g})")
     _say(f"{bs.scene.name}: verdict {paving.verdict} over the box in {seconds_text(paving.seconds)} "
          f"({paving.evaluated} boxes, {executor.label}) -> {jpath}, {mpath}")
+    if paving.stopped:
+        pending = sum(len(g.boxes) for g in paving.pending)
+        _say(f"{bs.scene.name}: stopped: {paving.stopped}" + (f"; {pending} sub-boxes pending: `rigor-gyro prove "
+                                                               f"--resume {jpath}` continues" if pending else ""))
+    if paving.stopped == INTERRUPTED:
+        return EXIT_INTERRUPTED
     if args.plots:
         if not _has_matplotlib():
             return _bad(NO_MATPLOTLIB)

@@ -11,6 +11,10 @@ The texts the report prints are re-derived too: the point parameters (the scene'
 parameters without tolerances), each claim's reasons (the first sub-box of each status in the order
 pave evaluates: the whole box, then the stored leaves; or the time limit that stopped it), and each
 point proof's whole record (status, reason, precision).
+A paving that stopped early (a budget, Ctrl-C: ``stopped``) lists its ``pending`` boxes: each group is
+the whole box or the two halves of a split, and each of its boxes is an undecided sub-box of every claim
+it lists (a pending box claims nothing); a claim with pending boxes gives the stop as its undecided
+reason. ``prove --resume`` runs these checks before it continues a paving (:mod:`.resume`).
 A second path beside the box rigour: decided sub-boxes are cross-checked by the point prover at their
 midpoints and extreme corners (:mod:`.sampled`: a spread of ``samples`` of them per claim); a point
 verdict that contradicts its sub-box fails the check.
@@ -46,9 +50,11 @@ def CheckResult(item: str, ok: bool, message: str) -> tuple[str, bool, str]:
     return item, bool(ok), message
 
 
-def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES) -> list[tuple[str, bool, str]]:
+def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES, executor=None) -> list[tuple[str, bool, str]]:
     """The checks of a paving certificate, as (item, ok, message) triples (see the module docstring);
-    ``samples``: decided sub-boxes per claim cross-checked by the point prover (0: none)."""
+    ``samples``: decided sub-boxes per claim cross-checked by the point prover (0: none); ``executor``
+    (:class:`.executors.Executor`): where the decided sub-boxes are re-evaluated (default: here)."""
+    from .order import check_priority
     from .paving import boxes_module, box_scene, evaluate_task, point_task
     from .report import claim_numbers
     out: list = []
@@ -70,6 +76,12 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES) -> list[tup
             add(CheckResult("settings", False, f"the point proofs' precisions {pp}, {pm} are out of range"))
             return out
         bs.point_prec, bs.point_maxprec = pp, pm
+    if "priority" in st:        # chosen on the command line: the order, never what a box's evaluation says
+        try:
+            bs.priority = check_priority(st["priority"])
+        except RigorGyroError as e:
+            add(CheckResult("settings", False, str(e)))
+            return out
     settings = bs.settings()
     add(CheckResult("settings", data["settings"] == settings, "the settings re-derived from the scene"))
     ok = data.get("point_parameters") == dict(bs.points)
@@ -85,8 +97,15 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES) -> list[tup
     oj = json.dumps(bs.options, sort_keys=True)
     mj = json.dumps({k: fraction_text(q) for k, q in bs.box.midpoint().items()}, sort_keys=True)
     statuses = []
+    stopped = data["stopped"] if isinstance(data.get("stopped"), str) else ""
+    pending = data.get("pending")
+    open_claims, whole_pending = _pending_claims(pending, bs.box)
     # the whole box is what pave evaluates first, for every claim: its reason opens each claim's reasons
-    first = evaluate_task(bs.scene.kind, pj, oj, mj, json.dumps(bs.box.to_json()), tuple(bs.claims), bs.prec)
+    # (unless it is still pending: stopped before its first evaluation)
+    first = {} if whole_pending else evaluate_task(bs.scene.kind, pj, oj, mj, json.dumps(bs.box.to_json()),
+                                                   tuple(bs.claims), bs.prec)
+    evaluations = _evaluate_decided(data["claims"], bs, pj, oj, mj, executor)
+    leaves: dict[str, dict] = {}
     for c in data["claims"]:
         cid = c["id"]
         if c.get("statement") != "For every parameter value in the box: " + statements.get(cid, ""):
@@ -95,6 +114,7 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES) -> list[tup
         if any(s not in ("proved", "refuted", "undecided") for _, s in boxes):
             add(CheckResult(cid, False, "unknown sub-box status"))
             continue
+        leaves[cid] = {b.edges: s for b, s in boxes}
         tiles = _tiles(bs.box, [b for b, _ in boxes], bs.frozen)
         add(CheckResult(cid, tiles, "the sub-boxes tile the box (leaves of its bisection tree)" if tiles else
                         "the sub-boxes do not tile the box"))
@@ -113,7 +133,7 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES) -> list[tup
         for b, s in boxes:
             if s == "undecided":
                 continue
-            got, why = evaluate_task(bs.scene.kind, pj, oj, mj, json.dumps(b.to_json()), (cid,), bs.prec)[cid]
+            got, why = evaluations[(cid, b.edges)]
             reasons.setdefault(got, why)
             if got != s:
                 bad.append(f"{b.to_json()}: stored {s}, re-evaluated {got}")
@@ -123,9 +143,11 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES) -> list[tup
             return point_task(bs.scene.kind, json.dumps(bs.point_parameters(point), sort_keys=True), oj, cid,
                               bs.point_prec, bs.point_maxprec)["status"]
         add(CheckResult(cid, *cross_check(cid, boxes, samples, prove_at)))
-        if isinstance(data.get("stopped"), str) and data["stopped"] and "undecided" in c.get("reasons", {}) \
-                and any(s == "undecided" for _, s in boxes):
-            reasons["undecided"] = data["stopped"]
+        if stopped and pending is None and "undecided" in c.get("reasons", {}) \
+                and any(s == "undecided" for _, s in boxes):      # written before pavings listed pending boxes
+            reasons["undecided"] = stopped
+        elif stopped and cid in open_claims:      # a claim with pending boxes: the stop is why they are undecided
+            reasons["undecided"] = stopped
         ok = c.get("reasons") == dict(sorted(reasons.items()))
         add(CheckResult(cid, ok, "the reasons re-derived (the first sub-box of each status)" if ok else
                         "the stored reasons are not the sub-boxes' own (re-evaluated in pave's order)"))
@@ -160,9 +182,81 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES) -> list[tup
     verdict = "refuted" if "refuted" in statuses else "proved" if statuses and all(s == "proved" for s in statuses) \
         else "inconclusive"
     add(CheckResult("verdict", data.get("verdict") == verdict, f"verdict {data.get('verdict')!r}"))
+    if pending is not None or stopped:
+        add(_check_pending(bs, pending, stopped, leaves))
     if any(k in data for k in ("quantities", "range_tiles", "range_points")):
         add(_check_ranges(bs, data, pj, oj, mj))
     return out
+
+
+def _pending_claims(pending, whole: Box) -> tuple[set, bool]:
+    """The claims some pending group lists, and whether the whole box itself is pending (nothing evaluated);
+    an empty answer for a malformed list (:func:`_check_pending` reports it)."""
+    try:
+        claims = {c for g in pending or [] for c in g["claims"]}
+        whole_pending = any([Box.from_json(b) for b in g["boxes"]] == [whole] for g in pending or [])
+        return claims, whole_pending
+    except (TypeError, ValueError, KeyError, AttributeError, ZeroDivisionError):
+        return set(), False
+
+
+def _evaluate_decided(claims: list, bs, pj: str, oj: str, mj: str, executor) -> dict:
+    """{(claim, box edges): [status, reason]}: every decided sub-box of every claim re-evaluated with the
+    kind's box rigour, on ``executor`` when given (the results do not depend on where they run)."""
+    from .paving import evaluate_task
+    keys, tasks = [], []
+    for c in claims:
+        for b in c["boxes"]:
+            if b["status"] in ("proved", "refuted"):
+                box = Box.from_json(b["box"])
+                keys.append((c["id"], box.edges))
+                tasks.append((bs.scene.kind, pj, oj, mj, json.dumps(box.to_json()), (c["id"],), bs.prec))
+    outs = executor.map(evaluate_task, tasks) if executor is not None else [evaluate_task(*t) for t in tasks]
+    return {k: out[k[0]] for k, out in zip(keys, outs)}
+
+
+def _check_pending(bs, pending, stopped: str, leaves: dict[str, dict]) -> tuple[str, bool, str]:
+    """The pending boxes of a paving that stopped early: only then; each group is the whole box (all claims
+    open) or the two halves of one split; its claims are the paving's, in its order; each of its boxes is
+    an undecided sub-box of each claim it lists, and no box is pending twice. A pending box claims nothing
+    (it is an undecided sub-box); these checks keep ``--resume`` from continuing a queue that is not the
+    paving's own."""
+    if not stopped:
+        return CheckResult("pending", False, "pending boxes in a paving that ran its course (no 'stopped')")
+    if pending is None:
+        return CheckResult("pending", True, "stopped; written before pavings listed their pending boxes")
+    seen: set = set()
+    try:
+        for g in pending:
+            boxes = [Box.from_json(b) for b in g["boxes"]]
+            claims = list(g["claims"])
+            if not isinstance(g["score"], int) or isinstance(g["score"], bool) or g["score"] < 0:
+                return CheckResult("pending", False, f"a pending group's score {g['score']!r} is not a count")
+            if not claims or claims != [c for c in bs.claims if c in claims]:
+                return CheckResult("pending", False, f"the pending claims {claims} are not some of {bs.claims} in order")
+            if len(boxes) == 1:
+                if boxes[0] != bs.box or claims != list(bs.claims):
+                    return CheckResult("pending", False, "a pending box alone that is not the whole box for every claim")
+            elif len(boxes) == 2:
+                hull = Box(tuple((n, min(a1, a2), max(b1, b2)) for (n, a1, b1), (_, a2, b2)
+                                 in zip(boxes[0].edges, boxes[1].edges)))
+                if [e[0] for e in boxes[0].edges] != [e[0] for e in boxes[1].edges] \
+                        or hull.split(bs.box, bs.frozen) != tuple(boxes):
+                    return CheckResult("pending", False, f"a pending pair is not the two halves of a split: "
+                                       f"{[b.to_json() for b in boxes]}")
+            else:
+                return CheckResult("pending", False, "a pending group of neither one nor two boxes")
+            for b in boxes:
+                if b.edges in seen:
+                    return CheckResult("pending", False, f"the box {b.to_json()} is pending twice")
+                seen.add(b.edges)
+                for c in claims:
+                    if leaves.get(c, {}).get(b.edges) != "undecided":
+                        return CheckResult("pending", False, f"the pending box {b.to_json()} is not an undecided "
+                                           f"sub-box of {c}")
+    except (TypeError, ValueError, KeyError, AttributeError, ZeroDivisionError) as e:
+        return CheckResult("pending", False, f"a pending group is malformed: {type(e).__name__}: {e}")
+    return CheckResult("pending", True, f"{len(seen)} pending sub-box(es), each undecided for the claims it lists")
 
 
 def _check_ranges(bs, data: dict[str, Any], pj: str, oj: str, mj: str) -> tuple[str, bool, str]:

@@ -21,13 +21,24 @@ Options (the scene's ``[options]``, beside the kind's): ``box_resolution`` (rela
 ``max_boxes`` (default 20000), ``box_prec`` (bits for the box evaluations, default 128), ``max_points``
 (point proofs per claim and outcome, default 16).
 
-Determinism: boxes are evaluated level by level in a fixed order, and each evaluation depends only on
-its box; the paving is identical for every executor and worker count.
+Anytime: boxes are evaluated best first (:mod:`.order`: the largest first by default, which is
+breadth-first; or those next to a decided region first) in batches. A time limit, a box budget for the
+run, Ctrl-C or a broken executor stop it between batches; the boxes still queued are then *pending*
+(undecided leaves, listed apart), and the paving written is a valid partial certificate that ``check``
+verifies and :mod:`.resume` continues (``prove --resume``) to exactly the paving an uninterrupted run
+gives; with a checkpoint callback it is also written every so often while the run goes on.
+
+Determinism: the batches and what each evaluation says depend only on the boxes, not on the executor or
+the worker count; the paving is identical for every executor and worker count.
 """
 from __future__ import annotations
 
+import contextlib
 import json
+import signal
+import threading
 import time
+from concurrent.futures import BrokenExecutor
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
@@ -41,10 +52,11 @@ from ..kinds import KINDS, kind_module, optional_module
 from ..scene import Scene
 from .executors import Executor
 from .models import scene_model as _model
+from .order import DEFAULT_PRIORITY, Frontier, Group, check_priority, volume_depth
 from .ranges import quantities_module, quantity_specs, search_ranges
 
-__all__ = ["MARGIN_OPTIONS", "BoxScene", "Paving", "box_scene", "pave", "has_tolerances", "boxes_module",
-           "evaluate_task", "point_task"]
+__all__ = ["MARGIN_OPTIONS", "BoxScene", "Paving", "PaveState", "box_scene", "pave", "has_tolerances",
+           "boxes_module", "evaluate_task", "point_task", "start_state", "INTERRUPTED", "CHECKPOINT"]
 
 MARGIN_OPTIONS = {"box_resolution": "1/64", "max_boxes": "20000", "box_prec": "128", "max_points": "16",
                   "range_boxes": "64", "range_gap": "1/100"}
@@ -82,13 +94,16 @@ class BoxScene:
     #: ``prec``, the scene's ``box_prec``)
     point_prec: int = DEFAULT_PREC
     point_maxprec: int = DEFAULT_MAXPREC
+    #: the order boxes are evaluated in (:mod:`.order`; ``prove --priority``)
+    priority: str = DEFAULT_PRIORITY
 
     def settings(self) -> dict[str, Any]:
         """The settings a paving certificate states (the checker re-derives them from the scene)."""
         return {"box_resolution": fraction_text(self.resolution), "max_boxes": self.max_boxes, "box_prec": self.prec,
                 "max_points": self.max_points, "unsplit": list(self.frozen), "range_boxes": self.range_boxes,
                 "range_gap": fraction_text(self.range_gap), "point_prec": self.point_prec,
-                "point_maxprec": self.point_maxprec}
+                "point_maxprec": self.point_maxprec,
+                **({} if self.priority == DEFAULT_PRIORITY else {"priority": check_priority(self.priority)})}
 
     def point_parameters(self, point: dict[str, Fraction]) -> dict[str, str]:
         return {**{k: v for k, v in self.points.items()}, **{k: fraction_text(q) for k, q in point.items()}}
@@ -243,6 +258,8 @@ class Paving:
     stopped: str = ""
     #: the tiles and points of the quantities' ranges (:mod:`.ranges`), None when the kind has none
     ranges: Any = None
+    #: the groups still queued when it stopped (:mod:`.order`), best first: undecided leaves of their claims
+    pending: list = field(default_factory=list)
 
     @property
     def verdict(self) -> str:
@@ -254,11 +271,115 @@ class Paving:
         return {"proved": 0, "refuted": 1, "inconclusive": 3}[self.verdict]
 
 
-def pave(bs: BoxScene, executor: Executor | None = None, progress=None, time_limit: float | None = None) -> Paving:
-    """The paving of ``bs.box`` for each of ``bs.claims`` (see the module docstring). With ``time_limit``
-    (seconds), the budget is checked after each level of subdivision: once it has run out, the boxes
-    still open are undecided leaves (reason: the time limit), no point proof is run, and the paving is
-    written as far as it got (a valid certificate: its decided leaves stand)."""
+@dataclass
+class PaveState:
+    """Where a paving stands between two batches (:mod:`.resume` rebuilds it from a partial paving): per
+    claim the leaves so far (decided, or undecided at the resolution or the ``max_boxes`` cap) in the order
+    they were evaluated and the first reason per outcome; the queued groups (:mod:`.order`); the boxes
+    created toward ``max_boxes`` (evaluated and queued), the boxes evaluated, the levels (the deepest box
+    evaluated, plus one) and whether ``max_boxes`` left a box unsplit."""
+
+    result: dict[str, ClaimPaving]
+    frontier: Frontier
+    created: int = 1
+    evaluated: int = 0
+    levels: int = 0
+    budget_hit: bool = False
+
+
+def start_state(bs: BoxScene) -> PaveState:
+    """A paving about to start: the whole box queued for every claim."""
+    statements = boxes_module(bs.scene.kind).BOX_CLAIMS
+    result = {c: ClaimPaving(c, "For every parameter value in the box: " + statements[c]) for c in bs.claims}
+    return PaveState(result, Frontier(bs.priority, [Group((bs.box,), tuple(bs.claims))]), created=1)
+
+
+#: the reasons a run stops before its course, beside the time limit's (:class:`~rigor_gyro.core.deadline.Budget`)
+INTERRUPTED = "interrupted (Ctrl-C)"
+CHECKPOINT = ("checkpoint after {n} box evaluations, the run still going (if it was killed, "
+              "`rigor-gyro prove --resume` continues from here)")
+
+
+def box_budget_reason(n: int) -> str:
+    return f"box budget of {n} evaluations reached (--box-budget)"
+
+
+@contextlib.contextmanager
+def _deferred_interrupt():
+    """Hold Ctrl-C (SIGINT) while the state is updated: yields a list that is non-empty if one arrived."""
+    got: list = []
+    if threading.current_thread() is not threading.main_thread():
+        yield got
+        return
+    old = signal.signal(signal.SIGINT, lambda signum, frame: got.append(signum))
+    try:
+        yield got
+    finally:
+        signal.signal(signal.SIGINT, old)
+
+
+def _commit(bs: BoxScene, st: PaveState, batch: list[Group], outs: list[dict]) -> None:
+    """Record a batch's evaluations: decided claims become leaves; an undecided box is split (its halves
+    queued with the claims still open) unless it is fine at the resolution or ``max_boxes`` would be
+    exceeded, then it is an undecided leaf (a budget never refutes)."""
+    whole, i = bs.box, 0
+    for g in batch:
+        gouts = outs[i:i + len(g.boxes)]
+        i += len(g.boxes)
+        for j, b in enumerate(g.boxes):
+            out = gouts[j]
+            sibling = gouts[1 - j] if len(g.boxes) == 2 else None
+            st.levels = max(st.levels, volume_depth(whole, b) + 1)
+            undecided = []
+            for c in g.claims:
+                status, reason = out[c]
+                st.result[c].reasons.setdefault(status, reason)
+                if status == "undecided":
+                    undecided.append(c)
+                else:
+                    st.result[c].boxes.append((b, status))
+            if not undecided:
+                continue
+            fine = all(w <= bs.resolution for n, w in b.relative_widths(whole).items() if n not in bs.frozen)
+            if fine or st.created + 2 > bs.max_boxes:
+                st.budget_hit = st.budget_hit or not fine
+                for c in undecided:
+                    st.result[c].boxes.append((b, "undecided"))
+            else:
+                near = 0 if sibling is None else sum(1 for c in undecided if sibling[c][0] != "undecided")
+                score = max(near, g.score - 1)          # the boundary priority's (:mod:`.order`)
+                st.frontier.push(Group(b.split(whole, bs.frozen), tuple(undecided), score))
+                st.created += 2
+        st.evaluated += len(g.boxes)
+
+
+def _snapshot(bs: BoxScene, st: PaveState, stopped: str, seconds: float, label: str, ranges=None) -> Paving:
+    """The paving as it stands: the leaves, and when ``stopped``, the queued boxes as undecided leaves of
+    their open claims (pending; the claim's undecided reason is then ``stopped``)."""
+    pending = st.frontier.groups() if stopped else []
+    claims = []
+    for c, cp in st.result.items():
+        boxes = list(cp.boxes) + [(b, "undecided") for g in pending if c in g.claims for b in g.boxes]
+        reasons = dict(cp.reasons)
+        if any(c in g.claims for g in pending):
+            reasons["undecided"] = stopped
+        claims.append(ClaimPaving(cp.id, cp.statement, boxes, reasons, list(cp.points)))
+    return Paving(bs, claims, st.evaluated, st.levels, st.budget_hit or bool(stopped), seconds, label, stopped,
+                  ranges, pending)
+
+
+def pave(bs: BoxScene, executor: Executor | None = None, progress=None, time_limit: float | None = None, *,
+         box_budget: int | None = None, state: PaveState | None = None, checkpoint=None,
+         checkpoint_every: float | None = None) -> Paving:
+    """The paving of ``bs.box`` for each of ``bs.claims`` (see the module docstring), best first in
+    ``bs.priority`` (:mod:`.order`), in batches. Between batches it stops when ``time_limit`` (seconds) has
+    run out, when this run has evaluated ``box_budget`` boxes or more, or on Ctrl-C (or a broken executor,
+    whose batch in flight is left unevaluated): the queued boxes are then *pending* (undecided leaves of
+    their open claims, listed in ``pending``), no point proof is run and the paving is a valid partial
+    certificate (its decided leaves stand; a budget never refutes) that :mod:`.resume` continues exactly.
+    ``state`` (from :mod:`.resume`) continues a partial paving instead of starting at the whole box.
+    ``checkpoint(paving)`` is called with such a partial paving (reason: :data:`CHECKPOINT`) every
+    ``checkpoint_every`` seconds while work remains (a run killed then resumes from the last one)."""
     budget = Budget(check_time_limit(time_limit))
     t0 = time.perf_counter()
     ex = executor or Executor(1)
@@ -266,62 +387,69 @@ def pave(bs: BoxScene, executor: Executor | None = None, progress=None, time_lim
     pj = json.dumps(bs.points, sort_keys=True)
     oj = json.dumps(bs.options, sort_keys=True)
     mj = json.dumps({k: fraction_text(q) for k, q in whole.midpoint().items()}, sort_keys=True)
-    statements = boxes_module(bs.scene.kind).BOX_CLAIMS
-    result = {c: ClaimPaving(c, "For every parameter value in the box: " + statements[c]) for c in bs.claims}
-    active: list[tuple[Box, tuple[str, ...]]] = [(whole, tuple(bs.claims))]
-    evaluated, levels, budget_hit, stopped = 0, 0, False, ""
-    while active:
-        levels += 1
-        tasks = [(bs.scene.kind, pj, oj, mj, json.dumps(b.to_json()), open_, bs.prec) for b, open_ in active]
-        outs = ex.map(evaluate_task, tasks)
-        evaluated += len(active)
-        nxt: list[tuple[Box, tuple[str, ...]]] = []
-        for (b, open_), out in zip(active, outs):
-            undecided = []
-            for c in open_:
-                status, reason = out[c]
-                result[c].reasons.setdefault(status, reason)
-                if status == "undecided":
-                    undecided.append(c)
-                else:
-                    result[c].boxes.append((b, status))
-            if not undecided:
-                continue
-            fine = all(w <= bs.resolution for n, w in b.relative_widths(whole).items() if n not in bs.frozen)
-            if fine or evaluated + len(nxt) + 2 > bs.max_boxes:
-                budget_hit = budget_hit or not fine
-                for c in undecided:
-                    result[c].boxes.append((b, "undecided"))
-            else:
-                nxt.extend((child, tuple(undecided)) for child in b.split(whole, bs.frozen))
-        active = nxt
-        if progress:
-            progress(evaluated, len(active), result)
-        if active and budget.expired():
-            for child, open_ in active:
-                for c in open_:
-                    result[c].boxes.append((child, "undecided"))
-                    result[c].reasons["undecided"] = budget.reason()
-            active, budget_hit, stopped = [], True, budget.reason()
-    # point proofs at midpoints: refuted boxes (re-checkable counterexamples) and undecided boxes
-    ptasks, owners = [], []
-    for c, cp in ([] if stopped else result.items()):
-        for outcome in ("refuted", "undecided"):
-            for b, s in [x for x in cp.boxes if x[1] == outcome][:bs.max_points]:
-                params = bs.point_parameters(b.midpoint())
-                ptasks.append((bs.scene.kind, json.dumps(params, sort_keys=True), oj, c, bs.point_prec,
-                               bs.point_maxprec))
-                owners.append((c, b, outcome, params))
-    for (c, b, outcome, params), res in zip(owners, ex.map(point_task, ptasks)):
+    st = state if state is not None else start_state(bs)
+    stopped, run, last = "", 0, time.monotonic()
+    while len(st.frontier) and not stopped:
+        batch = st.frontier.pop_batch()
+        items = [(g, b) for g in batch for b in g.boxes]
+        tasks = [(bs.scene.kind, pj, oj, mj, json.dumps(b.to_json()), g.claims, bs.prec) for g, b in items]
+        try:
+            outs = ex.map(evaluate_task, tasks)
+        except KeyboardInterrupt:
+            st.frontier.restore_batch()
+            stopped = INTERRUPTED
+            break
+        except BrokenExecutor as e:
+            st.frontier.restore_batch()
+            stopped = f"the executor broke ({type(e).__name__}: {e}); the batch in flight was left pending"
+            break
+        with _deferred_interrupt() as interrupted:
+            _commit(bs, st, batch, outs)
+            run += len(items)
+            if progress:
+                progress(st.evaluated, len(st.frontier), st.result)
+        if interrupted:
+            stopped = INTERRUPTED
+        elif len(st.frontier) and budget.expired():
+            stopped = budget.reason()
+        elif len(st.frontier) and box_budget is not None and run >= box_budget:
+            stopped = box_budget_reason(box_budget)
+        elif len(st.frontier) and checkpoint is not None and checkpoint_every is not None \
+                and time.monotonic() - last >= checkpoint_every:
+            with _deferred_interrupt() as interrupted:
+                checkpoint(_snapshot(bs, st, CHECKPOINT.format(n=st.evaluated), time.perf_counter() - t0, ex.label))
+            last = time.monotonic()
+            stopped = INTERRUPTED if interrupted else ""
+    if stopped:
+        return _snapshot(bs, st, stopped, time.perf_counter() - t0, ex.label)
+    result = st.result
+    try:
+        # point proofs at midpoints: refuted boxes (re-checkable counterexamples) and undecided boxes
+        ptasks, owners = [], []
+        for c, cp in result.items():
+            for outcome in ("refuted", "undecided"):
+                for b, s in [x for x in cp.boxes if x[1] == outcome][:bs.max_points]:
+                    params = bs.point_parameters(b.midpoint())
+                    ptasks.append((bs.scene.kind, json.dumps(params, sort_keys=True), oj, c, bs.point_prec,
+                                   bs.point_maxprec))
+                    owners.append((c, b, outcome, params))
+        points = ex.map(point_task, ptasks)
+    except KeyboardInterrupt:       # the leaves are complete; the point proofs are not run
+        return _snapshot(bs, st, INTERRUPTED, time.perf_counter() - t0, ex.label)
+    for (c, b, outcome, params), res in zip(owners, points):
         if outcome == "refuted" and res["status"] == "proved":   # a box refuted everywhere, proved at a point
             raise AssertionError(f"claim {c}: box {b.to_json()} refuted for every parameter, but its midpoint "
                                  f"is proved: an unsound box or point evaluation")
         result[c].points.append({"box_outcome": outcome, "point": params, **res})
     ranges = None
     qmod = quantities_module(bs.scene.kind)
-    if qmod is not None and bs.range_boxes and not stopped:
-        ranges = search_ranges(bs.scene.kind, whole, bs.frozen, pj, oj, mj, bs.prec,
-                               list(quantity_specs(bs.scene.kind, pj, oj, mj)),
-                               bs.range_boxes, bs.range_gap, ex, budget)
-    return Paving(bs, [result[c] for c in bs.claims], evaluated, levels, budget_hit,
-                  time.perf_counter() - t0, ex.label, stopped, ranges)
+    if qmod is not None and bs.range_boxes:
+        try:
+            ranges = search_ranges(bs.scene.kind, whole, bs.frozen, pj, oj, mj, bs.prec,
+                                   list(quantity_specs(bs.scene.kind, pj, oj, mj)),
+                                   bs.range_boxes, bs.range_gap, ex, budget)
+        except KeyboardInterrupt:
+            for cp in result.values():
+                cp.points = []
+            return _snapshot(bs, st, INTERRUPTED, time.perf_counter() - t0, ex.label)
+    return _snapshot(bs, st, "", time.perf_counter() - t0, ex.label, ranges)

@@ -2,7 +2,9 @@
 
 The JSON holds the scene exactly as written, the whole box, the settings, and per claim: the status
 over the whole box, the volume fractions (exact rationals, and decimals for reading), every final
-sub-box with its outcome (exact endpoints), and the point proofs at sub-box midpoints. It is
+sub-box with its outcome (exact endpoints), and the point proofs at sub-box midpoints; a paving that
+stopped early (``stopped``) also lists its ``pending`` boxes (queued, not yet evaluated: undecided
+leaves of their open claims, which :mod:`.resume` continues). It is
 byte-identical for every executor and worker count (wall times go to ``timings/<name>.json``).
 ``rigor-gyro check`` re-evaluates it (:func:`check_paving`).
 """
@@ -78,6 +80,7 @@ def paving_json(p: Paving) -> dict[str, Any]:
     }
     if p.stopped:       # only then, so that a paving that ran its course is byte-identical to before
         data["stopped"] = p.stopped
+        data["pending"] = [g.to_json() for g in p.pending]
     if p.ranges is not None:
         data.update(ranges_json(bs, p.ranges))
     data["integrity"] = {"sha256": digest(data)}
@@ -123,9 +126,10 @@ def render_paving(data: dict[str, Any]) -> str:
         out.append("")
     out.append(f"Settings: box_resolution {s['box_resolution']} of each edge, max_boxes {s['max_boxes']}, box "
                f"evaluations at {s['box_prec']} bits; {data['boxes_evaluated']} boxes evaluated in "
-               f"{data['levels']} levels" + (f"; stopped: {data['stopped']}, the open sub-boxes left undecided and no point "
+               f"{data['levels']} levels" + (f"; stopped: {data['stopped']}, {_pending_text(data)} and no point "
                                       "proof run" if data.get("stopped") else "; the box budget was exhausted"
-                                      if data["budget_exhausted"] else "") + ".")
+                                      if data["budget_exhausted"] else "") + "."
+               + (f" Boxes evaluated {s['priority']} first." if s.get("priority") else ""))
     if data["not_box_claims"]:
         out.append("")
         out.append(f"Not decided over boxes (point claims only): {', '.join(data['not_box_claims'])}.")
@@ -137,6 +141,18 @@ def render_paving(data: dict[str, Any]) -> str:
                f"(schema `{data['schema']}`).")
     out.append("")
     return "\n".join(out)
+
+
+def _pending_text(data: dict[str, Any]) -> str:
+    """What a stopped paving left open, and how to continue it."""
+    pending = data.get("pending")
+    if pending is None:             # written before pavings listed their pending boxes
+        return "the open sub-boxes left undecided"
+    n = sum(len(g["boxes"]) for g in pending)
+    if not n:
+        return "no box left pending"
+    return (f"{n} pending sub-box(es) left undecided (`rigor-gyro prove --resume {data['scene']['name']}.json` "
+            "continues the paving)")
 
 
 def _point_text(point: dict[str, str]) -> str:
