@@ -76,6 +76,10 @@ def test_the_example_is_proved_on_the_natural_range_and_contains_the_independent
     X = exact_range(d["X"]).ball()
     assert float(X) > 1.5707 and X < arb.pi() / 2
     assert 1.141 < float(Fraction(d["band_lo"])) < 1.15
+    # the set's x2 extent (1.141 by the independent computation) is bracketed by [reach, X_c]
+    assert 1.12 < float(Fraction(d["reach"])) < 1.141          # 1.1387 at the 1e-6 bracket
+    ext = example["quantities"]["natural_extent_x2"]
+    assert Fraction(ext["lo"]) <= Fraction(d["reach"]) and Fraction(d["band_lo"]) <= Fraction(ext["hi"])
     # 3.3 times c* = 23.43 (the faces of x2* = pi/6 bind for largest_sublevel)
     assert lo > 3 * Fraction("23.43")
 
@@ -226,6 +230,14 @@ def test_the_checker_confirms_and_rejects_tampered_witnesses_and_forged_bounds(e
     # (V at the point is below it, so only the band's re-evaluation can reject it)
     assert rejected(lambda d: w(d)["positivity"].__setitem__("psi", [["0", d["quantities"]["natural_X"]["hi"]]]))
     assert rejected(forge("c_max_upper", "200"))
+    # the x2 extent's lower end moved beyond where phi < c_max_lower is certified (its last piece stretched)
+    def reach_beyond(d):
+        e = str(Fraction(det(d)["band_lo"]) - Fraction(1, 4096))
+        w(d)["reach"] = det(d)["reach"] = e
+        w(d)["reach_pieces"][-1][1] = e
+        q = d["quantities"]["natural_extent_x2"]
+        q["lo"] = str(Decimal(q["lo"]) + Decimal("0.004"))
+    assert rejected(reach_beyond)
     # the point moved off {Vdot > 0}: onto the axis, and 1 % inwards (Vdot < 0 there, V below the upper end)
     assert rejected(lambda d: w(d)["point"].__setitem__("x3", ["0", "0"]))
 
@@ -249,3 +261,14 @@ def test_a_range_limited_by_a_failing_psi_is_certified_below_the_failure(opt_in)
         assert name == "psi" and g.psi(w) <= 0
         if ok:
             assert out.X.ball() < w
+
+
+@pytest.mark.slow
+def test_the_example_is_bracketed_to_1e_6_and_the_checker_confirms(opt_in):
+    """The issue's tightness: at the default gap the bracket of c_max(X) is within 1e-6 relative and holds
+    the independent value; the checker re-derives it (about 3 s to prove, 8 s to check)."""
+    data = _prove("1e-6")
+    d = _claim(data)["details"]
+    lo, hi = Fraction(d["c_max_lower"]), Fraction(d["c_max_upper"])
+    assert d["gap_reached"] and lo <= INDEPENDENT <= hi and (hi - lo) / lo <= Fraction(1, 10 ** 6)
+    assert check_certificate(data).ok

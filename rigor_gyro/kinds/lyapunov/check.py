@@ -22,6 +22,10 @@ in the precision), and checks
 * c_max (the largest sublevel set): the stored (x2, t) boxes tile the domain and the model's lower bound
   of V over {Vdot >= 0} is >= the stated vdot_level_lower on each; the faces' phi(+-x2*) recomputed; Vdot > 0
   and V at the stored point re-evaluated; every stated bound compared with its exact decimal;
+* the natural c_max (opt-in claim): X read exactly from its text and inside (0, pi/2); S, f/x, psi > 0 on
+  stored pieces covering [0, X]; phi > c_max_upper on stored pieces covering [X_c, X]; the stored (x2, t) boxes
+  over |x2| <= X_c tile the domain with the natural lower bound >= c_max_lower on each; Vdot > 0 and
+  V <= c_max_upper at the stored point; phi < c_max_lower on stored pieces covering [0, reach] (the extent);
 * the equilibria: the stored isolation pieces of f and of k H + C0 sin x2 f(x2) are contiguous, cover
   [-pi, pi] and are each decided (Newton); the equilibria are re-derived from them, each at its stated
   point (x2 by its exact text or its decimal interval, x1 by its decimal interval), with its case and
@@ -830,6 +834,22 @@ def _check_natural(g, w: dict, details: dict, q: dict, verified: set, cert_prec:
     v = g.V(x1, x2, x3).upper()
     if not (v.is_finite() and v <= level):
         return False, "V at the stored point exceeds c_max_upper"
+    reach = w.get("reach")
+    if (reach is None) != ("natural_extent_x2" not in q) or (reach is None) != (details.get("reach") is None):
+        return False, "the x2 extent is stated without its witness, or the reverse"
+    if reach is not None:
+        try:
+            e = number(reach)
+        except (TypeError, ValueError, ZeroDivisionError):
+            return False, "the stored reach is not a number"
+        eb = arb(fmpq_of(e))
+        cl = arb(fmpq_of(lo_t))
+        if not (number(details["reach"]) == e and 0 < e < band_lo and _covers(w.get("reach_pieces") or [], arb(0), eb)
+                and _all_positive(lambda x: cl - g.phi(x), w["reach_pieces"])):
+            return False, "phi < c_max_lower is not re-derived on stored pieces covering [0, reach]"
+        if not encloses(stored_interval(q["natural_extent_x2"]), eb.union(xc)):
+            return False, "the stored natural_extent_x2 does not contain [reach, X_c]"
+        verified.add("natural_extent_x2")
     return True, (f"natural c_max bounds re-derived: V > 0 on [0, X] and phi > c_max_upper on [X_c, X] re-evaluated on "
                   f"the stored pieces, {len(boxes)} (x2, t) boxes tile the domain with the lower bound re-evaluated on "
                   "each, the point of {Vdot > 0} re-evaluated")

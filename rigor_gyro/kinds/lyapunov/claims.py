@@ -26,6 +26,11 @@ exact parameters:
 * ``largest_sublevel``: bounds of c_max, the infimum of V over {Vdot >= 0, (x1, x3) != 0, |x2| <= x2*} and the
   faces |x2| = x2* (:mod:`rigor_gyro.kinds.lyapunov.sublevel`): the largest sublevel set of V that is an
   estimate without region (17); refuted when c_max <= 0 is certified.
+* ``natural_sublevel`` (opt-in, ``OPT_IN_CLAIMS``: a scene names it in claims_only; option
+  ``natural_sublevel`` = the relative gap aimed at, default 1e-6): V > 0 on the largest certified range
+  |x2| <= X (below pi/2, independent of x2*), c_max over it bracketed by branch and bound with a centred form
+  at the active constraint, the band where phi > c_max_upper and the set's x2 extent
+  (:mod:`rigor_gyro.kinds.lyapunov.natural_domain`); compared with c*, c_max(x2*) and the paper's R.
 * ``best_mu``: R_sup(mu) = min over x2 of min_i ci0 / |(ci1, ci3)| is the supremum of the radii for
   which the Psi test of ``psi_test`` holds. A search picks mu_best in (16) (not proved
   optimal); R_max is certified at mu_best, and a branch and bound over mu certifies an upper bound of
@@ -158,7 +163,8 @@ OPT_IN_CLAIMS = {
                         "with (x1, x3) != (0, 0) and |x2| <= X, and over the faces |x2| = X, lies in [natural_c_max_lower, "
                         "natural_c_max_upper]; phi(x2) > natural_c_max_upper on X_c <= |x2| <= X (so c_max(X') is the same "
                         "number for every X' in [X_c, X] and the component of {V < c} around 0 lies in |x2| < X_c for "
-                        "c <= natural_c_max_upper). For every c <= natural_c_max_lower that component has Vdot <= 0 on it, "
+                        "c <= natural_c_max_upper); where natural_extent_x2 is stated, phi < natural_c_max_lower on [0, E] (E its "
+                        "lower end), so the component of {V < natural_c_max_lower} reaches |x2| = E. For every c <= natural_c_max_lower that component has Vdot <= 0 on it, "
                         "with equality only where x1 = x3 = 0 (LaSalle, x2 f(x2) > 0: positively invariant, bounded, "
                         "inside the domain of attraction). The bracket aims at the relative gap of the scene option "
                         "natural_sublevel (default 1e-6).",
@@ -563,13 +569,21 @@ def _natural_sublevel(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
         "X": X.text, "band_lo": str(r.band_lo), "positivity": r.positivity, "band": r.band,
         "boxes": [b.to_json() for b in r.leaves],
         "point": {n: ball_text(x) for n, x in zip(("x1", "x2", "x3"), r.point)}}
+    extent = ""
+    if r.reach is not None:
+        quantities["natural_extent_x2"] = _q(_fmpq(r.reach)).union(_q(_fmpq(r.band_lo)))
+        ctx.witnesses["natural_sublevel"].update({"reach": str(r.reach), "reach_pieces": r.reach_pieces})
+        extent = (f"; the component of {{V < natural_c_max_lower}} around 0 reaches |x2| = {r.reach} = "
+                  f"{float(r.reach):.6f} (phi < natural_c_max_lower on [0, {r.reach}], {len(r.reach_pieces)} pieces) "
+                  f"and stays in |x2| < {float(r.band_lo):.6f}: its x2 extent is in natural_extent_x2")
     rel = (hi - lo) / lo
     g = ctx.g
     pt = r.point
     cmp = []
     if "c_star" in quantities and quantities["c_star"].is_finite():
         cs = quantities["c_star"]
-        cmp.append(f"c* = {_fmt(cs, 10)} of invariant_estimate (natural_c_max_lower / c* = {_fmt(lo / cs, 6)})")
+        cmp.append(f"c* = {_fmt(cs, 10)} of invariant_estimate: the natural level is larger, natural_c_max_lower / c* = "
+                   f"{_fmt(lo / cs, 6)}, natural_c_max_lower - c* = {_fmt(lo - cs, 8)}")
     if "c_max_lower" in quantities:
         cl, cu = quantities["c_max_lower"], quantities["c_max_upper"]
         cmp.append(f"c_max(x2*) in [{_fmt(cl, 10)}, {_fmt(cu, 10)}] of largest_sublevel (natural_c_max_lower / "
@@ -594,9 +608,9 @@ def _natural_sublevel(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
         f"aiming {gap}: {reached}), the upper end V = {_fmt(g.V(*pt), 12)} at the point x1 = {_fmt(pt[0], 8)}, "
         f"x2 = {_fmt(pt[1], 8)}, x3 = {_fmt(pt[2], 8)} where Vdot = {_fmt(g.vdot(*pt), 4)} > 0; phi > "
         f"{r.c_upper} on X_c = {r.band_lo} <= |x2| <= X ({len(r.band)} pieces): the faces do not bind and the set "
-        f"lies in |x2| < X_c = {float(r.band_lo):.6f}" + larger,
+        f"lies in |x2| < X_c = {float(r.band_lo):.6f}" + extent + larger,
         c_max_lower=r.c_lower, c_max_upper=r.c_upper, X=X.text, band_lo=str(r.band_lo), boxes=r.boxes,
-        gap=gap, gap_reached=r.gap_reached)
+        gap=gap, gap_reached=r.gap_reached, reach=None if r.reach is None else str(r.reach))
 
 
 # ------------------------------------------------------------------------------------ equilibria

@@ -23,6 +23,13 @@ pieces:
   overestimation is quadratic in the box width at the minimiser on {Vdot = 0}, which is what brings the
   bound to a relative gap of 1e-6 (the polar bound alone stalls 18 % low).
 * above: V at a certified point of N (Vdot > 0 by automatic differentiation, |x2| <= X_c).
+* the x2 extent: phi < c_lower on [0, E] (1-D bisection), so the component of {V < c_lower} reaches
+  |x2| = E; with the band it lies in |x2| < X_c.
+
+Cost on the paper's example (64 bits): about 2 s and 1e4 boxes for the 1e-6 bracket [77.2245103,
+77.2245866] (the issue's independent value 77.22458657 inside), most of them near the minimiser, which sits
+in a flat valley along x2 (W varies by 0.2 % between x2 = 1.00 and the band at 1.14); hence opt-in.
+A faces-binding range (phi below the level up to X, e.g. H = 1e6) is not handled: the claim is undecided.
 
 Precision: the current working precision. The bounds are exact decimals (lower rounded down, upper up).
 Fails when: no j of ``POSITIVITY_J`` certifies V > 0, the band is not certified, no point of N is found, or the
@@ -160,6 +167,9 @@ class NaturalSublevel:
     positivity: dict = field(default_factory=dict)      # name -> pieces of [0, X] where it is > 0
     band_lo: Fraction | None = None      # X_c
     band: list = field(default_factory=list)            # pieces of [X_c, X] where phi > n_upper
+    #: E: phi < c_lower on [0, E] (pieces ``reach_pieces``): the component of {V < c_lower} reaches |x2| = E
+    reach: Fraction | None = None
+    reach_pieces: list = field(default_factory=list)
     c_lower: str | None = None
     c_upper: str | None = None
     point: tuple | None = None
@@ -276,4 +286,24 @@ def natural_sublevel(g: Gimbal, max_pieces: int, gap: str = "1e-6") -> NaturalSu
     # never above the band's level (then the band would not be shown not to bind): it is not, since
     # bound <= V(point) <= n_upper; kept explicit for the checker's comparison
     out.c_lower = lo if certainly_le(_q(Fraction(lo)), n_up) else out.c_upper
+    _reach(g, xc, max_pieces, out)
     return out
+
+
+def _reach(g: Gimbal, xc: Fraction, max_pieces: int, out: NaturalSublevel) -> None:
+    """A certified lower end of the set's x2 extent: E, a multiple of BAND_STEP just below the float root of
+    phi = c_lower, with c_lower - phi > 0 on [0, E] certified (then every slice {V(., x2, .) < c_lower},
+    |x2| <= E, is a non-empty ellipse whose centre moves continuously with x2: their union is connected,
+    contains 0, and reaches |x2| = E). Left unset when the certification fails (nothing is claimed)."""
+    cl = _q(Fraction(out.c_lower))
+    top = float(cl.mid()) * (1 - BAND_MARGIN)
+    k = int(xc / BAND_STEP)
+    while k > 0 and float(g.phi(_q(k * BAND_STEP)).mid()) >= top:
+        k -= 1
+    if k <= 0:
+        return
+    kept: list = []
+    r = certify_positive(lambda x: cl - g.phi(x), 0, _q(k * BAND_STEP), max_pieces=max_pieces, record=kept)
+    out.pieces += r.pieces
+    if r.status.name == "PROVED":
+        out.reach, out.reach_pieces = k * BAND_STEP, pieces_text(kept)
