@@ -296,3 +296,22 @@ def test_a_run_killed_by_sigkill_resumes_from_its_last_checkpoint(tmp_path):
     assert main(["prove", "--resume", str(path), "-o", str(out), "-q", "-j", "1"]) == 3
     assert main(["prove", str(tmp_path / "plane.toml"), "-o", str(tmp_path / "whole"), "-q", "-j", "1"]) == 3
     assert path.read_text() == (tmp_path / "whole" / "rudenko_box.json").read_text()
+
+
+def test_a_broken_worker_pool_leaves_the_batch_in_flight_pending():
+    from concurrent.futures.process import BrokenProcessPool
+
+    class Broken(Executor):
+        calls = 0
+
+        def map(self, fn, tasks):
+            Broken.calls += 1
+            if Broken.calls == 3:
+                raise BrokenProcessPool("a worker died")
+            return super().map(fn, tasks)
+
+    p = pave(_bs(LINE), Broken(1))
+    assert "executor broke (BrokenProcessPool: a worker died)" in p.stopped and p.evaluated == 3
+    assert sum(len(g.boxes) for g in p.pending) == 4                    # the third batch, not evaluated
+    data = _json(p)
+    assert check_certificate(data).ok and _resumed(data) == _json(pave(_bs(LINE)))
