@@ -98,7 +98,7 @@ MAX_PIECES_LIMIT = 1_000_000
 #: the numbers a report's summary opens with (quantity name -> what it is), in this order
 HEADLINE = {"R_used": "radius R of region (17) used", "c_star": "level c* of the invariant estimate {V < c*}",
             "c_max_lower": "certified lower bound of the largest sublevel level c_max",
-            "natural_c_max_lower": "certified lower bound of c_max over the natural range |x2| <= X (V > 0 there)",
+            "natural_c_max_lower": "certified lower bound of c_max over the natural x2 range where V > 0 (opt-in claim)",
             "R_direct": "radius with Vdot < 0 certified directly (scene's mu)",
             "R_direct_upper": "Vdot > 0 at a certified point of this radius",
             "R_max": "certified radius R_max at mu_best (Psi test)", "mu_best": "mu_best (a search result)",
