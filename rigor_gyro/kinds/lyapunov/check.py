@@ -821,7 +821,7 @@ def _check_natural(g, w: dict, details: dict, q: dict, verified: set, cert_prec:
     if not tiles_by_bisection(Box.of(DIRECT_DOMAIN), boxes):
         return False, "the stored (x2, t) boxes over |x2| <= X_c do not tile the domain"
     lo_q = fmpq_of(lo_t)
-    for b, low in zip(boxes, _box_lower_ends(lambda: symmetric_in_x2(gC, natural_lower_bound(gC)), boxes, cert_prec)):
+    for b, low in zip(boxes, _box_lower_ends(lambda: symmetric_in_x2(gC, natural_lower_bound(gC, arb(lo_q))), boxes, cert_prec)):
         if not (float(low) == float("inf") or (low.is_finite() and low >= lo_q)):
             return False, f"on the box {b.to_json()} the lower bound of V over {{Vdot >= 0}} is below {details['c_max_lower']}"
     pt = w.get("point") or {}

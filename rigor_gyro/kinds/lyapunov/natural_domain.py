@@ -103,7 +103,7 @@ def _q(fr: Fraction) -> arb:
     return arb(fmpq(fr.numerator, fr.denominator))
 
 
-def natural_lower_bound(g: Gimbal):
+def natural_lower_bound(g: Gimbal, enough: arb | None = None):
     """The box function {u, s} -> a ball whose lower end is <= V(r cos t, x2, r sin t) for every x2 = u x2*,
     t = pi s in the box (x2* of ``g``: here X_c) and every real r != 0 with Vdot >= 0 there: the largest of
     three lower ends, each a valid bound over the box:
@@ -115,6 +115,10 @@ def natural_lower_bound(g: Gimbal):
       V's minimum over that half-line is W = alpha + beta r0 + gamma r0^2 exactly at each point; W is
       enclosed over the box directly and in the mean-value form W(m) + W_u(box) (U - m_u) + W_s(box) (S - m_s)
       (derivatives by forward-mode Dual numbers over the box: W is smooth there since B != 0), intersected.
+
+    ``enough`` (optional, a level): once a cheaper bound reaches it, the centred form is skipped (each
+    return is a valid lower bound either way; the prover passes its target, the checker the stated
+    c_max_lower, so a box that the prover left at or above its target is confirmed by the same cheap bound).
 
     Guarantee: a lower bound over the box, never an enclosure of the minimum. Valid with u of either sign
     and t in [0, pi] (r of either sign covers every direction of (x1, x3))."""
@@ -141,12 +145,17 @@ def natural_lower_bound(g: Gimbal):
             return low
         X, T = xs * U, pi * S
         low = better(low, g.phi(X))
+        if enough is not None and low.is_finite() and low >= enough:
+            return low
         A, B = vdot_polar(g, X, T)
         al, be, ga = v_polar(g, X, T)
         if (certainly_positive(B) or certainly_negative(B)) and certainly_positive(ga):
             r0 = -A / B
             if certainly_positive(B * (-be / (2 * ga) - r0)):
                 d = al + be * r0 + ga * r0 * r0
+                low = better(low, d)
+                if enough is not None and low.is_finite() and low >= enough:
+                    return low
                 if not (U.rad().is_zero() and S.rad().is_zero()):
                     um, sm = arb(U.mid()), arb(S.mid())
                     mv = W(um, sm) + W(Dual(U, arb(1)), S).d * (U - um) + W(U, Dual(S, arb(1))).d * (S - sm)
@@ -272,8 +281,8 @@ def natural_sublevel(g: Gimbal, max_pieces: int, gap: str = "1e-6") -> NaturalSu
         out.reason = f"phi > {out.c_upper} on [{xc}, X] was not certified ({band.reason})"
         return out
     out.band_lo, out.band = xc, pieces_text(kept)
-    lb = symmetric_in_x2(gC, natural_lower_bound(gC))
     target = n_up * (1 - arb(gap))
+    lb = symmetric_in_x2(gC, natural_lower_bound(gC, target.lower()))
     best = lower_bound_on_box(lb, Box.of(DIRECT_DOMAIN), target, max_pieces=min(max_pieces, NATURAL_BOX_BUDGET))
     out.boxes, out.bound = best.boxes, best.bound
     if not (best.bound.is_finite() and certainly_positive(best.bound)):
