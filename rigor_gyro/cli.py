@@ -309,7 +309,7 @@ def _cmd_prove(args) -> int:
             else:
                 module = kind_module(scene.kind)
                 module.validate(scene)
-                requested_claims(scene, module.CLAIMS)
+                requested_claims(scene, module.CLAIMS, getattr(module, "ALL_CLAIMS", None))
         except RigorGyroError as e:
             _say(_input_error(ref, e), err=True)
             codes.append(EXIT_BAD_INPUT)

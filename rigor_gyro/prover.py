@@ -37,14 +37,17 @@ from .scene import Scene
 __all__ = ["prove_scene", "requested_claims"]
 
 
-def requested_claims(scene: Scene, available: dict[str, str]) -> list[str]:
-    """The claim ids the scene asks for (default: all of its kind), in the kind's order."""
+def requested_claims(scene: Scene, available: dict[str, str], every: dict[str, str] | None = None) -> list[str]:
+    """The claim ids the scene asks for, in the kind's order: by default ``available`` (the kind's
+    ``CLAIMS``); with ``claims_only``, those of ``every`` (the kind's ``ALL_CLAIMS``, which adds the opt-in
+    claims a scene must name; default ``available``) that it names."""
+    every = every or available
     if scene.claims_only is None:
         return list(available)
-    unknown = [c for c in scene.claims_only if c not in available]
+    unknown = [c for c in scene.claims_only if c not in every]
     if unknown:
-        raise SceneError(f"scene {scene.name!r}: unknown claim(s) {unknown}; this kind has {list(available)}")
-    return [c for c in available if c in scene.claims_only]
+        raise SceneError(f"scene {scene.name!r}: unknown claim(s) {unknown}; this kind has {list(every)}")
+    return [c for c in every if c in scene.claims_only]
 
 
 def _stuck(before: arb | None, after: arb | None, prec: int) -> str | None:
@@ -170,7 +173,7 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
         raise ParameterError(str(e)) from None
     module = kind_module(scene.kind)
     model = module.validate(scene)
-    wanted = requested_claims(scene, module.CLAIMS)
+    wanted = requested_claims(scene, module.CLAIMS, getattr(module, "ALL_CLAIMS", None))
     history: list[tuple[int, Attempt]] = []
     t0 = time.perf_counter()
 

@@ -98,9 +98,12 @@ class Attempt:
 
 def claim_statements(module: ModuleType, model: Any) -> dict[str, str]:
     """``{claim_id: statement}`` for this model: the kind's ``statements(model)`` where a scene's options
-    change what a claim states (a relay scene's option ``orbit``), otherwise its ``CLAIMS``."""
+    change what a claim states (a relay scene's option ``orbit``), otherwise its ``CLAIMS`` and the opt-in
+    claims a scene must name (``OPT_IN_CLAIMS``)."""
     statements = getattr(module, "statements", None)
-    return module.CLAIMS if statements is None else statements(model)
+    if statements is not None:
+        return statements(model)
+    return {**module.CLAIMS, **getattr(module, "OPT_IN_CLAIMS", {})}
 
 
 def require_box_claims(claims: list[str], box_claims) -> None:

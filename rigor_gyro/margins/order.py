@@ -34,7 +34,7 @@ from fractions import Fraction
 from ..core.boxes import Box
 from ..core.errors import ParameterError
 
-__all__ = ["PRIORITIES", "DEFAULT_PRIORITY", "BATCH", "Group", "Frontier", "check_priority"]
+__all__ = ["PRIORITIES", "DEFAULT_PRIORITY", "BATCH", "Group", "Frontier", "check_priority", "volume_depth"]
 
 #: the priorities a paving may be evaluated in (see the module docstring)
 PRIORITIES = ("volume", "boundary")

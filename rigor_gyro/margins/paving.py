@@ -180,7 +180,7 @@ def box_scene(scene: Scene) -> BoxScene:
         raise _bad_end(module, mid, box, e, scene.parameters) from None
     with working_precision(prec):
         boxes.validate_box(model, box)
-    wanted = requested_claims(scene, module.CLAIMS)
+    wanted = requested_claims(scene, module.CLAIMS, getattr(module, "ALL_CLAIMS", None))
     if scene.claims_only is not None:
         bad = [c for c in wanted if c not in boxes.BOX_CLAIMS]
         if bad:
