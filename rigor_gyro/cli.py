@@ -519,7 +519,7 @@ def _pave(bs, executor, args, state=None) -> int:
                        f"{float(worst['refuted']):.3f} refuted")
         progress.done = 0
         paving = pave(bs, executor, progress, time_limit=args.time_limit, box_budget=args.box_budget, state=state,
-                      checkpoint=lambda p: write_paving(p, args.out), checkpoint_every=every)
+                      checkpoint=lambda p: write_paving(p, args.out), checkpoint_every=every, keep_on_interrupt=True)
     jpath, mpath = write_paving(paving, args.out)
     if not args.quiet:
         for c in paving.claims:

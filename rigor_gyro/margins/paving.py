@@ -370,7 +370,7 @@ def _snapshot(bs: BoxScene, st: PaveState, stopped: str, seconds: float, label: 
 
 def pave(bs: BoxScene, executor: Executor | None = None, progress=None, time_limit: float | None = None, *,
          box_budget: int | None = None, state: PaveState | None = None, checkpoint=None,
-         checkpoint_every: float | None = None) -> Paving:
+         checkpoint_every: float | None = None, keep_on_interrupt: bool = False) -> Paving:
     """The paving of ``bs.box`` for each of ``bs.claims`` (see the module docstring), best first in
     ``bs.priority`` (:mod:`.order`), in batches. Between batches it stops when ``time_limit`` (seconds) has
     run out, when this run has evaluated ``box_budget`` boxes or more, or on Ctrl-C (or a broken executor,
@@ -379,7 +379,17 @@ def pave(bs: BoxScene, executor: Executor | None = None, progress=None, time_lim
     certificate (its decided leaves stand; a budget never refutes) that :mod:`.resume` continues exactly.
     ``state`` (from :mod:`.resume`) continues a partial paving instead of starting at the whole box.
     ``checkpoint(paving)`` is called with such a partial paving (reason: :data:`CHECKPOINT`) every
-    ``checkpoint_every`` seconds while work remains (a run killed then resumes from the last one)."""
+    ``checkpoint_every`` seconds while work remains (a run killed then resumes from the last one).
+    Ctrl-C: with ``keep_on_interrupt`` (the command line) the paving so far is returned (stopped:
+    :data:`INTERRUPTED`); otherwise KeyboardInterrupt propagates, as from any library call."""
+    p = _pave(bs, executor, progress, time_limit, box_budget, state, checkpoint, checkpoint_every)
+    if p.stopped == INTERRUPTED and not keep_on_interrupt:
+        raise KeyboardInterrupt
+    return p
+
+
+def _pave(bs: BoxScene, executor, progress, time_limit, box_budget, state, checkpoint, checkpoint_every) -> Paving:
+    """:func:`pave`, returning the paving so far on Ctrl-C."""
     budget = Budget(check_time_limit(time_limit))
     t0 = time.perf_counter()
     ex = executor or Executor(1)
