@@ -200,6 +200,8 @@ def _parser() -> argparse.ArgumentParser:
     cp.add_argument("-o", "--out", default=None, help="also write the summary (Markdown) and the results (JSON) here")
     cp.add_argument("-q", "--quiet", action="store_true", help="no progress display")
     cp.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
+    from .margins import safe_set_command
+    safe_set_command.add_parser(sub, _epilog)
     bn = sub.add_parser("bench", help="work-precision: widths, bits lost and times per precision, against the "
                         "float and mpmath paths (--stress: the stiff and extreme catalog); needs 'crosscheck'",
                         description="Measure widths, bits lost and times per precision (a benchmark decides nothing).",
@@ -681,6 +683,20 @@ def _internal(e: BaseException, args, where: str = "") -> None:
         _say("".join(traceback.format_exception(e)), err=True)
 
 
+def _cmd_safe_set(args) -> int:
+    """The safe set of a paving (rigor_gyro.margins.safe_set_command); the figures drawn here (float side)."""
+    from .margins import safe_set_command
+    if args.plots and not _has_matplotlib():
+        return _bad(NO_MATPLOTLIB)
+    data, safe = safe_set_command.run(args, _say)
+    if args.plots:
+        from .margins.plots import safe_set_plot
+        out, axes, formats = safe_set_command.figure_options(args)
+        for p in safe_set_plot(data, safe, out, axes, formats):
+            _say(f"{data['scene']['name']}: figure -> {p}")
+    return 0
+
+
 def _cmd_bench(args) -> int:
     """Exit 0 when the measurements were written (a benchmark decides nothing), 2 for bad usage."""
     try:
@@ -771,6 +787,8 @@ def main(argv: list[str] | None = None) -> int:
             return _cmd_margin(args)
         if args.command == "bench":
             return _cmd_bench(args)
+        if args.command == "safe-set":
+            return _cmd_safe_set(args)
         return _cmd_prove(args)
     except RigorGyroError as e:
         return _bad(str(e))
