@@ -38,6 +38,8 @@ budget spent after a positive bound only widens the bracket (``gap_reached`` say
 """
 from __future__ import annotations
 
+import dataclasses
+
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -85,8 +87,9 @@ def exact_range(text: str) -> Exact:
 
 
 def with_range(g: Gimbal, X: Exact) -> Gimbal:
-    """The same gimbal with x2* replaced by X (the polar domain u in [-1, 1] then means |x2| <= X)."""
-    return Gimbal(g.A0, g.B0, g.C0, g.H, g.k, g.a, g.mu, X, g.law)
+    """The same gimbal with x2* replaced by X (the polar domain u in [-1, 1] then means |x2| <= X); every
+    other field as it is (dataclasses.replace: no parameter read by name, see test_lyapunov_boxes)."""
+    return dataclasses.replace(g, x2_star=X)
 
 
 def positivity_functions(g: Gimbal) -> dict:
