@@ -97,3 +97,17 @@ def test_laws_parse_per_parameter_and_refuse_what_they_cannot_read():
     for bad in ("gauss", "normal -1", "normal x", "c: uniform"):
         with pytest.raises(ParameterError):
             parse_laws(bad, ("a", "b"))
+
+
+def test_a_normal_yield_with_undecided_pieces_is_not_rounded_up_to_one():
+    """Safe where a >= 1/2, undecided elsewhere, both laws normal: the yield is [P(a >= 1/2), 1] = [1/2, 1]
+    (the law is symmetric about the midpoint), never [1, 1]; with every piece safe it is [1, 1] exactly."""
+    A = _tree(lambda b: 3, status_of=lambda b: "proved" if _lo(b, "a") >= Fraction(1, 2) else "undecided")
+    laws = {"a": Law(Fraction(3)), "b": Law(Fraction(3))}
+    with working_precision(128):
+        y = yield_bounds(A, WHOLE, laws)
+        assert Fraction(1, 2) - Fraction(1, 10 ** 5) <= Fraction(y["lower"]) <= Fraction(1, 2) and y["upper"] == "1"
+        y = yield_bounds([(b, "proved") for b, _ in A], WHOLE, laws)
+        assert (y["lower"], y["upper"]) == ("1", "1")
+        y = yield_bounds([(b, "refuted") for b, _ in A], WHOLE, laws)
+        assert (y["lower"], y["upper"]) == ("0", "0")

@@ -16,7 +16,7 @@ def test_the_yield_the_csv_and_bad_input(tmp_path, capsys):
     path = _paving_file(tmp_path)
     assert main(["safe-set", str(path), "--law", "normal 3", "--csv", "-o", str(tmp_path / "o")]) == 0
     out = capsys.readouterr().out
-    assert "safe volume fraction in [" in out and "certified yield (Omega2: normal, truncated at +-3 sigma) in [" in out
+    assert "safe volume fraction in [" in out and "certified yield (every parameter normal, truncated at +-3 sigma) in [" in out
     rows = (tmp_path / "o" / f"{json.loads(path.read_text())['scene']['name']}_leaves.csv").read_text().splitlines()
     assert rows[0].endswith(",bracket_2,all") and len(rows) > 2
     assert main(["safe-set", str(path), "--claims", "nope"]) == 2

@@ -49,6 +49,10 @@ PYTEST = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", 
 
 #: (name, file, original text, mutated text, what it breaks)
 MUTANTS = [
+    ("yield_normal_lower_one_with_undecided", "rigor_gyro/margins/safe_set.py",
+     "    if mass[\"refuted\"] == mass[\"undecided\"] == 0 and not any(st != \"proved\" for _, st in pieces):\n",
+     "    if mass[\"refuted\"] == mass[\"undecided\"] == 0:\n",
+     "a truncated-normal yield's lower bound set to 1 while some pieces are undecided or failing"),
     # issue 40 part 1: the natural sublevel set (kinds/lyapunov/natural_domain.py, check.py; tests/test_natural_sublevel.py)
     ('natural_active_form_without_vertex_check', 'rigor_gyro/kinds/lyapunov/natural_domain.py',
      '            if certainly_positive(B * (-be / (2 * ga) - r0)):\n',

@@ -198,9 +198,10 @@ def build_safe_set_figure(data: dict[str, Any], safe: dict[str, Any], axes: tupl
                          label=f"volume fraction safe: [{vol['lower']}, {vol['upper']}]"))
     laws = sorted(set(safe["laws"].values()))
     if laws != ["uniform"]:
+        said = (f"every parameter {laws[0]}" if len(laws) == 1 else
+                "; ".join(f"{k}: {v}" for k, v in safe["laws"].items()))
         handles.append(Patch(facecolor="none", edgecolor="none",
-                             label=f"yield ({'; '.join(f'{k}: {v}' for k, v in safe['laws'].items())}): "
-                                   f"[{yl['lower']}, {yl['upper']}]"))
+                             label=f"yield ({said}): [{yl['lower']}, {yl['upper']}]"))
     names = list(data["box"])
     drawn = [n for n in (x, y) if n]
     extra = f" (projection onto {', '.join(drawn)} of {len(names)} parameters)" if len(names) > len(drawn) else ""

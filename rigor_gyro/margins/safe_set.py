@@ -162,9 +162,19 @@ def yield_bounds(pieces: list[tuple[Box, str]], whole: Box, laws: dict[str, Law]
         lo, hi = mass["proved"], 1 - mass["refuted"]
         return {"lower": _dec(ball(lo), "down"), "upper": _dec(ball(hi), "up"), "lower_exact": _frac(lo),
                 "upper_exact": _frac(hi), "exact": True}
-    lo = balls["proved"] + ball(mass["proved"])
-    hi = 1 - balls["refuted"] - ball(mass["refuted"])
-    return {"lower": _dec(lo, "down"), "upper": _dec(hi, "up"), "exact": False}
+    # the pieces partition the box, so P(safe) = 1 - P(failing) - P(undecided): each bound is taken from
+    # whichever side is enclosed tighter (with no failing or undecided piece the lower bound is 1 exactly)
+    p = {st: balls[st] + ball(mass[st]) for st in _STATUSES}
+    lo = _dec(p["proved"], "down")
+    rest = p["refuted"] + p["undecided"]
+    if mass["refuted"] == mass["undecided"] == 0 and not any(st != "proved" for _, st in pieces):
+        lo = "1"
+    else:
+        lo = max(lo, _dec(1 - rest, "down"), key=Fraction)
+    hi = min(_dec(1 - p["refuted"], "up"), _dec(p["proved"] + p["undecided"], "up"), key=Fraction)
+    if not any(st == "refuted" for _, st in pieces):
+        hi = "1"
+    return {"lower": lo, "upper": hi, "exact": False}
 
 
 def _frac(q: Fraction) -> str:

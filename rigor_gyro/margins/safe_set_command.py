@@ -69,7 +69,8 @@ def run(args, say) -> tuple[dict, dict]:
         f"{safe['counts']['refuted']} failing, {safe['counts']['undecided']} undecided piece(s)")
     say(f"{name}: safe volume fraction in [{vol['lower']}, {vol['upper']}]"
         + (f" (exactly [{vol['lower_exact']}, {vol['upper_exact']}])" if vol.get("exact") else ""))
-    laws = "; ".join(f"{k}: {v}" for k, v in safe["laws"].items())
+    kinds = sorted(set(safe["laws"].values()))
+    laws = f"every parameter {kinds[0]}" if len(kinds) == 1 else "; ".join(f"{k}: {v}" for k, v in safe["laws"].items())
     say(f"{name}: certified yield ({laws}) in [{yl['lower']}, {yl['upper']}]")
     out = Path(args.out) if args.out else path.parent
     if args.csv or args.plots:
