@@ -49,6 +49,14 @@ PYTEST = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", 
 
 #: (name, file, original text, mutated text, what it breaks)
 MUTANTS = [
+    ("paving_search_refutation_ignored", "rigor_gyro/margins/paving.py",
+     "    return any(p.get(\"status\") == \"refuted\" for p in found.get(\"proofs\", []) if isinstance(p, dict))\n",
+     "    return False\n",
+     "a paving's counterexample search that found a refuted point proof leaves the claim inconclusive"),
+    ("paving_check_search_refutation_ignored", "rigor_gyro/margins/check.py",
+     "                  or found\n",
+     "                  or False\n",
+     "the paving checker re-derives a claim's status without the counterexamples its search certified"),
     ("yield_normal_lower_one_with_undecided", "rigor_gyro/margins/safe_set.py",
      "    if mass[\"refuted\"] == mass[\"undecided\"] == 0 and not any(st != \"proved\" for _, st in pieces):\n",
      "    if mass[\"refuted\"] == mass[\"undecided\"] == 0:\n",

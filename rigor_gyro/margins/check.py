@@ -97,6 +97,7 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES, executor=No
     oj = json.dumps(bs.options, sort_keys=True)
     mj = json.dumps({k: fraction_text(q) for k, q in bs.box.midpoint().items()}, sort_keys=True)
     statuses = []
+    memo: dict = {}         # the Monte Carlo re-run, once for every claim
     stopped = data["stopped"] if isinstance(data.get("stopped"), str) else ""
     pending = data.get("pending")
     open_claims, whole_pending = _pending_claims(pending, bs.box)
@@ -174,7 +175,9 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES, executor=No
             if p["box_outcome"] == "refuted" and got == "proved":
                 wrong.append(f"point {p['point']}: proved at the midpoint of a sub-box refuted everywhere")
         add(CheckResult(cid, not wrong, f"{len(c['points'])} point proofs re-run" if not wrong else wrong[0]))
+        found = _check_searches(bs, data, c, boxes, oj, add, memo)
         status = ("refuted" if any(s == "refuted" for _, s in boxes) or any(p["status"] == "refuted" for p in c["points"])
+                  or found
                   else "proved" if boxes and all(s == "proved" for _, s in boxes) else "inconclusive")
         statuses.append(status)
         add(CheckResult(cid, c["status"] == status, f"status {c['status']!r}" + ("" if c["status"] == status else
@@ -257,6 +260,46 @@ def _check_pending(bs, pending, stopped: str, leaves: dict[str, dict]) -> tuple[
     except (TypeError, ValueError, KeyError, AttributeError, ZeroDivisionError) as e:
         return CheckResult("pending", False, f"a pending group is malformed: {type(e).__name__}: {e}")
     return CheckResult("pending", True, f"{len(seen)} pending sub-box(es), each undecided for the claims it lists")
+
+
+def _check_searches(bs, data: dict[str, Any], c: dict[str, Any], boxes: list, oj: str, add, memo: dict) -> bool:
+    """The claim's stored counterexample search and Monte Carlo estimate (:mod:`.counterexample_check`):
+    present exactly when the settings ask for them (a paving stopped early, or a search the time limit
+    skipped, holds none), every stored point proof re-proved, the estimate re-run with its seed. Returns
+    whether the search holds a certified counterexample (verified here)."""
+    from .counterexample_check import check_counterexamples, check_monte_carlo
+    from .counterexamples import failing_fraction_estimate
+    from .paving import point_task, searched_refutation
+    cid = c["id"]
+    stopped = isinstance(data.get("stopped"), str) and bool(data["stopped"])
+    cs, mc = c.get("counterexample_search"), c.get("monte_carlo")
+    want_cs = bool(bs.search_points) and not stopped and any(s == "undecided" for _, s in boxes)
+    want_mc = bool(bs.monte_carlo) and not stopped
+    if (cs is not None) != want_cs or (mc is not None) != want_mc:
+        add(CheckResult(cid, False, "a counterexample search or Monte Carlo estimate where the settings ask for none, "
+                                    "or none where they ask for one"))
+        return False
+    found = False
+    if cs is not None and "skipped" not in cs:
+        def prove_at(point, cid=cid):
+            return point_task(bs.scene.kind, json.dumps(bs.point_parameters(point), sort_keys=True), oj, cid,
+                              bs.point_prec, bs.point_maxprec)
+        ok, msg = check_counterexamples(bs.box, boxes, cid, cs, prove_at)
+        add(CheckResult(cid, ok, msg))
+        found = ok and searched_refutation({"counterexample_search": cs})
+    if mc is not None and "skipped" not in mc:
+        total = bs.box.volume()
+        volume = {k: sum((b.volume() for b, s in boxes if s == k), Fraction(0)) / total
+                  for k in ("proved", "refuted", "undecided")}
+
+        def rerun(cid=cid, mc=mc):      # one run for every claim, as pave ran it (the claims proved together)
+            key = (mc["samples"], mc["seed"], mc["classifier"])
+            if key not in memo:
+                memo[key] = failing_fraction_estimate(bs, list(bs.claims), mc["samples"], mc["seed"],
+                                                      classifier=mc["classifier"])
+            return memo[key][cid]
+        add(CheckResult(cid, *check_monte_carlo(cid, mc, volume, rerun)))
+    return found
 
 
 def _check_ranges(bs, data: dict[str, Any], pj: str, oj: str, mj: str) -> tuple[str, bool, str]:

@@ -50,6 +50,7 @@ from ..core.halton import points_in_boxes
 from ..kinds import optional_module
 from .executors import Executor
 from .models import scene_model
+from .point_proofs import point_task
 
 __all__ = ["PROBE_PREC", "MARGIN_PROVIDERS", "Candidate", "probe_task", "candidate_points", "shortest_decimal",
            "prove_candidates", "search_claim",
@@ -261,7 +262,6 @@ def prove_candidates(bs, leaves: list[tuple[Box, str]], claim: str, candidates: 
     index in ``leaves`` of the leaf containing it, checked exactly). AssertionError when a candidate is not
     in its leaf, or when the point prover contradicts its leaf (refuted in a ``proved`` leaf, proved in a
     ``refuted`` one: one of two rigorous paths is wrong)."""
-    from .paving import point_task
     ex = executor or Executor(1)
     oj = json.dumps(bs.options, sort_keys=True)
     for c in candidates:

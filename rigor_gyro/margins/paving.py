@@ -52,6 +52,7 @@ from ..kinds import KINDS, kind_module, optional_module
 from ..scene import Scene
 from .executors import Executor
 from .models import scene_model as _model
+from .point_proofs import point_task
 from .order import DEFAULT_PRIORITY, Frontier, Group, check_priority, volume_depth
 from .ranges import quantities_module, quantity_specs, search_ranges
 
@@ -59,7 +60,8 @@ __all__ = ["MARGIN_OPTIONS", "BoxScene", "Paving", "PaveState", "box_scene", "pa
            "boxes_module", "evaluate_task", "point_task", "start_state", "INTERRUPTED", "CHECKPOINT"]
 
 MARGIN_OPTIONS = {"box_resolution": "1/64", "max_boxes": "20000", "box_prec": "128", "max_points": "16",
-                  "range_boxes": "64", "range_gap": "1/100"}
+                  "range_boxes": "64", "range_gap": "1/100", "search_points": "0", "search_samples": "0",
+                  "monte_carlo": "0", "monte_carlo_seed": "0"}
 SCHEMA = "rigor-gyro/paving/1"
 
 
@@ -96,6 +98,15 @@ class BoxScene:
     point_maxprec: int = DEFAULT_MAXPREC
     #: the order boxes are evaluated in (:mod:`.order`; ``prove --priority``)
     priority: str = DEFAULT_PRIORITY
+    #: the counterexample search over every undecided leaf (:mod:`.counterexamples`): candidates per claim
+    #: (0: none), Halton samples (0: 32 per candidate); the Monte Carlo cross-check's samples (0: none), seed
+    search_points: int = 0
+    search_samples: int = 0
+    monte_carlo: int = 0
+    monte_carlo_seed: int = 0
+
+    def searches(self) -> bool:
+        return bool(self.search_points or self.monte_carlo)
 
     def settings(self) -> dict[str, Any]:
         """The settings a paving certificate states (the checker re-derives them from the scene)."""
@@ -103,7 +114,10 @@ class BoxScene:
                 "max_points": self.max_points, "unsplit": list(self.frozen), "range_boxes": self.range_boxes,
                 "range_gap": fraction_text(self.range_gap), "point_prec": self.point_prec,
                 "point_maxprec": self.point_maxprec,
-                **({} if self.priority == DEFAULT_PRIORITY else {"priority": check_priority(self.priority)})}
+                **({} if self.priority == DEFAULT_PRIORITY else {"priority": check_priority(self.priority)}),
+                **({"search_points": self.search_points, "search_samples": self.search_samples,
+                    "monte_carlo": self.monte_carlo, "monte_carlo_seed": self.monte_carlo_seed}
+                   if self.searches() else {})}
 
     def point_parameters(self, point: dict[str, Fraction]) -> dict[str, str]:
         return {**{k: v for k, v in self.points.items()}, **{k: fraction_text(q) for k, q in point.items()}}
@@ -171,6 +185,10 @@ def box_scene(scene: Scene) -> BoxScene:
     max_points = option_count(m["max_points"], "max_points", 0, 10 ** 4)
     range_boxes = option_count(m["range_boxes"], "range_boxes", 0, 10 ** 6)
     range_gap = option_number(m["range_gap"], "range_gap", above="0", at_most="1").rational
+    search = (option_count(m["search_points"], "search_points", 0, 10 ** 4),
+              option_count(m["search_samples"], "search_samples", 0, 10 ** 7),
+              option_count(m["monte_carlo"], "monte_carlo", 0, 10 ** 7),
+              option_count(m["monte_carlo_seed"], "monte_carlo_seed", 0, 2 ** 31))
     mid = Scene(name=scene.name, kind=scene.kind, source=scene.source,
                 parameters={**points, **{k: fraction_text(q) for k, q in box.midpoint().items()}},
                 claims_only=scene.claims_only, options=kind_opts, paper={}, path=scene.path)
@@ -193,8 +211,10 @@ def box_scene(scene: Scene) -> BoxScene:
     frozen = tuple(n for n in box.names if n in getattr(boxes, "UNSPLIT_PARAMETERS", ()))
     if len(frozen) == len(box.names):
         frozen = frozen[1:]           # something must be splittable; the first frozen edge is
-    return BoxScene(scene, points, box, kind_opts, claims, resolution, max_boxes, prec, max_points, skipped,
-                    frozen, range_boxes, range_gap)
+    bs = BoxScene(scene, points, box, kind_opts, claims, resolution, max_boxes, prec, max_points, skipped,
+                  frozen, range_boxes, range_gap)
+    bs.search_points, bs.search_samples, bs.monte_carlo, bs.monte_carlo_seed = search
+    return bs
 
 
 # --------------------------------------------------------------------------- tasks (run in workers)
@@ -209,16 +229,6 @@ def evaluate_task(kind: str, points_json: str, options_json: str, mid_json: str,
     return {k: [v[0], v[1]] for k, v in out.items()}
 
 
-def point_task(kind: str, params_json: str, options_json: str, claim: str, prec: int = DEFAULT_PREC,
-               maxprec: int = DEFAULT_MAXPREC) -> dict[str, Any]:
-    """The point prover on one claim at one exact parameter point, from ``prec`` up to ``maxprec`` bits."""
-    from ..prover import prove_scene
-    scene = Scene(name="point", kind=kind, source="margin point", parameters=json.loads(params_json),
-                  claims_only=[claim], options=json.loads(options_json))
-    c = prove_scene(scene, prec=prec, maxprec=maxprec).claim(claim)
-    return {"status": c.status.value, "reason": c.reason, "precision_bits": c.precision_bits}
-
-
 # --------------------------------------------------------------------------- the paving
 
 @dataclass
@@ -228,6 +238,8 @@ class ClaimPaving:
     boxes: list[tuple[Box, str]] = field(default_factory=list)
     reasons: dict[str, str] = field(default_factory=dict)      # the first reason seen per outcome
     points: list[dict[str, Any]] = field(default_factory=list)  # point proofs at sub-box midpoints
+    #: {"counterexample_search": ..., "monte_carlo": ...} when the scene asks (:mod:`.counterexamples`)
+    search: dict[str, Any] = field(default_factory=dict)
 
     def volume(self, whole: Box) -> dict[str, Fraction]:
         total = whole.volume()
@@ -238,7 +250,8 @@ class ClaimPaving:
 
     @property
     def status(self) -> str:
-        if any(p["status"] == "refuted" for p in self.points) or any(s == "refuted" for _, s in self.boxes):
+        if any(p["status"] == "refuted" for p in self.points) or any(s == "refuted" for _, s in self.boxes) \
+                or searched_refutation(self.search):
             return "refuted"
         if self.boxes and all(s == "proved" for _, s in self.boxes):
             return "proved"
@@ -353,7 +366,14 @@ def _commit(bs: BoxScene, st: PaveState, batch: list[Group], outs: list[dict]) -
         st.evaluated += len(g.boxes)
 
 
-def _snapshot(bs: BoxScene, st: PaveState, stopped: str, seconds: float, label: str, ranges=None) -> Paving:
+def searched_refutation(search: dict[str, Any]) -> bool:
+    """Whether a claim's counterexample search holds a certified counterexample (a point proof refuted)."""
+    found = search.get("counterexample_search") or {}
+    return any(p.get("status") == "refuted" for p in found.get("proofs", []) if isinstance(p, dict))
+
+
+def _snapshot(bs: BoxScene, st: PaveState, stopped: str, seconds: float, label: str, ranges=None,
+              searches: dict[str, dict[str, Any]] | None = None) -> Paving:
     """The paving as it stands: the leaves, and when ``stopped``, the queued boxes as undecided leaves of
     their open claims (pending; the claim's undecided reason is then ``stopped``)."""
     pending = st.frontier.groups() if stopped else []
@@ -363,7 +383,8 @@ def _snapshot(bs: BoxScene, st: PaveState, stopped: str, seconds: float, label: 
         reasons = dict(cp.reasons)
         if any(c in g.claims for g in pending):
             reasons["undecided"] = stopped
-        claims.append(ClaimPaving(cp.id, cp.statement, boxes, reasons, list(cp.points)))
+        claims.append(ClaimPaving(cp.id, cp.statement, boxes, reasons, list(cp.points),
+                                  dict((searches or {}).get(cp.id, {}))))
     return Paving(bs, claims, st.evaluated, st.levels, st.budget_hit or bool(stopped), seconds, label, stopped,
                   ranges, pending)
 
@@ -451,6 +472,17 @@ def _pave(bs: BoxScene, executor, progress, time_limit, box_budget, state, check
             raise AssertionError(f"claim {c}: box {b.to_json()} refuted for every parameter, but its midpoint "
                                  f"is proved: an unsound box or point evaluation")
         result[c].points.append({"box_outcome": outcome, "point": params, **res})
+    searches = None
+    if bs.searches():
+        from .counterexamples import paving_searches
+        try:
+            searches = paving_searches(bs, [st.result[c] for c in bs.claims], bs.search_points,
+                                       bs.search_samples or None, bs.monte_carlo, bs.monte_carlo_seed,
+                                       executor=ex, budget=budget)
+        except KeyboardInterrupt:
+            for cp in result.values():
+                cp.points = []
+            return _snapshot(bs, st, INTERRUPTED, time.perf_counter() - t0, ex.label)
     ranges = None
     qmod = quantities_module(bs.scene.kind)
     if qmod is not None and bs.range_boxes:
@@ -462,4 +494,4 @@ def _pave(bs: BoxScene, executor, progress, time_limit, box_budget, state, check
             for cp in result.values():
                 cp.points = []
             return _snapshot(bs, st, INTERRUPTED, time.perf_counter() - t0, ex.label)
-    return _snapshot(bs, st, "", time.perf_counter() - t0, ex.label, ranges)
+    return _snapshot(bs, st, "", time.perf_counter() - t0, ex.label, ranges, searches)

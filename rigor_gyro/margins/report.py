@@ -65,6 +65,7 @@ def paving_json(p: Paving) -> dict[str, Any]:
             "reasons": dict(sorted(c.reasons.items())),
             "points": c.points,
             "boxes": [{"box": b.to_json(), "status": s} for b, s in c.boxes],
+            **{k: c.search[k] for k in ("counterexample_search", "monte_carlo") if k in c.search},
         })
     data = {
         "schema": SCHEMA,
@@ -85,6 +86,33 @@ def paving_json(p: Paving) -> dict[str, Any]:
         data.update(ranges_json(bs, p.ranges))
     data["integrity"] = {"sha256": digest(data)}
     return data
+
+
+def _render_search(data: dict[str, Any], c: dict[str, Any]) -> list[str]:
+    """The counterexample search over the undecided leaves and the Monte Carlo cross-check, when stored."""
+    out = []
+    cs = c.get("counterexample_search")
+    if cs and "skipped" in cs:
+        out.append(f"- counterexample search skipped: {cs['skipped']}")
+    elif cs:
+        found = [p for p in cs["proofs"] if p["status"] == "refuted"]
+        line = (f"- counterexample search over all {cs['undecided_leaves']} undecided sub-box(es) "
+                f"({cs['settings']['samples']} Halton samples, {len(cs['proofs'])} candidate(s) proved point by "
+                f"point): {len(found)} certified counterexample(s) in {len(cs['leaves'])} sub-box(es)")
+        if found:
+            line += "; the first: " + ", ".join(f"{k} = {v}" for k, v in found[0]["point"].items() if k in data["box"])
+        out.append(line)
+    mc = c.get("monte_carlo")
+    if mc and "skipped" in mc:
+        out.append(f"- Monte Carlo cross-check skipped: {mc['skipped']}")
+    elif mc:
+        lo, hi = mc["interval"]
+        out.append(f"- Monte Carlo cross-check (evidence, not proof): {mc['failing']} of {mc['samples']} uniform "
+                   f"samples fail ({mc['unknown']} undecided), failing fraction in [{lo:.4f}, {hi:.4f}] at "
+                   f"{mc['confidence']:.3g} confidence; the certified refuted fraction is "
+                   f"{c['volume_fraction_decimal']['refuted']} and the undecided {c['volume_fraction_decimal']['undecided']}: "
+                   + ("consistent" if mc.get("consistent") else "NOT consistent (a bug in the paving or the sampling)"))
+    return out
 
 
 def render_paving(data: dict[str, Any]) -> str:
@@ -113,6 +141,7 @@ def render_paving(data: dict[str, Any]) -> str:
             out.append(f"- certified counterexample ({len(ce)} point(s) re-proved refuted; the first): "
                        + ", ".join(f"{k} = {v}" for k, v in pt.items() if k in data["box"])
                        + f": {ce[0]['reason']}")
+        out.extend(_render_search(data, c))
         und = [p for p in c["points"] if p["box_outcome"] == "undecided"]
         if und:
             out.append(f"- the midpoints of {len(und)} undecided sub-box(es), proved point by point: "

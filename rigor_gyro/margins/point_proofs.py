@@ -1,0 +1,25 @@
+"""The point prover on one claim at one exact parameter point, as a task for an executor (strings in,
+plain data out): what pavings, their checker and the counterexample search ask at single points.
+
+Guarantee: the status, reason and precision are the point prover's own (``rigor-gyro prove`` on a scene
+of that point with that one claim), from ``prec`` up to ``maxprec`` bits.
+"""
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from ..core.balls import DEFAULT_MAXPREC, DEFAULT_PREC
+from ..scene import Scene
+
+__all__ = ["point_task"]
+
+
+def point_task(kind: str, params_json: str, options_json: str, claim: str, prec: int = DEFAULT_PREC,
+               maxprec: int = DEFAULT_MAXPREC) -> dict[str, Any]:
+    """The point prover on one claim at one exact parameter point, from ``prec`` up to ``maxprec`` bits."""
+    from ..prover import prove_scene
+    scene = Scene(name="point", kind=kind, source="margin point", parameters=json.loads(params_json),
+                  claims_only=[claim], options=json.loads(options_json))
+    c = prove_scene(scene, prec=prec, maxprec=maxprec).claim(claim)
+    return {"status": c.status.value, "reason": c.reason, "precision_bits": c.precision_bits}
