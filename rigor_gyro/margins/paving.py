@@ -19,7 +19,12 @@ resolution or a budget never refutes.
 
 Options (the scene's ``[options]``, beside the kind's): ``box_resolution`` (relative, default 1/64),
 ``max_boxes`` (default 20000), ``box_prec`` (bits for the box evaluations, default 128), ``max_points``
-(point proofs per claim and outcome, default 16).
+(point proofs per claim and outcome, default 16); ``search_points`` (default 0: off) and ``search_samples``
+(default 32 per point): a counterexample search over *every* undecided leaf of a claim (Halton points
+probed by the box rigour, the best candidates proved by the point prover: a refuted one refutes the claim,
+:mod:`.counterexamples`); ``monte_carlo`` (samples, default 0: off) and ``monte_carlo_seed``: each claim's
+failing fraction estimated by the point prover at uniform samples, beside the certified fractions
+(evidence, never a verdict). With either on, the settings state all four.
 
 Anytime: boxes are evaluated best first (:mod:`.order`: the largest first by default, which is
 breadth-first; or those next to a decided region first) in batches. A time limit, a box budget for the
