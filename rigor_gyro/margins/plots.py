@@ -113,7 +113,6 @@ def build_paving_figure(data: dict[str, Any], claim: dict[str, Any], axes: tuple
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
-    names = list(data["box"])
     x, y = _axes(data, axes)
     fig, ax = plt.subplots(figsize=(9.0, 5.0) if y else (9.5, 2.4))
     _draw_boxes(ax, data, [(b["box"], b["status"]) for b in claim["boxes"]], x, y)
@@ -137,10 +136,16 @@ def build_paving_figure(data: dict[str, Any], claim: dict[str, Any], axes: tuple
                 markerfacecolor=face, markeredgecolor=edge, gid=f"points-{st}")
         handles.append(Line2D([], [], linestyle="none", marker=marker, markerfacecolor=face, markeredgecolor=edge,
                               label=f"{label}: {len(pts)}"))
-    drawn = [n for n in (x, y) if n]
+    return _finish(fig, ax, data, f"{claim['id']}: {claim['status']} over the box", (x, y), handles)
+
+
+def _finish(fig, ax, data: dict[str, Any], what: str, axes: tuple, handles: list):
+    """The title (naming a projection when the box has more parameters than the axes drawn), the legend
+    beside the axes, the layout."""
+    names = list(data["box"])
+    drawn = [n for n in axes if n]
     extra = f" (projection onto {', '.join(drawn)} of {len(names)} parameters)" if len(names) > len(drawn) else ""
-    ax.set_title(f"{data['scene']['name']}: {claim['id']}: {claim['status']} over the box{extra}\n"
-                 "(a float drawing of the certified paving)", fontsize=9)
+    ax.set_title(f"{data['scene']['name']}: {what}{extra}\n(a float drawing of the certified paving)", fontsize=9)
     ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     fig.tight_layout()
     declutter_ticks(fig)
@@ -202,15 +207,7 @@ def build_safe_set_figure(data: dict[str, Any], safe: dict[str, Any], axes: tupl
                 "; ".join(f"{k}: {v}" for k, v in safe["laws"].items()))
         handles.append(Patch(facecolor="none", edgecolor="none",
                              label=f"yield ({said}): [{yl['lower']}, {yl['upper']}]"))
-    names = list(data["box"])
-    drawn = [n for n in (x, y) if n]
-    extra = f" (projection onto {', '.join(drawn)} of {len(names)} parameters)" if len(names) > len(drawn) else ""
-    ax.set_title(f"{data['scene']['name']}: where {', '.join(safe['claims'])} all hold{extra}\n"
-                 "(a float drawing of the certified paving)", fontsize=9)
-    ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
-    fig.tight_layout()
-    declutter_ticks(fig)
-    return fig
+    return _finish(fig, ax, data, f"where {', '.join(safe['claims'])} all hold", (x, y), handles)
 
 
 def safe_set_plot(data: dict[str, Any], safe: dict[str, Any], out_dir: str | Path,
