@@ -198,10 +198,12 @@ def _conformance(data: Any, name: str) -> list[str]:
         return ["$: nested too deeply to validate"]
 
 
-def check_file(path: str | Path, samples: int | None = None) -> CheckReport:
+def check_file(path: str | Path, samples: int | None = None, executor=None) -> CheckReport:
     """Read and check an output file: a certificate, a paving, a threshold or a scan (by its ``schema``
     field); CertificateError if it cannot be read as one. ``samples``: a paving's decided sub-boxes per
-    claim cross-checked by the point prover (:mod:`rigor_gyro.margins.sampled`; None: its default)."""
+    claim cross-checked by the point prover (:mod:`rigor_gyro.margins.sampled`; None: its default);
+    ``executor`` (:class:`rigor_gyro.margins.executors.Executor`): where a paving's decided sub-boxes are
+    re-evaluated (the verdicts do not depend on where)."""
     p = Path(path)
     try:
         data = json.loads(p.read_text(encoding="utf-8"))
@@ -210,7 +212,7 @@ def check_file(path: str | Path, samples: int | None = None) -> CheckReport:
     if isinstance(data, dict) and "total_s" in data and "schema" not in data:
         raise CertificateError(f"{path}: a timings file (timings/<name>.json), not a certificate")
     try:
-        report = check_certificate(data, str(path), samples=samples)
+        report = check_certificate(data, str(path), samples=samples, executor=executor)
     except CertificateError as e:
         raise CertificateError(f"{path}: {e}") from None
     return report
@@ -239,7 +241,7 @@ def _structure(data: Any) -> None:
         raise CertificateError("witnesses must be an object")
 
 
-def check_certificate(data: Any, file: str = "<data>", samples: int | None = None) -> CheckReport:
+def check_certificate(data: Any, file: str = "<data>", samples: int | None = None, executor=None) -> CheckReport:
     """Check a certificate given as parsed JSON; see the module docstring (``samples``: see :func:`check_file`)."""
     from .core.balls import MAX_PREC, working_precision
     from .kinds import checker, claim_statements, kind_module
@@ -265,7 +267,9 @@ def check_certificate(data: Any, file: str = "<data>", samples: int | None = Non
                     from .margins.threshold import check_threshold as check_kind
                 else:
                     from .margins.scan import check_scan as check_kind
-                extra = {"samples": samples} if kind == "rigor-gyro/paving/1" and samples is not None else {}
+                extra = {} if kind != "rigor-gyro/paving/1" else {
+                    **({"samples": samples} if samples is not None else {}),
+                    **({"executor": executor} if executor is not None else {})}
                 report.results.extend(CheckResult(*t) for t in check_kind(data, **extra))
             except (RigorGyroError, KeyError, TypeError, ValueError, ArithmeticError, AttributeError, IndexError) as e:
                 report.results.append(CheckResult("data", False, f"the {kind.split('/')[1]}'s data cannot be checked: "

@@ -227,6 +227,8 @@ def _parser() -> argparse.ArgumentParser:
                                        "result of rigor-gyro\n  4  internal error"))
     ck.add_argument("certs", nargs="+", metavar="CERT.json", help="certificate files written by 'prove'")
     ck.add_argument("-q", "--quiet", action="store_true", help="print only one line per certificate")
+    ck.add_argument("-j", "--workers", type=int, default=1,
+                    help="pavings: processes that re-evaluate the decided sub-boxes (default 1)")
     ck.add_argument("--samples", type=_nonnegative_int, default=None, metavar="N",
                     help="pavings: decided sub-boxes per claim that the point prover cross-checks at their "
                          "midpoint and extreme corners (default 8; 0: none)")
@@ -639,10 +641,18 @@ def _cmd_campaign(args) -> int:
 def _cmd_check(args) -> int:
     """Exit 0 when every certificate confirms, 1 naming the first check that does not, 2 unreadable."""
     from .check import CertificateError, check_file
+    from .margins.executors import Executor
+    if args.workers < 1:
+        return _bad(f"--workers {args.workers}: give 1 or more")
+    with Executor(args.workers) as ex:
+        return _check_files(args, ex, check_file, CertificateError)
+
+
+def _check_files(args, ex, check_file, CertificateError) -> int:
     codes = []
     for path in args.certs:
         try:
-            report = check_file(path, samples=args.samples)
+            report = check_file(path, samples=args.samples, executor=ex if args.workers > 1 else None)
         except CertificateError as e:
             _say(f"rigor-gyro: {e}", err=True)
             codes.append(EXIT_BAD_INPUT)
