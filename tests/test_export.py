@@ -7,7 +7,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from rigor_gyro.core.boxes import Box, tiles_by_bisection
-from rigor_gyro.margins.export import exact_decimal, leaves_csv
+from rigor_gyro.core.boxes import exact_decimal
+from rigor_gyro.margins.export import leaves_csv
 
 
 @given(st.integers(-10 ** 12, 10 ** 12), st.integers(0, 30), st.integers(0, 30), st.sampled_from([1, 3, 7]))

@@ -32,7 +32,7 @@ from flint import arb, fmpq
 from .errors import ParameterError
 from .exact import parse_exact
 
-__all__ = ["Box", "parse_tolerance", "is_tolerance", "split_parameters", "fraction_text", "tiles_by_bisection",
+__all__ = ["Box", "parse_tolerance", "is_tolerance", "split_parameters", "fraction_text", "exact_decimal", "tiles_by_bisection",
            "even_in"]
 
 _BRACKET = re.compile(r"^\[\s*([^,\[\]]+?)\s*,\s*([^,\[\]]+?)\s*\]$")
@@ -77,6 +77,23 @@ def parse_tolerance(value: object, name: str) -> tuple[Fraction, Fraction] | Non
 def fraction_text(q: Fraction) -> str:
     """An exact rational as text that :func:`parse_exact` reads back to the same value."""
     return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
+
+
+def exact_decimal(q: Fraction) -> str:
+    """``q`` as a terminating decimal when it has one (the exact value, every digit), else ``p/q``."""
+    d, twos, fives = q.denominator, 0, 0
+    while d % 2 == 0:
+        d, twos = d // 2, twos + 1
+    while d % 5 == 0:
+        d, fives = d // 5, fives + 1
+    if d != 1:
+        return f"{q.numerator}/{q.denominator}"
+    n = max(twos, fives)
+    scaled = q * 10 ** n                     # an integer
+    sign = "-" if scaled < 0 else ""
+    digits = str(abs(scaled.numerator)).rjust(n + 1, "0")
+    whole, frac = digits[:len(digits) - n], digits[len(digits) - n:]
+    return sign + whole + ("." + frac if n else "")
 
 
 def _ball(lo: Fraction, hi: Fraction) -> arb:

@@ -11,29 +11,11 @@ from __future__ import annotations
 
 import csv
 import io
-from fractions import Fraction
 
-from ..core.boxes import Box
+from ..core.boxes import Box, exact_decimal
 from .safe_set import common_refinement, conjunction
 
-__all__ = ["exact_decimal", "leaves_csv"]
-
-
-def exact_decimal(q: Fraction) -> str:
-    """``q`` as a terminating decimal when it has one (the exact value, every digit), else ``p/q``."""
-    d, twos, fives = q.denominator, 0, 0
-    while d % 2 == 0:
-        d, twos = d // 2, twos + 1
-    while d % 5 == 0:
-        d, fives = d // 5, fives + 1
-    if d != 1:
-        return f"{q.numerator}/{q.denominator}"
-    n = max(twos, fives)
-    scaled = q * 10 ** n                     # an integer
-    sign = "-" if scaled < 0 else ""
-    digits = str(abs(scaled.numerator)).rjust(n + 1, "0")
-    whole, frac = digits[:len(digits) - n], digits[len(digits) - n:]
-    return sign + whole + ("." + frac if n else "")
+__all__ = ["leaves_csv"]
 
 
 def leaves_csv(data: dict) -> str:

@@ -49,7 +49,7 @@ from fractions import Fraction
 from typing import Any
 
 from ..core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, working_precision
-from ..core.boxes import Box, fraction_text, split_parameters
+from ..core.boxes import Box, exact_decimal, fraction_text, split_parameters
 from ..core.deadline import Budget, check_time_limit
 from ..core.errors import ParameterError, SceneError
 from ..core.exact import option_count, option_number
@@ -130,13 +130,7 @@ class BoxScene:
 
 def _end_text(q: Fraction) -> str:
     """An end of a tolerance as an exact decimal where it has one (-0.02, not -1/50), else as a fraction."""
-    for n in range(0, 61):
-        scaled = q * 10 ** n
-        if scaled.denominator == 1:
-            digits = str(abs(scaled.numerator)).rjust(n + 1, "0")
-            body = digits if n == 0 else f"{digits[:-n]}.{digits[-n:]}"
-            return ("-" if q < 0 else "") + body
-    return fraction_text(q)
+    return exact_decimal(q)
 
 
 def _bad_end(module, mid: Scene, box: Box, error: ParameterError, given: dict) -> ParameterError:

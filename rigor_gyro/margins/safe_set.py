@@ -31,7 +31,7 @@ from fractions import Fraction
 from flint import arb
 
 from ..core.balls import ball, decimal_bounds
-from ..core.boxes import Box
+from ..core.boxes import Box, fraction_text
 from ..core.errors import ParameterError
 
 __all__ = ["Law", "parse_laws", "common_refinement", "conjunction", "piece_probability", "yield_bounds",
@@ -160,8 +160,8 @@ def yield_bounds(pieces: list[tuple[Box, str]], whole: Box, laws: dict[str, Law]
             inexact = True
     if not inexact:
         lo, hi = mass["proved"], 1 - mass["refuted"]
-        return {"lower": _dec(ball(lo), "down"), "upper": _dec(ball(hi), "up"), "lower_exact": _frac(lo),
-                "upper_exact": _frac(hi), "exact": True}
+        return {"lower": _dec(ball(lo), "down"), "upper": _dec(ball(hi), "up"), "lower_exact": fraction_text(lo),
+                "upper_exact": fraction_text(hi), "exact": True}
     # the pieces partition the box, so P(safe) = 1 - P(failing) - P(undecided): each bound is taken from
     # whichever side is enclosed tighter (with no failing or undecided piece the lower bound is 1 exactly)
     p = {st: balls[st] + ball(mass[st]) for st in _STATUSES}
@@ -175,10 +175,6 @@ def yield_bounds(pieces: list[tuple[Box, str]], whole: Box, laws: dict[str, Law]
     if not any(st == "refuted" for _, st in pieces):
         hi = "1"
     return {"lower": lo, "upper": hi, "exact": False}
-
-
-def _frac(q: Fraction) -> str:
-    return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
 
 
 def _dec(x: arb, side: str) -> str:
