@@ -15,6 +15,8 @@ File format::
     only = ["roots", "brackets"]
     [options]           # optional, kind-specific
     [paper]             # optional: numbers printed in the source, for the audit table
+    [plant] / [system] / [moment]   # optional, one per kind (MODEL_TABLES): the user's own model,
+                        # entries strings (or lists of rows of strings); the kind parses and checks it
 
 Fails when: the file is missing, unreadable, not UTF-8 or not TOML; a key is missing or unknown (with a
 did-you-mean); the name is not a safe file stem; a section is not a table; a number is a TOML float (in
@@ -51,12 +53,16 @@ class Scene:
     options: dict[str, Any] = field(default_factory=dict)
     paper: dict[str, Any] = field(default_factory=dict)
     path: str | None = None
+    #: the kind's model table (``[plant]``, ``[system]`` or ``[moment]``, see MODEL_TABLES), as written;
+    #: empty for the papers' built-in parameterisations
+    model: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         """The shape every scene has, however it was made (file or API): SceneError otherwise."""
         check_name(self.name, self.path or "scene")
         for label, value, kind in (("parameters", self.parameters, dict), ("options", self.options, dict),
                                    ("paper", self.paper, dict), ("source", self.source, str),
+                                   ("model", self.model, dict),
                                    ("kind", self.kind, str)):
             if not isinstance(value, kind):
                 raise SceneError(f"scene {self.name!r}: {label} must be a {kind.__name__}, got {type(value).__name__}")
@@ -72,7 +78,7 @@ class Scene:
         the block carries one). KeyError, TypeError or SceneError when the block is malformed."""
         return cls(name=sc["name"], kind=sc["kind"], source=sc.get("source", ""), parameters=dict(sc["parameters"]),
                    claims_only=sc.get("claims_only"), options=dict(sc.get("options") or {}),
-                   paper=dict(sc.get("paper") or {}), path=sc.get("file"))
+                   paper=dict(sc.get("paper") or {}), path=sc.get("file"), model=dict(sc.get("model") or {}))
 
     def header(self, paper: bool = False) -> dict[str, Any]:
         """The ``scene`` block of a certificate: everything the result depends on (parameters exactly as
@@ -84,6 +90,8 @@ class Scene:
                "options": {k: (v if isinstance(v, (str, int)) else str(v)) for k, v in self.options.items()},
                "claims_only": list(self.claims_only) if self.claims_only is not None else None,
                "file": self.path}
+        if self.model:
+            out["model"] = self.model
         if paper and self.paper:
             out["paper"] = dict(self.paper)
         return out
@@ -120,7 +128,9 @@ def builtin_scenes(group: str = "paper") -> dict[str, Any]:
 
 
 #: the top-level keys and tables a scene file may have
-TOP_LEVEL = ("name", "kind", "source", "parameters", "claims", "options", "paper")
+#: the table in which a scene of each kind may write its own model (issue 42): the kind's module parses it
+MODEL_TABLES = {"periodic_orbit": "plant", "eigenfrequencies": "system", "lyapunov": "moment"}
+TOP_LEVEL = ("name", "kind", "source", "parameters", "claims", "options", "paper", *MODEL_TABLES.values())
 #: a scene name is also the stem of its output files: a safe character set and a length limit
 NAME_PATTERN = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,99}$", re.ASCII)
 MAX_SCENE_BYTES = 1_000_000
@@ -255,5 +265,32 @@ def parse_scene(text: str, where: str = "<string>") -> Scene:
     paper = _table(data, "paper", where)
     _no_floats(options, "options", where)
     _no_floats(paper, "paper", where)
+    model = _model_table(data, kind, where)
     return Scene(name=name, kind=kind, source=source, parameters=params, claims_only=only,
-                 options=dict(options), paper=dict(paper), path=where)
+                 options=dict(options), paper=dict(paper), path=where, model=model)
+
+
+def _model_table(data: dict, kind: str, where: str) -> dict[str, Any]:
+    """The kind's model table as written: only the kind's own table name (``MODEL_TABLES``), its values
+    strings, integers or (nested) lists of them; no TOML floats. Its meaning is checked by the kind."""
+    own = MODEL_TABLES.get(kind)
+    for key in MODEL_TABLES.values():
+        if key in data and key != own:
+            allowed = f"[{own}]" if own else "no model table"
+            raise SceneError(f"{where}: [{key}] is a model table of another kind; a {kind} scene takes {allowed}")
+    if own is None or own not in data:
+        return {}
+    table = _table(data, own, where)
+
+    def plain(v, label):
+        if isinstance(v, list):
+            return [plain(x, label) for x in v]
+        if isinstance(v, float):
+            raise ParameterError(f"{where}: [{own}] {label}: written as the TOML float {v!r}, which is rounded "
+                                 f"to binary; quote it: \"{v!r}\"")
+        if isinstance(v, bool) or not isinstance(v, (str, int)):
+            raise SceneError(f"{where}: [{own}] {label}: expected a quoted exact number or expression (or a list "
+                             f"of them), got {type(v).__name__}")
+        return v if isinstance(v, str) else str(v)
+
+    return {k: plain(v, k) for k, v in table.items()}

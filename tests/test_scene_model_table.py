@@ -1,0 +1,49 @@
+"""A scene's own model table ([plant], [system], [moment]; issue 42): kept as written, carried into the
+certificate's scene block, one table per kind, no TOML floats."""
+import pytest
+
+from rigor_gyro.core.errors import ParameterError, SceneError
+from rigor_gyro.scene import MODEL_TABLES, Scene, parse_scene
+
+HEAD = "name = 'own'\nkind = '{kind}'\n[parameters]\nH = '3/2'\n"
+
+
+@pytest.mark.parametrize("kind,table", sorted(MODEL_TABLES.items()))
+def test_model_table_kept_and_round_trips(kind, table):
+    text = HEAD.format(kind=kind) + f"[{table}]\nM = [['0', '1'], ['-1', '-H']]\ne = ['0', 1]\n"
+    s = parse_scene(text)
+    assert s.model == {"M": [["0", "1"], ["-1", "-H"]], "e": ["0", "1"]}
+    header = s.header()
+    assert header["model"] == s.model
+    assert Scene.from_header(header).model == s.model
+
+
+def test_no_model_table_leaves_the_header_as_before():
+    s = parse_scene(HEAD.format(kind="lyapunov"))
+    assert s.model == {} and "model" not in s.header()
+
+
+def test_another_kinds_table_is_refused():
+    with pytest.raises(SceneError, match=r"\[system\] is a model table of another kind.*\[plant\]"):
+        parse_scene(HEAD.format(kind="periodic_orbit") + "[system]\nM = [['1']]\n")
+
+
+def test_floats_and_odd_values_are_refused():
+    with pytest.raises(ParameterError, match="TOML float"):
+        parse_scene(HEAD.format(kind="periodic_orbit") + "[plant]\nM = [[1.5]]\n")
+    with pytest.raises(SceneError, match="expected a quoted exact number"):
+        parse_scene(HEAD.format(kind="periodic_orbit") + "[plant]\nM = [[true]]\n")
+
+
+def test_header_with_model_validates_against_the_certificate_schema():
+    import json
+    from importlib import resources
+
+    import jsonschema
+    schema = json.loads((resources.files("rigor_gyro") / "schemas" / "certificate-2.schema.json").read_text())
+    sub = schema["properties"]["scene"]
+    sub = {**sub, "$defs": schema["$defs"]}
+    s = parse_scene(HEAD.format(kind="eigenfrequencies") + "[system]\nM = [['1', '0'], ['0', '1']]\n")
+    jsonschema.validate(s.header(), sub)
+    with pytest.raises(jsonschema.ValidationError):
+        jsonschema.validate({**s.header(), "model": {"M": [[1]]}}, sub)
