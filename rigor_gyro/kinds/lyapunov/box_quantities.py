@@ -38,6 +38,7 @@ from ...core.balls import certainly_lt, certainly_positive, current_precision
 from ...core.box_values import BoxValue, QuantitySpec
 from ...core.boxes import Box
 from ...core.subdivision import certify_positive
+from .box_levels import c_star_box, v_positive_margin_box
 from .box_forms import CentredBox, balls_of, radius_formula, w_enclosure
 from .box_vdot import radius_bounds
 from .boxes import boxed_model, raw_intervals
@@ -59,11 +60,20 @@ BOX_QUANTITIES = {
     "damping_margin": QuantitySpec("design margin in k: min(k/k_min, k/(mu A0)) - 1", claim="damping_condition"),
     "psi_margin": QuantitySpec("Psi test margin R_sup/R - 1 (R_sup: the largest disc radius with Psi1, Psi2 > 0; "
                                "> 0 proves vdot_nonpositive on region (17))", claim="psi_test"),
+    "c_star": QuantitySpec("level c* = min of V over the boundary of region (17) (the invariant estimate {V < c*})"),
+    "v_positive_margin": QuantitySpec("V > 0 margin: min over |x2| <= x2* of min(1 - mu/f1, psi/P) (P the positive "
+                                      "part of psi; > 0 with f(x)/x > 0 gives V > 0 off the origin)",
+                                      claim="v_positive"),
 }
 
-#: bisection steps of psi_margin's lower bound (resolution 2^-PSI_STEPS of the bracket [-1, PSI_TOP])
+#: bisection steps of psi_margin's lower bound (resolution 2^-PSI_STEPS of the bracket [-1, PSI_TOP], or of [t, 2t] when the top
+#: PSI_TOP holds and is doubled to the first t that fails)
 PSI_STEPS = 6
 PSI_TOP = 3
+#: the largest top the bracket doubles to (R_sup/R - 1 above it is not bounded)
+PSI_CAP = 3 * 2 ** 8
+#: exact x2 points of the loose upper bound of psi_margin (:func:`_psi_upper_loose`)
+PSI_PROBES = 16
 #: x2 pieces per certification of the psi margin's bisection
 PSI_PIECES = 32
 
@@ -126,8 +136,10 @@ def _psi_margin(model, cb: CentredBox, rb: dict) -> arb | None:
     if not holds(a + Fraction(1, 2 ** PSI_STEPS)):
         return None
     a = a + Fraction(1, 2 ** PSI_STEPS)
-    if holds(b):
-        return None            # above the bracket: no upper bound stated
+    while holds(b):            # the bracket's top holds: double it (a box with a small R somewhere)
+        if b >= PSI_CAP:
+            return None        # above the largest bracket: no upper bound stated
+        a, b = b, 2 * b
     for _ in range(PSI_STEPS):
         m = (a + b) / 2
         if holds(m):
@@ -137,8 +149,36 @@ def _psi_margin(model, cb: CentredBox, rb: dict) -> arb | None:
     # upper end: at the x2 where ci0 - (1 + b) R |.| > 0 fails, an upper bound over the box of each ratio
     ups = [_psi_upper(model, cb, j, b, lo_x, which) for j in ("R1", "R2")]
     if any(u is None for u in ups):
-        return None
+        loose = _psi_upper_loose(cb, rb, lo_x)
+        if loose is None:
+            return None
+        return _q(a).union(loose)
     return _q(a).union(ups[0].max(ups[1]))
+
+
+def _psi_upper_loose(cb: CentredBox, rb: dict, lo_x: arb) -> arb | None:
+    """An upper bound over the box of R_sup/R - 1 that needs no formula of R: R_sup(P) <= ci0/|(ci1, ci3)| at any
+    fixed x2 (R_sup is the minimum over x2 and i), bounded above over the box by the naive enclosure on its
+    balls at PSI_PROBES exact points of the x2 range; R(P) = min(R1, R2) >= the smaller of their lower bounds
+    over the box (``rb``). Used where the coupled bound of :func:`_psi_upper` is not finite (a wide box over
+    which R's formula reaches 0). None when neither is finite or R's lower bound is not positive."""
+    r_lo = arb(rb["R1"][0].lower()).min(arb(rb["R2"][0].lower()))
+    if not certainly_positive(r_lo):
+        return None
+    gm = cb._gimbal({n: cb.WHOLE for n in cb.raw})
+    best = None
+    for j in range(PSI_PROBES):     # lo_x, then exact points strictly inside the range (never past x2*)
+        x = arb((lo_x + (cb.xs - lo_x) * j / PSI_PROBES).mid()) if j else lo_x
+        for c0, c1, c3 in gm.psi_coefficients(x):
+            n = c1 * c1 + c3 * c3
+            if not certainly_positive(n):
+                continue
+            u = (c0 / n.sqrt()).upper()
+            if arb(u).is_finite():
+                best = u if best is None else best.min(u)
+    if best is None:
+        return None
+    return arb((arb(best) / r_lo - 1).upper())
 
 
 def _scaled(which: str, i: int, scale: arb):
@@ -218,7 +258,7 @@ def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
     out["mu_max"] = BoxValue(_hull(q["k"][0] / (out["A0"].value.upper()), q["k"][1] / out["A0"].value.lower()),
                              {"k": 1 / A0, **{p: -b["k"] / (A0 * A0) for p in ("A", "A1", "A2")}})
     want = set(names)
-    if want & {"k_min", "mu_min", "damping_margin", "R", "R1", "R2", "psi_margin"}:
+    if want & {"k_min", "mu_min", "damping_margin", "R", "R1", "R2", "psi_margin"} or ("c_star" in want and model.R_option is None):
         mw = _maxima(model, raw)
         if mw is not None:
             M, W = mw
@@ -230,7 +270,7 @@ def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
             out["mu_min"] = BoxValue(_hull(plo / q["H"][1], phi / q["H"][0]))
             out["k_min"] = BoxValue(_hull(plo * arb(A0v.lower()) / q["H"][1], phi * arb(A0v.upper()) / q["H"][0]))
             out["damping_margin"] = _damping(raw, M, W, cs2)
-            if want & {"R", "R1", "R2", "psi_margin"}:
+            if want & {"R", "R1", "R2", "psi_margin", "c_star"}:
                 cb = CentredBox(model.gimbal, raw, W)
                 rb = {j: radius_bounds(cb, j) for j in ("R1", "R2")}
                 if all(certainly_positive(lo.lower()) and hi.is_finite() for lo, hi in rb.values()):
@@ -250,6 +290,17 @@ def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
                         v = _psi_margin(model, cb, rb)
                         if v is not None:
                             out["psi_margin"] = BoxValue(v)
+    if want & {"c_star", "v_positive_margin"}:
+        g = boxed_model(model, raw).gimbal
+        if "v_positive_margin" in want:
+            v = v_positive_margin_box(g)
+            if v is not None:
+                out["v_positive_margin"] = BoxValue(v)
+        R = arb(model.R_option) if model.R_option is not None else (out["R"].value if "R" in out else None)
+        if "c_star" in want and R is not None:
+            v = c_star_box(g, R)
+            if v is not None:
+                out["c_star"] = BoxValue(v)
     varying = {k for k, lo, hi in box.edges if lo != hi}
     return {k: BoxValue(v.value, {p: d for p, d in v.gradient.items() if p in varying})
             for k, v in out.items() if k in want and v.value.is_finite()}
