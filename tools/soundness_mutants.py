@@ -850,18 +850,22 @@ def record_kills(rows: list[tuple[str, str, str, float]], group: str | None, tar
 
 
 def run(names: list[str] | None, out: str | None, tests: list[str] | None = None, in_order: bool = False,
-        record: bool = False, group: str | None = None) -> int:
+        record: bool = False, group: str | None = None, committed: bool = False) -> int:
     rows, survivors = [], []
     # one snapshot of the tree, taken now: edits made while the mutants run do not leak into them
     snapshot = Path(tempfile.mkdtemp(prefix="mutants-snapshot-"))
     # every file git tracks, as it is in the working tree (the tests also read README.md, tools/ and
     # proofs/: a snapshot of rigor_gyro/ and tests/ alone failed test_readme for every mutant)
-    tracked = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
-    for rel in filter(None, tracked.decode().split("\0")):
-        src = ROOT / rel
-        if src.is_file():
-            (snapshot / rel).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(src, snapshot / rel)
+    if committed:       # HEAD's tree (others' uncommitted edits in the work tree stay out)
+        archive = subprocess.run(["git", "archive", "HEAD"], cwd=ROOT, capture_output=True, check=True).stdout
+        subprocess.run(["tar", "-x", "-C", str(snapshot)], input=archive, check=True)
+    else:
+        tracked = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout
+        for rel in filter(None, tracked.decode().split("\0")):
+            src = ROOT / rel
+            if src.is_file():
+                (snapshot / rel).parent.mkdir(parents=True, exist_ok=True)
+                shutil.copy2(src, snapshot / rel)
     # the unmutated snapshot must pass the same tests: a test that fails there (one that reads a file
     # the snapshot does not hold, say) would "kill" every mutant and the run would measure nothing
     env = dict(os.environ, PYTHONPATH=str(snapshot) + os.pathsep + str(snapshot / "tools"), HYPOTHESIS_PROFILE="ci")
@@ -929,12 +933,14 @@ def main() -> int:
     ap.add_argument("--in-order", action="store_true", help="pytest's own order (not last time's killers first)")
     ap.add_argument("--record", action="store_true", help="write the outcomes into tools/mutant_kills.json")
     ap.add_argument("--group", help="with --record: the group of the mutants run (for names new to the file)")
+    ap.add_argument("--committed", action="store_true", help="snapshot HEAD's tree, not the work tree (when others "
+                    "are editing it: their half-done files stay out)")
     args = ap.parse_args()
     if args.list:
         for name, path, *_rest, what in MUTANTS:
             print(f"{name:36s} {path}: {what}")
         return 0
-    return run(args.only, args.out, args.tests, args.in_order, args.record, args.group)
+    return run(args.only, args.out, args.tests, args.in_order, args.record, args.group, args.committed)
 
 
 if __name__ == "__main__":
