@@ -28,6 +28,8 @@ from ...core.balls import ball, certainly_ge, certainly_gt, certainly_le, certai
 from ...core.polyroots import series_function
 from ...core.roots import RootStatus, newton_root
 from ...core.stored import encloses, fmpq_of, interval, meets
+from .system_check import check_system
+from .system_model import SystemModel
 from .model import (BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic, nu_bounds,
                     nu_identities, nu_quadratics, nus_exactly_equal, r2_denominator)
 
@@ -172,7 +174,10 @@ class _Checker:
 
 
 def check(model, data: dict) -> list[CheckResult]:
-    """Re-decide every claim of an eigenfrequency certificate; see the module docstring."""
+    """Re-decide every claim of an eigenfrequency certificate; see the module docstring (a ``[system]``
+    certificate: :func:`.system_check.check_system`)."""
+    if isinstance(model, SystemModel):
+        return check_system(model, data)
     ck = _Checker(model, data)
     say = ck.say
     Q = ck.Q

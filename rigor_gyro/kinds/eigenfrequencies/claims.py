@@ -33,12 +33,14 @@ from ...core.exact import Exact, option_number, parse_options, parse_parameters,
 from ...core.outcome import Claim, Status
 from ...core.polyroots import isolate_polynomial
 from .. import Attempt, Phases
+from .system_claims import SYSTEM_CLAIMS, attempt_system
+from .system_model import SystemModel, validate_system
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table
 from .model import (BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic, nu_bounds,
                     nu_identities, nu_quadratics, nus_exactly_equal, r2_denominator)
 
-__all__ = ["CLAIMS", "PARAMETERS", "RudenkoModel", "validate", "attempt", "characteristic_quartic",
-           "nu_quadratics"]
+__all__ = ["CLAIMS", "ALL_CLAIMS", "SYSTEM_ONLY_CLAIMS", "PARAMETERS", "RudenkoModel", "validate", "attempt",
+           "statements", "characteristic_quartic", "nu_quadratics"]
 
 PARAMETERS = {"a": "(A1+A2+A3)/A3", "b": "(A2+A3)/A3", "eps": "K2/K3", "Omega2": "H^2/(K3 A3)",
               "hz_scale": "optional: Hz per sqrt(omega), i.e. sqrt(K3/A3)/(2 pi)"}
@@ -67,6 +69,17 @@ CLAIMS = {
 }
 
 
+#: the claims of a scene with its own ``[system]`` table (:mod:`.system_claims`): opt-in ids a scene names in
+#: ``[claims] only``; "roots" is shared, with the system's statement (:func:`statements`)
+SYSTEM_ONLY_CLAIMS = {k: v for k, v in SYSTEM_CLAIMS.items() if k not in CLAIMS}
+ALL_CLAIMS = {**CLAIMS, **SYSTEM_ONLY_CLAIMS}
+
+
+def statements(model) -> dict[str, str]:
+    """The statement of each claim for this model: the system's for a ``[system]`` scene, else :data:`CLAIMS`."""
+    return dict(SYSTEM_CLAIMS) if isinstance(model, SystemModel) else dict(CLAIMS)
+
+
 #: parameters a claim does not depend on (a threshold search over them is bad input)
 CLAIMS_INDEPENDENT_OF = {"hz_scale": tuple(CLAIMS)}
 
@@ -87,8 +100,24 @@ class RudenkoModel:
         return getattr(self, name).fmpq()
 
 
-def validate(scene) -> RudenkoModel:
-    """Check names and the domain b > 1, a > b, eps > 0, Omega2 > 0 (and hz_scale > 0)."""
+def validate(scene) -> RudenkoModel | SystemModel:
+    """Check names and the domain b > 1, a > b, eps > 0, Omega2 > 0 (and hz_scale > 0); a scene with a
+    ``[system]`` table is validated by :func:`.system_model.validate_system` instead (it must name its claims
+    among :data:`SYSTEM_CLAIMS` in ``[claims] only``)."""
+    if scene.model:
+        only = scene.claims_only
+        if only is None:
+            raise ParameterError(f"a [system] scene names its claims: add [claims] only = {list(SYSTEM_CLAIMS)} "
+                                 "(or a part of it)")
+        other = [c for c in only if c not in SYSTEM_CLAIMS]
+        if other:
+            raise ParameterError(f"claim(s) {other} belong to the paper's parameterisation (Rudenko 1976), not to a "
+                                 f"[system] scene, which has {list(SYSTEM_CLAIMS)}")
+        return validate_system(scene, tuple(c for c in SYSTEM_CLAIMS if c in only))
+    if scene.claims_only is not None:
+        other = [c for c in scene.claims_only if c in SYSTEM_ONLY_CLAIMS]
+        if other:
+            raise ParameterError(f"claim(s) {other} need a [system] table (a gyroscopic system written as matrices)")
     p = scene.parameters
     v = parse_parameters(p, "eigenfrequencies", PARAMETERS, REQUIRED)
     require_rational(v)
@@ -128,6 +157,8 @@ def _bounds(x: arb) -> list[str]:
 
 def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
     """Evaluate the requested claims at the current precision (set by the prover)."""
+    if isinstance(model, SystemModel):
+        return attempt_system(model, prec, wanted)
     a, b, eps, W = (model.q(k) for k in REQUIRED)
     claims: list[Claim] = []
     quantities: dict[str, arb] = {}

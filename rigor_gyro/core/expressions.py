@@ -1,0 +1,256 @@
+"""A small expression language for model entries written in scene files: + - * / ^, parentheses, exact
+numbers, named parameters and (where the caller allows them) named functions; parsed by a recursive-descent
+grammar of its own (never ``eval``), evaluated on whatever numbers the caller gives (``Fraction`` or ``fmpq``
+exactly, ``arb`` balls, series).
+
+Grammar (whitespace ignored between tokens)::
+
+    expr   := term (('+' | '-') term)*
+    term   := unary (('*' | '/') unary)*
+    unary  := ('+' | '-') unary | power
+    power  := atom ('^' unary)?            # right-associative; the exponent must be an integer constant
+    atom   := NUMBER | NAME | NAME '(' expr (',' expr)* ')' | '(' expr ')'
+    NUMBER := digits ['.' digits] [('e' | 'E') ['+' | '-'] digits]      # an exact decimal: "0.1" is 1/10
+
+``a^-2`` is 1/a^2; ``-a^2`` is -(a^2). ``**`` is accepted as a synonym of ``^``.
+
+Guarantee: :func:`parse` returns an :class:`Expr` whose :meth:`Expr.evaluate` computes exactly the written
+formula with the operations of the values given (exact for ``Fraction``/``fmpq``: no rounding anywhere;
+with balls, a ball containing the exact value). Every number is read as an exact rational.
+
+Limits (checked while parsing, before any arithmetic): at most :data:`MAX_LENGTH` characters, nesting depth
+:data:`MAX_DEPTH`, integer exponents of magnitude <= :data:`MAX_POWER`, each number by
+:func:`rigor_gyro.core.exact.parse_exact`'s limits.
+
+Fails when: the text is not in the grammar, names an unknown parameter or function, or exceeds a limit
+(:class:`ParameterError` naming ``where``, the entry being read); evaluation divides by an exact zero
+(:class:`ParameterError` naming ``where``, from :meth:`Expr.evaluate` with exact values).
+
+Precision: none of its own (the values' arithmetic decides).
+
+This module knows nothing of gyroscopes: any kind may read its model entries with it.
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any, Callable, Mapping
+
+from .errors import ParameterError
+from .exact import parse_exact
+
+__all__ = ["Expr", "parse", "evaluate_exact", "MAX_LENGTH", "MAX_DEPTH", "MAX_POWER"]
+
+MAX_LENGTH = 4000
+MAX_DEPTH = 60
+MAX_POWER = 64
+
+_TOKEN = re.compile(r"\s*(?:(?P<num>(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)|(?P<name>[A-Za-z_][A-Za-z0-9_]*)"
+                    r"|(?P<op>\*\*|[-+*/^(),]))", re.ASCII)
+
+
+@dataclass(frozen=True)
+class Expr:
+    """A parsed expression: a tree of tuples (``("num", Fraction)``, ``("name", str)``, ``("neg", e)``,
+    ``("+"|"-"|"*"|"/", e1, e2)``, ``("^", e, int)``, ``("call", name, (args))``) with the text it was read from."""
+
+    tree: tuple
+    text: str
+    where: str
+
+    def names(self) -> set[str]:
+        """The parameter names the expression uses."""
+        out: set[str] = set()
+
+        def walk(t):
+            if t[0] == "name":
+                out.add(t[1])
+            elif t[0] == "call":
+                for a in t[2]:
+                    walk(a)
+            elif t[0] in ("neg",):
+                walk(t[1])
+            elif t[0] == "^":
+                walk(t[1])
+            elif t[0] in "+-*/":
+                walk(t[1])
+                walk(t[2])
+        walk(self.tree)
+        return out
+
+    def is_constant(self) -> bool:
+        return not self.names()
+
+    def evaluate(self, env: Mapping[str, Any], number: Callable[[Fraction], Any] = lambda q: q,
+                 functions: Mapping[str, Callable] | None = None) -> Any:
+        """The value with ``env[name]`` for each name and ``number(q)`` for each written rational q
+        (default: the Fraction itself). An exact division by zero (ZeroDivisionError of the values'
+        arithmetic) is a ParameterError naming ``where``."""
+        fns = functions or {}
+
+        def ev(t):
+            op = t[0]
+            if op == "num":
+                return number(t[1])
+            if op == "name":
+                return env[t[1]]
+            if op == "neg":
+                return -ev(t[1])
+            if op == "call":
+                return fns[t[1]](*(ev(a) for a in t[2]))
+            if op == "^":
+                base, n = ev(t[1]), t[2]
+                if n < 0:
+                    return number(Fraction(1)) / base ** (-n)
+                return base ** n
+            x, y = ev(t[1]), ev(t[2])
+            if op == "+":
+                return x + y
+            if op == "-":
+                return x - y
+            if op == "*":
+                return x * y
+            return x / y
+        try:
+            return ev(self.tree)
+        except ZeroDivisionError:
+            raise ParameterError(f"{self.where}: {self.text!r} divides by zero") from None
+
+
+def parse(text: object, where: str, names: set[str] | frozenset[str] | Mapping = frozenset(),
+          functions: set[str] | frozenset[str] = frozenset()) -> Expr:
+    """Parse ``text`` (a string, or an int) into an :class:`Expr`; ``names`` are the parameter names it may
+    use, ``functions`` the function names; see the module docstring."""
+    if isinstance(text, bool) or not isinstance(text, (str, int)):
+        raise ParameterError(f"{where}: expected an expression written as a string, got {type(text).__name__}")
+    s = str(text)
+    if len(s) > MAX_LENGTH:
+        raise ParameterError(f"{where}: an expression may have at most {MAX_LENGTH} characters")
+    tokens, pos = [], 0
+    while pos < len(s):
+        if s[pos:].strip() == "":
+            break
+        m = _TOKEN.match(s, pos)
+        if not m or m.end() == pos:
+            bad = s[pos:].lstrip()[:1]
+            raise ParameterError(f"{where}: cannot read {s!r}: unexpected character {bad!r} (the grammar has numbers, "
+                                 "names, + - * / ^ and parentheses)")
+        kind = m.lastgroup
+        tokens.append((kind, m.group(kind)))
+        pos = m.end()
+    if not tokens:
+        raise ParameterError(f"{where}: empty expression")
+    p = _Parser(tokens, s, where, set(names), set(functions))
+    tree = p.expr(0)
+    if p.i != len(tokens):
+        raise ParameterError(f"{where}: cannot read {s!r}: unexpected {tokens[p.i][1]!r}")
+    return Expr(tree, s, where)
+
+
+class _Parser:
+    def __init__(self, tokens, text, where, names, functions):
+        self.t, self.text, self.where, self.names, self.functions, self.i = tokens, text, where, names, functions, 0
+
+    def fail(self, what: str):
+        raise ParameterError(f"{self.where}: cannot read {self.text!r}: {what}")
+
+    def peek(self):
+        return self.t[self.i] if self.i < len(self.t) else (None, None)
+
+    def take(self, value=None):
+        tok = self.peek()
+        if tok[0] is None:
+            self.fail("it ends too early")
+        if value is not None and tok[1] != value:
+            self.fail(f"expected {value!r}, found {tok[1]!r}")
+        self.i += 1
+        return tok
+
+    def expr(self, depth):
+        if depth > MAX_DEPTH:
+            self.fail(f"nested deeper than {MAX_DEPTH}")
+        left = self.term(depth)
+        while self.peek()[1] in ("+", "-"):
+            op = self.take()[1]
+            left = (op, left, self.term(depth))
+        return left
+
+    def term(self, depth):
+        left = self.unary(depth)
+        while self.peek()[1] in ("*", "/"):
+            op = self.take()[1]
+            left = (op, left, self.unary(depth))
+        return left
+
+    def unary(self, depth):
+        if depth > MAX_DEPTH:
+            self.fail(f"nested deeper than {MAX_DEPTH}")
+        if self.peek()[1] in ("+", "-"):
+            op = self.take()[1]
+            inner = self.unary(depth + 1)
+            return ("neg", inner) if op == "-" else inner
+        return self.power(depth)
+
+    def power(self, depth):
+        base = self.atom(depth)
+        if self.peek()[1] in ("^", "**"):
+            self.take()
+            exponent = self.unary(depth + 1)
+            n = _integer_constant(exponent)
+            if n is None:
+                self.fail("an exponent must be an integer constant (such as 2 or -1)")
+            if abs(n) > MAX_POWER:
+                self.fail(f"an exponent must have magnitude at most {MAX_POWER}")
+            return ("^", base, n)
+        return base
+
+    def atom(self, depth):
+        kind, value = self.take()
+        if kind == "num":
+            return ("num", parse_exact(value, None).rational)
+        if kind == "name":
+            if self.peek()[1] == "(":
+                if value not in self.functions:
+                    allowed = f"; allowed here: {sorted(self.functions)}" if self.functions else " (no functions here)"
+                    self.fail(f"unknown function {value!r}{allowed}")
+                self.take("(")
+                args = [self.expr(depth + 1)]
+                while self.peek()[1] == ",":
+                    self.take()
+                    args.append(self.expr(depth + 1))
+                self.take(")")
+                return ("call", value, tuple(args))
+            if value not in self.names:
+                import difflib
+                close = difflib.get_close_matches(value, sorted(self.names), n=1, cutoff=0.6)
+                hint = f" (did you mean {close[0]!r}?)" if close else ""
+                self.fail(f"unknown name {value!r}{hint}; known: {sorted(self.names)}")
+            return ("name", value)
+        if value == "(":
+            inner = self.expr(depth + 1)
+            self.take(")")
+            return inner
+        self.fail(f"unexpected {value!r}")
+
+
+def _integer_constant(t: tuple) -> int | None:
+    """The value of a constant subtree (numbers only) when it is an integer, else None."""
+    e = Expr(t, "", "exponent")
+    if e.names() or _has_call(t):
+        return None
+    try:
+        v = e.evaluate({})
+    except ParameterError:
+        return None
+    return int(v) if v.denominator == 1 else None
+
+
+def _has_call(t: tuple) -> bool:
+    return t[0] == "call" or any(_has_call(x) for x in t[1:] if isinstance(x, tuple))
+
+
+def evaluate_exact(expr: Expr, env: Mapping[str, Fraction]) -> Fraction:
+    """The exact rational value of an expression without functions at exact rational ``env``
+    (ParameterError naming the entry on a division by zero)."""
+    return expr.evaluate(env)

@@ -1,0 +1,204 @@
+"""Independent re-check of a ``[system]`` eigenfrequency certificate (``rigor-gyro check``).
+
+The prover builds P(lambda) = det(lambda^2 M + lambda (G + D) + K) by exact evaluation and interpolation and
+isolates the frequency polynomial's roots with Arb's root finder. This checker does neither: from the scene's
+exact matrices it
+
+* expands the determinant along rows over polynomial entries (:func:`rigor_gyro.core.polymat.det_by_expansion`,
+  a different computation of the same exact polynomial), reads off the multiplicity of lambda = 0 and the odd
+  terms, and forms Q(omega) itself;
+* counts the distinct positive real roots of Q by a Sturm sequence and checks Q squarefree (exact): "m real,
+  positive, simple roots" (``roots``, ``stability``) is re-proved, or its failure re-derived, without any root
+  finder;
+* checks that each stored omega_j interval holds a root by an exact sign change, the intervals disjoint and
+  increasing, m of them, and refines each root inside its interval (interval Newton or exact bisection);
+* recomputes freq_hz_j and each bracket's bounds in balls at the checker's precision from the refined roots,
+  checks the stored enclosures contain them, and re-decides ``brackets`` per root.
+
+Guarantee: a passed check of a ``proved`` claim is an independent proof of its statement for the model as
+written in the scene; every stored enclosure it lists is certified to contain its value.
+"""
+from __future__ import annotations
+
+from fractions import Fraction
+
+from flint import arb, fmpq_poly
+
+from ...check import CheckResult
+from ...core.balls import ball, certainly_gt, certainly_le, current_precision
+from ...core.polymat import det_by_expansion
+from ...core.polyroots import series_function
+from ...core.roots import RootStatus, newton_root
+from ...core.stored import encloses, fmpq_of, interval
+from .system_model import NotRealBound, SystemModel
+
+__all__ = ["check_system", "frequency_data", "positive_root_count", "refine_in"]
+
+
+def positive_root_count(p: fmpq_poly) -> int:
+    """The number of distinct real roots of p in (0, oo), exactly (Sturm's theorem; needs p(0) != 0)."""
+    seq = [p, p.derivative()]
+    while seq[-1].degree() > 0:
+        r = -(seq[-2] % seq[-1])
+        if r == 0:
+            break
+        seq.append(r)
+
+    def changes(values) -> int:
+        s = [v for v in values if v != 0]
+        return sum(1 for x, y in zip(s, s[1:]) if (x > 0) != (y > 0))
+    return changes([q(0) for q in seq]) - changes([q[q.degree()] for q in seq if q.degree() >= 0])
+
+
+def refine_in(p: fmpq_poly, lo: Fraction, hi: Fraction, bits: int) -> arb | None:
+    """A ball around the root of p in the stored [lo, hi]: the exact rational when lo == hi is a root, else
+    (after an exact strict sign change of p) interval Newton to about 2^-bits relative, or 200 exact
+    bisections where Newton does not prove uniqueness; None when [lo, hi] shows no root."""
+    a, b = fmpq_of(lo), fmpq_of(hi)
+    if a == b:
+        return arb(a) if p(a) == 0 else None
+    pa, pb = p(a), p(b)
+    if pa == 0 or pb == 0 or (pa > 0) == (pb > 0):
+        return None
+    r = newton_root(series_function(p), arb(a), arb(b), rel_tol=arb(2) ** (8 - bits))
+    if r.status is RootStatus.UNIQUE and r.enclosure is not None and r.enclosure.is_finite():
+        return r.enclosure
+    for _ in range(200):
+        m = (a + b) / 2
+        pm = p(m)
+        if pm == 0:
+            return arb(m)
+        if (pm > 0) == (pa > 0):
+            a, pa = m, pm
+        else:
+            b = m
+    return arb(a).union(arb(b))
+
+
+def frequency_data(model: SystemModel) -> tuple[fmpq_poly, int, list[int], fmpq_poly | None]:
+    """(P, multiplicity of lambda = 0, odd powers of P / lambda^mu with nonzero coefficients, Q or None),
+    with P by Laplace expansion (not the prover's interpolation)."""
+    P = det_by_expansion([model.matrix("K"), model.matrix("G") + model.matrix("D"), model.matrix("M")])
+    c = P.coeffs()
+    mu = 0
+    while c[mu] == 0:
+        mu += 1
+    odd = [k + mu for k in range(1, len(c) - mu, 2) if c[k + mu] != 0]
+    if mu != model.zero_roots or odd:
+        return P, mu, odd, None
+    even = c[mu::2]
+    Q = fmpq_poly([x if k % 2 == 0 else -x for k, x in enumerate(even)])
+    return P, mu, odd, Q
+
+
+def check_system(model: SystemModel, data: dict) -> list[CheckResult]:
+    """Re-decide every claim of a ``[system]`` certificate; see the module docstring."""
+    out: list[CheckResult] = []
+    say = lambda item, ok, msg: out.append(CheckResult(item, bool(ok), msg))
+    q = data["quantities"]
+    verified: set[str] = set()
+    P, mu, odd, Q = frequency_data(model)
+    structural_ok = Q is not None
+    squarefree = positive = None
+    if structural_ok:
+        squarefree = Q.gcd(Q.derivative()).degree() == 0
+        positive = positive_root_count(Q) if squarefree and Q(0) != 0 else None
+    m = Q.degree() if structural_ok else None
+    holds = structural_ok and squarefree and positive == m
+    # the stored roots
+    names = sorted((k for k in q if k.startswith("omega_")), key=lambda k: int(k.split("_")[1]))
+    omegas = None
+    if names:
+        ok = structural_ok and names == [f"omega_{j}" for j in range(1, len(names) + 1)] and len(names) == m
+        ivs = [interval(q[n]) for n in names]
+        refined = []
+        if ok:
+            for n, (lo, hi) in zip(names, ivs):
+                r = refine_in(Q, lo, hi, current_precision())
+                if r is None:
+                    say(n, False, f"Q has no sign change on the stored [{q[n]['lo']}, {q[n]['hi']}]")
+                    ok = False
+                    break
+                refined.append(r)
+                verified.add(n)
+            ok = ok and all(ivs[i][1] < ivs[i + 1][0] for i in range(len(ivs) - 1))
+        if ok:
+            omegas = refined
+        else:
+            say("omega", False, f"the stored omega_j are not {m} disjoint increasing intervals, each a sign change of Q")
+    if omegas is not None and model.hz_scale is not None:
+        s = ball(model.hz())
+        for j, w in enumerate(omegas, start=1):
+            name = f"freq_hz_{j}"
+            if name in q:
+                if encloses(interval(q[name]), s * w.sqrt()):
+                    verified.add(name)
+                else:
+                    say(name, False, "the stored enclosure does not contain hz_scale sqrt(omega_j)")
+    brackets: dict[int, object] = {}
+    if omegas is not None:
+        for j in range(1, len(model.brackets) + 1):
+            try:
+                lo, hi = model.bracket_balls(j)
+            except NotRealBound as e:
+                brackets[j] = str(e)
+                continue
+            brackets[j] = (lo, hi)
+            w = omegas[j - 1]
+            for name, x in ((f"bracket_{j}_lo", lo), (f"bracket_{j}_hi", hi), (f"bracket_{j}_slack", (w - lo).min(hi - w))):
+                if name in q:
+                    if encloses(interval(q[name]), x):
+                        verified.add(name)
+                    else:
+                        say(name, False, "the stored enclosure does not contain the value recomputed from the refined root")
+    rel = model.rel_width.rational
+    for c in data["claims"]:
+        cid, st = c["id"], c["status"]
+        if st == "inconclusive":
+            say(cid, True, "inconclusive: claims nothing")
+            continue
+        proved = st == "proved"
+        facts = (f"lambda = 0 of multiplicity {mu} (declared {model.zero_roots}); odd terms {odd}; squarefree Q: "
+                 f"{squarefree}; positive real roots by Sturm: {positive} of {m}")
+        if cid == "stability":
+            say(cid, holds if proved else not holds, "re-derived by Laplace expansion and Sturm: " + facts)
+        elif cid == "roots":
+            if proved:
+                wide = [n for n in names if (lambda lo, hi: hi - lo > rel * abs(lo))(*interval(q[n]))]
+                say(cid, holds and omegas is not None and not wide,
+                    facts + f"; {len(names)} stored intervals verified: {omegas is not None}"
+                    + (f"; wider than rel_width: {wide}" if wide else ""))
+            else:
+                say(cid, not holds, "re-derived by Laplace expansion and Sturm: " + facts)
+        elif cid == "brackets":
+            if not model.brackets:
+                say(cid, proved, "no bracket given")
+                continue
+            if omegas is None:
+                say(cid, False, "the roots this claim rests on are not verified")
+                continue
+            inside, outside = [], []
+            for j in range(1, len(model.brackets) + 1):
+                br = brackets[j]
+                if isinstance(br, str):
+                    outside.append(j)
+                    continue
+                lo, hi = br
+                w = omegas[j - 1]
+                if certainly_le(lo, w) and certainly_le(w, hi):
+                    inside.append(j)
+                elif certainly_gt(lo, w) or certainly_gt(w, hi):
+                    outside.append(j)
+            per = {r.get("root"): r.get("status") for r in (c.get("details") or {}).get("per_root", [])}
+            claimed_out = [j for j in range(1, len(model.brackets) + 1) if per.get(f"omega_{j}") == "refuted"]
+            if proved:
+                say(cid, len(inside) == len(model.brackets), f"brackets re-decided: inside for {inside}")
+            else:
+                say(cid, bool(claimed_out) and set(claimed_out) <= set(outside),
+                    f"brackets re-decided: certainly violated for {outside}, the certificate names {claimed_out}")
+        else:
+            say(cid, False, f"unknown claim {cid!r} for a [system] scene")
+    unverified = sorted(set(q) - verified)
+    say("quantities", not unverified, f"{len(verified)} stored enclosures verified"
+        + (f"; not verified: {unverified}" if unverified else ""))
+    return out

@@ -1,0 +1,72 @@
+"""The scene expression language (rigor_gyro.core.expressions): exact values, precedence, errors naming the entry."""
+from fractions import Fraction
+
+import pytest
+from flint import arb
+
+from rigor_gyro.core.errors import ParameterError
+from rigor_gyro.core.expressions import MAX_DEPTH, parse
+
+NAMES = {"a", "b", "Omega2"}
+ENV = {"a": Fraction(377, 25), "b": Fraction(3077, 500), "Omega2": Fraction(629, 1000)}
+
+
+@pytest.mark.parametrize("text,value", [
+    ("1", 1), ("0.1", Fraction(1, 10)), ("1e-3", Fraction(1, 1000)), ("2/3", Fraction(2, 3)),
+    ("1 + 2*3", 7), ("(1 + 2)*3", 9), ("2^3^2", 512), ("-2^2", -4), ("(-2)^2", 4), ("2^-2", Fraction(1, 4)),
+    ("2**3", 8), ("a - b", Fraction(377, 25) - Fraction(3077, 500)), ("1/Omega2", Fraction(1000, 629)),
+    ("a/b/2", Fraction(377, 25) / Fraction(3077, 500) / 2), ("--a", Fraction(377, 25)), ("+3 - -3", 6),
+    ("7 - 2 - 1", 4), ("b*(b-1)", Fraction(3077, 500) * Fraction(2577, 500)),
+])
+def test_exact_values(text, value):
+    assert parse(text, "entry", NAMES).evaluate(ENV) == value
+
+
+def test_ball_values_contain_the_exact_value():
+    e = parse("a*b^2/(a - b) - 1/3", "entry", NAMES)
+    exact = e.evaluate(ENV)
+    ball = e.evaluate({k: arb(v.numerator) / v.denominator for k, v in ENV.items()}, number=lambda q: arb(q.numerator) / q.denominator)
+    assert ball.contains(arb(exact.numerator) / exact.denominator)
+
+
+def test_names_and_functions():
+    e = parse("sqrt(a) + b", "x", NAMES, {"sqrt"})
+    assert e.names() == {"a", "b"}
+    assert parse("3", "x").is_constant()
+    with pytest.raises(ParameterError, match=r"x: .*unknown function 'sqrt' \(no functions here\)"):
+        parse("sqrt(a)", "x", NAMES)
+
+
+@pytest.mark.parametrize("text,match", [
+    ("c + 1", r"\[system\] K\[1\]\[2\]: .*unknown name 'c'"),
+    ("Omega + 1", r"unknown name 'Omega' \(did you mean 'Omega2'\?\)"),
+    ("a ^ b", "exponent must be an integer constant"),
+    ("a ^ 0.5", "exponent must be an integer constant"),
+    ("a ^ 100", "magnitude at most"),
+    ("1 +", "ends too early"),
+    ("(a", "ends too early"),
+    ("a)", r"unexpected '\)'"),
+    ("a $ b", "unexpected character '\\$'"),
+    ("", "empty expression"),
+    ("a b", "unexpected 'b'"),
+    ("(" * (MAX_DEPTH + 2) + "1" + ")" * (MAX_DEPTH + 2), "nested deeper"),
+])
+def test_bad_expressions_name_the_entry(text, match):
+    with pytest.raises(ParameterError, match=match):
+        parse(text, "[system] K[1][2]", NAMES)
+
+
+def test_division_by_zero_names_the_entry():
+    e = parse("1/(a - a)", "[system] M[2][2]", NAMES)
+    with pytest.raises(ParameterError, match=r"\[system\] M\[2\]\[2\]: '1/\(a - a\)' divides by zero"):
+        e.evaluate(ENV)
+    with pytest.raises(ParameterError, match="divides by zero"):
+        parse("(a - a)^-1", "e", NAMES).evaluate(ENV)
+
+
+def test_non_strings_are_refused():
+    assert parse(3, "e").evaluate({}) == 3
+    with pytest.raises(ParameterError, match="expected an expression written as a string"):
+        parse(1.5, "e")
+    with pytest.raises(ParameterError, match="expected an expression written as a string"):
+        parse(True, "e")
