@@ -144,7 +144,11 @@ def attempt_system(model: SystemModel, prec: int, wanted=None) -> Attempt:
         claims.append(Claim("stability", SYSTEM_CLAIMS["stability"], s_st, s_why, details=dict(details),
                             counterexample=s_ce))
     if "brackets" in wanted:
-        claims.append(_brackets_claim(model, omegas, quantities))
+        c = _brackets_claim(model, omegas, quantities)
+        if st is Status.REFUTED and c.status is Status.INCONCLUSIVE:
+            c.reason = "needs the certified roots, and claim roots is refuted: omega_j are not all real and positive"
+            c.precision_cannot_help = "it rests on the refuted claim roots"
+        claims.append(c)
     hz = model.hz()
     if hz is not None and omegas:
         s = ball(hz)
@@ -158,9 +162,6 @@ def attempt_system(model: SystemModel, prec: int, wanted=None) -> Attempt:
 
 def _brackets_claim(model: SystemModel, omegas: list[arb], quantities: dict[str, arb]) -> Claim:
     statement = SYSTEM_CLAIMS["brackets"]
-    if not model.brackets:
-        return Claim("brackets", statement, Status.PROVED, "no bracket given: nothing to prove",
-                     details={"per_root": []})
     if not omegas:
         return Claim("brackets", statement, Status.INCONCLUSIVE, "needs the certified roots (claim roots)")
     per_root, violations, decides = [], [], None

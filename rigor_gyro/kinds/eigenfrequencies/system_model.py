@@ -182,7 +182,7 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
     unknown = sorted(set(table) - set(SYSTEM_KEYS))
     if unknown:
         import difflib
-        close = difflib.get_close_matches(unknown[0], SYSTEM_KEYS, n=1, cutoff=0.5)
+        close = difflib.get_close_matches(unknown[0], SYSTEM_KEYS, n=1, cutoff=0.3)
         raise ParameterError(f"[system]: unknown key {unknown[0]!r}" + (f" (did you mean {close[0]!r}?)" if close else "")
                              + f"; the table takes {list(SYSTEM_KEYS)}")
     for key in ("M", "K"):
@@ -248,6 +248,9 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
     m = (2 * n - z) // 2
     if len(raw) > m:
         raise ParameterError(f"[system] brackets: {len(raw)} brackets but the system has {m} frequencies omega_j")
+    if "brackets" in wanted and not raw:
+        raise ParameterError("claim 'brackets' is asked for but [system] gives no brackets: add "
+                             "brackets = [[\"lower\", \"upper\"], ...] or leave the claim out of [claims] only")
     names = set(values)
     brackets = tuple((parse(lo, f"[system] brackets[{j}] lower", names, _FUNCTIONS),
                       parse(hi, f"[system] brackets[{j}] upper", names, _FUNCTIONS))
