@@ -70,3 +70,13 @@ def test_non_strings_are_refused():
         parse(1.5, "e")
     with pytest.raises(ParameterError, match="expected an expression written as a string"):
         parse(True, "e")
+
+
+def test_number_limits():
+    from rigor_gyro.core.exact import MAX_DIGITS, MAX_EXPONENT
+    assert parse("1e" + str(MAX_EXPONENT), "e").evaluate({}) == 10 ** MAX_EXPONENT
+    with pytest.raises(ParameterError, match="decimal exponent"):
+        parse("1e" + str(MAX_EXPONENT + 1), "e")
+    with pytest.raises(ParameterError, match="at most .* digits"):
+        parse("1" * (MAX_DIGITS + 1), "e")
+    assert parse("0.125", "e").evaluate({}) == Fraction(1, 8) == parse("0.125", "f").evaluate({})

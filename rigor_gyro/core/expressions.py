@@ -19,8 +19,8 @@ formula with the operations of the values given (exact for ``Fraction``/``fmpq``
 with balls, a ball containing the exact value). Every number is read as an exact rational.
 
 Limits (checked while parsing, before any arithmetic): at most :data:`MAX_LENGTH` characters, nesting depth
-:data:`MAX_DEPTH`, integer exponents of magnitude <= :data:`MAX_POWER`, each number by
-:func:`rigor_gyro.core.exact.parse_exact`'s limits.
+:data:`MAX_DEPTH`, integer exponents of magnitude <= :data:`MAX_POWER`, each number at most
+:data:`rigor_gyro.core.exact.MAX_DIGITS` digits and a decimal exponent within +-``MAX_EXPONENT``.
 
 Fails when: the text is not in the grammar, names an unknown parameter or function, or exceeds a limit
 (:class:`ParameterError` naming ``where``, the entry being read); evaluation divides by an exact zero
@@ -38,7 +38,7 @@ from fractions import Fraction
 from typing import Any, Callable, Mapping
 
 from .errors import ParameterError
-from .exact import parse_exact
+from .exact import MAX_DIGITS, MAX_EXPONENT
 
 __all__ = ["Expr", "parse", "evaluate_exact", "MAX_LENGTH", "MAX_DEPTH", "MAX_POWER"]
 
@@ -127,12 +127,14 @@ def parse(text: object, where: str, names: set[str] | frozenset[str] | Mapping =
     s = str(text)
     if len(s) > MAX_LENGTH:
         raise ParameterError(f"{where}: an expression may have at most {MAX_LENGTH} characters")
-    tokens, pos = [], 0
-    while pos < len(s):
-        if s[pos:].strip() == "":
-            break
+    key = (s, frozenset(names), frozenset(functions))
+    tree = _TREES.get(key)
+    if tree is not None:
+        return Expr(tree, s, where)
+    tokens, pos, end = [], 0, len(s.rstrip())
+    while pos < end:
         m = _TOKEN.match(s, pos)
-        if not m or m.end() == pos:
+        if not m:
             bad = s[pos:].lstrip()[:1]
             raise ParameterError(f"{where}: cannot read {s!r}: unexpected character {bad!r} (the grammar has numbers, "
                                  "names, + - * / ^ and parentheses)")
@@ -145,18 +147,26 @@ def parse(text: object, where: str, names: set[str] | frozenset[str] | Mapping =
     tree = p.expr(0)
     if p.i != len(tokens):
         raise ParameterError(f"{where}: cannot read {s!r}: unexpected {tokens[p.i][1]!r}")
+    if len(_TREES) < 65536:
+        _TREES[key] = tree
     return Expr(tree, s, where)
+
+
+#: parsed trees by (text, names, functions): a scene re-validated (the checker, a paving's boxes) parses once
+_TREES: dict[tuple, tuple] = {}
 
 
 class _Parser:
     def __init__(self, tokens, text, where, names, functions):
         self.t, self.text, self.where, self.names, self.functions, self.i = tokens, text, where, names, functions, 0
+        self.n = len(tokens)
 
     def fail(self, what: str):
         raise ParameterError(f"{self.where}: cannot read {self.text!r}: {what}")
 
     def peek(self):
-        return self.t[self.i] if self.i < len(self.t) else (None, None)
+        i = self.i
+        return self.t[i] if i < self.n else _END
 
     def take(self, value=None):
         tok = self.peek()
@@ -208,7 +218,7 @@ class _Parser:
     def atom(self, depth):
         kind, value = self.take()
         if kind == "num":
-            return ("num", parse_exact(value, None).rational)
+            return ("num", _number(value, self))
         if kind == "name":
             if self.peek()[1] == "(":
                 if value not in self.functions:
@@ -232,6 +242,27 @@ class _Parser:
             self.take(")")
             return inner
         self.fail(f"unexpected {value!r}")
+
+
+_SMALL: dict[str, Fraction] = {}
+_END = (None, None)
+
+
+def _number(token: str, parser: "_Parser") -> Fraction:
+    """The exact rational a number token (already in the grammar's shape) denotes, within
+    :mod:`rigor_gyro.core.exact`'s limits on digits and decimal exponent."""
+    q = _SMALL.get(token)
+    if q is not None:
+        return q
+    mantissa, _, exponent = token.lower().partition("e")
+    if len(mantissa.replace(".", "")) > MAX_DIGITS:
+        parser.fail(f"a number may have at most {MAX_DIGITS} digits")
+    if exponent and abs(int(exponent)) > MAX_EXPONENT:
+        parser.fail(f"a decimal exponent must lie in [-{MAX_EXPONENT}, {MAX_EXPONENT}]")
+    q = Fraction(token)
+    if len(token) <= 8 and len(_SMALL) < 4096:
+        _SMALL[token] = q
+    return q
 
 
 def _integer_constant(t: tuple) -> int | None:

@@ -71,7 +71,7 @@ class NotRealBound(ArithmeticError):
 class SystemModel:
     """A validated ``[system]`` scene: the parsed entries, the exact parameter values and the options."""
 
-    values: dict[str, Fraction]            # the parameters and the defs that are rational, exact
+    values: dict[str, fmpq]                # the parameters and the defs that are rational, exact
     params: dict[str, Exact]
     n: int
     M: tuple
@@ -85,25 +85,28 @@ class SystemModel:
     zero_roots: int
     wanted: tuple
     table: dict = field(default_factory=dict, compare=False)
+    exact: dict = field(default_factory=dict, compare=False)   # the exact matrices, computed once
 
     def matrix(self, which: str) -> fmpq_mat:
         """The exact matrix M, G, K or D (zero when not given) at the scene's parameters."""
-        rows = getattr(self, which)
-        if rows is None:
-            return fmpq_mat(self.n, self.n)
-        return fmpq_mat([[_q(e.evaluate(self.values)) for e in row] for row in rows])
+        m = self.exact.get(which)
+        if m is None:
+            rows = getattr(self, which)
+            m = fmpq_mat(self.n, self.n) if rows is None else fmpq_mat([[_exact(e, self.values) for e in row] for row in rows])
+            self.exact[which] = m
+        return m
 
     def characteristic(self) -> fmpq_poly:
         """P(lambda) = det(lambda^2 M + lambda (G + D) + K), exactly."""
         return characteristic_polynomial(self.matrix("M"), self.matrix("G") + self.matrix("D"), self.matrix("K"))
 
-    def hz(self) -> Fraction | None:
-        return None if self.hz_scale is None else self.hz_scale.evaluate(self.values)
+    def hz(self) -> fmpq | None:
+        return None if self.hz_scale is None else _exact(self.hz_scale, self.values)
 
     def bracket_balls(self, j: int) -> tuple[arb, arb]:
         """Balls of the lower and upper bound of bracket j (1-based) at the working precision; NotRealBound
         when a square root's argument is certainly negative."""
-        env = {k: arb(_q(x.rational)) for k, x in self.params.items()}
+        env = {k: arb(_q(x.rational)) for k, x in self.params.items()}   # defs with sqrt: in balls, in order
         for name, e in self.defs:
             env[name] = _ball_value(e, env)
         lo, hi = self.brackets[j - 1]
@@ -112,6 +115,11 @@ class SystemModel:
 
 def _q(x: Fraction) -> fmpq:
     return fmpq(x.numerator, x.denominator)
+
+
+def _exact(e: Expr, values: dict[str, fmpq]) -> fmpq:
+    """The exact value of an entry (fmpq arithmetic: the same rationals as Fraction's, faster)."""
+    return fmpq(e.evaluate(values, number=_q))
 
 
 def _sqrt(x: arb) -> arb:
@@ -164,7 +172,7 @@ def _matrix(table: dict, key: str, n: int | None, names: set[str]) -> tuple:
 def _structure(key: str, rows: tuple, values: dict, sign: int) -> fmpq_mat:
     """The exact matrix; ParameterError naming the first pair of entries that breaks symmetry (sign +1) or
     skew-symmetry (sign -1)."""
-    exact = [[e.evaluate(values) for e in row] for row in rows]
+    exact = [[_exact(e, values) for e in row] for row in rows]
     n = len(rows)
     for i in range(n):
         for j in range(i, n):
@@ -173,7 +181,7 @@ def _structure(key: str, rows: tuple, values: dict, sign: int) -> fmpq_mat:
                 hint = " (its skew part belongs in G)" if key == "D" else ""
                 raise ParameterError(f"[system] {key} must be {what}{hint}: {key}[{i + 1}][{j + 1}] = {rows[i][j].text!r} = "
                                      f"{exact[i][j]} but {key}[{j + 1}][{i + 1}] = {rows[j][i].text!r} = {exact[j][i]}")
-    return fmpq_mat([[_q(x) for x in row] for row in exact])
+    return fmpq_mat(exact)
 
 
 def validate_system(scene, wanted: tuple) -> SystemModel:
@@ -196,7 +204,7 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
         if not x.is_rational:
             raise ParameterError(f"parameter {k!r}: must be rational in a [system] scene (got {v!r})")
         params[k] = x
-    values: dict[str, Fraction] = {k: x.rational for k, x in params.items()}
+    values: dict[str, fmpq] = {k: _q(x.rational) for k, x in params.items()}
     defs = []
     raw_defs = table.get("defs", [])
     if not isinstance(raw_defs, list) or not all(isinstance(d, str) for d in raw_defs):
@@ -211,9 +219,9 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
             raise ParameterError(f"[system] defs[{i}]: the name {name!r} is already a parameter or an earlier def")
         e = parse(text, f"[system] defs[{i}] ({name})", set(values), _FUNCTIONS)
         defs.append((name, e))
-        values[name] = Fraction(0)          # a placeholder: known name
+        values[name] = fmpq(0)              # a placeholder: known name
         if not _uses_sqrt(e) and set(e.names()) <= set(rational):
-            rational[name] = e.evaluate(rational)
+            rational[name] = _exact(e, rational)
     exact_names = set(rational)
     M = _matrix(table, "M", None, exact_names)
     n = len(M)
@@ -222,12 +230,12 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
     G = _matrix(table, "G", n, exact_names) if "G" in table else None
     K = _matrix(table, "K", n, exact_names)
     D = _matrix(table, "D", n, exact_names) if "D" in table else None
-    Mq = _structure("M", M, rational, +1)
-    _structure("K", K, rational, +1)
+    exact = {"M": _structure("M", M, rational, +1), "K": _structure("K", K, rational, +1)}
     if G is not None:
-        _structure("G", G, rational, -1)
+        exact["G"] = _structure("G", G, rational, -1)
     if D is not None:
-        _structure("D", D, rational, +1)
+        exact["D"] = _structure("D", D, rational, +1)
+    Mq = exact["M"]
     if Mq.det() == 0:
         raise ParameterError("[system] M is singular (det M = 0 exactly): the system is not of second order in every "
                              "coordinate; M must be nonsingular")
@@ -240,7 +248,7 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
     hz = None
     if opts["hz_scale"]:
         hz = parse(opts["hz_scale"], "option 'hz_scale'", exact_names)
-        if not hz.evaluate(rational) > 0:
+        if not _exact(hz, rational) > 0:
             raise ParameterError(f"option 'hz_scale' = {opts['hz_scale']!r}: must be positive")
     raw = table.get("brackets", [])
     if not isinstance(raw, list) or not all(isinstance(b, list) and len(b) == 2 for b in raw):
@@ -257,7 +265,8 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
                      for j, (lo, hi) in enumerate(raw, start=1))
     if scene.paper:
         raise ParameterError("a [system] scene takes no [paper] table (the audit is the paper scene's)")
-    return SystemModel(rational, params, n, M, G, K, D, tuple(defs), brackets, hz, rel, z, tuple(wanted), dict(table))
+    return SystemModel(rational, params, n, M, G, K, D, tuple(defs), brackets, hz, rel, z, tuple(wanted), dict(table),
+                       exact)
 
 
 def _uses_sqrt(e: Expr) -> bool:
