@@ -299,3 +299,38 @@ def test_a_system_scene_names_its_claims_and_a_paper_scene_has_no_system_claims(
 
 GOOD_M = [["1", "0"], ["0", "1"]]
 GOOD_K = [["1", "0"], ["0", "2"]]
+
+
+@pytest.mark.parametrize("scene", [two_dof("1"), two_dof("2"), two_dof("3", D=[["1/10", "0"], ["0", "0"]]),
+                                   system([["1", "0"], ["0", "1"]], [["0", "0"], ["0", "1"]], G=[["0", "1"], ["-1", "0"]])],
+                         ids=["flutter", "double_root", "damped", "zero_roots_undeclared"])
+def test_a_forged_stability_proof_of_an_unstable_system_is_caught(scene):
+    data = proved(scene)
+    f = copy.deepcopy(data)
+    for cid in ("roots", "stability"):
+        c = claim(f, cid)
+        assert c["status"] == "refuted"
+        c["status"] = "proved"
+        c.pop("counterexample")
+    assert items(refix(f))["stability"] is False
+    g = copy.deepcopy(data)
+    c = claim(g, "stability")
+    c["reason"] = "forged"
+    assert items(refix(g))["stability"] is True        # a true refutation stays confirmed by re-derivation
+
+
+def test_an_upper_bound_below_the_root_refutes():
+    """omega_1 = 0.1459...: [0, 1/10] misses it from above."""
+    data = proved(two_dof("3", brackets=[["0", "1/10"]]))
+    c = claim(data, "brackets")
+    assert c["status"] == "refuted" and c["details"]["per_root"][0]["status"] == "refuted"
+    assert confirmed(data)
+
+
+def test_a_forged_bracket_proof_is_caught():
+    data = proved(two_dof("3", brackets=[["0", "1/10"]]))
+    f = copy.deepcopy(data)
+    c = claim(f, "brackets")
+    c["status"] = "proved"
+    c.pop("counterexample")
+    assert items(refix(f))["brackets"] is False
