@@ -8,8 +8,11 @@ seed 001).
   half-period (certified nearest), with their own statements (:func:`statements`);
 * :mod:`.paper`: the paper's own forms (a_ij, determinant (12), Tables 2-4, (25)) and the audit;
 * :mod:`.boxes`: the claims over a box of parameters (for :mod:`rigor_gyro.margins`);
-* :mod:`.approx`: numpy/scipy/mpmath cross-checks (never a verdict); :mod:`.plots`: the figure.
+* :mod:`.approx`: numpy/scipy/mpmath cross-checks (never a verdict); :mod:`.plots`: the figure;
+* :mod:`.dispatch`: a scene with a ``[plant]`` table (the user's own relay plant, issue 42) goes to
+  :mod:`.plant_model`, :mod:`.plant_orbit`, :mod:`.plant_claims` (checker :mod:`.plant_check`).
 """
-from .claims import CLAIMS, HEADLINE, CLAIMS_INDEPENDENT_OF, OPTIONS, PARAMETERS, attempt, statements, validate
+from .claims import CLAIMS, HEADLINE, CLAIMS_INDEPENDENT_OF, OPTIONS, PARAMETERS
+from .dispatch import attempt, statements, validate
 
 __all__ = ["CLAIMS", "HEADLINE", "CLAIMS_INDEPENDENT_OF", "PARAMETERS", "OPTIONS", "validate", "attempt", "statements"]

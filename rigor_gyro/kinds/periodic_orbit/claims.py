@@ -998,3 +998,9 @@ def _witnesses(an: Analysis) -> dict[str, Any]:
         roots.append(r)
     return {"half_period": {"theta_min": _q(an.theta_min), "T": _q(an.T_search), "covers_all": an.covers_all,
                             "function": an.isolated, "pieces": pieces, "roots": roots}}
+
+
+# public names of the root search and its helpers, for the [plant] path (:mod:`.plant_claims`)
+isolate_pieces = _isolate
+g_series_function = _g_series_function
+dyadic_up = _dyadic_up

@@ -13,7 +13,7 @@ from pathlib import Path
 
 from ...core.balls import working_precision
 from ...core.figure_style import OKABE_ITO, SERIES, declutter_ticks
-from .claims import validate
+from .dispatch import validate
 from .flow import Spectrum, orbit_expsums, x0_at
 
 __all__ = ["plots", "build_figures"]

@@ -1,0 +1,324 @@
+"""The claims of kind ``periodic_orbit`` for a user's relay plant (a scene with a ``[plant]`` table).
+
+Model: :mod:`.plant_model` (x' = M x + e u, u = S sign(c . x), hysteresis h), mathematics in
+:mod:`.plant_orbit`. The claims have the ids of the Roitenberg path (:data:`.claims.CLAIMS`) and say the
+same things of y = c . x:
+
+* ``half_period``: every root of g(theta) = c . x0(theta) - h on (0, oo) isolated: (0, theta_min] root-free
+  by the exact near-0 bound (:func:`~.plant_orbit.near_zero_bound`), [theta_min, T] tiled by pieces each
+  root-free or with exactly one root (interval Newton on Taylor models of the pole-free G = g K,
+  :func:`.claims.isolate_pieces`), (T, oo) root-free by the tail bound (or the searched (0, T_max] stated); each
+  root classified genuine (y > -h on (0, theta)) or spurious with a certified witness;
+* ``orbit_genuine``: for the scene's orbit, y(t) + h > 0 on the whole open interval (0, theta*): near 0 by an
+  enclosure of y + h (h > 0) or of y' > 0 (h = 0), near theta* by y' < 0, in between by subdivision;
+* ``initial_point``: x(0) enclosed (quantities x0_1 .. x0_n);
+* ``multipliers``: eigenvalues of the (n-1)x(n-1) Jacobian of the half-period map on the section
+  (switching-time correction, symmetry; Arb's matrix exponential; Rump's method), checked against the
+  exact Liouville product (:func:`~.plant_orbit.liouville_product`);
+* ``stable``: every modulus certainly < 1 for a genuine orbit.
+
+Also reported (quantities, not claims): the orbit's amplitude max y over the period (branch and bound), and
+for h = 0 the describing-function estimate of period and amplitude (:mod:`.plant_df`) with the differences.
+
+Guarantee, precision and refutation rules: those of :mod:`.claims` (a restricted search never refutes).
+Fails when: the model is bad input (ParameterError from :func:`~.plant_model.validate_plant`, exit 2); the
+spectrum is not resolved at this precision (claims inconclusive, the prover escalates).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+from flint import acb, acb_mat, arb, fmpq
+
+from ...core.balls import (ball, certainly_gt, certainly_lt, certainly_negative, certainly_positive,
+                           current_precision, interval, working_precision)
+from ...core.outcome import Status
+from ...core.roots import RootStatus, newton_root
+from ...core.subdivision import certify_positive
+from .. import Attempt, Phases
+from .claims import RootVerdict, dyadic_up as _dyadic_up, g_series_function as _g_series_function, isolate_pieces as _isolate
+from .flow import DegenerateSpectrum, taylor_enclosure
+from .plant_model import PlantModel, validate_plant
+from .plant_report import assemble
+from .plant_statements import GUARD_BITS, PLANT_CLAIMS, TAYLOR_ORDER
+from .plant_orbit import (PlantSpectrum, g_coeffs, jacobian, liouville_product, near_zero_bound, orbit_output,
+                          section_index, tail_bound, x0_at)
+from .texts import interval_text as _fmt
+
+__all__ = ["PLANT_CLAIMS", "validate", "statements", "attempt", "analyse", "classify", "plant_multipliers",
+           "tail_point", "theta_min"]
+
+TAIL_CAP_FACTOR = 100
+
+
+def validate(scene) -> PlantModel:
+    return validate_plant(scene)
+
+
+def statements(model: PlantModel) -> dict[str, str]:
+    return dict(PLANT_CLAIMS)
+
+
+# ------------------------------------------------------------------------------ near 0 and the tail
+
+def theta_min(model: PlantModel, start: Fraction) -> Fraction | None:
+    """The largest start / 2^j (j < 200) with (0, start / 2^j] certainly root-free (exact dyadic)."""
+    for j in range(200):
+        rho = start / 2 ** j
+        if near_zero_bound(model, ball(fmpq(rho.numerator, rho.denominator))):
+            return rho
+    return None
+
+
+def tail_sign(sp: PlantSpectrum, model: PlantModel) -> int:
+    """The sign of g at infinity: of the slope a (exact: -S r_0 / 2) or, without one, of b (0: unknown)."""
+    if model.zero_eigenvalue:
+        dp = model.charpoly.derivative()
+        r0 = model.numerator_c[0] / dp[0] if model.numerator_c.degree() >= 0 else fmpq(0)
+        a = -model.S * r0
+        if a != 0:
+            return 1 if a > 0 else -1
+    b = sp.b
+    return 1 if certainly_positive(b) else -1 if certainly_negative(b) else 0
+
+
+def tail_point(sp: PlantSpectrum, model: PlantModel) -> Fraction | None:
+    """An exact dyadic T with g of one strict sign on [T, oo) (a geometric ladder), or None."""
+    sgn = tail_sign(sp, model)
+    if sgn == 0:
+        return None
+    rates = [float(abs(m.lam.real).mid()) for m in sp.modes]
+    fastest = max([float(abs(m.lam).mid()) for m in sp.modes] + [1.0])
+    a, b = float(sp.a.mid()), float(sp.b.mid())
+    s0 = max(abs(b / a) if a else 0.0, 1.0 / (int(fastest) + 1))
+    cap = 100 * TAIL_CAP_FACTOR * (1.0 / min(rates) if rates else 1.0) + 2 * s0
+    start = _dyadic_up(Fraction(s0))
+    for k in range(600):
+        Tq = _dyadic_up(start * Fraction(9, 8) ** k)
+        if float(Tq) > cap:
+            return None
+        lo, hi = tail_bound(sp, ball(fmpq(Tq.numerator, Tq.denominator)))
+        if (sgn > 0 and certainly_positive(lo.lower())) or (sgn < 0 and certainly_negative(hi.upper())):
+            return Tq
+    return None
+
+
+# ------------------------------------------------------------------------------ roots
+
+def classify(sp: PlantSpectrum, theta: arb) -> RootVerdict:
+    """Genuine (y + h > 0 on (0, theta), certified) or spurious (a certified witness) or undecided."""
+    x0 = x0_at(sp, theta)
+    y = orbit_output(sp, theta)
+    h = sp.h
+    h_zero = sp.model.h == 0
+    phi = lambda X: taylor_enclosure(y.coeffs, X, TAYLOR_ORDER, (0,))[0] + h      # noqa: E731
+    dphi = lambda X: taylor_enclosure(y.coeffs, X, TAYLOR_ORDER, (1,))[0]         # noqa: E731
+    th_lo, th_hi = theta.lower(), theta.upper()
+    yd0 = y.coeffs(arb(0), 2)[1]
+
+    def witness() -> RootVerdict | None:
+        for k in range(1, 64):
+            t = (th_lo * k / 64).mid()
+            v = phi(t)
+            if certainly_negative(v):
+                return RootVerdict(theta, x0, "spurious", f"c . x(t) + h = {_fmt(v, 6)} < 0 at t = {_fmt(t, 10)} in "
+                                   "(0, theta): the relay switches early", witness_t=t)
+        return None
+
+    d1 = None
+    if h_zero:
+        if certainly_negative(yd0):
+            for j in range(1, 80):
+                t = th_lo * arb(2) ** (-j)
+                if certainly_negative(phi(t)):
+                    return RootVerdict(theta, x0, "spurious", f"y'(0) = {_fmt(yd0, 8)} < 0: c . x(t) = "
+                                       f"{_fmt(phi(t), 6)} < 0 at t = {_fmt(t, 10)} in (0, theta)", witness_t=t)
+            return RootVerdict(theta, x0, "spurious", f"y'(0) = {_fmt(yd0, 8)} < 0 with y(0) = 0: c . x < 0 just "
+                               "after the switching")
+        if not certainly_positive(yd0):
+            return witness() or RootVerdict(theta, x0, "undecided", f"sign of y'(0) = {_fmt(yd0, 8)} undecided")
+        for j in range(1, 60):
+            d = th_lo * arb(2) ** (-j)
+            if certainly_positive(dphi(interval(arb(0), d))):
+                d1 = d
+                break
+    else:
+        for j in range(1, 60):
+            d = th_lo * arb(2) ** (-j)
+            if certainly_positive(phi(interval(arb(0), d))):
+                d1 = d
+                break
+    d2 = None
+    for j in range(1, 60):
+        d = th_lo * arb(2) ** (-j)
+        if certainly_negative(dphi(interval((th_lo - d).lower(), th_hi))):
+            d2 = d
+            break
+    if d1 is None or d2 is None:
+        return witness() or RootVerdict(theta, x0, "undecided", "could not certify the sign of c . x near the "
+                                        "switchings (raise precision)")
+    lo, hi = d1, (th_lo - d2).lower()
+    middle: list = []
+    if certainly_lt(lo, hi):
+        pos = certify_positive(phi, lo, hi, max_pieces=50000, record=middle)
+        if pos.status is Status.REFUTED:
+            return RootVerdict(theta, x0, "spurious", f"c . x(t) + h = {_fmt(pos.witness_value, 6)} <= 0 at "
+                               f"t = {_fmt(pos.witness, 10)} in (0, theta): the relay switches early",
+                               witness_t=pos.witness)
+        if pos.status is not Status.PROVED:
+            return RootVerdict(theta, x0, "undecided", f"c . x + h > 0 on the middle not decided: {pos.reason}")
+        mid = f"c . x + h > 0 on [{_fmt(lo, 6)}, {_fmt(hi, 6)}] ({pos.pieces} pieces)"
+    else:
+        mid = "the two end intervals cover (0, theta*)"
+    left = f"y' > 0 on [0, {_fmt(d1, 6)}]" if h_zero else f"c . x + h > 0 on [0, {_fmt(d1, 6)}]"
+    return RootVerdict(theta, x0, "genuine", f"y'(0) = {_fmt(yd0, 10)}; {left}; y' < 0 on "
+                       f"[theta* - {_fmt(d2, 6)}, theta*]; {mid}", d1=d1, right_start=hi, middle=middle)
+
+
+def plant_multipliers(sp: PlantSpectrum, v: RootVerdict) -> None:
+    """The multipliers of a genuine root (in place), by Rump's method, checked against Liouville's product;
+    the smallest replaced by that product over the others when tighter (a stiff plant's tiny multiplier)."""
+    model = sp.model
+    k = model.n - 1
+    J = jacobian(sp.M, sp.e, sp.c, sp.S, v.theta, v.x0, section_index(model))
+    try:
+        eig = list(acb_mat(J).eig(algorithm="rump"))
+    except ValueError as e:
+        v.multiplier_reason = f"eigenvalues of the Jacobian not isolated at this precision ({e})"
+        return
+    if not all(z.is_finite() for z in eig):
+        v.multiplier_reason = "eigenvalue enclosures not finite at this precision"
+        return
+    liou = liouville_product(sp, v.theta, v.x0)
+    prod = acb(1)
+    for z in eig:
+        prod *= z
+    det = J.det()
+    if not (det.is_finite() and liou.is_finite() and prod.real.overlaps(liou) and det.overlaps(liou)):
+        raise AssertionError(f"Liouville check failed: prod {prod}, det {det}, expected {liou}: a bug")
+    v.jacobian_note = (f"det = product of multipliers = {_fmt(det, 10)} contains (-1)^(n-1) exp(tr M theta*) "
+                       f"(c . f0)/(c . f1) = {_fmt(liou, 10)} (Liouville check)")
+    if k > 1:
+        s = min(range(k), key=lambda i: float(abs(eig[i]).upper()))
+        rest = acb(1)
+        for i in range(k):
+            if i != s:
+                rest *= eig[i]
+        if rest.is_finite() and certainly_positive(abs(rest)):
+            z = acb(liou) / rest
+            if z.is_finite() and not z.overlaps(eig[s]):
+                raise AssertionError(f"Liouville quotient {z} misses the eigenvalue ball {eig[s]}: a bug")
+            if z.is_finite() and (not certainly_positive(abs(eig[s])) or certainly_lt(z.rad(), eig[s].rad())):
+                eig[s] = z
+                v.jacobian_note += "; the smallest multiplier is enclosed as that product divided by the others"
+    for i, z in enumerate(eig):
+        if z.imag.contains(0) and not any(z.conjugate().overlaps(w) for j, w in enumerate(eig) if j != i):
+            eig[i] = acb(z.real, 0)
+    mults = sorted(eig, key=lambda z: -float(abs(z).mid()))
+    for i in range(k - 1):
+        a, b = mults[i], mults[i + 1]
+        if abs(a).overlaps(abs(b)) and certainly_negative(a.imag) and certainly_positive(b.imag):
+            mults[i], mults[i + 1] = b, a
+    v.multipliers = mults
+    v.moduli = [abs(z) for z in mults]
+    mx = v.moduli[0]
+    for m in v.moduli[1:]:
+        mx = mx.max(m)
+    v.margin = 1 - mx
+    if all(certainly_lt(m, 1) for m in v.moduli):
+        v.stable = True
+    elif any(certainly_gt(m, 1) for m in v.moduli):
+        v.stable = False
+
+
+# ------------------------------------------------------------------------------ analysis
+
+@dataclass
+class PlantAnalysis:
+    sp: PlantSpectrum | None
+    theta_min: Fraction | None = None
+    T_tail: Fraction | None = None
+    T_search: Fraction | None = None
+    covers_all: bool = False
+    pieces: int = 0
+    piece_list: list = field(default_factory=list)
+    unknown: list = field(default_factory=list)
+    roots: list = field(default_factory=list)
+    problem: str = ""
+    #: the spectrum at the guard precision the genuine orbits' quantities were recomputed with
+    sp_fine: PlantSpectrum | None = None
+
+
+def _q(x: Fraction) -> arb:
+    return ball(fmpq(x.numerator, x.denominator))
+
+
+def analyse(model: PlantModel, phase: Phases | None = None) -> PlantAnalysis:
+    """Isolate and classify every root of g at the current precision."""
+    phase = phase if phase is not None else Phases()
+    try:
+        with phase("spectrum"):
+            sp = PlantSpectrum(model)
+    except DegenerateSpectrum as e:
+        return PlantAnalysis(None, problem=str(e))
+    an = PlantAnalysis(sp)
+    with phase("tail point"):
+        an.T_tail = tail_point(sp, model)
+    if model.T_max is not None:
+        Tm = model.T_max.rational
+        if an.T_tail is not None and an.T_tail < Tm:
+            an.T_search, an.covers_all = an.T_tail, True
+        else:
+            an.T_search, an.covers_all = Tm, False
+    elif an.T_tail is not None:
+        an.T_search, an.covers_all = an.T_tail, True
+    else:
+        an.problem = ("the tail of g (its sign beyond some T) is not certified: g tends to a constant of no certain "
+                      "sign or the slowest mode is too slow; set option T_max to search a finite range")
+        return an
+    fastest = max([float(abs(m.lam).mid()) for m in sp.modes] + [1.0])
+    start = Fraction(1, 2 ** max(1, math.ceil(math.log2(int(fastest) + 1))))
+    while not 4 * start < an.T_search:
+        start /= 2
+    with phase("theta_min (near 0)"):
+        an.theta_min = theta_min(model, start)
+    if an.theta_min is None:
+        an.problem = "could not certify that g has no root near theta = 0"
+        return an
+    with phase("half_period: root isolation"):
+        coeffs = lambda ctr, n: g_coeffs(sp, ctr, n)      # noqa: E731
+        iso = _isolate(_g_series_function(None, coeffs), _q(an.theta_min), _q(an.T_search), coeffs=coeffs)
+    an.pieces = len(iso.pieces)
+    an.piece_list = iso.pieces
+    an.unknown = iso.unknown
+    with phase("orbit_genuine: classification"):
+        for r in iso.roots:
+            an.roots.append(classify(sp, r))
+    with phase("multipliers"):
+        genuine = [v for v in an.roots if v.kind == "genuine"]
+        if genuine:
+            # guard bits (as the Roitenberg path): theta*, x(0) and the multipliers recomputed GUARD_BITS above
+            # the working precision, each root re-enclosed by interval Newton inside its enclosure
+            with working_precision(current_precision() + GUARD_BITS):
+                try:
+                    fine = PlantSpectrum(model)
+                except DegenerateSpectrum:
+                    fine = sp
+                gf = _g_series_function(None, lambda ctr, n: g_coeffs(fine, ctr, n))
+                for v in genuine:
+                    piece = newton_root(gf, v.theta.lower(), v.theta.upper())
+                    if piece.status is RootStatus.UNIQUE and piece.enclosure.is_finite():
+                        v.theta = piece.enclosure.intersection(v.theta)
+                        v.x0 = x0_at(fine, v.theta)
+                    plant_multipliers(fine, v)
+                an.sp_fine = fine
+    return an
+
+
+def attempt(model: PlantModel, wanted: list[str], prec: int) -> Attempt:
+    """Evaluate the requested claims at the current precision (set by the prover)."""
+    phase = Phases()
+    an = analyse(model, phase)
+    return assemble(model, an, wanted, phase)
