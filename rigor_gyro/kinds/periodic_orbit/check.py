@@ -23,6 +23,8 @@ stored outcome of that search, at twice the certificate's precision:
   re-certified on the checker's own root enclosures; the four claims that follow it re-decided for
   that root only (genuine / spurious by its re-verified classification, stable by its own moduli);
 * every stored quantity contains the checker's recomputed enclosure.
+
+A scene with a ``[plant]`` table is checked by :mod:`.plant_check`.
 """
 from __future__ import annotations
 
@@ -37,6 +39,8 @@ from .tracked_claims import TRACKED
 from .flow import (DegenerateSpectrum, Spectrum, g_coeffs, half_period_jacobian, moment_zero_orders, pole_free_coeffs,
                    orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure, x0_at)
 from .paper import orbit_quantities
+from .plant_check import check as plant_check
+from .plant_model import PlantModel
 
 __all__ = ["check"]
 
@@ -288,7 +292,10 @@ def _tracked_verdict(cid: str, st: str, tracked, main, moduli_main, others_ok: b
 
 
 def check(model, data: dict) -> list[CheckResult]:
-    """Re-decide every claim of a periodic-orbit certificate; see the module docstring."""
+    """Re-decide every claim of a periodic-orbit certificate; see the module docstring. A [plant] scene's
+    certificate: :func:`.plant_check.check` (another road to the same numbers)."""
+    if isinstance(model, PlantModel):
+        return plant_check(model, data)
     res: list[CheckResult] = []
     say = lambda item, ok, msg: res.append(CheckResult(item, ok, msg))  # noqa: E731
     q = data["quantities"]
