@@ -48,6 +48,8 @@ from ...core.polyroots import isolate_polynomial
 from .. import require_box_claims
 from .model import NotReal, Params, bracket, characteristic_quartic, nu_bounds, nu_quadratics
 from .claims import CLAIMS, REQUIRED
+from .system_boxes import evaluate_system_box, validate_system_box
+from .system_model import SystemModel
 from .slack_forms import GapSet, Roots, nu_value, quartic_value
 
 __all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "validate_box", "evaluate_box", "box_roots"]
@@ -64,7 +66,10 @@ BOX_PARAMETERS = ("a", "b", "eps", "Omega2")
 
 
 def validate_box(model, box: Box) -> None:
-    """The domain at every point of the box: b > 1, a > b, eps > 0, Omega2 > 0 (exact, on corners)."""
+    """The domain at every point of the box: b > 1, a > b, eps > 0, Omega2 > 0 (exact, on corners); a
+    ``[system]`` model: :func:`.system_boxes.validate_system_box`."""
+    if isinstance(model, SystemModel):
+        return validate_system_box(model, box)
     bad = [n for n in box.names if n not in BOX_PARAMETERS]
     if bad:
         raise ParameterError(f"parameter {bad[0]!r}: kind 'eigenfrequencies' takes a tolerance only for "
@@ -248,7 +253,9 @@ def box_roots(model, box: Box, omegas: bool = True, nus: bool = True) -> tuple[R
 
 def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str]]:
     """{claim: (status, reason)} over the box; status is 'proved', 'refuted' or 'undecided' (see the
-    module docstring for what each means)."""
+    module docstring for what each means); a ``[system]`` model: :func:`.system_boxes.evaluate_system_box`."""
+    if isinstance(model, SystemModel):
+        return evaluate_system_box(model, box, claims)
     require_box_claims(claims, BOX_CLAIMS)
     out: dict[str, tuple[str, str]] = {}
     need_roots = any(c in ("roots", "branches") or c.startswith("bracket_") for c in claims)

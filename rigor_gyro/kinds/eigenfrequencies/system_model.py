@@ -50,7 +50,7 @@ from ...core.expressions import Expr, parse
 from ...core.polymat import det_by_interpolation
 
 __all__ = ["SystemModel", "validate_system", "SYSTEM_OPTIONS", "SYSTEM_KEYS", "frequency_polynomial",
-           "characteristic_polynomial", "NotRealBound", "MAX_DOF"]
+           "characteristic_polynomial", "NotRealBound", "MAX_DOF", "ball_value"]
 
 SYSTEM_KEYS = ("M", "G", "K", "D", "defs", "brackets")
 SYSTEM_OPTIONS = {"rel_width": "1e-30", "zero_roots": "0", "hz_scale": ""}
@@ -108,9 +108,9 @@ class SystemModel:
         when a square root's argument is certainly negative."""
         env = {k: arb(_q(x.rational)) for k, x in self.params.items()}   # defs with sqrt: in balls, in order
         for name, e in self.defs:
-            env[name] = _ball_value(e, env)
+            env[name] = ball_value(e, env)
         lo, hi = self.brackets[j - 1]
-        return _ball_value(lo, env), _ball_value(hi, env)
+        return ball_value(lo, env), ball_value(hi, env)
 
 
 def _q(x: Fraction) -> fmpq:
@@ -129,7 +129,9 @@ def _sqrt(x: arb) -> arb:
     return x.sqrt()
 
 
-def _ball_value(e: Expr, env: dict[str, arb]) -> arb:
+def ball_value(e: Expr, env: dict[str, arb]) -> arb:
+    """A ball containing the entry's value for every value in the balls of ``env`` (sqrt allowed; NotRealBound
+    when its argument is certainly negative)."""
     return e.evaluate(env, number=lambda q: arb(_q(q)), functions={"sqrt": _sqrt})
 
 
