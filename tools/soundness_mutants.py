@@ -844,6 +844,18 @@ MUTANTS = [
     ("eig_system_expr_negative_power", "rigor_gyro/core/expressions.py",
      "                    return number(Fraction(1)) / base ** (-n)\n", "                    return base ** (-n)\n",
      "x^-n read as x^n in a model entry"),
+    ("eig_system_box_zero_rows_assumed", "rigor_gyro/kinds/eigenfrequencies/system_boxes.py",
+     "    if _structural_zero_rows(model) < z:\n", "    if False:\n",
+     "over a box, lambda^z taken to divide P without K's constant-zero rows certifying it"),
+    ("eig_system_box_damping_assumed_even", "rigor_gyro/kinds/eigenfrequencies/system_boxes.py",
+     "    if not _undamped(model):\n", "    if False:\n",
+     "over a box, a damped system's P taken as even"),
+    ("eig_system_box_bracket_wrong_side", "rigor_gyro/kinds/eigenfrequencies/system_boxes.py",
+     "        if certainly_gt(lo, w) or certainly_gt(w, hi):\n", "        if certainly_gt(lo, w) or certainly_lt(w, hi):\n",
+     "over a box, a bracket refuted when the root is certainly below its upper bound"),
+    ("eig_system_box_centred_offset_dropped", "rigor_gyro/kinds/eigenfrequencies/system_boxes.py",
+     "            c += parts[k] * o\n", "            pass\n",
+     "the box family's centred form without the parameters' offsets (the midpoint's value for every member)"),
 ]
 
 
