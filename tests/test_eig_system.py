@@ -334,3 +334,15 @@ def test_a_forged_bracket_proof_is_caught():
     c["status"] = "proved"
     c.pop("counterexample")
     assert items(refix(f))["brackets"] is False
+
+
+def test_the_claim_hooks_for_the_lead():
+    from rigor_gyro.kinds.eigenfrequencies.boxes import BOX_CLAIMS, box_claims
+    from rigor_gyro.kinds.eigenfrequencies.claims import ALL_CLAIMS, CLAIMS, SYSTEM_CLAIMS, available_claims, statements
+    from rigor_gyro.kinds.eigenfrequencies.system_boxes import SYSTEM_BOX_CLAIMS
+    assert available_claims(load_scene("rudenko1976")) == (CLAIMS, ALL_CLAIMS)
+    sys_scene = load_scene("rudenko1976_system")
+    assert list(available_claims(sys_scene)[0]) == ["roots", "stability", "brackets"]
+    assert list(available_claims(two_dof("3"))[0]) == ["roots", "stability"]
+    assert statements(validate(sys_scene)) == SYSTEM_CLAIMS and statements(validate(load_scene("rudenko1976"))) == CLAIMS
+    assert box_claims(validate(sys_scene)) == SYSTEM_BOX_CLAIMS and box_claims(validate(load_scene("rudenko1976"))) == BOX_CLAIMS

@@ -48,11 +48,11 @@ from ...core.polyroots import isolate_polynomial
 from .. import require_box_claims
 from .model import NotReal, Params, bracket, characteristic_quartic, nu_bounds, nu_quadratics
 from .claims import CLAIMS, REQUIRED
-from .system_boxes import evaluate_system_box, validate_system_box
+from .system_boxes import SYSTEM_BOX_CLAIMS, evaluate_system_box, validate_system_box
 from .system_model import SystemModel
 from .slack_forms import GapSet, Roots, nu_value, quartic_value
 
-__all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "validate_box", "evaluate_box", "box_roots"]
+__all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "box_claims", "validate_box", "evaluate_box", "box_roots"]
 
 #: the claims decidable over a box, with what each states at every point of it (approximations: their
 #: errors are quantities, not statements; roots: without the point claim's relative width)
@@ -63,6 +63,12 @@ BOX_CLAIMS = {
 }
 #: the parameters that may be written as tolerances
 BOX_PARAMETERS = ("a", "b", "eps", "Omega2")
+
+
+def box_claims(model) -> dict[str, str]:
+    """The claims this model decides over a box, with their statements: :data:`BOX_CLAIMS`, or for a
+    ``[system]`` model :data:`.system_boxes.SYSTEM_BOX_CLAIMS` (a hook for the margins layer; not wired yet)."""
+    return dict(SYSTEM_BOX_CLAIMS) if isinstance(model, SystemModel) else dict(BOX_CLAIMS)
 
 
 def validate_box(model, box: Box) -> None:

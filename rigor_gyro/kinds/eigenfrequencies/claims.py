@@ -40,7 +40,7 @@ from .model import (BRACKETS, NotReal, Params, approximation, bracket, character
                     nu_identities, nu_quadratics, nus_exactly_equal, r2_denominator)
 
 __all__ = ["CLAIMS", "ALL_CLAIMS", "SYSTEM_ONLY_CLAIMS", "PARAMETERS", "RudenkoModel", "validate", "attempt",
-           "statements", "characteristic_quartic", "nu_quadratics"]
+           "statements", "available_claims", "characteristic_quartic", "nu_quadratics"]
 
 PARAMETERS = {"a": "(A1+A2+A3)/A3", "b": "(A2+A3)/A3", "eps": "K2/K3", "Omega2": "H^2/(K3 A3)",
               "hz_scale": "optional: Hz per sqrt(omega), i.e. sqrt(K3/A3)/(2 pi)"}
@@ -73,6 +73,17 @@ CLAIMS = {
 #: ``[claims] only``; "roots" is shared, with the system's statement (:func:`statements`)
 SYSTEM_ONLY_CLAIMS = {k: v for k, v in SYSTEM_CLAIMS.items() if k not in CLAIMS}
 ALL_CLAIMS = {**CLAIMS, **SYSTEM_ONLY_CLAIMS}
+
+
+def available_claims(scene) -> tuple[dict[str, str], dict[str, str]]:
+    """(the claims a scene gets by default, every claim it may name) for this scene: for a ``[system]`` scene
+    :data:`SYSTEM_CLAIMS` (``brackets`` only when it gives brackets) and SYSTEM_CLAIMS; otherwise
+    (:data:`CLAIMS`, :data:`ALL_CLAIMS`). A hook for the prover and the checker (not wired yet: until it is, a
+    ``[system]`` scene names its claims in ``[claims] only``)."""
+    if scene.model:
+        default = {k: v for k, v in SYSTEM_CLAIMS.items() if k != "brackets" or scene.model.get("brackets")}
+        return default, dict(SYSTEM_CLAIMS)
+    return dict(CLAIMS), dict(ALL_CLAIMS)
 
 
 def statements(model) -> dict[str, str]:
