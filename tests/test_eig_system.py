@@ -151,6 +151,7 @@ def test_damping_refutes_with_the_odd_terms():
     for cid in ("roots", "stability"):
         c = claim(data, cid)
         assert c["status"] == "refuted" and c["counterexample"]["odd_powers"] == [1, 3], c
+        assert len(c["counterexample"]["offaxis_roots"]) == 4       # the damped pairs, each certainly off the axis
     assert confirmed(data)
 
 

@@ -20,9 +20,9 @@ Fails when: never on a validated model (bad models are refused by :func:`.system
 """
 from __future__ import annotations
 
-from flint import arb
+from flint import arb, fmpq_poly
 
-from ...core.balls import (ball, certainly_gt, certainly_le, certainly_positive, decimal_bounds,
+from ...core.balls import (ball, certainly_gt, certainly_le, certainly_nonzero, certainly_positive, decimal_bounds,
                               rel_width_at_most)
 from ...core.outcome import Claim, Status
 from ...core.polyroots import isolate_polynomial
@@ -69,10 +69,21 @@ def _structural(model: SystemModel, P, mu: int, odd: list[int]) -> tuple[str, di
                 {"zero_root_multiplicity": mu, "zero_roots_declared": z,
                  "characteristic_coefficients": [str(c) for c in P.coeffs()]})
     c = P.coeffs()
-    return (f"P / lambda^{z} has nonzero odd terms (powers {[k + mu for k in odd]}), exactly: its roots are not "
-            "pairs +-i y (some root has a nonzero real part; damping)",
-            {"odd_powers": [k + mu for k in odd], "odd_coefficients": [str(c[k + mu]) for k in odd],
-             "characteristic_coefficients": [str(x) for x in c]})
+    ce = {"odd_powers": [k + mu for k in odd], "odd_coefficients": [str(c[k + mu]) for k in odd],
+          "characteristic_coefficients": [str(x) for x in c]}
+    why = (f"P / lambda^{z} has nonzero odd terms (powers {[k + mu for k in odd]}), exactly: its roots are not "
+           "pairs +-i y (some root has a nonzero real part; damping)")
+    rest = fmpq_poly(c[mu:])
+    if rest.degree() > 0:          # the roots off the imaginary axis, where Arb isolates them at this precision
+        pr = isolate_polynomial(rest)
+        if pr.squarefree and pr.verified:
+            off = [z for z in pr.nonreal if certainly_nonzero(z.real)] + [x for x in pr.real if certainly_nonzero(x)]
+            if off:
+                ce["offaxis_roots"] = [{"re": _bounds(z.real), "im": _bounds(z.imag)} if hasattr(z, "imag")
+                                       else {"re": _bounds(z), "im": ["0", "0"]} for z in off]
+                why += ": " + "; ".join(f"lambda = {_fmt(z.real)} + {_fmt(z.imag)} i" if hasattr(z, "imag")
+                                        else f"lambda = {_fmt(z)}" for z in off)
+    return why, ce
 
 
 def attempt_system(model: SystemModel, prec: int, wanted=None) -> Attempt:
