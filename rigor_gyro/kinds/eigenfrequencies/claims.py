@@ -16,6 +16,11 @@ relative width <= ``rel_width`` (scene option, default 1e-30).
 Fails when: parameters leave the domain b > 1, a > b, eps > 0, Omega2 > 0: ParameterError naming the
 parameter (exit 2).
 
+A scene with its own ``[system]`` table (a gyroscopic system written as matrices, issue 42) is validated by
+:func:`.system_model.validate_system` and decided by :mod:`.system_claims` (claims ``roots``, ``stability``,
+``brackets``, named in ``[claims] only``); this module only dispatches to them, so the paper's path stays the
+fast path.
+
 Reference: Rudenko V. M., Opredelenie sobstvennykh chastot astaticheskogo giroskopa s uprugim
 kardanovym podvesom, Izv. AN SSSR MTT, 1976 (seed 002 in shared/seeds).
 """
