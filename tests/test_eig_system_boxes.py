@@ -114,3 +114,19 @@ def test_box_edges_must_be_parameters():
         validate_box(validate(scene), Box.of({"h": (F(1), F(2))}))
     with pytest.raises(ParameterError, match=r"cannot be decided over a box"):
         evaluate_box(validate(scene), Box.of({"g": (F(2), F(3))}), ["nu_ordering"])
+
+
+def test_symmetry_must_hold_on_the_whole_box():
+    """b and c equal at the midpoint but toleranced apart: M symmetric there, not on the box."""
+    scene = dataclasses.replace(two_dof("3"), parameters={"g": "3", "k1": "-1", "k2": "-1", "p": "1/10", "q": "1/10"},
+                                model={"M": [["1", "p"], ["q", "1"]], "K": [["k1", "0"], ["0", "k2"]],
+                                       "G": [["0", "g"], ["-g", "0"]]})
+    model = validate(scene)                       # the midpoint: p = q
+    with pytest.raises(ParameterError, match=r"\[system\] M\[1\]\[2\] = 'p' and M\[2\]\[1\] = 'q' depend on a toleranced"):
+        validate_box(model, Box.of({"p": (F("0.09"), F("0.11"))}))
+    validate_box(model, Box.of({"g": (F("2.9"), F("3.1"))}))            # M fixed on this box: fine
+    skew = dataclasses.replace(scene, model={**scene.model, "M": [["1", "0"], ["0", "1"]], "G": [["0", "g"], ["-(g)", "0"]]})
+    validate_box(validate(skew), Box.of({"g": (F("2.9"), F("3.1"))}))   # -(g) is the tree of -g
+    bad = dataclasses.replace(scene, model={**scene.model, "M": [["1", "0"], ["0", "1"]], "G": [["0", "g"], ["-g*1", "0"]]})
+    with pytest.raises(ParameterError, match=r"G\[1\]\[2\] = 'g' and G\[2\]\[1\] = '-g\*1'.*skew-symmetric on the whole box"):
+        validate_box(validate(bad), Box.of({"g": (F("2.9"), F("3.1"))}))

@@ -53,11 +53,45 @@ SYSTEM_BOX_CLAIMS = {
 
 
 def validate_system_box(model: SystemModel, box: Box) -> None:
-    """Every edge of the box names a parameter of the scene (not a def); ParameterError otherwise."""
+    """Every edge of the box names a parameter of the scene (not a def), and the symmetry of M, K, D and the
+    skew-symmetry of G hold for every member of the box, not only at the midpoint where the scene was
+    validated: a mirrored pair of entries that depends on a toleranced parameter (directly or through a def)
+    must be written alike (G: one the negation of the other). ParameterError naming the pair otherwise."""
     bad = [n for n in box.names if n not in model.params]
     if bad:
         raise ParameterError(f"parameter {bad[0]!r}: a [system] scene takes tolerances only on its parameters "
                              f"{sorted(model.params)}")
+    moving = _moving_names(model, set(box.names))
+    for key, sign in (("M", 1), ("K", 1), ("D", 1), ("G", -1)):
+        rows = getattr(model, key)
+        if rows is None:
+            continue
+        for i in range(model.n):
+            for j in range(i, model.n):
+                a, b = rows[i][j], rows[j][i]
+                if not (a.names() | b.names()) & moving:
+                    continue            # fixed on the box: checked exactly at validation
+                if not _mirrored(a.tree, b.tree, sign):
+                    what = "alike" if sign > 0 else "as each other's negation (and a zero diagonal)"
+                    raise ParameterError(f"[system] {key}[{i + 1}][{j + 1}] = {a.text!r} and {key}[{j + 1}][{i + 1}] = "
+                                         f"{b.text!r} depend on a toleranced parameter: write them {what}, so that "
+                                         f"{key} stays {'symmetric' if sign > 0 else 'skew-symmetric'} on the whole box")
+
+
+def _moving_names(model: SystemModel, varied: set[str]) -> set[str]:
+    """The toleranced parameters and the defs that depend on them."""
+    out = set(varied)
+    for name, e in model.defs:
+        if e.names() & out:
+            out.add(name)
+    return out
+
+
+def _mirrored(a: tuple, b: tuple, sign: int) -> bool:
+    """Whether the entries are identically equal (sign 1) or opposite (sign -1), read from their trees."""
+    if sign > 0:
+        return a == b
+    return a == ("neg", b) or b == ("neg", a)
 
 
 def _env(model: SystemModel, box: Box) -> dict[str, arb]:
