@@ -856,6 +856,9 @@ MUTANTS = [
     ("eig_system_box_centred_offset_dropped", "rigor_gyro/kinds/eigenfrequencies/system_boxes.py",
      "            c += parts[k] * o\n", "            pass\n",
      "the box family's centred form without the parameters' offsets (the midpoint's value for every member)"),
+    ("eig_system_box_symmetry_unchecked", "rigor_gyro/kinds/eigenfrequencies/system_boxes.py",
+     "                if not _mirrored(a.tree, b.tree, sign):\n", "                if False:\n",
+     "over a box, M symmetric / G skew taken from the midpoint alone (a pair toleranced apart accepted)"),
 ]
 
 
