@@ -103,13 +103,15 @@ def test_the_relay_tables_are_judged_against_the_paper_s_own_closed_form():
     """Table 2 and the coefficients of form (7) are recomputed from the paper's own printed coefficients,
     exponents, a_ij and D (each within its printed rounding): at t = 0, alpha = -0.00164586 is the sum of its
     printed coefficients (the paper's arithmetic), while i sin = 0.202595 is still a sign misprint (the
-    paper's own a41 D1 + a42 D2 is negative)."""
+    paper's own a41 D1 + a42 D2 is negative); beta sin = 0.0417756 is the paper's own D1 (printed 0.0447756
+    above it: the misprint is D1's, decided by the identity D1 = beta sin = h11)."""
     from rigor_gyro import load_scene, prove_scene
     rows = {r["id"]: r for r in prove_scene(load_scene("roitenberg1947_b2over15")).to_json()["paper"]}
     assert rows["Table 2 t=0 alpha"]["class"] == "propagated"
     assert rows["beta_dot sin"]["class"] == "propagated"
     assert rows["i sin"]["class"] == "sign"
-    assert rows["beta sin"]["class"] == "unexplained"
+    assert rows["beta sin"]["class"] == "propagated"
+    assert rows["D1"]["class"] == "digit-substituted" and "D1 = beta sin = h11" in rows["D1"]["class_reading"]
     # a symbol the transcription garbled is a row, never only a silent correction in the scene's data
     tr = rows["transcription: Table 2 t=0.10 Omega"]
     assert tr["printed"] == "0.028f524" and tr["reading"] == rows["Table 2 t=0.10 Omega"]["printed"] == "0.0286524"

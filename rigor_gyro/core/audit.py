@@ -18,6 +18,7 @@ Example:
 from __future__ import annotations
 
 import difflib
+import functools
 import re
 from decimal import Decimal
 from fractions import Fraction
@@ -100,8 +101,9 @@ def _check(value: object, spec, where: str) -> None:
     raise AssertionError(f"bad schema {spec!r}")
 
 
+@functools.lru_cache(maxsize=4096)
 def half_unit(printed: str) -> Fraction:
-    """Half a unit in the last printed place of a decimal string ("41.4" -> 1/20)."""
+    """Half a unit in the last printed place of a decimal string ("41.4" -> 1/20); memoised (exact)."""
     exp = Decimal(printed.strip()).as_tuple().exponent
     return Fraction(1, 2) * Fraction(10) ** exp
 

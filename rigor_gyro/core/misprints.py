@@ -37,7 +37,6 @@ order above is reported (``readings`` lists every one that fits).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from decimal import Decimal
 from fractions import Fraction
 
@@ -45,13 +44,16 @@ from flint import arb, fmpq
 
 from .audit import PRINTED_NUMBER, agreeing_digits, audit_printed
 from .balls import exact_fraction, exponent10
+from .chain_classify import classify_against_chain
+from .classification import Classification
 from .outcome import AuditRow, AuditStatus
+from .paper_chain import Chain
 
 __all__ = ["CLASSES", "ROW_CLASSES", "MIN_DIGITS_FOR_EDITS", "MIN_DIGITS_FOR_COMPOUND", "Classification", "classify_printed", "classify_row",
            "rounded_at"]
 
-CLASSES = ("agrees", "propagated", "last-digit", "sign", "decimal-shift", "digits-transposed", "digit-dropped",
-           "digit-doubled", "digit-substituted", "unexplained", "undecided")
+CLASSES = ("agrees", "propagated", "last-digit", "propagated-misprint", "sign", "decimal-shift", "digits-transposed",
+           "digit-dropped", "digit-doubled", "digit-substituted", "multi-digit-substituted", "unexplained", "undecided")
 #: digit edits are readings only for prints of at least this many significant digits (with fewer, some
 #: single-digit edit fits almost any pair of numbers, and says nothing)
 MIN_DIGITS_FOR_EDITS = 3
@@ -59,14 +61,6 @@ MIN_DIGITS_FOR_EDITS = 3
 #: prefix only) is a reading only for prints of at least this many significant digits
 MIN_DIGITS_FOR_COMPOUND = 5
 _SHIFTS = (1, -1, 2, -2, 3, -3, 4, -4, 5, -5, 6, -6)
-
-
-@dataclass
-class Classification:
-    cls: str
-    reading: str
-    #: every class that fits, in the order of CLASSES (the first is ``cls``)
-    readings: list[str] = field(default_factory=list)
 
 
 def _round_q_at(q: Fraction, exponent: int) -> Decimal:
@@ -324,10 +318,37 @@ def classify_printed(printed: str, value: arb, propagated: arb | None = None,
 ROW_CLASSES = ("misprint-reading", "assertion-confirmed", "assertion-refuted", "not-a-number")
 
 
+def _schema_knows(cls: str) -> bool:
+    """Whether the certificate schema's class enum lists ``cls`` (the classes of issue 39 appear in the
+    certificates once the schema admits them; until then each is written as its nearest older class, the
+    reading naming it)."""
+    global _SCHEMA_TEXT
+    if _SCHEMA_TEXT is None:
+        from pathlib import Path
+        try:
+            _SCHEMA_TEXT = (Path(__file__).resolve().parent.parent / "schemas" / "certificate-2.schema.json").read_text()
+        except OSError:
+            _SCHEMA_TEXT = ""
+    return f'"{cls}"' in _SCHEMA_TEXT
+
+
+_SCHEMA_TEXT: str | None = None
+#: a class of issue 39 -> the older class written while the schema does not list it
+_OLDER = {"multi-digit-substituted": "digit-substituted", "propagated-misprint": "propagated"}
+
+
+def _as_schema(c: Classification) -> Classification:
+    if c.cls in _OLDER and not _schema_knows(c.cls):
+        return Classification(_OLDER[c.cls], f"[{c.cls}] {c.reading}", [_OLDER[c.cls]] + c.readings[1:],
+                              c.intended, c.upstream)
+    return c
+
+
 def classify_row(row: AuditRow) -> Classification:
     """The class of one audit row: :func:`classify_printed` when the row is one printed decimal against
     a certified ball (``row.propagated``, when the kind set it, is the value recomputed from the paper's
-    printed inputs); for other rows, from the row's status: a verbal assertion is
+    printed inputs; a :class:`~rigor_gyro.core.paper_chain.Chain` there sends the row to
+    :func:`~rigor_gyro.core.chain_classify.classify_against_chain`, the two-reference classifier); for other rows, from the row's status: a verbal assertion is
     ``assertion-confirmed`` or ``assertion-refuted``, a printed formula the model reads otherwise is
     ``misprint-reading`` (its reading is the row's ``reading``), anything else ``not-a-number``."""
     if row.status is AuditStatus.CONFIRMED:
@@ -336,6 +357,9 @@ def classify_row(row: AuditRow) -> Classification:
         return Classification("assertion-refuted", "the assertion is certified false", ["assertion-refuted"])
     printed = row.printed.strip()
     if row.value is not None and PRINTED_NUMBER.match(printed) and row.value.is_finite():
+        prop = getattr(row, "propagated", None)
+        if isinstance(prop, Chain):
+            return _as_schema(classify_against_chain(printed, row.value, prop))
         return classify_printed(printed, row.value, getattr(row, "propagated", None),
                                 getattr(row, "propagated_from", None))
     if row.status is AuditStatus.MISPRINT:

@@ -1,0 +1,438 @@
+"""Roitenberg (1947)'s own chain (issue 39): every printed number of Section 3 recomputed the way the
+author did, from the paper's own printed inputs, as an Arb enclosure.
+
+Order of the author's computation (each stage reads only prints of earlier stages):
+cubic (4) -> mu1, omega, mu2 (its roots) -> a_ij (from the printed exponents) -> [theta*: no chain, see
+below] -> D1..D5 ((9) at the printed theta*, the beta'(theta*) = -beta'(0) row dropped) ->
+the closed form (7) (printed a_ij times printed D; alpha by the quadrature (14)-(15) of the printed
+Omega row) -> Table 2 (the printed closed form at t) -> x* (its t = 0 row) -> z = eps (10) -> Table 3
+(b of (16) from the printed a_ij) -> h, c of Table 1 (printed b, x*, z, exponents) -> k (24) -> the
+quartic (25) -> its roots.
+
+Each printed input is the interval of its rounding, an exact constant (S, a17 S, a47 S) is exact, and
+an upstream print that the stage's own classification finds to be a misprint (one edit lands it in its
+chain window, :mod:`rigor_gyro.core.digit_edits`) is replaced downstream by its intended value. The
+chain is built once with every correction, then once per correction with that one print left as
+printed (the alternates that name a ``propagated-misprint``).
+
+The consistency identities of :mod:`.paper_identities` narrow a stage's chain where they agree with it
+(the same number printed elsewhere, a row sum, the orbit's symmetry), and name themselves in the row.
+theta* has no chain: (12) with the printed a_ij read within their rounding is some 4e4 wide near its
+root (a45 = 23299.0 enters with cancellation), so it bounds no root.
+
+Guarantee: each chain value is an enclosure over the input intervals (interval arithmetic; the quartic's roots by a Rouche bound over the coefficient intervals). Failure mode: a stage
+whose enclosure is not finite gives no chain for its rows (they keep the exact reference only).
+"""
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Any
+
+from flint import acb, arb, arb_mat, fmpq, fmpq_poly
+
+from ...core.balls import ball, certainly_negative, certainly_positive, exact_endpoints
+from ...core.digit_edits import edits_into
+from ...core.chain_classify import chain_window, decide
+from ...core.paper_chain import DEFAULT_SLACK, Chain, exact_value, relation_refs, rounding_interval
+from .paper_identities import printed_rows, relations
+from .paper_forms import a_from_exponents, alpha_of_omega, b_coefficients, k_of_c, quartic_of_k, table1
+
+__all__ = ["relay_chains", "ORBIT_LABELS"]
+
+ORBIT_LABELS = ["sin", "cos", "e^-mu2t", "e^-t/sigma", "t", "const"]
+#: rows no later stage reads (besides Table 2's)
+_LEAVES = {"lambda1", "lambda3", "Re lambda2,4", "|Im lambda2,4|", "|lambda2| = |lambda4|", "theta*"}
+
+
+class _Reader:
+    """Records each row's chain and decides the value downstream stages read for it.
+
+    The decision chain of a row is its computed chain narrowed by the consistency identities that agree
+    with it (each identity solved for the row from the other rows' prints, kept only where it meets the
+    computed chain's window: an identity that contradicts the computation is not evidence). A print
+    outside that window with an evidential edit into it is read downstream as the edit's result; with a
+    non-evidential edit only, the edit is a candidate (``candidates``), tried by :func:`relay_chains`."""
+
+    def __init__(self, prints: dict[str, str], rels, keep=(), forced: dict | None = None):
+        self.prints, self.rels, self.keep = prints, rels, set(keep)
+        self.order: list[str] = []
+        self.forced = forced or {}
+        self.chains: dict[str, Chain] = {}
+        self.fixes: dict[str, str] = {}
+        self.candidates: dict[str, str] = {}
+        #: the fixes decided on the computed chain alone (the identities of the next pass may read them)
+        self.strong: dict[str, str] = {}
+
+    def take(self, rid: str, txt: str | None, value: arb | None, source: str, slack: int = DEFAULT_SLACK,
+             exact: bool = False) -> arb | None:
+        read = exact_value if exact else rounding_interval
+        if not txt:
+            return value
+        if value is None or not value.is_finite():
+            return read(txt)
+        narrowed, names = value, []
+        for ref, name in relation_refs(rid, self.prints, self.rels):
+            win = chain_window(txt, narrowed, slack)
+            if ref.is_finite() and win is not None and _meets(ref, win) and name not in names:
+                lo, hi = exact_endpoints(ref)
+                a, b = max(lo, win[0]), min(hi, win[1])
+                if a <= b and (b - a) < (win[1] - win[0]):
+                    narrowed = _interval(a, b)
+                    names.append(name)
+        ch = Chain(narrowed, source, slack, identity="; ".join(names), computed=value if names else None)
+        self.chains[rid] = ch
+        self.order.append(rid)
+        if rid in self.keep:
+            return read(txt)
+        if rid in self.forced:
+            self.fixes[rid] = ch.accepted = self.forced[rid]
+            return read(self.forced[rid])
+        kind, ed, by_identity = decide(txt, ch)
+        if kind == "edit":
+            self.fixes[rid] = ed.intended
+            if not by_identity:
+                self.strong[rid] = ed.intended
+            return read(ed.intended)
+        if kind == "none":
+            w = chain_window(txt, ch.computed if ch.computed is not None else narrowed, slack)
+            cand = edits_into(txt, *w, evidential=False)
+            if cand:
+                self.candidates[rid] = cand[0].intended
+        return read(txt)
+
+
+def _in(txt: str, ch: Chain) -> bool:
+    w = chain_window(txt, ch.value, ch.slack)
+    return w is not None and w[0] <= _frac(txt) <= w[1]
+
+
+def _meets(x: arb, win) -> bool:
+    lo, hi = exact_endpoints(x)
+    return lo <= win[1] and hi >= win[0]
+
+
+def _interval(a, b) -> arb:
+    return arb(fmpq(a.numerator, a.denominator)).union(arb(fmpq(b.numerator, b.denominator)))
+
+
+def _frac(txt: str):
+    from fractions import Fraction
+    return Fraction(txt.strip())
+
+
+def _roots_of_printed_cubic(coefs: list[str]):
+    """(mu1, omega, mu2) of lambda^3 + c2 lambda^2 + c1 lambda + c0 with the printed (exact) coefficients."""
+    from fractions import Fraction
+    c = [Fraction(x) for x in coefs]
+    poly = fmpq_poly([fmpq(x.numerator, x.denominator) for x in (c[2], c[1], c[0], Fraction(1))])
+    roots = [z for z, _ in poly.complex_roots()]
+    real = [z for z in roots if z.imag.is_zero()]
+    cplx = [z for z in roots if certainly_positive(z.imag)]
+    if len(real) != 1 or len(cplx) != 1:
+        return None
+    return -cplx[0].real, cplx[0].imag, -real[0].real
+
+
+def _quartic_roots(q: list[arb]) -> dict[str, arb] | None:
+    """Roots of lambda^4 + q3 lambda^3 + ... + q0 over the coefficient balls: the roots of the midpoint
+    polynomial (exact rationals), each inflated by a Rouche radius r with |p_mid| > sum |dq_j| |z|^j on
+    the circle |z - z0| = r (so each polynomial of the family has exactly one root in that disc; a disc
+    symmetric about the real axis holds a real root)."""
+    from ...core.balls import exact_fraction
+    mids = [exact_fraction(arb(x.mid())) for x in q]
+    rads = [arb(x.rad()) for x in q]
+    poly = fmpq_poly([fmpq(m.numerator, m.denominator) for m in reversed(mids)] + [1])
+    roots = [z for z, _ in poly.complex_roots()]
+    if len(roots) != 4:
+        return None
+    co = [acb(c) for c in [arb(fmpq(m.numerator, m.denominator)) for m in reversed(mids)] + [arb(1)]]
+    out = []
+    for z0 in roots:
+        d1 = sum((j * co[j] * z0 ** (j - 1) for j in range(1, 5)), acb(0))
+        r = arb(0)
+        ok = False
+        for _ in range(6):
+            R = abs(z0) + r
+            E = sum((rads[3 - j] * R ** j for j in range(4)), arb(0))
+            if r.is_zero():
+                r = 4 * E / abs(d1)
+                continue
+            # |p(z0 + u)| >= |p'(z0)| r - sum_{k>=2} |p^(k)(z0)/k!| r^k on |u| = r
+            rest = arb(0)
+            for k in range(2, 5):
+                ck = sum((_binom(j, k) * co[j] * z0 ** (j - k) for j in range(k, 5)), acb(0))
+                rest += abs(ck) * r ** k
+            if certainly_positive(abs(d1) * r - rest - E):
+                ok = True
+                break
+            r = 2 * r
+        if not ok:
+            return None
+        out.append((z0, r))
+    real = sorted([(z, r) for z, r in out if z.imag.is_zero()], key=lambda zr: -abs(zr[0].real.mid()))
+    cplx = [(z, r) for z, r in out if certainly_positive(z.imag)]
+    if len(real) != 2 or len(cplx) != 1:
+        return None
+
+    def pm(x: arb, r: arb) -> arb:
+        return x + arb(0, r.upper())
+    z, r = cplx[0]
+    return {"lambda1": pm(real[0][0].real, real[0][1]), "lambda3": pm(real[1][0].real, real[1][1]),
+            "re_complex": pm(z.real, r), "im_complex": pm(z.imag, r), "modulus": pm(abs(z), r)}
+
+
+def _binom(n: int, k: int) -> int:
+    from math import comb
+    return comb(n, k)
+
+
+def _build(paper: dict[str, Any], P, prints, rels, keep=(), forced: dict | None = None) -> _Reader:
+    R = _Reader(prints, rels, keep, forced)
+    S = ball(P.S)
+    a17S, a47S = -ball(P.K * P.p / P.H) * S, ball(P.p) * S
+    # the cubic (4) has no chain: it is where the reading of B is decided (its row keeps the exact value)
+    inv_sig = R.take("1/sigma", paper.get("inv_sigma"), 1 / ball(P.sigma), "1/sigma from the stated sigma")
+    ex = {}
+    roots = _roots_of_printed_cubic(paper["cubic"]) if len(paper.get("cubic", [])) == 3 else None
+    for k, j in (("mu1", 0), ("omega", 1), ("mu2", 2)):
+        ex[k] = R.take(k, paper.get(k), roots[j] if roots else None, "root of the printed cubic")
+    if any(ex[k] is None for k in ex) or inv_sig is None:
+        return R
+    mu1, om, mu2 = ex["mu1"], ex["omega"], ex["mu2"]
+    a_chain = a_from_exponents(mu1, om, mu2, inv_sig, P)
+    a: dict[tuple[int, int], arb] = {}
+    for (G, j), v in a_chain.items():
+        txt = paper.get("a", {}).get(f"a{G}{j}")
+        exact = (G, j) in ((1, 7), (4, 7))
+        a[(G, j)] = R.take(f"a{G}{j}", txt, v, "the printed mu1, omega, mu2, 1/sigma in (7)'s eigenvectors",
+                           0 if exact else DEFAULT_SLACK, exact=exact) if txt else v
+    # theta*: (12) with the printed a_ij read within their rounding does not bound a root (its enclosure
+    # is some 4e4 wide near theta*: a45 = 23299.0 enters with cancellation), so theta* has no chain; the
+    # later stages read the printed theta*
+    if not paper.get("theta_star"):
+        return R
+    theta = rounding_interval(paper["theta_star"])
+    e1 = (-mu1 * theta).exp() * (om * theta).sin()
+    e2 = (-mu1 * theta).exp() * (om * theta).cos()
+    e3, e4 = (-mu2 * theta).exp(), (-inv_sig * theta).exp()
+    for j, v in enumerate((e1, e2, e3, e4), start=1):
+        txt = (paper.get("table4", {}).get("z") or [None] * 4)[j - 1] if len(paper.get("table4", {}).get("z", [])) >= j else None
+        R.take(f"z{j} (eps{j})", txt, v, "(10) at the printed theta* with the printed exponents")
+    # D1..D5 from (9) at the printed theta*, without its third row (beta'(theta*) = -beta'(0)): the five
+    # rows the printed D satisfy (with the third dropped they agree to 6-7 digits; each other choice to 3-5)
+    r = {}
+    for G in (3, 4):
+        r[(G, 1)] = a[(G, 1)] * e1 + a[(G, 3)] * (e2 + 1)
+        r[(G, 2)] = a[(G, 2)] * e1 + a[(G, 4)] * (e2 + 1)
+        r[(G, 5)] = a[(G, 5)] * (e3 + 1)
+        r[(G, 6)] = a[(G, 6)] * (e4 + 1)
+    z = arb(0)
+    Mx = arb_mat([[z, 1, 1, 1, a[(1, 6)]],
+                  [e1, e2, e3, 1, a[(1, 6)] * e4],
+                  [r[(3, 1)], r[(3, 2)], r[(3, 5)], z, r[(3, 6)]],
+                  [r[(4, 1)], r[(4, 2)], r[(4, 5)], z, r[(4, 6)]],
+                  [z, z, z, z, e4 + 1]])
+    rhs = arb_mat([[z], [-a[(1, 7)] * theta * S], [z], [-2 * a[(4, 7)] * S], [-2 * S]])
+    try:
+        Dm = Mx.solve(rhs)
+    except (ZeroDivisionError, ValueError):
+        return R
+    Dp = paper.get("D", [])
+    D = [R.take(f"D{j}", Dp[j - 1] if len(Dp) >= j else None, Dm[j - 1, 0], "(9) at the printed theta* with the "
+                "printed a_ij") for j in range(1, 6)]
+    # the closed form (7)
+    orbit = paper.get("orbit", {})
+    src = "the printed a_ij times the printed D"
+    form = {
+        "beta": [D[0], D[1], D[2], a[(1, 6)] * D[4], a17S, D[3]],
+        "I": [None, None, None, D[4], None, S],
+    }
+    for comp, G, const in (("beta_dot", 2, a17S), ("Omega", 3, None), ("i", 4, a47S)):
+        form[comp] = [a[(G, 1)] * D[0] + a[(G, 2)] * D[1], a[(G, 3)] * D[0] + a[(G, 4)] * D[1], a[(G, 5)] * D[2],
+                      a[(G, 6)] * D[4], None, const]
+    used: dict[str, list] = {}
+    for comp in ("beta", "beta_dot", "Omega", "i", "I"):
+        vals = orbit.get(comp, [""] * 6)
+        used[comp] = []
+        for k, lab in enumerate(ORBIT_LABELS):
+            v = form[comp][k]
+            txt = vals[k] if k < len(vals) else ""
+            rid = "i sin" if (comp, lab) == ("i", "sin") else f"{comp} {lab}"
+            exact = v is not None and (lab == "t" or (lab == "const" and comp != "beta"))
+            used[comp].append(R.take(rid, txt, v, src if not exact else "an exact constant (a17 S, a47 S or S)",
+                                     0 if exact else DEFAULT_SLACK, exact=exact) if v is not None else
+                              (rounding_interval(txt) if txt else None))
+    om_c = used["Omega"][:4]
+    al = alpha_of_omega(om_c, mu1, om, mu2, inv_sig, theta) if all(x is not None for x in om_c) else None
+    if al is not None:
+        vals = orbit.get("alpha", [""] * 6)
+        used["alpha"] = []
+        for k, lab in enumerate(ORBIT_LABELS):
+            kk = {"sin": 0, "cos": 1, "e^-mu2t": 2, "e^-t/sigma": 3, "const": 4}.get(lab)
+            txt = vals[k] if k < len(vals) else ""
+            if lab == "const":      # alpha = -(B/H) beta': the constant is -(B/H) a17 S exactly (0.0006)
+                used["alpha"].append(R.take("alpha const", txt, -ball(P.B / P.H) * a17S,
+                                            "-(B/H) a17 S (alpha = -(B/H) beta', exact)", 0, exact=True))
+                continue
+            used["alpha"].append(R.take(f"alpha {lab}", txt, al[kk], "the quadrature (14)-(15) of the printed Omega "
+                                        "row") if kk is not None else None)
+    # Table 2: the printed closed form at t (alpha, beta, Omega, beta', i, I)
+    order = [("alpha", "alpha"), ("beta", "beta"), ("Omega", "Omega"), ("beta'", "beta_dot"), ("i", "i"), ("I", "I")]
+
+    def at(comp: str, t: arb) -> arb | None:
+        cf = used.get(comp)
+        if not cf:
+            return None
+        basis = [(-mu1 * t).exp() * (om * t).sin(), (-mu1 * t).exp() * (om * t).cos(), (-mu2 * t).exp(),
+                 (-inv_sig * t).exp(), t, arb(1)]
+        tot = arb(0)
+        for c_, b_ in zip(cf, basis):
+            if c_ is not None:
+                tot += c_ * b_
+        return tot
+    row0 = {}
+    for t, vals in paper.get("table2", {}).items():
+        tt = theta if t == "theta" else exact_value(t)
+        for (nm, comp), txt in zip(order, vals):
+            v = at(comp, tt)
+            if v is not None:
+                got = R.take(f"Table 2 t={t} {nm}", txt, v, "the printed closed form (7) at t")
+                if t == "0":
+                    row0[nm] = got
+    # Table 4: x* (the t = 0 point), then Table 3, h, c, k, the quartic and its roots
+    t4 = paper.get("table4", {})
+    xs = []
+    for j, (nm, comp) in enumerate((("beta'*", "beta_dot"), ("Omega*", "Omega"), ("i*", "i"), ("I*", "I"))):
+        txt = t4.get("x_star", [None] * 4)[j] if len(t4.get("x_star", [])) > j else None
+        xs.append(R.take(nm, txt, at(comp, arb(0)), "the printed closed form (7) at t = 0"))
+    zp = t4.get("z", [])
+    eps = [rounding_interval(zp[j]) if len(zp) > j and f"z{j + 1} (eps{j + 1})" not in R.fixes else
+           (rounding_interval(R.fixes[f"z{j + 1} (eps{j + 1})"]) if len(zp) > j else (e1, e2, e3, e4)[j])
+           for j in range(4)]
+    try:
+        bch = b_coefficients(a, S)
+    except (ZeroDivisionError, ValueError):
+        return R
+    b = {}
+    for (G, j), v in bch.items():
+        txt = paper.get("table3", {}).get(f"b{G}_{j}")
+        exact = (G, j) in ((1, 19), (2, 18), (4, 18), (5, 1), (5, 2))
+        b[(G, j)] = R.take(f"b{G},{j}", txt, v, "(16) from the printed a_ij", 0 if exact else DEFAULT_SLACK,
+                           exact=exact) if txt else v
+    if any(x is None for x in xs):
+        return R
+    h, c = table1(b, xs, eps, mu1, om, mu2, inv_sig)
+    hv = {}
+    for (G, j), v in h.items():
+        hv[(G, j)] = R.take(f"h{G}{j}", t4.get("h", {}).get(f"h{G}{j}"), v, "Table 1 with the printed b, x*")
+    # c_G5 from the printed h (the author's order: h first, then c)
+    e1p, e2p, e3p, e4p = eps
+    for G in (1, 2, 3, 4):
+        c[(G, 5)] = ((-mu1 * e1p + om * e2p) * hv[(G, 1)] - (mu1 * e2p + om * e1p) * hv[(G, 2)]
+                     - mu2 * e3p * hv[(G, 3)] - e4p * hv[(G, 4)] * inv_sig) + (b[(1, 19)] if G == 1 else 0)
+    c[(5, 5)] = -e4p * hv[(5, 4)] * inv_sig
+    cv = {}
+    for (G, j), v in c.items():
+        exact = G == 5 and j < 4
+        cv[(G, j)] = R.take(f"c{G}{j}", t4.get("c", {}).get(f"c{G}{j}"), v, "Table 1 with the printed b, h, z",
+                            0 if exact else DEFAULT_SLACK, exact=exact)
+    kk = k_of_c(cv)
+    kv = {}
+    for (g, j), v in kk.items():
+        kv[(g, j)] = R.take(f"k{g}{j}", t4.get("k", {}).get(f"k{g}{j}"), v, "(24) with the printed c")
+    q = quartic_of_k(kv)
+    qp = paper.get("quartic", [])
+    qu = [R.take(f"quartic (25): coefficient of lambda^{3 - j}", qp[j] if len(qp) > j else None, q[j],
+                 "det(lambda I + K) with the printed k") for j in range(4)]
+    rts = _quartic_roots(qu)
+    lam = paper.get("lambda", {})
+    if rts:
+        for key, rid in (("lambda1", "lambda1"), ("lambda3", "lambda3"), ("re_complex", "Re lambda2,4"),
+                         ("im_complex", "|Im lambda2,4|"), ("modulus", "|lambda2| = |lambda4|")):
+            R.take(rid, lam.get(key), rts[key], "roots of the printed quartic (25)")
+    return R
+
+
+def _paper_parameters(paper: dict[str, Any], P):
+    """The parameters the author computed with: the stated ones, except B, which the printed cubic fixes
+    (its constant term is q^2/tau, q^2 = H^2/(A B), so B = H^2 tau / (A c0)): the chain is the paper's
+    own whatever B the scene reads (the printed 0.133 gives another cubic)."""
+    from types import SimpleNamespace
+    from .flow import PARAMETER_NAMES
+    vals = {k: getattr(P, k) for k in PARAMETER_NAMES}
+    cubic = paper.get("cubic", [])
+    if len(cubic) == 3:
+        c0 = Fraction(cubic[2])
+        if c0 > 0:
+            q = P.H * P.H * P.tau / (P.A * fmpq(c0.numerator, c0.denominator))
+            vals["B"] = q
+    return SimpleNamespace(**vals)
+
+
+def relay_chains(paper: dict[str, Any], P) -> tuple[dict[str, Chain], dict[str, str]]:
+    """(row id -> Chain, row id -> intended text of each upstream correction). The chain is built with
+    every evidential correction; a candidate correction (an edit that lands in a window too wide to be
+    evidence by itself) is accepted when the build with it reproduces more downstream prints and loses
+    none (the author computed with the intended number); then, for each correction, the chain with that
+    one print left as printed gives the ``alternates``."""
+    _w = chain_window
+    P = _paper_parameters(paper, P)
+    prints = orig = printed_rows(paper)
+    rels: dict[str, list] = {}
+    for rel in relations(Fraction(int(P.B.p), int(P.B.q)) / Fraction(int(P.H.p), int(P.H.q)),
+                         list(paper.get("table2", {}))):
+        for r_, _ in rel.terms:
+            rels.setdefault(r_, []).append(rel)
+
+    def inside(ch: dict[str, Chain]) -> set[str]:
+        out = set()
+        for k, c in ch.items():
+            txt = orig.get(k)
+            w = _w(txt, c.value, c.slack) if txt else None
+            if w is not None and w[0] <= _frac(txt) <= w[1]:
+                out.add(k)
+        return out
+    forced: dict[str, str] = {}
+    full = _build(paper, P, prints, rels)
+    for _ in range(2):          # the identities read the other rows as corrected by the previous pass
+        again = _build(paper, P, {**prints, **full.strong}, rels)
+        if again.fixes == full.fixes:
+            break
+        full = again
+    prints = {**prints, **full.strong}
+    base = inside(full.chains)
+    why: dict[str, str] = {}
+    for rid, intended in list(full.candidates.items()):
+        if rid.startswith("Table 2 ") or rid in _LEAVES:
+            continue                # no later stage reads it: no downstream evidence to find
+        trial = _build(paper, P, prints, rels, forced={**forced, rid: intended})
+        got = inside(trial.chains)
+        gained = sorted(got - base - {rid})
+        if gained and not (base - got - {rid}):
+            forced[rid] = intended
+            why[rid] = ", ".join(gained[:4]) + (" ..." if len(gained) > 4 else "")
+            base = got
+    if forced:
+        full = _build(paper, P, prints, rels, forced=forced)
+    chains = full.chains
+    for rid in forced:
+        if rid in chains:
+            chains[rid].accepted = forced[rid]
+            chains[rid].evidence = f"downstream rows reproduce only with {forced[rid]}: {why[rid]}"
+    # alternates: only for rows no chain explains, and only where the build with every correction left as
+    # printed reproduces them (then one build per earlier correction names the one that does)
+    lost = [k for k in full.order if k in orig and k not in full.fixes and decide(orig[k], chains[k])[0] == "none"]
+    if lost and full.fixes:
+        raw = _build(paper, P, prints, rels, keep=set(full.fixes), forced=forced)
+        lost = [k for k in lost if k in raw.chains and _in(orig[k], raw.chains[k])]
+        pos = {k: i for i, k in enumerate(full.order)}
+        for rid in sorted(full.fixes, key=lambda r: pos.get(r, 0)):
+            todo = [k for k in lost if pos[k] > pos.get(rid, 0)]
+            if not todo:
+                continue
+            alt = _build(paper, P, prints, rels, keep={rid}, forced=forced)
+            for k in todo:
+                if k in alt.chains and _in(orig[k], alt.chains[k]):
+                    chains[k].alternates = chains[k].alternates + ((alt.chains[k].value, rid),)
+                    lost.remove(k)
+    return chains, dict(full.fixes)
