@@ -1,0 +1,347 @@
+"""Relay plants written in the scene ([plant]; issue 42 part 1): the general path of kind periodic_orbit.
+
+Roitenberg's stabiliser as its (2) in this form gives the specialised path's verdicts and enclosures; the
+example scenes prove and the checker confirms them; every decision function is cross-checked against
+mpmath or a float simulation (never the other way round); bad models are exit 2 naming the entry; the
+checker refuses tampered certificates.
+"""
+from __future__ import annotations
+
+import copy
+import json
+import subprocess
+import sys
+from fractions import Fraction
+
+import mpmath
+import numpy as np
+import pytest
+from flint import arb, fmpq
+
+from rigor_gyro.check import check_certificate
+from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.errors import ParameterError
+from rigor_gyro.kinds.periodic_orbit import approx
+from rigor_gyro.kinds.periodic_orbit.dispatch import validate
+from rigor_gyro.kinds.periodic_orbit.plant_claims import tail_point, theta_min
+from rigor_gyro.kinds.periodic_orbit.plant_model import markov
+from rigor_gyro.kinds.periodic_orbit.plant_orbit import (PlantSpectrum, _norms, g_coeffs, liouville_product,
+                                                         near_zero_bound, near_zero_order, tail_bound, x0_at)
+from rigor_gyro.prover import prove_scene
+from rigor_gyro.scene import load_scene, parse_scene
+
+PLANTS = "rigor_gyro/scenes/plants/"
+
+
+def _scene(M, e, c, S="1", h="0", params=None, extra=""):
+    rows = ", ".join("[" + ", ".join(f'"{x}"' for x in r) + "]" for r in M)
+    vec = lambda v: "[" + ", ".join(f'"{x}"' for x in v) + "]"        # noqa: E731
+    ps = "\n".join(f'{k} = "{v}"' for k, v in (params or {}).items())
+    return parse_scene(f'name = "t"\nkind = "periodic_orbit"\n[parameters]\n{ps}\n{extra}\n[plant]\nM = [{rows}]\n'
+                       f'e = {vec(e)}\nc = {vec(c)}\nS = "{S}"\nh = "{h}"\n')
+
+
+#: small plants covering the spectral cases: an integrator, a complex pair, an unstable real mode,
+#: relative degree 1, hysteresis
+CASES = {
+    "integrator": (([0, 1, 0], [0, 0, 1], [0, -2, -3]), (0, 0, 1), (1, 0, 0), "-1", "0"),
+    "pair_and_lag": (([0, 1, 0], [0, 0, 1], ["-2", "-3/2", "-3/2"]), (0, 0, 1), (1, 0, 0), "-1", "0"),
+    "unstable_mode": (([1, 0, 0], [0, -2, 1], [0, 0, -5]), (1, 1, 1), (1, -1, "1/2"), "-1", "0"),
+    "hysteresis_integrator": (([0, 1], [0, -1]), (0, 1), (1, 0), "-1", "1/10"),
+    "relative_degree_one": (([-1, 0, 0], [0, -3, 1], [0, -1, -3]), (1, 0, 1), (1, 1, 0), "-1", "1/20"),
+}
+
+
+def _model(name):
+    M, e, c, S, h = CASES[name]
+    return validate(_scene(M, e, c, S, h))
+
+
+def _mp(q: fmpq):
+    return mpmath.mpf(int(q.p)) / int(q.q)
+
+
+@pytest.fixture(scope="module")
+def pair():
+    a = prove_scene(load_scene("roitenberg1947")).to_json()
+    b = prove_scene(load_scene("roitenberg1947_plant")).to_json()
+    return a, b
+
+
+def _iv(q):
+    return Fraction(q["lo"]), Fraction(q["hi"])
+
+
+def _overlap(p, q):
+    (a, b), (c, d) = _iv(p), _iv(q)
+    return a <= d and c <= b
+
+
+def test_roitenberg_written_as_a_plant_gives_the_same_certificate(pair):
+    """Claim by claim: the same ids and verdicts, the same roots and kinds, overlapping theta*, period, x(0)
+    and multipliers."""
+    a, b = pair
+    assert [(c["id"], c["status"]) for c in a["claims"]] == [(c["id"], c["status"]) for c in b["claims"]]
+    assert all(c["status"] == "proved" for c in b["claims"])
+    qa, qb = a["quantities"], b["quantities"]
+    for k in ["theta_star", "period", "stability_margin"] + [f"multiplier_modulus_{j}" for j in range(1, 5)] + \
+            [f"multiplier_{j}_{p}" for j in range(1, 5) for p in ("re", "im")]:
+        assert _overlap(qa[k], qb[k]), k
+    for i, k in enumerate(("beta_dot_0", "Omega_0", "i_0", "I_0"), start=2):
+        assert _overlap(qa[k], qb[f"x0_{i}"]), k
+    ra, rb = a["extra"]["roots"], b["extra"]["roots"]
+    assert [r["kind"] for r in ra] == [r["kind"] for r in rb] and len(ra) == 6
+    for x, y in zip(ra, rb):
+        assert Fraction(x["theta"][0]) <= Fraction(y["theta"][1]) and Fraction(y["theta"][0]) <= Fraction(x["theta"][1])
+
+
+def test_the_plant_certificate_is_confirmed_by_the_checker(pair):
+    rep = check_certificate(json.loads(json.dumps(pair[1])))
+    assert rep.ok, [r for r in rep.results if not r.ok]
+
+
+@pytest.mark.parametrize("name,genuine,stable", [("relay_autotune_integrator", 1, [True]),
+                                                 ("relay_stiff_1e6", 1, [True]),
+                                                 ("relay_two_modes", 3, [True, False, True])])
+def test_example_scenes_prove_and_are_confirmed(name, genuine, stable):
+    cert = json.loads(json.dumps(prove_scene(load_scene(PLANTS + name + ".toml")).to_json()))
+    assert cert["verdict"] == "proved"
+    roots = [r for r in cert["extra"]["roots"] if r["kind"] == "genuine"]
+    assert len(roots) == genuine and [r["stable"] for r in roots] == stable
+    rep = check_certificate(cert)
+    assert rep.ok, [r for r in rep.results if not r.ok]
+
+
+def test_the_describing_function_estimate_beside_the_orbit():
+    """The integrator plant 1/(s(s+1)(s+2)): the estimate is w = sqrt(2), A = 4/(6 pi) exactly; the certified
+    orbit is longer (period 4.5511 against 4.4429) and the difference is enclosed."""
+    q = prove_scene(load_scene(PLANTS + "relay_autotune_integrator.toml")).to_json()["quantities"]
+    eps = Fraction(1, 10 ** 14)
+    lo, hi = _iv(q["df_period"])
+    assert lo - eps <= Fraction(2 * np.pi / np.sqrt(2)) <= hi + eps
+    lo, hi = _iv(q["df_amplitude"])
+    assert lo - eps <= Fraction(4 / (6 * np.pi)) <= hi + eps
+    d_lo, d_hi = _iv(q["df_period_difference"])
+    assert Fraction("0.108") < d_lo <= d_hi < Fraction("0.109")
+    p_lo, _ = _iv(q["period"])
+    assert abs(float(p_lo) - 4.551071026) < 1e-8
+
+
+@pytest.mark.parametrize("name", ["relay_autotune_integrator", pytest.param("relay_stiff_1e6", marks=pytest.mark.slow),
+                                  "relay_two_modes"])
+def test_float_simulation_agrees_with_each_certified_orbit(name):
+    """From the certified x(0), an event-driven simulation switches at theta* and lands on -x(0); the
+    central-difference Jacobian has the certified multiplier moduli."""
+    cert = prove_scene(load_scene(PLANTS + name + ".toml")).to_json()
+    m = validate(load_scene(PLANTS + name + ".toml"))
+    q = cert["quantities"]
+    th = float(q["theta_star"]["mid"])
+    x0 = np.array([float(q[f"x0_{i}"]["mid"]) for i in range(1, m.n + 1)])
+    t, x = approx.plant_simulate_half(m, x0, 1.5 * th, steps=6000)
+    assert abs(t - th) < 1e-9 * max(1, th) and np.max(np.abs(x + x0)) < 1e-9
+    J = approx.plant_jacobian_fd(m, x0, th, eps=1e-6)
+    fd = sorted(np.abs(np.linalg.eigvals(J)))[::-1]
+    cm = [float(q[f"multiplier_modulus_{j}"]["mid"]) for j in range(1, m.n)]
+    assert np.allclose(fd, cm, atol=1e-5)
+    for w, A, P in approx.plant_describing_function(m)[:1]:
+        if "df_period" in q:
+            assert _iv(q["df_period"])[0] - Fraction(1, 10 ** 6) <= Fraction(P) <= _iv(q["df_period"])[1] + Fraction(1, 10 ** 6)
+
+
+@pytest.mark.slow
+def test_two_modes_orbits_attract_and_repel_in_simulation():
+    """The middle orbit of relay_two_modes is unstable (a multiplier > 1): a start nudged off it drifts
+    away, while the certified stable orbits keep their half-period."""
+    m = validate(load_scene(PLANTS + "relay_two_modes.toml"))
+    cert = prove_scene(load_scene(PLANTS + "relay_two_modes.toml")).to_json()
+    q = cert["quantities"]
+    th = float(q["theta_star"]["mid"])
+    x0 = np.array([float(q[f"x0_{i}"]["mid"]) for i in range(1, 5)])
+    times = approx.plant_long_run(m, x0 * (1 + 1e-5), 300, 3 * th, steps=600)
+    assert abs(times[-1] - th) < 1e-7 < abs(times[0] - th)
+    th2 = q["theta_star_2"]["mid"]
+    with working_precision(96):
+        x2 = [float(v.mid()) for v in x0_at(PlantSpectrum(m), arb(th2))]
+    times = approx.plant_long_run(m, np.array(x2) * (1 + 1e-7), 300, 3 * float(th2), steps=600)
+    assert abs(times[0] - float(th2)) < 1e-6 and abs(times[-1] - float(th2)) > 1e-3
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_g_and_x0_enclose_mpmath(name):
+    """g (plain and pole-free times K), x0 at sampled theta contain mpmath's expm-based values."""
+    m = _model(name)
+    with working_precision(96):
+        sp = PlantSpectrum(m)
+        for th in ("0.05", "0.3", "1.1", "2.7", "6.5"):
+            t = arb(th)
+            g = g_coeffs(sp, t, 1, pole_free=False)[0]
+            ref = approx.plant_g_mp(m, th, dps=40)
+            assert g.contains(arb(mpmath.nstr(ref, 35))) or abs(float(g.mid()) - float(ref)) < float(g.rad()) + 1e-25
+            x = x0_at(sp, t)
+            xr = approx.plant_x0_mp(m, th, dps=40)
+            for i in range(m.n):
+                assert abs(float(x[i].mid()) - float(xr[i])) <= float(x[i].rad()) + 1e-25
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_near_zero_bound_is_sound_and_can_fail(name):
+    """Where the bound certifies (0, rho] root-free, g sampled in mpmath has no sign change there (h = 0: the
+    leading coefficient's sign; h > 0: g < 0); at rho = 10 it cannot certify (a test that could fail)."""
+    m = _model(name)
+    rho = theta_min(m, Fraction(1, 2))
+    assert rho is not None
+    sign = -1 if m.h > 0 else (1 if near_zero_order(m)[1] > 0 else -1)
+    for k in range(1, 21):
+        t = mpmath.mpf(rho.numerator) / rho.denominator * k / 20
+        assert sign * approx.plant_g_mp(m, t, dps=50) > 0
+    with working_precision(64):
+        assert not near_zero_bound(m, arb(10))
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_tail_bound_is_sound(name):
+    """Beyond the certified tail point, g sampled in mpmath keeps the tail's sign, inside [lower, upper] at T."""
+    m = _model(name)
+    with working_precision(96):
+        sp = PlantSpectrum(m)
+        T = tail_point(sp, m)
+        assert T is not None
+        lo, hi = tail_bound(sp, arb(fmpq(T.numerator, T.denominator)))
+        gT = approx.plant_g_mp(m, mpmath.mpf(T.numerator) / T.denominator)
+        assert float(lo.lower()) <= gT <= float(hi.upper())
+        sgn = 1 if float(lo.lower()) > 0 else -1
+        for f in (1, 1.5, 2, 4, 10):
+            assert sgn * approx.plant_g_mp(m, mpmath.mpf(T.numerator) / T.denominator * f) > 0
+
+
+@pytest.mark.parametrize("name", sorted(CASES) + ["roitenberg"])
+def test_markov_parameters_obey_the_norm_bound(name):
+    m = validate(load_scene("roitenberg1947_plant")) if name == "roitenberg" else _model(name)
+    L, C = _norms(m)
+    for k, v in enumerate(markov(m.M, m.e, m.c, 40)):
+        assert abs(v) <= C * L ** k
+
+
+def test_liouville_product_matches_the_float_jacobian():
+    m = _model("relative_degree_one")
+    cert = prove_scene(_scene(*CASES["relative_degree_one"])).to_json()
+    q = cert["quantities"]
+    th = float(q["theta_star"]["mid"])
+    x0 = np.array([float(q[f"x0_{i}"]["mid"]) for i in range(1, 4)])
+    J = approx.plant_jacobian_fd(m, x0, th, eps=1e-6)
+    with working_precision(96):
+        sp = PlantSpectrum(m)
+        lp = liouville_product(sp, arb(q["theta_star"]["mid"]), [arb(q[f"x0_{i}"]["mid"]) for i in range(1, 4)])
+    assert abs(np.linalg.det(J) - float(lp.mid())) < 1e-6
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_small_plants_prove_to_a_verdict_the_checker_confirms(name):
+    cert = json.loads(json.dumps(prove_scene(_scene(*CASES[name])).to_json()))
+    assert all(c["status"] != "inconclusive" for c in cert["claims"]), cert["claims"]
+    rep = check_certificate(cert)
+    assert rep.ok, [r for r in rep.results if not r.ok]
+
+
+# ---------------------------------------------------------------------------- bad models (exit 2)
+
+BAD = [
+    ({"M": "[['0', '1'], ['-a', '-x']]"}, {"a": "2"}, r"\[plant\] M\[2\]\[2\].*'x'"),
+    ({"M": "[['0', '1'], ['-1']]"}, {}, r"\[plant\] M\[2\]: has 1 entries"),
+    ({"e": "['0', '1', '2']"}, {}, r"\[plant\] e: has 3 entries"),
+    ({"c": "['0', '0']"}, {}, r"\[plant\] c: c = 0"),
+    ({"S": "'0'"}, {}, r"\[plant\] S"),
+    ({"h": "'-1/10'"}, {}, r"\[plant\] h"),
+    ({"M": "[['0', '1'], ['-1/(a-a)', '-1']]"}, {"a": "1"}, r"\[plant\] M\[2\]\[1\].*divides by zero"),
+    ({"M": "[['-1', '0'], ['0', '-1']]"}, {}, r"repeated eigenvalue"),
+    ({"M": "[['0', '1'], ['-4', '0']]"}, {}, r"imaginary axis"),
+    ({"M": "[['0', '1'], ['0', '0']]"}, {}, r"repeated eigenvalue"),
+    ({"x": "'1'"}, {}, r"\[plant\] x: unknown key"),
+    ({}, {"zz": "1"}, r"parameter 'zz': not used"),
+    ({"c": "['0', '1']", "e": "['1', '0']", "M": "[['-1', '0'], ['0', '-2']]"}, {}, r"Markov"),
+]
+
+
+@pytest.mark.parametrize("edit,params,match", BAD)
+def test_bad_models_name_the_entry(edit, params, match):
+    table = {"M": "[['0', '1'], ['-2', '-3']]", "e": "['0', '1']", "c": "['1', '0']", "S": "'-1'"}
+    table.update(edit)
+    body = "\n".join(f"{k} = {v}" for k, v in table.items())
+    ps = "\n".join(f'{k} = "{v}"' for k, v in params.items())
+    with pytest.raises(ParameterError, match=match):
+        validate(parse_scene(f'name = "b"\nkind = "periodic_orbit"\n[parameters]\n{ps}\n[plant]\n{body}\n'))
+
+
+def test_a_too_large_plant_and_unknown_options_are_refused():
+    n = 13
+    M = [["-1" if i == j else "0" for j in range(n)] for i in range(n)]
+    with pytest.raises(ParameterError, match="dimension 13"):
+        validate(_scene(M, ["1"] * n, ["1"] * n))
+    with pytest.raises(ParameterError, match="orbit"):
+        validate(_scene(*CASES["integrator"], extra='[options]\norbit = "2"'))
+
+
+def test_cli_exits_2_on_a_bad_model(tmp_path):
+    p = tmp_path / "bad.toml"
+    p.write_text('name = "bad"\nkind = "periodic_orbit"\n[parameters]\na = "2"\n[plant]\n'
+                 'M = [["0", "1"], ["-a", "-x"]]\ne = ["0", "1"]\nc = ["1", "0"]\n')
+    r = subprocess.run([sys.executable, "-m", "rigor_gyro", "prove", str(p), "-o", str(tmp_path)],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "M[2][2]" in r.stderr
+
+
+# ---------------------------------------------------------------------------- the checker refuses tampering
+
+@pytest.fixture(scope="module")
+def integrator_cert():
+    return json.loads(json.dumps(prove_scene(load_scene(PLANTS + "relay_autotune_integrator.toml")).to_json()))
+
+
+def _items(cert):
+    return {r.item: r.ok for r in check_certificate(cert).results}
+
+
+def _shift(q, by):
+    lo, hi = _iv(q)
+    return {**q, "lo": str(lo + by), "hi": str(hi + by)}
+
+
+def test_checker_refuses_a_moved_theta_star(integrator_cert):
+    c = copy.deepcopy(integrator_cert)
+    c["quantities"]["theta_star"] = _shift(c["quantities"]["theta_star"], Fraction(1, 1000))
+    it = _items(c)
+    assert it["orbit_genuine"] is False
+
+
+def test_checker_refuses_a_moved_multiplier_and_amplitude(integrator_cert):
+    c = copy.deepcopy(integrator_cert)
+    c["quantities"]["multiplier_modulus_1"] = _shift(c["quantities"]["multiplier_modulus_1"], Fraction(1, 10 ** 6))
+    c["quantities"]["amplitude"] = _shift(c["quantities"]["amplitude"], Fraction(1, 10 ** 6))
+    assert _items(c)["quantities"] is False
+
+
+def test_checker_refuses_a_root_dropped_from_the_pieces(integrator_cert):
+    c = copy.deepcopy(integrator_cert)
+    pcs = c["witnesses"]["half_period"]["pieces"]
+    for pc in pcs:
+        if pc["kind"] == "unique":
+            pc["kind"] = "empty"
+    c["witnesses"]["half_period"]["roots"] = []
+    assert _items(c)["half_period"] is False
+
+
+def test_checker_refuses_a_tail_point_too_early(integrator_cert):
+    c = copy.deepcopy(integrator_cert)
+    w = c["witnesses"]["half_period"]
+    w["pieces"] = [pc for pc in w["pieces"] if Fraction(pc["hi"]) <= Fraction(1, 2)]
+    w["T"] = w["pieces"][-1]["hi"]
+    assert _items(c)["half_period"] is False
+
+
+def test_checker_refuses_a_spurious_root_called_genuine():
+    cert = json.loads(json.dumps(prove_scene(load_scene("roitenberg1947_plant")).to_json()))
+    w = cert["witnesses"]["half_period"]
+    k = next(i for i, r in enumerate(w["roots"]) if r["kind"] == "spurious")
+    g = next(r for r in w["roots"] if r["kind"] == "genuine")
+    w["roots"][k] = dict(g)
+    assert _items(cert)["half_period"] is False
