@@ -29,7 +29,7 @@ from flint import arb
 from .balls import certainly_nonzero
 from .dual_balls import Dual, NotDifferentiable, constant, gradient_finite
 
-__all__ = ["implicit_root", "dual_family", "parametric_newton", "ROOT"]
+__all__ = ["implicit_root", "dual_family", "parametric_newton", "polynomial_root_over_box", "ROOT"]
 
 #: the gradient key of the unknown x inside G (never a parameter name)
 ROOT = "__root__"
@@ -193,3 +193,109 @@ def parametric_newton(G: Callable[[Dual, dict], Dual], guess: arb, params: dict,
     except NotDifferentiable:
         return None
     return None
+
+
+def polynomial_root_over_box(coefficients: list, centre_coefficients: list, centre_root, deviations: list,
+                             is_real: bool, rounds: int = 8):
+    """A ball (``is_real``: an arb on the real line) or complex box (an acb) containing, for every member of a
+    polynomial family C(z; P) = sum_i c_i(P) z^i over a parameter box, the root that continues the centre's root
+    (unique near the linear predictor, see below), by an interval Newton test around a linear predictor (the
+    parametric Newton of :func:`parametric_newton`, for jets and complex roots); None when not verified.
+
+    ``coefficients``: first-order :class:`rigor_gyro.core.jets.Jet` s of c_i over the box (value balls containing
+    c_i(P), gradients containing dc_i/dP_k, for every P in the box), constant term first, leading one last;
+    ``centre_coefficients``: balls containing c_i(c) at the centre point c; ``centre_root``: a ball / box near
+    the root z*(c) of C(.; c) to follow (its midpoint starts the predictor); ``deviations``: balls containing P_k - c_k.
+
+    Theorem (member by member). z0 = the exact midpoint of ``centre_root``, g_k exact points (midpoints of
+    -C_Pk(z0) / C'(z0) over the box: only a predictor), m(P) = z0 + sum_k g_k (P_k - c_k). By the mean value
+    theorem in P along the segment from c (jets' gradients over the box), h(P) = C(m(P); P) lies in
+    C(z0; c) + sum_k (dh/dP_k)(box) (P_k - c_k), C(z0; c) evaluated on the centre's coefficient balls
+    (nothing is assumed of ``centre_root``). For u in U = [-rho, rho] (on the line, or that square in the plane),
+    D contains C'(m(P) + u; P) for every P and u, in the same centred form in P (U a ball); D certainly does not
+    contain 0, and r = sup |h| / inf |D|. If r < rho: for each P, the interval Newton image of Y_P = m(P) + U lies
+    in m(P) + [-r, r] (that disc in the plane), inside Y_P, so C(.; P) has a root in Y_P, in m(P) + [-r, r] (the
+    one-dimensional theorem; in the plane through C(y) - C(m) = (y - m) int_0^1 C'(m + t (y - m)) dt, the integral
+    in the convex box D, and Brouwer), and it is C(.; P)'s only root in Y_P: on the line C' has one sign there; in
+    the plane the convex box D excludes 0, so it lies in an open half plane and C is injective on the convex Y_P
+    (Noshiro-Warschawski). Returned: m(box) + [-r, r], containing that root of every member (a caller that needs
+    all the roots takes enclosures that are pairwise disjoint, one per root). Precision: the current working
+    precision. Fails when: D may contain 0, a ball is not finite, or r does not fall below rho in ``rounds``
+    inflations: None."""
+    from flint import acb
+
+    from .jets import Jet
+
+    m = len(deviations)
+    z0 = acb(centre_root.real.mid(), centre_root.imag.mid()) if isinstance(centre_root, acb) else acb(centre_root.mid())
+    n = len(coefficients) - 1
+
+    def poly(cs, z):
+        out = cs[n]
+        for i in range(n - 1, -1, -1):
+            out = out * z + cs[i]
+        return out
+
+    def dpoly(cs, z):
+        out = cs[n] * n
+        for i in range(n - 1, 0, -1):
+            out = out * z + cs[i] * i
+        return out
+
+    def centred(jet, at_centre):
+        """at_centre + sum_k jet.d[k] dev_k, intersected with the jet's direct value (both contain it)."""
+        out = at_centre
+        for k in range(m):
+            out = out + jet.d[k] * deviations[k]
+        v = jet.v
+        if v.is_finite() and out.is_finite():
+            if not (v.real.overlaps(out.real) and v.imag.overlaps(out.imag)):
+                raise AssertionError(f"a centred form {out} misses its direct enclosure {v}: a bug")
+            return acb(out.real.intersection(v.real), out.imag.intersection(v.imag))
+        return out if out.is_finite() else v
+
+    vals = [c.v for c in coefficients]
+    d0 = dpoly(vals, z0)
+    if d0.contains(0) or not d0.is_finite():
+        return None
+    slope = []
+    for k in range(m):
+        s = -poly([c.d[k] for c in coefficients], z0) / d0
+        if not s.is_finite():
+            return None
+        slope.append(acb(s.real.mid()) if is_real else acb(s.real.mid(), s.imag.mid()))
+    pred_value = z0
+    for s, dev in zip(slope, deviations):
+        pred_value = pred_value + s * dev
+    h = centred(poly(coefficients, Jet(pred_value, slope)), poly(centre_coefficients, z0))
+    if is_real:
+        h = acb(h.real)
+    if not h.is_finite():
+        return None
+    hmax = abs(h).upper()
+    rho = None
+    for _ in range(rounds):
+        U = acb(0) if rho is None else (acb(arb(0, rho)) if is_real else acb(arb(0, rho), arb(0, rho)))
+        D = centred(dpoly(coefficients, Jet(pred_value + U, slope)), dpoly(centre_coefficients, z0 + U))
+        if is_real:
+            D = acb(D.real)
+        if D.contains(0) or not D.is_finite():
+            return None
+        mig = _mignitude(D)
+        if not mig > 0:
+            return None
+        r = (hmax / mig).upper()
+        if rho is not None and r < rho:
+            out = pred_value + (acb(arb(0, r)) if is_real else acb(arb(0, r), arb(0, r)))
+            return out.real if is_real else out
+        rho = (2 * r + abs(pred_value).upper() * arb(2) ** -60 + arb(2) ** -1000).upper()
+    return None
+
+
+def _mignitude(D) -> arb:
+    """A lower bound of |d| over the complex box D (0 if D may contain 0): the distance from 0 to the box."""
+    re, im = D.real, D.imag
+    dx = arb(0) if re.contains(0) else (re.lower() if re > 0 else -re.upper())
+    dy = arb(0) if im.contains(0) else (im.lower() if im > 0 else -im.upper())
+    out = (arb(dx) * dx + arb(dy) * dy).sqrt()
+    return arb(out.lower())

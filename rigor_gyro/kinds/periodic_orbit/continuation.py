@@ -114,7 +114,8 @@ class _Models:
         bvals = {k: (box[k] if k in dirs else cvals[k]) for k in PARAMETER_NAMES}
         self.devs = [box[k] - cvals[k] for k in dirs]
         first = parameter_jets(bvals, dirs, 1)
-        self.box = RelayJets(first, m, guesses, centre=self.centre.lams, devs=self.devs + [arb(0)])
+        self.box = RelayJets(first, m, guesses, centre=self.centre.lams, devs=self.devs + [arb(0)],
+                             centre_coeffs=self.centre.coeffs)
         self.nested = RelayJets(nested_parameter_jets(first, dirs, 1), m, lams=self.box.lam_jets)
         self.bvals = bvals
         self.cvals = cvals

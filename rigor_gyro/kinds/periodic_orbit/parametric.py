@@ -26,6 +26,7 @@ from flint import acb, arb
 
 from ...core.balls import certainly_nonzero, certainly_positive
 from ...core.family_roots import newton_family_root, newton_family_root_complex, polynomial_family
+from ...core.implicit_roots import polynomial_root_over_box
 from ...core.jets import Jet, base, jet_sum
 from .flow import DegenerateSpectrum
 
@@ -33,6 +34,12 @@ __all__ = ["PHYSICAL", "RelayJets", "parameter_jets", "nested_parameter_jets", "
 
 #: the parameters a box varies as jets (S, p, K enter only the amplitude: boxes.py fixes them)
 PHYSICAL = ("A", "B", "H", "tau", "sigma", "n")
+
+
+def _nonzero(z: acb) -> bool:
+    """z certainly != 0: its real or its imaginary part certainly nonzero, or |z| certainly positive (acb's
+    abs of a wide box can reach down to 0 although the box is far from 0)."""
+    return certainly_nonzero(z.real) or certainly_nonzero(z.imag) or certainly_nonzero(abs(z))
 
 
 def _narrow(j: Jet, centre_value: acb | None, devs) -> Jet:
@@ -60,26 +67,30 @@ class RelayJets:
     directions (both None at the centre itself)."""
 
     def __init__(self, P: dict[str, Jet], m: int, guesses: list[acb] | None = None, centre: list[acb] | None = None,
-                 devs=None, lams: list | None = None):
+                 devs=None, lams: list | None = None, centre_coeffs: list[acb] | None = None):
         self.P, self.m = P, m
         A, B, H, tau, sigma, n, K, p, S = (P[k] for k in ("A", "B", "H", "tau", "sigma", "n", "K", "p", "S"))
         q2 = H * H / (A * B)
         zero = A * 0
         one = zero + 1
         c = [q2 / tau, q2 + n / (tau * A), 1 / tau, one]
+        self.coeffs = [base(x) for x in c]      # the cubic's coefficient balls (constant term first)
         if lams is not None:
             # nested jets: ``lams`` are the eigenvalues' first-order jets over the box (the inner level);
             # the outer gradient is -(dC/dP_k)(lambda) / C'(lambda) in inner (jet) arithmetic
             nested = []
-            for lam, w in lams:
+            for idx, (lam, w) in enumerate(lams):
                 dC = 3 * lam * lam + 2 * c[2].v * lam + c[1].v
-                if not certainly_nonzero(abs(base(dC))):
+                if not _nonzero(base(dC)):
+                    # C'(lambda) as the product of lambda minus the member's other roots (C is monic)
+                    dC = _product_derivative(lams, idx)
+                if not _nonzero(base(dC)):
                     raise DegenerateSpectrum("C'(lambda) may vanish over the box")
                 grad = [-(c[0].d[i] + c[1].d[i] * lam + c[2].d[i] * lam * lam) / dC for i in range(m)]
                 nested.append((Jet(lam, grad), w))
             lams = nested
         else:
-            lams = self._eigen_jets(c, m, guesses, centre, devs)
+            lams = self._eigen_jets(c, m, guesses, centre, devs, centre_coeffs)
         for i in range(len(lams)):
             for j in range(i + 1, len(lams)):
                 if base(lams[i][0]).overlaps(base(lams[j][0])):
@@ -94,14 +105,14 @@ class RelayJets:
             # r l^T / (l^T r) does not change): no division by a, which is small where lambda ~ -1/tau
             l = [zero, a * (H / A) / lam, a, K / A, (p / tau) * (K / A) / (lam + 1 / sigma)]
             d = jet_sum((l[i] * r[i] for i in range(5)), m)
-            if not certainly_nonzero(abs(base(d))):
+            if not _nonzero(base(d)):
                 raise DegenerateSpectrum("an eigenvector normalisation l^T r may vanish over the box")
             self.modes.append((lam, w, [[r[i] * l[j] / d for j in range(5)] for i in range(5)]))
         nu = -1 / sigma
         rho2 = -(B / H) * nu * nu
         rho3 = (-(A * B / H) * nu * nu * nu - H * nu) / K
         den = (n / (K * tau)) * rho2 + (nu + 1 / tau) * rho3
-        if not certainly_nonzero(abs(base(den))):
+        if not _nonzero(base(den)):
             raise DegenerateSpectrum("the -1/sigma eigenvector may be degenerate over the box")
         if any(base(nu).overlaps(base(lam)) for lam, _ in lams):
             raise DegenerateSpectrum("-1/sigma may be a root of the cubic (4) over the box")
@@ -116,11 +127,15 @@ class RelayJets:
         self.eS = [z, z, z, z, S / sigma]
 
     @staticmethod
-    def _eigen_jets(c, m, guesses, centre, devs):
-        """First-order jets of the cubic's roots (module docstring)."""
+    def _eigen_jets(c, m, guesses, centre, devs, centre_coeffs=None):
+        """First-order jets of the cubic's roots (module docstring). A root that one interval Newton step over
+        the coefficient balls does not verify (they vary independently: over tau +-5 % the real root's family is
+        too wide) is verified around its linear predictor in the parameters instead
+        (:func:`rigor_gyro.core.implicit_roots.polynomial_root_over_box`, which keeps the coefficients'
+        dependence on the parameters), given the centre's roots and coefficients."""
         coeff_balls = [base(x).real for x in c]
         family = polynomial_family(coeff_balls)
-        lams = []
+        lams, found = [], []
         for k, z in enumerate(guesses):
             if z.imag.is_zero():
                 r = newton_family_root(family, z.real)
@@ -129,12 +144,26 @@ class RelayJets:
             else:
                 v = newton_family_root_complex(coeff_balls, z)
                 weight = 2
-                if v is not None and not certainly_positive(v.imag):
-                    v = None
+            if v is None and centre is not None and centre_coeffs is not None and devs is not None:
+                v = _root_over_box(c, centre_coeffs, centre[k], list(devs)[:m], weight == 1)
+            if weight == 2 and v is not None and not certainly_positive(v.imag):
+                v = None
             if v is None or not v.is_finite():
                 raise DegenerateSpectrum("a root of the cubic (4) was not verified over the box")
+            found.append((v, weight))
+        if sum(w for _, w in found) != 3:
+            raise DegenerateSpectrum("the cubic's roots were not all found over the box")
+        for k, (v, weight) in enumerate(found):
+            # C'(lambda) directly, and as the product of lambda minus the other roots (C is monic; the other
+            # balls hold the member's other roots): the narrower where both are finite
             dC = 3 * v * v + 2 * c[2].v * v + c[1].v
-            if not certainly_nonzero(abs(dC)):
+            prod = _product_derivative(found, k)
+            if prod is not None and prod.is_finite():
+                if not (prod.real.overlaps(dC.real) and prod.imag.overlaps(dC.imag)):
+                    raise AssertionError(f"C'(lambda) = {dC} misses the product of root differences {prod}: a bug")
+                if not (dC.is_finite() and _nonzero(dC)):
+                    dC = prod
+            if not _nonzero(dC):
                 raise DegenerateSpectrum("C'(lambda) may vanish over the box")
             grad = [-(c[0].d[i] + c[1].d[i] * v + c[2].d[i] * v * v) / dC for i in range(m)]
             lams.append((_narrow(Jet(v, grad), centre[k] if centre is not None else None, devs or []), weight))
@@ -224,6 +253,39 @@ class RelayJets:
                     Phi[i][j] = Phi[i][j] + w * (E * proj[i][j]).real
         f = [self.eS[i] - jet_sum((self.M[i][j] * x0[j] for j in range(5)), self.m) for i in range(5)]
         return [[-(Phi[i][j] - f[i] * Phi[0][j] / f[0]) for j in range(1, 5)] for i in range(1, 5)]
+
+
+def _root_over_box(c: list, centre_coeffs: list, centre_root: acb, devs: list, is_real: bool) -> acb | None:
+    """The root of the cubic C(z; P) = sum c_i z^i continuing ``centre_root`` over the box
+    (:func:`rigor_gyro.core.implicit_roots.polynomial_root_over_box`; a ball containing it for every member, or
+    None), first as written, then in the scaled variable w = z / c_2 (C(c_2 w) / c_2^3 has the coefficients
+    c_0 / c_2^3, c_1 / c_2^2, 1, 1; its roots move far less over a box of tau, where the stiff real root is
+    about -1/tau = -c_2): then z = c_2 w, enclosed as the product of the two balls."""
+    r = polynomial_root_over_box(c, centre_coeffs, centre_root, devs, is_real)
+    if r is None:
+        s = c[2]
+        scaled = [c[0] / (s * s * s), c[1] / (s * s), c[3], c[3]]     # c[3] = 1 exactly
+        sc = centre_coeffs[2]
+        scaled_centre = [centre_coeffs[0] / (sc * sc * sc), centre_coeffs[1] / (sc * sc), acb(1), acb(1)]
+        w = polynomial_root_over_box(scaled, scaled_centre, centre_root / sc, devs, is_real)
+        if w is None:
+            return None
+        r = acb(w) * base(s)
+        return acb(r.real) if is_real else r
+    return acb(r)
+
+
+def _product_derivative(lams, idx: int):
+    """C'(lambda) for the root number ``idx`` of the monic cubic (4) as the product of lambda minus the other
+    roots (the other entries of ``lams`` and the conjugates of the complex ones, each holding the member's other
+    roots): no cancellation, where the direct 3 lambda^2 + 2 lambda / tau + q2 + n / (tau A) over a wide box of
+    tau may reach 0. Jets or balls alike."""
+    lam = lams[idx][0]
+    out = None
+    for j, (mu, w) in enumerate(lams):
+        for o in ([mu] if j != idx else []) + ([mu.conjugate()] if w == 2 else []):
+            out = (lam - o) if out is None else out * (lam - o)
+    return out
 
 
 def parameter_jets(values: dict[str, arb], dirs: list[str], extra: int = 0) -> dict[str, Jet]:
