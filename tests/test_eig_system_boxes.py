@@ -17,7 +17,7 @@ from rigor_gyro.kinds.eigenfrequencies.boxes import evaluate_box, validate_box
 from rigor_gyro.kinds.eigenfrequencies.system_boxes import system_box_roots
 from rigor_gyro.kinds.eigenfrequencies.system_claims import polynomial_facts
 
-from .test_eig_system import two_dof
+from .test_eig_system import system, two_dof
 
 mpmath = pytest.importorskip("mpmath")
 
@@ -44,8 +44,8 @@ def test_rudenko_system_box_roots_hold_every_sampled_root(rel, names):
     box = rel_box(scene, rel, names)
     model = at(scene, box.midpoint())
     with working_precision(128):
-        roots, why = system_box_roots(model, box)
-    assert roots is not None, why
+        roots, why, fails = system_box_roots(model, box)
+    assert roots is not None and not fails, why
     ends = [exact_endpoints(r) for r in roots]
     rng = random.Random(3)
     corners = [{k: (lo if (i >> n) & 1 else hi) for n, (k, lo, hi) in enumerate(box.edges)} for i in range(2 ** len(box.edges))]
@@ -76,7 +76,7 @@ def test_rudenko_system_box_verdicts_match_the_specialised_box_rigour():
 
 def test_a_wide_box_is_undecided_never_refuted():
     scene = load_scene("rudenko1976_system")
-    box = rel_box(scene, "0.05")
+    box = rel_box(scene, "0.05", ("a", "b", "Omega2", "eps"))
     with working_precision(128):
         out = evaluate_box(at(scene, box.midpoint()), box, ["roots", "stability", "brackets"])
     assert {v[0] for v in out.values()} == {"undecided"}
@@ -96,16 +96,32 @@ def test_a_bracket_missed_by_every_member_is_refuted_over_the_box():
     assert out["brackets"][0] == "refuted" and "no real value" in out["brackets"][1]
 
 
-def test_what_the_structure_cannot_certify_stays_undecided():
+def test_the_structure_is_decided_exactly_on_the_whole_box():
+    """The coefficients are exact polynomials in the box's parameters: an odd term or a missing zero root that is
+    certainly nonzero on the whole box refutes; one that vanishes somewhere in the box leaves it undecided."""
+    box = Box.of({"g": (F("2.9"), F("3.1"))})
     damped = two_dof("3", D=[["1/10", "0"], ["0", "0"]])
-    box = Box.of({"g": (F("2.99"), F("3.01"))})
     with working_precision(128):
         out = evaluate_box(at(damped, box.midpoint()), box, ["roots", "stability"])
-    assert out["stability"] == ("undecided", out["stability"][1]) and "D must be absent" in out["stability"][1]
-    zero = dataclasses.replace(two_dof("3"), options={"zero_roots": "2"})       # K has no zero row
+    assert out["stability"][0] == out["roots"][0] == "refuted" and "odd term" in out["stability"][1]
+    somewhere = two_dof("3", D=[["g - 3", "0"], ["0", "0"]])           # undamped at g = 3 only
+    with working_precision(128):
+        out = evaluate_box(at(somewhere, box.midpoint()), box, ["stability"])
+    assert out["stability"][0] == "undecided" and "vanish only somewhere" in out["stability"][1]
+    zero = dataclasses.replace(two_dof("3"), options={"zero_roots": "2"})       # det K = 1: no zero root
     with working_precision(128):
         out = evaluate_box(at(zero, box.midpoint()), box, ["roots"])
-    assert out["roots"][0] == "undecided" and "rows of K" in out["roots"][1]
+    assert out["roots"][0] == "refuted" and "zero_roots is not the model's" in out["roots"][1]
+    tilted = system([["1", "0"], ["0", "1"]], [["-1", "0"], ["0", "g - 3"]], G=[["0", "g"], ["-g", "0"]],
+                    params={"g": "3"}, options={"zero_roots": "2"})          # det K = 0 at g = 3 only
+    with working_precision(128):
+        out = evaluate_box(at(tilted, box.midpoint()), box, ["roots"])
+    assert out["roots"][0] == "undecided"
+    cyclic = system([["1", "0"], ["0", "1"]], [["0", "0"], ["0", "k"]], G=[["0", "g"], ["-g", "0"]],
+                    params={"g": "3", "k": "1"}, options={"zero_roots": "2"})
+    with working_precision(128):
+        out = evaluate_box(at(cyclic, box.midpoint()), box, ["roots", "stability"])
+    assert out["roots"][0] == out["stability"][0] == "proved"
 
 
 def test_box_edges_must_be_parameters():

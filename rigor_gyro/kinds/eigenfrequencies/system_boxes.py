@@ -1,36 +1,34 @@
 """The claims of a ``[system]`` scene (:mod:`.system_model`) over a box of its parameters (tolerances).
 
-Every parameter of the box becomes a ball containing its interval; the ``defs`` and the matrix entries are
-evaluated on balls, and det(lambda^2 M + lambda (G + D) + K) is expanded along rows over ``arb_poly`` entries
-(Laplace, memoised): its coefficient balls contain the coefficients of every member of the family. Two facts are
-read from the model's structure, never from balls (a ball can contain 0 without the coefficient being 0):
+The characteristic polynomial's coefficients are exact polynomials in the box's parameters
+(:mod:`.system_symbolic`: each row scaled by its entries' denominators, the determinant expanded exactly over
+``fmpq_mpoly``; computed once per model and set of parameters). The structure is then decided exactly, never
+from balls: lambda^z divides P for every member when c_0 .. c_(z-1) are the zero polynomial and c_z excludes 0
+on the box; P is even when every odd coefficient above is the zero polynomial. The frequency family
+Q~(omega; p) (lambda^2 = -omega) is evaluated in centred form about the box's midpoint (exact there) plus its
+parameter gradient (exact polynomials evaluated on the box) times the offsets, intersected with the direct
+enclosure; its m roots are verified for every member at once by one interval Newton step each
+(:func:`rigor_gyro.core.family_roots.family_real_roots`, the midpoint's exact roots as guesses, the leading
+coefficient certainly nonzero): m disjoint balls, each holding exactly one root of every member, all the roots.
+Each row factor (a denominator) must exclude 0 on the box. Brackets are evaluated on the box's balls and in
+centred form about the midpoint (forward-mode AD, :mod:`rigor_gyro.core.dual_balls`).
 
-* lambda^z divides P for every member when K has at least z rows whose entries are the constant 0 (each such
-  row of lambda^2 M + lambda C + K is divisible by lambda): the z lowest coefficients are exactly 0;
-* P is even for every member when D is absent (or all its entries are the constant 0): P(-lambda) is the
-  determinant of the transpose.
-
-The frequency family Q(omega) (lambda^2 = -omega) then has ball coefficients, and its m roots are verified for
-all members at once by one interval Newton step each (:func:`rigor_gyro.core.family_roots.family_real_roots`,
-the midpoint's exact roots as guesses, the leading coefficient det M certainly nonzero): m disjoint balls, each
-holding exactly one root of every member, all the roots.
-
-Guarantee: ``proved`` means the claim holds for every parameter value in the box; ``refuted`` (brackets only)
-that a bracket fails for every value of the box (its bound's ball certainly beyond the root's, or a square root
-of a certainly negative ball); ``undecided`` says neither was certified (the paving splits the box; its point
-proofs refute where a point fails). ``roots`` over a box states real, positive, simple roots for every member,
-without the point claim's relative width. Where the structure does not certify the zero roots or the evenness,
-every claim is undecided, with that reason.
+Guarantee: ``proved`` means the claim holds for every parameter value in the box; ``refuted`` that it fails for
+every value of the box (a zero-root coefficient or an odd coefficient certainly nonzero on the whole box; a
+bracket's bound certainly beyond the root's ball, or a square root of a certainly negative ball); ``undecided``
+says neither was certified (the paving splits the box; its point proofs refute where a point fails). ``roots``
+over a box states real, positive, simple roots for every member, without the point claim's relative width.
 
 Precision: the caller's working precision; the box width dominates.
 
-Fails when: a box edge is not a parameter of the scene: ParameterError naming it.
+Fails when: a box edge is not a parameter of the scene, or a mirrored pair of matrix entries that a tolerance
+enters is not written alike (symmetry must hold on the whole box): ParameterError naming it.
 """
 from __future__ import annotations
 
 from fractions import Fraction
 
-from flint import arb, arb_poly, fmpq
+from flint import arb, arb_poly, fmpq, fmpq_poly
 
 from ...core.balls import certainly_gt, certainly_le, certainly_nonzero, certainly_positive
 from ...core.boxes import Box
@@ -38,8 +36,9 @@ from ...core.dual_balls import NotDifferentiable, constant, variable
 from ...core.errors import ParameterError
 from ...core.family_roots import family_real_roots
 from ...core.polyroots import isolate_polynomial
-from .system_claims import SYSTEM_CLAIMS, polynomial_facts
+from .system_claims import SYSTEM_CLAIMS
 from .system_model import NotRealBound, SystemModel, ball_value
+from .system_symbolic import characteristic_mpolys, mpoly_ball
 
 __all__ = ["SYSTEM_BOX_CLAIMS", "validate_system_box", "evaluate_system_box", "system_box_roots"]
 
@@ -94,193 +93,111 @@ def _mirrored(a: tuple, b: tuple, sign: int) -> bool:
     return a == ("neg", b) or b == ("neg", a)
 
 
-def _env(model: SystemModel, box: Box) -> dict[str, arb]:
-    env = {k: (box.ball(k) if k in box.names else arb(x.rational.numerator) / x.rational.denominator)
-           for k, x in model.params.items()}
+def _values(model: SystemModel, box: Box) -> dict[str, Fraction]:
+    """The exact parameter values at the box's midpoint (the model's own values off the box)."""
+    out = {k: x.rational for k, x in model.params.items()}
+    out.update(box.midpoint())
+    return out
+
+
+def _env(model: SystemModel, box: Box, values: dict[str, Fraction] | None = None) -> dict[str, arb]:
+    """Balls of the parameters (the box's intervals, or the exact ``values``) and of the defs, in order."""
+    if values is None:
+        env = {k: (box.ball(k) if k in box.names else arb(fmpq(x.rational.numerator, x.rational.denominator)))
+               for k, x in model.params.items()}
+    else:
+        env = {k: arb(fmpq(v.numerator, v.denominator)) for k, v in values.items()}
     for name, e in model.defs:
         env[name] = ball_value(e, env)
     return env
 
 
-def _pmul(p: list, q: list) -> list:
-    out = [0] * (len(p) + len(q) - 1) if p and q else []
-    for i, x in enumerate(p):
-        if _zero(x):
-            continue
-        for j, y in enumerate(q):
-            if not _zero(y):
-                out[i + j] = out[i + j] + x * y
-    return out
+class _Family:
+    """The frequency family over the box from the exact coefficient polynomials (:mod:`.system_symbolic`)."""
 
+    def __init__(self, q: list, names: tuple[str, ...], box: Box):
+        mid = box.midpoint()
+        self.balls = [box.ball(k) for k in names]
+        mids = [fmpq(mid[k].numerator, mid[k].denominator) for k in names]
+        self.offsets = [b - arb(m) for b, m in zip(self.balls, mids)]
+        self.exact = [c(*mids) for c in q]                       # Q~ at the midpoint, exactly
+        self.direct = arb_poly([mpoly_ball(c, self.balls) for c in q])
+        self.mid = arb_poly([arb(c) for c in self.exact])
+        self.grads = [arb_poly([mpoly_ball(c.derivative(k), self.balls) for c in q]) for k in names]
+        self.d_direct, self.d_mid = self.direct.derivative(), self.mid.derivative()
+        self.d_grads = [g.derivative() for g in self.grads]
 
-def _padd(p: list, q: list, sign: int) -> list:
-    out = list(p) + [0] * max(0, len(q) - len(p))
-    for j, y in enumerate(q):
-        if not _zero(y):
-            out[j] = out[j] + y if sign > 0 else out[j] - y
-    return out
-
-
-def _zero(x) -> bool:
-    return isinstance(x, int) and x == 0
-
-
-def _det_duals(entries: list[list[list]], n: int) -> list:
-    """Coefficients (Duals, or exact 0) of the determinant of a matrix of polynomials (coefficient lists of
-    Duals), by Laplace expansion along rows, memoised on the columns used."""
-    memo: dict[int, list] = {}
-
-    def minor(row: int, used: int) -> list:
-        if row == n:
-            return [1]
-        if used in memo:
-            return memo[used]
-        total, sign = [], 1
-        for col in range(n):
-            if used >> col & 1:
-                continue
-            e = entries[row][col]
-            if any(not _zero(x) for x in e):
-                total = _padd(total, _pmul(e, minor(row + 1, used | (1 << col))), sign)
-            sign = -sign
-        memo[used] = total
-        return total
-    c = minor(0, 0)
-    return c + [0] * (2 * n + 1 - len(c))
-
-
-def _duals(model: SystemModel, box: Box):
-    """(Duals of P's coefficients over the box, or exact 0 / Fraction where constant; the offsets of the box's
-    parameters from the midpoint) by forward-mode AD in balls (:mod:`rigor_gyro.core.dual_balls`); None where
-    an entry's derivative is not enclosed (a division by a ball around 0)."""
-    env: dict = {}
-    offsets: dict[str, arb] = {}
-    for k, x in model.params.items():
-        if k in box.names and box.interval(k)[1] > box.interval(k)[0]:
-            ball = box.ball(k)
-            env[k] = variable(k, ball)
-            offsets[k] = ball - arb(fmpq(x.rational.numerator, x.rational.denominator))
-        else:
-            env[k] = x.rational
-    for name, e in model.defs:
-        if name in model.values:          # the rational defs (the matrices use no other)
-            env[name] = e.evaluate(env)
-
-    def entry(which: str, i: int, j: int):
-        rows = getattr(model, which)
-        if rows is None:
-            return 0
-        v = rows[i][j].evaluate(env)
-        return 0 if isinstance(v, Fraction) and v == 0 else v
-    n = model.n
-    try:
-        entries = [[[entry("K", i, j), _padd([entry("G", i, j)], [entry("D", i, j)], 1)[0], entry("M", i, j)]
-                    for j in range(n)] for i in range(n)]
-        return _det_duals(entries, n), offsets
-    except (NotDifferentiable, ZeroDivisionError, TypeError):
-        return None
-
-
-def _frequency_family(model: SystemModel, box: Box):
-    """The family Q(omega; p), p in the box, of monic-normalised frequency polynomials (q_k = (-1)^k
-    c_(z+2k) / c_2n, the same normalisation at every p, so a common factor of the parameters cancels), as
-    :data:`rigor_gyro.core.family_roots.Family`: at an exact omega its value is enclosed in centred form
-    Q(omega; mid) (exact) + sum_i dQ/dp_i(omega; box) (p_i - mid_i), intersected with the direct enclosure
-    from the coefficient balls; the derivative from the coefficient balls. None when not enclosed."""
-    got = _duals(model, box)
-    if got is None:
-        return None
-    duals, offsets = got
-    n, z = model.n, model.zero_roots
-    lead = duals[2 * n]
-    P_mid = model.characteristic().coeffs()
-    if _zero(lead) or len(P_mid) != 2 * n + 1:
-        return None
-    dual_lead = hasattr(lead, "grad")
-    if dual_lead and not certainly_nonzero(lead.value):
-        return None
-    idx = [(z + 2 * k, (-1) ** k) for k in range((2 * n - z) // 2 + 1)]
-    exact, direct, grads = [], [], {k: [] for k in offsets}
-    for i, sign in idx:
-        d = duals[i]
-        exact.append(sign * P_mid[i] / P_mid[-1])
-        if i == 2 * n:
-            direct.append(arb(sign))
-            for k in offsets:
-                grads[k].append(arb(0))
-            continue
-        if _zero(d):
-            q = None
-        elif dual_lead or hasattr(d, "grad"):
-            q = d / lead
-        else:
-            q = None                       # both constant: the exact midpoint value is every member's
-        if q is None or not hasattr(q, "grad"):
-            direct.append(arb(exact[-1]))
-            for k in offsets:
-                grads[k].append(arb(0))
-            continue
-        direct.append(sign * q.value)
-        for k in offsets:
-            g = q.grad.get(k)
-            grads[k].append(arb(0) if g is None else sign * g)
-    if not all(c.is_finite() for c in direct) or not all(c.is_finite() for g in grads.values() for c in g):
-        return None
-    P, P0 = arb_poly(direct), arb_poly([arb(c) for c in exact])
-    dP, dP0 = P.derivative(), P0.derivative()
-    G = {k: arb_poly(g) for k, g in grads.items()}
-    dG = {k: g.derivative() for k, g in G.items()}
-
-    def centred(direct_value: arb, mid_value: arb, parts) -> arb:
-        c = mid_value
-        for k, o in offsets.items():
-            c += parts[k] * o
+    @staticmethod
+    def _centred(direct: arb, mid: arb, parts: list[arb], offsets: list[arb]) -> arb:
+        c = mid
+        for g, o in zip(parts, offsets):
+            c += g * o
         if not c.is_finite():
-            return direct_value
-        return direct_value.intersection(c) if direct_value.overlaps(c) else c
+            return direct
+        return direct.intersection(c) if direct.overlaps(c) else c
 
-    def family(x: arb) -> tuple[arb, arb]:
-        value = centred(P(x), P0(x), {k: G[k](x) for k in offsets})
-        deriv = centred(dP(x), dP0(x), {k: dG[k](x) for k in offsets})
+    def __call__(self, x: arb) -> tuple[arb, arb]:
+        value = self._centred(self.direct(x), self.mid(x), [g(x) for g in self.grads], self.offsets)
+        deriv = self._centred(self.d_direct(x), self.d_mid(x), [g(x) for g in self.d_grads], self.offsets)
         return value, deriv
-    return family, arb(direct[-1])
 
 
-def _structural_zero_rows(model: SystemModel) -> int:
-    return sum(1 for row in model.K if all(e.is_constant() and e.evaluate({}) == 0 for e in row))
-
-
-def _undamped(model: SystemModel) -> bool:
-    return model.D is None or all(e.is_constant() and e.evaluate({}) == 0 for row in model.D for e in row)
-
-
-def system_box_roots(model: SystemModel, box: Box) -> tuple[list[arb] | None, str]:
+def system_box_roots(model: SystemModel, box: Box) -> tuple[list[arb] | None, str, bool]:
     """(balls omega_1 < ... < omega_m, each holding exactly one root of Q for every member of the box, all
-    certainly positive; or None) and the reason."""
-    z = model.zero_roots
-    if _structural_zero_rows(model) < z:
-        return None, (f"over a box, the zero_roots = {z} roots lambda = 0 must come from rows of K that are the "
-                      "constant 0 (a ball cannot show a coefficient is exactly 0)")
-    if not _undamped(model):
-        return None, "over a box, D must be absent (P even for every member); a damped system is decided at points"
-    _, mu, Q0, _ = polynomial_facts(model)        # the box's midpoint, exactly: the guesses
-    if Q0 is None:
-        return None, "the midpoint's characteristic polynomial is not lambda^z times an even polynomial"
+    certainly positive, or None; the reason; whether the structure fails for every member, a refutation).
+
+    The coefficients are exact polynomials in the box's parameters (:func:`.system_symbolic.characteristic_mpolys`):
+    lambda^z divides P for every member when c_0 .. c_(z-1) are the zero polynomial and c_z excludes 0 on the box;
+    P is even when every odd coefficient above is the zero polynomial. The family Q~(omega; p) is evaluated in
+    centred form about the box's midpoint (exact there), its roots verified by one interval Newton step each from
+    the midpoint's exact roots."""
+    z, n = model.zero_roots, model.n
+    names = box.names
+    values = _values(model, box)
+    key = ("mpolys", names, tuple(sorted((k, v) for k, v in values.items() if k not in names)))
+    if key not in model.exact:           # the same for every box over these parameters: computed once
+        try:
+            model.exact[key] = characteristic_mpolys(model, names, values)
+        except ZeroDivisionError:
+            model.exact[key] = None
+    if model.exact[key] is None:
+        return None, "an entry divides by an identically zero expression on this box", False
+    ctx, c, factors = model.exact[key]
+    balls = [box.ball(k) for k in names]
+    if not all(certainly_nonzero(mpoly_ball(L, balls)) for L in factors):
+        return None, "an entry's denominator is not certainly nonzero on this box", False
+    low = [k for k in range(z) if not c[k].is_zero()]
+    if low:
+        if any(certainly_nonzero(mpoly_ball(c[k], balls)) for k in low):
+            return None, (f"lambda^{z} does not divide P for any parameter in the box (the coefficient of lambda^{low[0]} "
+                          "is certainly nonzero): zero_roots is not the model's"), True
+        return None, f"lambda^{z} divides P only where the coefficient of lambda^{low[0]} vanishes", False
+    if not certainly_nonzero(mpoly_ball(c[z], balls)):
+        return None, f"lambda = 0 may have multiplicity above {z} somewhere in the box", False
+    odd = [k for k in range(z + 1, 2 * n + 1, 2) if not c[k].is_zero()]
+    if odd:
+        if any(certainly_nonzero(mpoly_ball(c[k], balls)) for k in odd):
+            return None, (f"P / lambda^{z} has an odd term (lambda^{odd[0]}) for every parameter in the box: some root has "
+                          "a nonzero real part (damping)"), True
+        return None, "odd terms of P vanish only somewhere in the box", False
+    q = [c[z + 2 * k] * (-1) ** k for k in range((2 * n - z) // 2 + 1)]
+    fam = _Family(q, names, box)
+    Q0 = fmpq_poly(fam.exact)
+    if Q0.degree() != len(q) - 1:
+        return None, "the midpoint's frequency polynomial has a lower degree", False
     mid = isolate_polynomial(Q0)
     if not (mid.squarefree and mid.verified) or mid.nonreal or not all(certainly_positive(x) for x in mid.real):
-        return None, "the midpoint's frequency polynomial has no m real positive simple roots (its point proof decides)"
-    fam = _frequency_family(model, box)
-    if fam is None:
-        return None, ("the coefficients are not enclosed on this box (a division by a ball around 0, or det M not "
-                      "certainly nonzero)")
-    roots = family_real_roots(fam[0], mid.real, leading=fam[1])
+        return None, "the midpoint's frequency polynomial has no m real positive simple roots (its point proof decides)", False
+    leading = fam._centred(fam.direct.coeffs()[-1], fam.mid.coeffs()[-1], [g.coeffs()[-1] if g.degree() == len(q) - 1
+                                                                             else arb(0) for g in fam.grads], fam.offsets)
+    roots = family_real_roots(fam, mid.real, leading=leading)
     if roots is None:
-        return None, "the family's roots were not separated on this box"
+        return None, "the family's roots were not separated on this box", False
     if not all(certainly_positive(x) for x in roots):
-        return None, "a root ball is not certainly positive on this box"
+        return None, "a root ball is not certainly positive on this box", False
     return roots, (f"{len(roots)} disjoint positive root balls, each verified by one interval Newton step for every "
-                   f"parameter in the box (leading coefficient certainly nonzero; lambda^{z} from K's zero rows, "
-                   "evenness from D = 0)")
+                   f"parameter in the box (the coefficients exact polynomials in {list(names)}, centred form; "
+                   f"lambda^{z} and the evenness exact)"), False
 
 
 def evaluate_system_box(model: SystemModel, box: Box, claims: list[str]) -> dict[str, tuple[str, str]]:
@@ -289,11 +206,11 @@ def evaluate_system_box(model: SystemModel, box: Box, claims: list[str]) -> dict
     if unknown:
         raise ParameterError(f"claim {unknown[0]!r} cannot be decided over a box; a [system] scene decides "
                              f"{list(SYSTEM_BOX_CLAIMS)} over boxes")
-    roots, why = system_box_roots(model, box)
+    roots, why, fails = system_box_roots(model, box)
     out: dict[str, tuple[str, str]] = {}
     for cid in claims:
         if cid in ("roots", "stability"):
-            out[cid] = ("proved", why) if roots is not None else ("undecided", why)
+            out[cid] = ("proved", why) if roots is not None else (("refuted" if fails else "undecided"), why)
         elif cid == "brackets":
             out[cid] = _brackets(model, box, roots)
     return out
@@ -329,7 +246,7 @@ def _bound(e, env: dict, dual_env: dict, mid_env: dict, offsets: dict) -> arb:
 
 def _brackets(model: SystemModel, box: Box, roots: list[arb] | None) -> tuple[str, str]:
     env = _env(model, box)
-    mid_env = _env(model, Box(()))
+    mid_env = _env(model, box, _values(model, box))
     dual_env: dict = {}
     offsets: dict[str, arb] = {}
     for k, x in model.params.items():
@@ -337,7 +254,7 @@ def _brackets(model: SystemModel, box: Box, roots: list[arb] | None) -> tuple[st
             dual_env[k] = variable(k, box.ball(k))
             offsets[k] = box.ball(k) - mid_env[k]
         else:
-            dual_env[k] = x.rational
+            dual_env[k] = _values(model, box)[k]
     try:
         for name, e in model.defs:
             dual_env[name] = e.evaluate(dual_env, functions=_DUAL_FUNCTIONS)
