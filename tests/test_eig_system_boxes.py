@@ -146,3 +146,24 @@ def test_symmetry_must_hold_on_the_whole_box():
     bad = dataclasses.replace(scene, model={**scene.model, "M": [["1", "0"], ["0", "1"]], "G": [["0", "g"], ["-g*1", "0"]]})
     with pytest.raises(ParameterError, match=r"G\[1\]\[2\] = 'g' and G\[2\]\[1\] = '-g\*1'.*skew-symmetric on the whole box"):
         validate_box(validate(bad), Box.of({"g": (F("2.9"), F("3.1"))}))
+
+
+def test_a_sub_box_with_the_whole_box_model_holds_every_sampled_root():
+    """A paving evaluates sub-boxes with the model of the whole box's midpoint: the centred form must expand
+    about the sub-box's own midpoint."""
+    scene = load_scene("rudenko1976_system")
+    whole = rel_box(scene, "0.01")
+    model = at(scene, whole.midpoint())
+    (_, lo1, hi1), (_, lo2, hi2) = whole.edges
+    sub = Box.of({"Omega2": (lo1, lo1 + (hi1 - lo1) / 4), "eps": (hi2 - (hi2 - lo2) / 4, hi2)})
+    with working_precision(128):
+        roots, why, fails = system_box_roots(model, sub)
+        out = evaluate_box(model, sub, ["roots", "brackets"])
+    assert roots is not None, why
+    assert out["roots"][0] == "proved" and out["brackets"][0] == "proved"
+    ends = [exact_endpoints(r) for r in roots]
+    rng = random.Random(5)
+    for _ in range(8):
+        p = {k: lo + (hi - lo) * F(rng.randint(0, 1000), 1000) for k, lo, hi in sub.edges}
+        for w, (lo, hi) in zip(sampled_roots(at(scene, p)), ends):
+            assert mpmath.mpf(lo.numerator) / lo.denominator <= w <= mpmath.mpf(hi.numerator) / hi.denominator, (p, w)
