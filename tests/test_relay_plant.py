@@ -331,10 +331,23 @@ def test_checker_refuses_a_root_dropped_from_the_pieces(integrator_cert):
 
 
 def test_checker_refuses_a_tail_point_too_early(integrator_cert):
+    """The search cut at T = 1/2 with the root beyond it dropped: only the tail bound can notice."""
     c = copy.deepcopy(integrator_cert)
     w = c["witnesses"]["half_period"]
     w["pieces"] = [pc for pc in w["pieces"] if Fraction(pc["hi"]) <= Fraction(1, 2)]
     w["T"] = w["pieces"][-1]["hi"]
+    w["roots"] = []
+    assert all(pc["kind"] == "empty" for pc in w["pieces"])
+    it = _items(c)
+    assert it["half_period"] is False
+
+
+def test_checker_refuses_a_genuine_root_called_spurious(integrator_cert):
+    """A made-up witness t (c . x(t) > 0 there in truth) does not make the orbit spurious."""
+    c = copy.deepcopy(integrator_cert)
+    w = c["witnesses"]["half_period"]
+    theta = Fraction(c["quantities"]["theta_star"]["lo"])
+    w["roots"] = [{"kind": "spurious", "witness_t": str(theta / 2)}]
     assert _items(c)["half_period"] is False
 
 
