@@ -137,7 +137,7 @@ def test_an_inconclusive_midpoint_is_stepped_around_and_the_bracket_still_reache
     from rigor_gyro.margins import threshold as th
     window = Fraction(1, 100)
 
-    def fake(scene, param, value, claim, seconds=None):
+    def fake(scene, param, value, claim, seconds=None, leaves=None):
         if abs(value - Fraction(3, 2)) < window:
             return "inconclusive", "stand-in: undecided near 3/2"
         return ("proved", "below") if value < Fraction(7, 5) else ("refuted", "above")

@@ -33,6 +33,7 @@ from ..core.errors import ParameterError, RigorGyroError
 from ..core.exact import option_number, parse_exact
 from ..kinds import kind_module
 from ..scene import Scene
+from .threshold_witness import Witnesses, in_box, point_status, witness_json
 
 __all__ = ["Threshold", "find_threshold", "search_range", "write_threshold", "check_threshold", "statement", "SCHEMA"]
 
@@ -120,20 +121,24 @@ def _width(w: Fraction) -> str:
     return text if Fraction(text) == w else f"<= {text}"
 
 
-def _status(scene: Scene, param: str, value: Fraction, claim: str, seconds: float | None = None) -> tuple[str, str]:
+def _status(scene: Scene, param: str, value: Fraction, claim: str, seconds: float | None = None,
+            leaves: list | None = None) -> tuple[str, str]:
     """The claim at ``param = value``: a point proof, or, when other parameters are tolerances, the
     paving of their box (proved: for every point of it; refuted: a certified counterexample in it),
-    within ``seconds`` of wall clock (None: no limit; out of time: inconclusive)."""
+    within ``seconds`` of wall clock (None: no limit; out of time: inconclusive). ``leaves``: a list that
+    receives the paving's undecided leaves."""
     from ..prover import prove_scene
     s = Scene(name=scene.name, kind=scene.kind, source=scene.source,
               parameters={**scene.parameters, param: fraction_text(value)}, claims_only=[claim],
-              options=dict(scene.options))
+              options=dict(scene.options), model=dict(scene.model))
     try:
         if any(is_tolerance(v) for v in s.parameters.values()):
             from .paving import box_scene, pave
             p = pave(box_scene(s), time_limit=seconds)
             c = p.claims[0]
             v = c.volume(p.bs.box)
+            if leaves is not None:
+                leaves.extend(b for b, st in c.boxes if st == "undecided")
             return c.status, (f"paving of the other parameters' box: proved {about_text(v['proved'])}, refuted "
                               f"{about_text(v['refuted'])}, undecided {about_text(v['undecided'])} of the volume "
                               "(4 digits, to nearest)")
@@ -141,6 +146,35 @@ def _status(scene: Scene, param: str, value: Fraction, claim: str, seconds: floa
     except ParameterError as e:
         raise ParameterError(f"{param} = {_d(value)} is outside the kind's domain: {e}") from None
     return c.status.value, c.reason
+
+
+def _decide(res: "Threshold", scene: Scene, param: str, x: Fraction, claim: str, budget: Budget,
+            witnesses: Witnesses | None) -> tuple[str, str]:
+    """One step of the search at ``param = x``, recorded in ``res.steps``. With the other parameters as a box
+    (``witnesses`` given): the kept witnesses first (a point proof refuting at one of them refutes the step),
+    then the paving, then, where it is inconclusive, the corners of its undecided leaves
+    (:mod:`.threshold_witness`)."""
+    hit = None
+    if witnesses is not None and witnesses.points:
+        hit = witnesses.refute(scene, param, x, claim, None, budget)
+    if hit is None:
+        leaves: list = []
+        more = {"leaves": leaves} if witnesses is not None else {}
+        st, why = _status(scene, param, x, claim, budget.remaining(), **more)
+        if witnesses is not None and st == "inconclusive" and leaves and not budget.expired():
+            hit = witnesses.refute(scene, param, x, claim, leaves, budget)
+    if hit is not None:
+        point, reason = hit
+        st, why = "refuted", (f"refuted at a point of the other parameters' box, {_point_text(point)} (point proof): "
+                              f"{reason}")
+        res.steps.append({"value": fraction_text(x), "status": st, "reason": why[:300], "witness": witness_json(point)})
+        return st, why
+    res.steps.append({"value": fraction_text(x), "status": st, "reason": why[:300]})
+    return st, why
+
+
+def _point_text(point: dict[str, Fraction]) -> str:
+    return ", ".join(f"{k} = {_d(v)}" for k, v in sorted(point.items()))
 
 
 def search_range(scene: Scene, param: str, lo: str | None, hi: str | None) -> tuple[Fraction, Fraction]:
@@ -201,13 +235,13 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
     lo_q, hi_q = search_range(scene, param, lo, hi)
     w = option_number(width, "--width", above="0", at_most="1").rational
     res = Threshold(scene, param, claim, lo_q, hi_q, w)
+    witnesses = Witnesses() if boxed else None
     ends = {}
     for x in (lo_q, hi_q):
         if budget.expired():
             res.stopped = f"{budget.reason()} before the claim was decided at both ends"
             return res
-        st, why = _status(scene, param, x, claim, budget.remaining())
-        res.steps.append({"value": fraction_text(x), "status": st, "reason": why[:300]})
+        st, why = _decide(res, scene, param, x, claim, budget, witnesses)
         ends[x] = st
     if budget.expired() and "inconclusive" in ends.values():
         res.stopped = f"{budget.reason()} before the claim was decided at both ends"
@@ -224,8 +258,7 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
             res.stopped = f"{budget.reason()}: the bracket certified so far is kept"
             break
         m = (p + r) / 2
-        st, why = _status(scene, param, m, claim, budget.remaining())
-        res.steps.append({"value": fraction_text(m), "status": st, "reason": why[:300]})
+        st, why = _decide(res, scene, param, m, claim, budget, witnesses)
         if st == "proved":
             p = m
         elif st == "refuted":
@@ -234,7 +267,7 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
             res.stopped = f"{budget.reason()} during the proof at {param} = {_d(m)}: the bracket certified so far is kept"
             break
         else:
-            moved = _step_around(res, scene, param, claim, p, r, budget)
+            moved = _step_around(res, scene, param, claim, p, r, budget, witnesses)
             if moved is None:
                 res.stopped = (f"the claim is inconclusive at {param} = {_d(m)} and at the {len(AROUND)} points "
                                f"around it tried: {why[:200]}")
@@ -247,7 +280,7 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
 
 
 def _step_around(res: Threshold, scene: Scene, param: str, claim: str, p: Fraction, r: Fraction,
-                 budget: Budget) -> tuple[Fraction, Fraction] | None:
+                 budget: Budget, witnesses: Witnesses | None = None) -> tuple[Fraction, Fraction] | None:
     """After an inconclusive midpoint: the claim at the points of :data:`AROUND` between ``p`` (proved)
     and ``r`` (refuted), until one is decided; the new (p, r), or None when none was (or time ran out).
     Each point tried is a step of the search."""
@@ -255,8 +288,7 @@ def _step_around(res: Threshold, scene: Scene, param: str, claim: str, p: Fracti
         if budget.expired():
             return None
         x = p + (r - p) * t
-        st, why = _status(scene, param, x, claim, budget.remaining())
-        res.steps.append({"value": fraction_text(x), "status": st, "reason": why[:300]})
+        st, why = _decide(res, scene, param, x, claim, budget, witnesses)
         if st == "proved":
             return x, r
         if st == "refuted":
@@ -337,7 +369,22 @@ def check_threshold(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     add("certified", data["certified"] == (width_ok and not data["stopped"]),
         f"certified {data['certified']}: relative width {'within' if width_ok else 'above'} {_d(w)}"
         + (", stopped" if data["stopped"] else ""))
+    witness_of = {v: s.get("witness") for v, s in zip(values, steps)}
     for x, want in ((p, "proved"), (r, "refuted")):
+        w_text = witness_of.get(x)
+        if w_text is not None:
+            # a refutation at a point of the other parameters' box: inside it, and refuted there by the point prover
+            point = {k: Fraction(t) for k, t in w_text.items()}
+            from .paving import box_scene
+            box = box_scene(scene).box if any(is_tolerance(v) for v in scene.parameters.values()) else None
+            if want != "refuted" or box is None or not in_box(box, point):
+                add(f"{want}_at", False, f"{param} = {_d(x)}: a witness {w_text} that is not a point of the other "
+                    "parameters' box, or on a step that is not the refuted end")
+                continue
+            st, why = point_status(scene, param, x, claim, point)
+            add(f"{want}_at", st == want, f"{param} = {_d(x)}: re-decided {st} at the witness {_point_text(point)} "
+                "(point proof)" + ("" if st == want else f" ({why[:160]})"))
+            continue
         st, why = _status(scene, param, x, claim)
         add(f"{want}_at", st == want, f"{param} = {_d(x)}: re-decided {st}" + ("" if st == want else f" ({why[:160]})"))
     return out
