@@ -60,3 +60,26 @@ def test_witnesses_keep_the_most_recent_first_and_corners_cover_a_leaf():
     assert len(corners) == 4 and all(in_box(leaf, c) for c in corners)
     assert {(c["a"], c["b"]) for c in corners} == {(0, 2), (0, 3), (1, 2), (1, 3)}
     assert not in_box(leaf, {"a": F(0), "b": F(2)}) and not in_box(leaf, {"a": F(2), "b": F(2), "c": F(5)})
+
+
+def test_only_a_refuting_point_proof_makes_a_witness(monkeypatch):
+    """An inconclusive (or proved) point proof at a corner never refutes the step nor becomes a witness."""
+    from rigor_gyro.margins import threshold_witness as tw
+    scene = parse_scene(_agafonov_text(mu="[0.019, 0.021]") + '\n[claims]\nonly = ["damping_condition"]\n')
+    leaf = Box.of({"mu": (F(19, 1000), F(21, 1000))})
+    for outcome in ("inconclusive", "proved"):
+        monkeypatch.setattr(tw, "point_status", lambda *a, **k: (outcome, "stand-in"))
+        w = Witnesses()
+        assert w.refute(scene, "k", F(1, 4), "damping_condition", [leaf], None) is None and w.points == []
+    calls = []
+
+    def fake(scene, param, value, claim, point, seconds=None):
+        calls.append(point)
+        return ("refuted", "stand-in") if point["mu"] == F(21, 1000) else ("inconclusive", "stand-in")
+    monkeypatch.setattr(tw, "point_status", fake)
+    w = Witnesses()
+    assert w.refute(scene, "k", F(1, 4), "damping_condition", [leaf], None)[0] == {"mu": F(21, 1000)}
+    assert w.points == [{"mu": F(21, 1000)}] and calls == [{"mu": F(19, 1000)}, {"mu": F(21, 1000)}]
+    calls.clear()                        # the kept witness is tried first, alone
+    assert w.refute(scene, "k", F(1, 4), "damping_condition", None, None)[0] == {"mu": F(21, 1000)}
+    assert calls == [{"mu": F(21, 1000)}]
