@@ -156,28 +156,6 @@ def render_markdown(cert: dict[str, Any]) -> str:
     return "\n".join(out)
 
 
-def _certified_digits(lo: str, hi: str, printed: str, extra: int = 3) -> str:
-    """The certified value to the printed number's significant digits plus ``extra`` (both ends of the
-    ball round alike there; otherwise the ball's [lo, hi])."""
-    from decimal import Decimal, InvalidOperation, ROUND_HALF_EVEN, localcontext
-    try:
-        a, b, p = Decimal(lo), Decimal(hi), Decimal(printed.strip())
-    except (InvalidOperation, ValueError):
-        return f"[{lo}, {hi}]" if lo else ""
-    n = max(len(p.as_tuple().digits), 1) + extra
-    with localcontext() as c:
-        c.prec = n
-        c.rounding = ROUND_HALF_EVEN
-        ra, rb = +a, +b
-    return str(ra) if ra == rb else f"[{lo}, {hi}]"
-
-
-#: audit classes that are plain agreement (not listed among the discrepancies)
-_PLAIN = ("agrees", "assertion-confirmed")
-#: classes that are numerical differences, not misprints: listed compactly
-_NUMERICAL = ("propagated", "last-digit", "unexplained")
-
-
 def _edits_brief(r: dict) -> str:
     """" (single edits of the printed formula: ...)" for a row that has the search (core.formula_edits)."""
     fe = r.get("formula_edits")
@@ -191,50 +169,20 @@ def _edits_brief(r: dict) -> str:
             f"reproduce{'s' if len(hits) == 1 else ''} it: {shown})")
 
 
+#: the audit's table names by row id (the relay paper's tables; other papers' rows fall to "other rows")
+AUDIT_TABLES = ((r"^b\d,\d+$", "Table 3 (b of (16))"),
+                (r"^(h\d\d|c\d\d|k\d\d|z\d \(eps\d\)|beta'\*|Omega\*|i\*|I\*)$", "Table 4 (x*, z, h, c, k)"),
+                (r"^(quartic|lambda|Re lambda|\|Im lambda|\|lambda)", "the quartic (25) and its roots"),
+                (r"^(D\d|beta |beta_dot |Omega |i |I |alpha )", "D and the closed form (7)"),
+                (r"^(a\d\d|mu\d|omega|1/sigma|theta\*|cubic)", "the exponents, a_ij and theta*"),
+                (r"^g\(", "the g(x) table"))
+
+
 def _audit_section(rows: list[dict]) -> list[str]:
-    """The audit: counts by discrepancy class first, the rows that are not plain agreement next (with
-    the reading that reproduces each print), the full table last."""
-    out = ["## Audit of the paper", "",
-           "The audit never changes the verdict. Each printed number is compared with its certified value at "
-           "its printed digits (status *agrees*: a correct rounding; *misprint*: a printed formula that the "
-           "stated reading reproduces; *confirmed* / *refuted* for verbal assertions), and each row gets the "
-           "discrepancy class that explains it (core.misprints: `last-digit`, `sign`, `decimal-shift`, "
-           "`digits-transposed`, `digit-dropped`, `digit-doubled`, `digit-substituted`, `propagated`, or "
-           "`unexplained`: no single edit of the digits, sign or decimal point gives the print). A class is a reading "
-           "of the print, not a proof of what the author meant.", ""]
-    out.append(f"**{len(rows)} rows:** " + ", ".join(f"{n} {c}" for c, n in _class_counts(rows)) + ".")
-    out.append("")
-    odd = [r for r in rows if r.get("class", r["status"]) not in _PLAIN]
-    numerical = [r for r in odd if r.get("class") in _NUMERICAL]
-    explained = [r for r in odd if r.get("class") not in _NUMERICAL]
-    if explained:
-        out += ["### Misprints, refuted assertions and corrected formulas", "",
-                "| item | printed | reading | certified (3 digits more than printed) | class | why (the reading that "
-                "reproduces the print) | note |", "|---|---|---|---|---|---|---|"]
-        for r in explained:
-            out.append(f"| {_esc(r['id'])} | {_esc(r['printed'])} | {_esc(r['reading'])} | "
-                       f"{_certified_digits(r['lo'], r['hi'], r['printed'])} | "
-                       f"**{r.get('class', r['status'])}** | {_esc(r.get('class_reading', ''))} | {_esc(r['note'])} |")
-        out.append("")
-    for cls, text in (("propagated", "the paper's own computation, not a misprint: a correct rounding of the value "
-                                     "recomputed from the paper's printed inputs (each within its printed rounding; "
-                                     "the inputs each row needs are in the JSON's class_reading); printed -> certified"),
-                      ("last-digit", "one unit off in the last printed digit (rounding)"),
-                      ("unexplained", "no edit of the digits, sign or decimal point explains the print (the paper's "
-                                      "own computation differs; printed -> certified to the printed digits plus three; "
-                                      "in parentheses, where searched, the single edits of the printed formula that "
-                                      "reproduce the print)")):
-        rs = [r for r in numerical if r.get("class") == cls]
-        if rs:
-            out += [f"### {len(rs)} {cls}: {text}", "",
-                    "; ".join(f"{_esc(r['id'])} {_esc(r['printed'])} -> {_certified_digits(r['lo'], r['hi'], r['printed'])}"
-                              f"{_edits_brief(r)}" for r in rs) + ".", ""]
-    plain = [r for r in rows if r.get("class", r["status"]) in _PLAIN]
-    if plain:
-        out += ["### Rows that agree", "",
-                "; ".join(f"{_esc(r['id'])} ({_esc(r['printed'])})" for r in plain) + ".", "",
-                "Every row, with its certified bounds and notes, is in the JSON certificate (`paper`).", ""]
-    return out
+    """The audit (:func:`rigor_gyro.core.audit_report.audit_section`: counts by class, the misprints
+    found, the paper's arithmetic by table, the unexplained with their nearest chain value)."""
+    from .core.audit_report import audit_section
+    return audit_section(rows, _edits_brief, AUDIT_TABLES)
 
 
 # ---------------------------------------------------------------- the summary's headline lines

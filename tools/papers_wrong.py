@@ -21,7 +21,8 @@ BEGIN, END = "<!-- papers-wrong:begin -->", "<!-- papers-wrong:end -->"
 PAPERS = {"Rudenko (1976), eigenfrequency brackets": "rudenko1976",
           "Agafonov et al. (2013), attraction estimate": "agafonov2013",
           "Roitenberg (1947), relay self-oscillation (read with B = 2/15)": "roitenberg1947_b2over15"}
-EDITS = ("sign", "decimal-shift", "digits-transposed", "digit-dropped", "digit-doubled", "digit-substituted")
+EDITS = ("sign", "decimal-shift", "digits-transposed", "digit-dropped", "digit-doubled", "digit-substituted",
+         "multi-digit-substituted", "propagated-misprint")
 
 
 def _cell(text: str, n: int = 160) -> str:

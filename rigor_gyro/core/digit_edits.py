@@ -27,7 +27,7 @@ from fractions import Fraction
 __all__ = ["Edit", "EDIT_CLASSES", "edits_into", "decimal_text"]
 
 #: the edit classes, in the order a reading prefers them (simplest first)
-EDIT_CLASSES = ("sign", "decimal-shift", "digit-substituted", "digits-transposed", "digit-dropped", "digit-doubled",
+EDIT_CLASSES = ("sign", "decimal-shift", "digit-substituted", "digits-transposed", "digit-doubled", "digit-dropped",
                 "multi-digit-substituted")
 _SHIFTS = (1, -1, 2, -2, 3, -3)
 

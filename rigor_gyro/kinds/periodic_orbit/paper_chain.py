@@ -355,7 +355,7 @@ def _build(paper: dict[str, Any], P, prints, rels, keep=(), forced: dict | None 
 
 def _paper_parameters(paper: dict[str, Any], P):
     """The parameters the author computed with: the stated ones, except B, which the printed cubic fixes
-    (its constant term is q^2/tau, q^2 = H^2/(A B), so B = H^2 tau / (A c0)): the chain is the paper's
+    (its constant term is c0 = q^2/tau, q^2 = H^2/(A B), so B = H^2 / (A tau c0)): the chain is the paper's
     own whatever B the scene reads (the printed 0.133 gives another cubic)."""
     from types import SimpleNamespace
     from .flow import PARAMETER_NAMES
@@ -364,8 +364,7 @@ def _paper_parameters(paper: dict[str, Any], P):
     if len(cubic) == 3:
         c0 = Fraction(cubic[2])
         if c0 > 0:
-            q = P.H * P.H * P.tau / (P.A * fmpq(c0.numerator, c0.denominator))
-            vals["B"] = q
+            vals["B"] = P.H * P.H / (P.A * P.tau * fmpq(c0.numerator, c0.denominator))
     return SimpleNamespace(**vals)
 
 
