@@ -331,10 +331,12 @@ def test_checker_refuses_a_root_dropped_from_the_pieces(integrator_cert):
 
 
 def test_checker_refuses_a_tail_point_too_early(integrator_cert):
-    """The search cut at T = 1/2 with the root beyond it dropped: only the tail bound can notice."""
+    """The search cut before the root, the root dropped: only the tail bound can notice."""
     c = copy.deepcopy(integrator_cert)
     w = c["witnesses"]["half_period"]
-    w["pieces"] = [pc for pc in w["pieces"] if Fraction(pc["hi"]) <= Fraction(1, 2)]
+    first = next(i for i, pc in enumerate(w["pieces"]) if pc["kind"] == "unique")
+    assert first >= 1
+    w["pieces"] = w["pieces"][:first]
     w["T"] = w["pieces"][-1]["hi"]
     w["roots"] = []
     assert all(pc["kind"] == "empty" for pc in w["pieces"])

@@ -8,9 +8,11 @@ exponential. This checker takes another road to the same numbers, at twice the c
   eigenvalues and right eigenvectors valid for M itself; R^-1 by Arb's solver), the exact zero eigenvalue
   of an integrator set to 0 (the model decides it exactly, and exactly one eigenvalue ball contains 0);
   then g(theta) = -S sum_k Re(rho_k tanh(lambda_k theta/2)/lambda_k) - h with rho_k = (c R)_k (R^-1 e)_k over
-  all n eigenvalues (no pairing, no pole-free factor), y(t) = c . x(t) likewise, and exp(M theta) =
+  all n eigenvalues (no pairing; the pieces are re-decided on g K, K = prod over the non-real eigenvalues of
+  1 + E_k > 0, whose terms have no poles), y(t) = c . x(t) likewise, and exp(M theta) =
   R diag(e^(lambda theta)) R^-1 for the Jacobian;
-* (0, theta_min] root-free by the exact near-0 bound (rational arithmetic, :func:`.plant_orbit.near_zero_bound`);
+* (0, theta_min] root-free by the exact near-0 bound (rational arithmetic, :func:`.plant_orbit.near_zero_bound`)
+  or, with h = 0, by the sign of g's leading Taylor coefficient over [0, theta_min] from this diagonalisation;
 * the stored pieces tile [theta_min, T]; each "empty" piece has no root of g (exclusion by a Taylor-model
   enclosure, or interval Newton; bisected up to :data:`SPLIT_DEPTH` times where a piece is too wide for
   this g, which has the poles G does not), each "unique" piece exactly one (interval Newton; or split into a
@@ -37,7 +39,7 @@ from ...core.stored import encloses, fmpq_of, interval as stored_interval, numbe
 from ...core.subdivision import enclose_max
 from .flow import ExpSum, taylor_enclosure
 from .plant_df import describing_function
-from .plant_orbit import matrix_ball, near_zero_bound, section_index
+from .plant_orbit import leading_coefficient, matrix_ball, near_zero_bound, near_zero_order, section_index
 from .plant_statements import AMPLITUDE_REL, TAYLOR_ORDER
 
 __all__ = ["check", "Diagonal"]
@@ -86,19 +88,43 @@ class Diagonal:
         F = (-z * s).exp()
         return (1 - F) / ((1 + F) * z)
 
-    def g_coeffs(self, center: arb, n: int) -> list[arb]:
+    def g_coeffs(self, center: arb, n: int, pole_free: bool = False) -> list[arb]:
+        """Taylor coefficients of g, or (``pole_free``) of g K with K = prod over the non-real eigenvalues
+        (each of a pair on its own) of (1 + E_k), E_k = exp(-|Re lam_k| ...) as in :meth:`phi`: K > 0 on
+        real theta > 0, the same roots, tanh's complex poles cancelled term by term."""
         tot = [arb(0)] * n
         with series_length(n):
             s = acb_series([acb(center), 1], prec=n)
+            one = acb_series([1], prec=n)
+            cx = [k for k in range(self.n) if pole_free and not self.lam[k].imag.contains(0)]
+            E = {k: self._E(k, s) for k in cx}
             try:
+                K = one
+                for k in cx:
+                    K = K * (1 + E[k])
                 for k in range(self.n):
-                    c = series_coefficients(self.phi(k, s) * self.rho[k], n)
+                    if k in E:
+                        z = self.lam[k]
+                        sg = -1 if certainly_negative(z.real) else 1
+                        term = sg * (1 - E[k]) / z
+                        for j in cx:
+                            if j != k:
+                                term = term * (1 + E[j])
+                    else:
+                        term = self.phi(k, s) * K
+                    c = series_coefficients(term * self.rho[k], n)
                     for j in range(n):
                         tot[j] -= self.S * c[j].real
+                hk = series_coefficients(K * self.h, n)
             except ValueError:
                 return [arb("nan")] * n
-        tot[0] -= self.h
+        for j in range(n):
+            tot[j] -= hk[j].real
         return tot
+
+    def _E(self, k: int, s):
+        z = self.lam[k]
+        return (z * s).exp() if certainly_negative(z.real) else (-z * s).exp()
 
     def x0(self, theta: arb) -> list[arb]:
         t = acb(theta)
@@ -156,7 +182,7 @@ class Diagonal:
 
 class _G:
     def __init__(self, d: Diagonal):
-        self.coeffs = d.g_coeffs
+        self.coeffs = lambda c, n: d.g_coeffs(c, n, pole_free=True)      # noqa: E731
 
     def both(self, X: arb) -> tuple[arb, arb]:
         g, dg = taylor_enclosure(self.coeffs, X, TAYLOR_ORDER, (0, 1))
@@ -214,9 +240,9 @@ def _unique(G: _G, lo: arb, hi: arb, depth: int = 0) -> arb | None:
     w = hi - lo
     for fr in (Fraction(1, 2), Fraction(1, 3), Fraction(2, 3)):
         mid = (lo + w * fr.numerator / fr.denominator).mid()
-        if _empty(G, lo, mid, SPLIT_DEPTH - 2):
+        if _empty(G, lo, mid):
             e = _unique(G, mid, hi, depth + 1)
-        elif _empty(G, mid, hi, SPLIT_DEPTH - 2):
+        elif _empty(G, mid, hi):
             e = _unique(G, lo, mid, depth + 1)
         else:
             continue
@@ -342,7 +368,12 @@ def check(model, data: dict) -> list[CheckResult]:
     half_ok, why = False, "no isolation witness stored"
     if w is not None:
         t_min, T = _pt(w["theta_min"]), _pt(w["T"])
-        steps = [("(0, theta_min] root-free (exact near-0 bound)", near_zero_bound(model, t_min))]
+        near = near_zero_bound(model, t_min)
+        if not near and model.h == 0:      # g + h = O(theta^k) exactly: the sign of its k-th coefficient on [0, t]
+            k = 2 * near_zero_order(model)[0] + 1
+            lead = leading_coefficient(d.g_coeffs, k, t_min, extra=10)
+            near = certainly_positive(lead) or certainly_negative(lead)
+        steps = [("(0, theta_min] root-free (near-0 bound or leading Taylor coefficient)", near)]
         pcs = w["pieces"]
         tiles = bool(pcs) and number(pcs[0]["lo"]) <= number(w["theta_min"]) and number(pcs[-1]["hi"]) >= number(w["T"])
         tiles = tiles and all(number(pcs[i]["hi"]) == number(pcs[i + 1]["lo"]) for i in range(len(pcs) - 1))

@@ -43,8 +43,8 @@ from .flow import DegenerateSpectrum, taylor_enclosure
 from .plant_model import PlantModel, validate_plant
 from .plant_report import assemble
 from .plant_statements import GUARD_BITS, PLANT_CLAIMS, TAYLOR_ORDER
-from .plant_orbit import (PlantSpectrum, g_coeffs, jacobian, liouville_product, near_zero_bound, orbit_output,
-                          section_index, tail_bound, x0_at)
+from .plant_orbit import (PlantSpectrum, g_coeffs, jacobian, leading_coefficient, liouville_product, near_zero_bound,
+                          near_zero_order, orbit_output, section_index, tail_bound, x0_at)
 from .texts import interval_text as _fmt
 
 __all__ = ["PLANT_CLAIMS", "validate", "statements", "attempt", "analyse", "classify", "plant_multipliers",
@@ -63,12 +63,21 @@ def statements(model: PlantModel) -> dict[str, str]:
 
 # ------------------------------------------------------------------------------ near 0 and the tail
 
-def theta_min(model: PlantModel, start: Fraction) -> Fraction | None:
-    """The largest start / 2^j (j < 200) with (0, start / 2^j] certainly root-free (exact dyadic)."""
+def theta_min(model: PlantModel, start: Fraction, sp: PlantSpectrum | None = None) -> Fraction | None:
+    """The largest start / 2^j (j < 200) with (0, start / 2^j] certainly root-free (exact dyadic): by the
+    exact bound :func:`~.plant_orbit.near_zero_bound`, or (h = 0, given ``sp``) by the sign of g's leading
+    Taylor coefficient over [0, rho] (:func:`~.plant_orbit.leading_coefficient`; g + h = O(theta^(2 j0 + 1))
+    exactly)."""
+    k = 2 * near_zero_order(model)[0] + 1 if model.h == 0 else None
     for j in range(200):
         rho = start / 2 ** j
-        if near_zero_bound(model, ball(fmpq(rho.numerator, rho.denominator))):
+        r = ball(fmpq(rho.numerator, rho.denominator))
+        if near_zero_bound(model, r):
             return rho
+        if sp is not None and k is not None:
+            lead = leading_coefficient(lambda ctr, n: g_coeffs(sp, ctr, n, pole_free=False), k, r)
+            if certainly_positive(lead) or certainly_negative(lead):
+                return rho
     return None
 
 
@@ -255,6 +264,25 @@ def _q(x: Fraction) -> arb:
     return ball(fmpq(x.numerator, x.denominator))
 
 
+def _memoised(sp: PlantSpectrum):
+    """G's Taylor coefficients, memoised by (precision, centre's exact midpoint and radius, length): Arb is
+    deterministic given those, so a memoised list holds the very balls a new call returns (the root search
+    asks for the same points again and again). Non-finite centres are computed, never memoised."""
+    memo: dict = {}
+
+    def coeffs(ctr, n):
+        if type(ctr) is not arb or not ctr.is_finite():
+            return g_coeffs(sp, ctr, n)
+        key = (current_precision(), ctr.mid().man_exp(), ctr.rad().man_exp(), n)
+        hit = memo.get(key)
+        if hit is None:
+            if len(memo) >= 100_000:
+                memo.clear()
+            hit = memo[key] = tuple(g_coeffs(sp, ctr, n))
+        return list(hit)
+    return coeffs
+
+
 def analyse(model: PlantModel, phase: Phases | None = None) -> PlantAnalysis:
     """Isolate and classify every root of g at the current precision."""
     phase = phase if phase is not None else Phases()
@@ -283,12 +311,12 @@ def analyse(model: PlantModel, phase: Phases | None = None) -> PlantAnalysis:
     while not 4 * start < an.T_search:
         start /= 2
     with phase("theta_min (near 0)"):
-        an.theta_min = theta_min(model, start)
+        an.theta_min = theta_min(model, start, sp)
     if an.theta_min is None:
         an.problem = "could not certify that g has no root near theta = 0"
         return an
     with phase("half_period: root isolation"):
-        coeffs = lambda ctr, n: g_coeffs(sp, ctr, n)      # noqa: E731
+        coeffs = _memoised(sp)
         iso = _isolate(_g_series_function(None, coeffs), _q(an.theta_min), _q(an.T_search), coeffs=coeffs)
     an.pieces = len(iso.pieces)
     an.piece_list = iso.pieces

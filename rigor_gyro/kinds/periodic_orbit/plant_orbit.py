@@ -51,7 +51,8 @@ from .plant_model import PlantModel, markov
 from .plant_statements import AMPLITUDE_REL, TAYLOR_ORDER
 
 __all__ = ["PlantMode", "PlantSpectrum", "g_coeffs", "x0_at", "orbit_output", "tail_bound", "near_zero_bound",
-           "near_zero_order", "jacobian", "liouville_product", "matrix_ball", "amplitude", "section_index"]
+           "near_zero_order", "jacobian", "liouville_product", "matrix_ball", "amplitude", "section_index",
+           "leading_coefficient"]
 
 
 @dataclass
@@ -291,6 +292,36 @@ def near_zero_bound(model: PlantModel, rho: arb) -> bool:
         return certainly_positive(ball(model.h) - S * ball(C) * rho * (arb(1) / 2 + arb(2) / 3 * geo))
     j0, lead = near_zero_order(model)
     return certainly_positive(abs(ball(lead)) - S * ball(C) * arb(2) / 3 * (ball(L) / pi) ** (2 * j0) * geo)
+
+
+def leading_coefficient(coeffs, k: int, t: arb, extra: int = 6) -> arb:
+    """A ball containing f^(k)(xi)/k! for every xi in [0, t] (a Taylor model about the midpoint: point
+    coefficients of orders k .. k+extra-1 and the next one enclosed over [0, t], intersected with the
+    direct enclosure), for ``coeffs(center, n)`` -> Taylor coefficients of f at every point of a ball.
+    When f^(j)(0) = 0 exactly for j < k (g + h's odd series below its first nonzero term, h = 0),
+    f(theta) = theta^k f^(k)(xi)/k! for some xi in (0, theta): a ball of one strict sign means no root of f
+    on (0, t]."""
+    X = interval(arb(0), t)
+    m = arb(X.mid())
+    w = X - m
+    order = k + extra
+    c = coeffs(m, order)
+    cN = coeffs(X, order + 1)[order]
+    tot = arb(0)
+    for j in range(k, order):
+        tot += math.comb(j, k) * c[j] * _ipow(w, j - k)
+    tot += math.comb(order, k) * cN * _ipow(w, order - k)
+    direct = coeffs(X, k + 1)[k]
+    if not (direct.is_finite() and tot.is_finite()):
+        return tot if tot.is_finite() else direct
+    return tot.intersection(direct) if tot.overlaps(direct) else tot
+
+
+def _ipow(x: arb, k: int) -> arb:
+    out = arb(1)
+    for _ in range(k):
+        out *= x
+    return out
 
 
 def liouville_product(sp: PlantSpectrum, theta: arb, x0: list[arb]) -> arb:

@@ -27,4 +27,4 @@ TAYLOR_ORDER = 8
 #: bits above the working precision at which a genuine orbit's quantities are recomputed
 GUARD_BITS = 32
 #: relative tolerance of the amplitude's branch and bound (the stored enclosure is padded by it)
-AMPLITUDE_REL = Fraction(1, 10 ** 9)
+AMPLITUDE_REL = Fraction(1, 10 ** 7)
