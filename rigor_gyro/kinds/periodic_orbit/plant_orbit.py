@@ -155,8 +155,6 @@ def g_coeffs(sp: PlantSpectrum, center: arb, n: int, pole_free: bool = True) -> 
     (``series_length``); a non-finite enclosure (1 + E not separated from 0 on a wide complex ball) is
     returned as NaN balls (no information, never a verdict)."""
     pairs = [m for m in sp.modes if m.weight == 2] if pole_free else []
-    S = sp.S
-    tot = [arb(0)] * n
     with series_length(n):
         s = acb_series([acb(center), 1], prec=n)
         one = acb_series([1], prec=n)
@@ -166,25 +164,21 @@ def g_coeffs(sp: PlantSpectrum, center: arb, n: int, pole_free: bool = True) -> 
         for m in pairs:
             K = K * (1 + E[id(m)]) * (1 + Ec[id(m)])
         try:
+            total = (s * (sp.r0c * sp.S / 2) + sp.h) * K
             for m in sp.modes:
                 Ek = E[id(m)]
                 if m.weight == 2 and pole_free:
-                    others = one
+                    term = (1 - Ek) * (1 + Ec[id(m)])
                     for o in pairs:
                         if o is not m:
-                            others = others * (1 + E[id(o)]) * (1 + Ec[id(o)])
-                    term = m.sigma * (1 - Ek) * (1 + Ec[id(m)]) / m.lam * others
+                            term = term * (1 + E[id(o)]) * (1 + Ec[id(o)])
                 else:
-                    term = m.sigma * (1 - Ek) / ((1 + Ek) * m.lam) * K
-                c = series_coefficients(term * m.rc, n)
-                for j in range(n):
-                    tot[j] -= m.weight * S * c[j].real
-            lin = series_coefficients((s * (sp.r0c * S / 2) + sp.h) * K, n)
+                    term = (1 - Ek) / (1 + Ek) * K
+                total += term * (m.weight * m.sigma * sp.S * m.rc / m.lam)
+            c = series_coefficients(total, n)
         except ValueError:
             return [arb("nan")] * n
-        for j in range(n):
-            tot[j] -= lin[j].real
-    return tot
+    return [-x.real for x in c]
 
 
 def x0_at(sp: PlantSpectrum, theta: arb) -> list[arb]:
