@@ -47,7 +47,8 @@ def test_no_number_the_papers_own_inputs_reproduce_is_called_a_misprint(relay):
     """beta sin (= the paper's D1), h11, the k of (24), the quartic and its roots are the paper's arithmetic:
     they differ from the exact values but round the chain."""
     _, _, chains, fixes = relay
-    for rid in ["beta sin", "h11", "h41", "D2", "k11", "k31", "k44", "quartic (25): coefficient of lambda^3",
+    for rid in ["beta sin", "h11", "h41", "D2", "k11", "k31", "k44", "k13", "z2 (eps2)", "b4,11", "b4,6",
+                "quartic (25): coefficient of lambda^3",
                 "lambda1", "Re lambda2,4", "|lambda2| = |lambda4|", "Table 2 t=0 beta'", "beta'*"]:
         assert rid not in fixes, rid
         assert rid in chains

@@ -73,7 +73,7 @@ class _Reader:
         narrowed, names = value, []
         for ref, name in relation_refs(rid, self.prints, self.rels):
             win = chain_window(txt, narrowed, slack)
-            if ref.is_finite() and win is not None and _meets(ref, win) and name not in names:
+            if ref.is_finite() and win is not None and name not in names:
                 lo, hi = exact_endpoints(ref)
                 a, b = max(lo, win[0]), min(hi, win[1])
                 if a <= b and (b - a) < (win[1] - win[0]):
@@ -104,11 +104,6 @@ class _Reader:
 def _in(txt: str, ch: Chain) -> bool:
     w = chain_window(txt, ch.value, ch.slack)
     return w is not None and w[0] <= _frac(txt) <= w[1]
-
-
-def _meets(x: arb, win) -> bool:
-    lo, hi = exact_endpoints(x)
-    return lo <= win[1] and hi >= win[0]
 
 
 def _interval(a, b) -> arb:
