@@ -60,7 +60,8 @@ class _Reader:
         self.chains: dict[str, Chain] = {}
         self.fixes: dict[str, str] = {}
         self.candidates: dict[str, str] = {}
-        #: the fixes decided on the computed chain alone (the identities of the next pass may read them)
+        #: the fixes decided on the computed chain alone by a one-digit edit (the identities of the next pass
+        #: may read them; a fix found through an identity or by two substituted digits is not read again)
         self.strong: dict[str, str] = {}
 
     def take(self, rid: str, txt: str | None, value: arb | None, source: str, slack: int = DEFAULT_SLACK,
@@ -90,7 +91,7 @@ class _Reader:
         kind, ed, by_identity = decide(txt, ch)
         if kind == "edit":
             self.fixes[rid] = ed.intended
-            if not by_identity:
+            if not by_identity and ed.cls != "multi-digit-substituted":
                 self.strong[rid] = ed.intended
             return read(ed.intended)
         if kind == "none":
