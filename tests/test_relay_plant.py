@@ -183,11 +183,12 @@ def test_g_and_x0_enclose_mpmath(name):
                 assert abs(float(x[i].mid()) - float(xr[i])) <= float(x[i].rad()) + 1e-25
 
 
-@pytest.mark.parametrize("name", sorted(CASES))
+@pytest.mark.parametrize("name", sorted(CASES) + ["roitenberg"])
 def test_near_zero_bound_is_sound_and_can_fail(name):
     """Where the bound certifies (0, rho] root-free, g sampled in mpmath has no sign change there (h = 0: the
-    leading coefficient's sign; h > 0: g < 0); at rho = 10 it cannot certify (a test that could fail)."""
-    m = _model(name)
+    leading coefficient's sign; h > 0: g < 0); at rho = 10 it cannot certify (a test that could fail).
+    Roitenberg's plant has a root of g at 0.1056 < 1/2: a bound too generous would certify past it."""
+    m = validate(load_scene("roitenberg1947_plant")) if name == "roitenberg" else _model(name)
     rho = theta_min(m, Fraction(1, 2))
     assert rho is not None
     sign = -1 if m.h > 0 else (1 if near_zero_order(m)[1] > 0 else -1)
