@@ -47,3 +47,16 @@ def test_header_with_model_validates_against_the_certificate_schema():
     jsonschema.validate(s.header(), sub)
     with pytest.raises(jsonschema.ValidationError):
         jsonschema.validate({**s.header(), "model": {"M": [[1]]}}, sub)
+
+
+def test_a_model_table_travels_to_the_workers_with_the_options():
+    """The margins' worker tasks receive one settings string: the kind's options and the scene's model table."""
+    import json
+
+    from rigor_gyro.margins.models import MODEL_KEY, settings_json, task_scene
+    model = {"M": [["0", "1"], ["-1", "-H"]]}
+    text = settings_json({"rel_width": "1e-9"}, model)
+    s = task_scene("p", "periodic_orbit", "t", {"H": "1"}, text, ["stable"])
+    assert s.model == model and s.options == {"rel_width": "1e-9"} and s.claims_only == ["stable"]
+    plain = settings_json({"rel_width": "1e-9"}, {})
+    assert MODEL_KEY not in json.loads(plain) and task_scene("p", "lyapunov", "", {}, plain).model == {}

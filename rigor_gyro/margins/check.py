@@ -35,6 +35,7 @@ from ..core.balls import MAX_PREC, MIN_PREC
 from ..core.boxes import Box, fraction_text, tiles_by_bisection
 from ..core.errors import RigorGyroError
 from ..scene import Scene
+from .models import settings_json
 from .sampled import SAMPLED_BOXES, cross_check
 
 __all__ = ["check_paving"]
@@ -94,7 +95,7 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES, executor=No
                                        f"; the claims not decided over boxes are {bs.skipped}, not {skipped}")))
     statements = boxes_module(bs.scene.kind).BOX_CLAIMS
     pj = json.dumps(bs.points, sort_keys=True)
-    oj = json.dumps(bs.options, sort_keys=True)
+    oj = settings_json(bs.options, bs.scene.model)
     mj = json.dumps({k: fraction_text(q) for k, q in bs.box.midpoint().items()}, sort_keys=True)
     statuses = []
     memo: dict = {}         # the Monte Carlo re-run, once for every claim

@@ -49,7 +49,7 @@ from ..core.boxes import Box, fraction_text
 from ..core.halton import points_in_boxes
 from ..kinds import optional_module
 from .executors import Executor
-from .models import scene_model
+from .models import scene_model, settings_json, task_scene
 from .point_proofs import point_task
 
 __all__ = ["PROBE_PREC", "MARGIN_PROVIDERS", "Candidate", "probe_task", "candidate_points", "shortest_decimal",
@@ -135,7 +135,7 @@ def probe_task(kind: str, points_json: str, options_json: str, mid_json: str, wh
 def _probe(bs, points: list[dict[str, Fraction]], claims: tuple[str, ...], prec: int, ex: Executor,
            margins: bool = True) -> list[dict[str, list]]:
     pj = json.dumps(bs.points, sort_keys=True)
-    oj = json.dumps(bs.options, sort_keys=True)
+    oj = settings_json(bs.options, bs.scene.model)
     mj = json.dumps({k: fraction_text(q) for k, q in bs.box.midpoint().items()}, sort_keys=True)
     wj = json.dumps(bs.box.to_json())
     texts = [{k: fraction_text(q) for k, q in p.items()} for p in points]
@@ -263,7 +263,7 @@ def prove_candidates(bs, leaves: list[tuple[Box, str]], claim: str, candidates: 
     in its leaf, or when the point prover contradicts its leaf (refuted in a ``proved`` leaf, proved in a
     ``refuted`` one: one of two rigorous paths is wrong)."""
     ex = executor or Executor(1)
-    oj = json.dumps(bs.options, sort_keys=True)
+    oj = settings_json(bs.options, bs.scene.model)
     for c in candidates:
         if not contains(leaves[c.leaf][0], c.point):
             raise AssertionError(f"claim {claim}: candidate {c.point} is not in leaf {c.leaf}")
@@ -326,9 +326,7 @@ def uniform_points(whole: Box, count: int, seed: int) -> list[dict[str, Fraction
 def _point_statuses(kind: str, params_json: str, options_json: str, claims: tuple[str, ...], prec: int,
                     maxprec: int) -> dict[str, str]:
     from ..prover import prove_scene
-    from ..scene import Scene
-    scene = Scene(name="sample", kind=kind, source="monte carlo sample", parameters=json.loads(params_json),
-                  claims_only=list(claims), options=json.loads(options_json))
+    scene = task_scene("sample", kind, "monte carlo sample", json.loads(params_json), options_json, list(claims))
     cert = prove_scene(scene, prec=prec, maxprec=maxprec)
     return {c: cert.claim(c).status.value for c in claims}
 
@@ -345,7 +343,7 @@ def failing_fraction_estimate(bs, claims: list[str] | None = None, samples: int 
     claims = tuple(claims if claims is not None else bs.claims)
     pts = uniform_points(bs.box, samples, seed)
     if classifier == "point":
-        oj = json.dumps(bs.options, sort_keys=True)
+        oj = settings_json(bs.options, bs.scene.model)
         tasks = [(bs.scene.kind, json.dumps(bs.point_parameters(p), sort_keys=True), oj, claims, prec,
                   bs.point_maxprec) for p in pts]
         statuses = ex.map(_point_statuses, tasks)

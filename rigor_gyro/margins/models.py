@@ -14,7 +14,25 @@ import json
 from ..kinds import kind_module
 from ..scene import Scene
 
-__all__ = ["scene_model"]
+__all__ = ["scene_model", "settings_json", "task_scene", "MODEL_KEY"]
+
+#: the key under which a scene's own model table ([plant], [system], [moment]) travels in a task's settings JSON
+#: beside the kind's options (never an option name: those are identifiers)
+MODEL_KEY = "[model]"
+
+
+def settings_json(options: dict, model: dict | None = None) -> str:
+    """The kind's options and the scene's model table, as the one JSON string a worker task receives."""
+    return json.dumps({**options, **({MODEL_KEY: model} if model else {})}, sort_keys=True)
+
+
+def task_scene(name: str, kind: str, source: str, parameters: dict, settings: str,
+               claims_only: list[str] | None = None) -> Scene:
+    """The Scene a worker builds from a task's strings (``settings`` from :func:`settings_json`)."""
+    opts = json.loads(settings)
+    model = opts.pop(MODEL_KEY, {})
+    return Scene(name=name, kind=kind, source=source, parameters=parameters, claims_only=claims_only,
+                 options=opts, model=model)
 
 
 @functools.lru_cache(maxsize=8)
@@ -22,5 +40,4 @@ def scene_model(kind: str, points_json: str, options_json: str, mid_json: str):
     """The model of the scene with these point parameters and options, at the box's midpoint."""
     module = kind_module(kind)
     params = {**json.loads(points_json), **json.loads(mid_json)}
-    return module.validate(Scene(name="box", kind=kind, source="", parameters=params,
-                                 options=json.loads(options_json)))
+    return module.validate(task_scene("box", kind, "", params, options_json))

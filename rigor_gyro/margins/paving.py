@@ -56,7 +56,7 @@ from ..core.exact import option_count, option_number
 from ..kinds import KINDS, kind_module, optional_module
 from ..scene import Scene
 from .executors import Executor
-from .models import scene_model as _model
+from .models import scene_model as _model, settings_json
 from .point_proofs import point_task
 from .order import DEFAULT_PRIORITY, Frontier, Group, check_priority, volume_depth
 from .ranges import quantities_module, quantity_specs, search_ranges
@@ -144,7 +144,7 @@ def _bad_end(module, mid: Scene, box: Box, error: ParameterError, given: dict) -
             text = _end_text(value)
             probe = Scene(name=mid.name, kind=mid.kind, source=mid.source,
                           parameters={**mid.parameters, name: text}, claims_only=mid.claims_only,
-                          options=mid.options, paper={}, path=mid.path)
+                          options=mid.options, paper={}, path=mid.path, model=mid.model)
             try:
                 module.validate(probe)
             except ParameterError as e:
@@ -190,7 +190,7 @@ def box_scene(scene: Scene) -> BoxScene:
               option_count(m["monte_carlo_seed"], "monte_carlo_seed", 0, 2 ** 31))
     mid = Scene(name=scene.name, kind=scene.kind, source=scene.source,
                 parameters={**points, **{k: fraction_text(q) for k, q in box.midpoint().items()}},
-                claims_only=scene.claims_only, options=kind_opts, paper={}, path=scene.path)
+                claims_only=scene.claims_only, options=kind_opts, paper={}, path=scene.path, model=dict(scene.model))
     try:
         model = module.validate(mid)
     except ParameterError as e:
@@ -415,7 +415,7 @@ def _pave(bs: BoxScene, executor, progress, time_limit, box_budget, state, check
     ex = executor or Executor(1)
     whole = bs.box
     pj = json.dumps(bs.points, sort_keys=True)
-    oj = json.dumps(bs.options, sort_keys=True)
+    oj = settings_json(bs.options, bs.scene.model)
     mj = json.dumps({k: fraction_text(q) for k, q in whole.midpoint().items()}, sort_keys=True)
     st = state if state is not None else start_state(bs)
     stopped, run, last = "", 0, time.monotonic()

@@ -10,7 +10,7 @@ import json
 from typing import Any
 
 from ..core.balls import DEFAULT_MAXPREC, DEFAULT_PREC
-from ..scene import Scene
+from .models import task_scene
 
 __all__ = ["point_task"]
 
@@ -19,7 +19,6 @@ def point_task(kind: str, params_json: str, options_json: str, claim: str, prec:
                maxprec: int = DEFAULT_MAXPREC) -> dict[str, Any]:
     """The point prover on one claim at one exact parameter point, from ``prec`` up to ``maxprec`` bits."""
     from ..prover import prove_scene
-    scene = Scene(name="point", kind=kind, source="margin point", parameters=json.loads(params_json),
-                  claims_only=[claim], options=json.loads(options_json))
+    scene = task_scene("point", kind, "margin point", json.loads(params_json), options_json, [claim])
     c = prove_scene(scene, prec=prec, maxprec=maxprec).claim(claim)
     return {"status": c.status.value, "reason": c.reason, "precision_bits": c.precision_bits}

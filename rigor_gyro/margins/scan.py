@@ -26,6 +26,7 @@ from ..core.boxes import fraction_text, is_tolerance
 from ..core.errors import ParameterError, RigorGyroError
 from ..kinds import kind_module
 from ..scene import Scene
+from .models import settings_json, task_scene
 from .threshold import search_range
 
 __all__ = ["Scan", "scan_points", "run_scan", "write_scan", "check_scan", "statement", "SCHEMA"]
@@ -56,8 +57,7 @@ def scan_task(kind: str, params_json: str, options_json: str, claims: tuple[str,
     """The point prover at one exact parameter point (strings in, JSON-able data out)."""
     from ..core.balls import decimal_bounds
     from ..prover import prove_scene
-    scene = Scene(name="scan_point", kind=kind, source="margin scan point", parameters=json.loads(params_json),
-                  claims_only=list(claims), options=json.loads(options_json))
+    scene = task_scene("scan_point", kind, "margin scan point", json.loads(params_json), options_json, list(claims))
     cert = prove_scene(scene)
     out: dict[str, Any] = {"claims": {}, "quantities": {}, "precision_bits": cert.precision_bits}
     for c in claims:
@@ -170,10 +170,11 @@ def run_scan(scene: Scene, param: str, n: int, *, lo: str | None = None, hi: str
     for x in (values[0], values[-1]):               # the domain, checked before any work
         try:
             module.validate(Scene(name=scene.name, kind=scene.kind, source=scene.source,
-                                  parameters={**scene.parameters, param: fraction_text(x)}, options=dict(scene.options)))
+                                  parameters={**scene.parameters, param: fraction_text(x)}, options=dict(scene.options),
+                                  model=dict(scene.model)))
         except ParameterError as e:
             raise ParameterError(f"{param} = {_d(x)} is outside the kind's domain: {e}") from None
-    options_json = json.dumps(scene.options, sort_keys=True)
+    options_json = settings_json(scene.options, scene.model)
     tasks = [(scene.kind, json.dumps({**scene.parameters, param: fraction_text(x)}, sort_keys=True), options_json,
               tuple(claims), tuple(quantities)) for x in values]
     from .executors import make_executor
@@ -234,7 +235,7 @@ def check_scan(data: dict[str, Any], max_points: int = MAX_RECHECK) -> list[tupl
     n = len(points)
     picked = list(range(n)) if n <= max_points else sorted({round(i * (n - 1) / (max_points - 1))
                                                              for i in range(max_points)})
-    options_json = json.dumps(scene.options, sort_keys=True)
+    options_json = settings_json(scene.options, scene.model)
     bad: list[str] = []
     for i in picked:
         x, stored = values[i], points[i]
