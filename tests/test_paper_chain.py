@@ -165,3 +165,24 @@ def test_the_quartic_roots_enclose_every_sampled_quartic_of_the_family():
         assert inside(real[0], roots["lambda1"]) and inside(real[1], roots["lambda3"])
         assert inside(cplx[0].real, roots["re_complex"]) and inside(cplx[0].imag, roots["im_complex"])
         assert inside(abs(cplx[0]), roots["modulus"])
+
+
+def test_rudenko_exact_values_share_one_scale_at_the_nearest_eps():
+    """The four 'exact' frequencies admit no common Hz scale at the printed eps = 0.1076; the nearest
+    four-digit eps that gives them one is 0.1073 (a one-digit change), with a certified witness scale, and
+    nothing nearer works (0.1074 .. 0.1078 are refused in balls)."""
+    from flint import arb, fmpq
+    from rigor_gyro.core.audit import audit_printed
+    from rigor_gyro.core.outcome import AuditStatus
+    from rigor_gyro.kinds.eigenfrequencies.paper_scale import _fit, _omegas, consistent_eps_row
+    a, b, W = fmpq(1508, 100), fmpq(6154, 1000), fmpq(629, 1000)
+    exact = ["41.4", "121.5", "521.5", "935.7"]
+    row = consistent_eps_row(a, b, fmpq(1076, 10000), W, "0.1076", exact)
+    assert row.status is AuditStatus.MISPRINT and row.reading.startswith("eps = 0.1073")
+    for k in (1074, 1075, 1076, 1077, 1078):
+        assert _fit(exact, _omegas(a, b, fmpq(k, 10000), W)) is None, k
+    om = _omegas(a, b, fmpq(1073, 10000), W)
+    s = arb(fmpq(3089, 5))
+    assert all(audit_printed(x, s * w.sqrt())[0] is AuditStatus.AGREES for x, w in zip(exact, om))
+    assert audit_printed("41.4", s * _omegas(a, b, fmpq(1076, 10000), W)[0].sqrt())[0] is not AuditStatus.AGREES \
+        or audit_printed("121.5", s * _omegas(a, b, fmpq(1076, 10000), W)[1].sqrt())[0] is not AuditStatus.AGREES

@@ -20,6 +20,7 @@ from ...core.balls import (ball, certainly_gt, certainly_le, certainly_lt, certa
                            decimal_bounds)
 from ...core.outcome import AuditRow, AuditStatus
 from ...core.polyroots import isolate_polynomial
+from .paper_scale import consistent_eps_row
 from .model import (APPROX_TEXT, BRACKETS, EDIT_FORMULAS, NotReal, Params, approximation, bracket,
                     characteristic_quartic)
 
@@ -313,6 +314,10 @@ def audit(model, p: Params, omegas: list[arb]) -> list[AuditRow]:
                              f"ranges {[_fmt(r) for r in ranges]}; " + (
                                  "their intersection is certainly empty: no single sqrt(K3/A3)/(2 pi) reproduces all four"
                                  if disjoint else "a common scale exists")))
+        if disjoint:
+            from decimal import Decimal
+            eps_text = format(Decimal(int(e.p)) / Decimal(int(e.q)), "f")
+            rows.append(consistent_eps_row(a, b, e, W, eps_text, list(exact)))
     for key, kind in (("hz_lower", "lower"), ("hz_upper", "upper")):
         for j, x in enumerate(paper.get(key, []), start=1):
             br = BRACKETS[j]
