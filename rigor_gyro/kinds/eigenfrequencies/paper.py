@@ -21,6 +21,7 @@ from ...core.balls import (ball, certainly_gt, certainly_le, certainly_lt, certa
 from ...core.outcome import AuditRow, AuditStatus
 from ...core.polyroots import isolate_polynomial
 from .paper_scale import consistent_eps_row
+from .paper_text import text_rows
 from .model import (APPROX_TEXT, BRACKETS, EDIT_FORMULAS, NotReal, Params, approximation, bracket,
                     characteristic_quartic)
 
@@ -338,6 +339,7 @@ def audit(model, p: Params, omegas: list[arb]) -> list[AuditRow]:
         rows.extend(_five_percent_rows(bound, p, omegas, paper))
     rows.append(_label_12_row())
     rows.extend(_fourteen_rows(model))
+    rows.extend(text_rows(a, b, e, W, general))
     return rows
 
 

@@ -1,0 +1,102 @@
+"""Rudenko (1976): audit rows for the derivation's text (issue 39): (11) as printed has no real solution
+(a factor misplaced), "Omega_2" for Omega^2 in the example, the monotonicity of K that (3) rests on,
+and the abstract's "the estimates are not asymptotic".
+
+Guarantee: (11)'s discriminant is an exact rational; the reading's solution is checked equal to (12) in
+exact rationals at the example; K' > 0 on [0, nu1] is decided by interval bisection of the numerator
+of K' (a cubic in omega with the exact nu's as balls), refuted only by a certified point where K' < 0.
+Failure mode: a bisection that does not decide within its budget gives ``undecided``.
+"""
+from __future__ import annotations
+
+from flint import arb, fmpq
+
+from ...core.balls import certainly_negative, certainly_positive, decimal_bounds
+from ...core.outcome import AuditRow, AuditStatus
+from ...core.polyroots import isolate_polynomial
+from .model import nu_quadratics
+
+__all__ = ["text_rows"]
+
+
+def _fmt(x: arb) -> str:
+    lo, hi = decimal_bounds(x, 8)
+    return f"[{lo}, {hi}]"
+
+
+def _eq11_row(a: fmpq, b: fmpq, e: fmpq, W: fmpq) -> AuditRow:
+    """(11) printed Omega^2 = -omega eps a b (omega - nu1+)(a - b)^-1: a quadratic in omega; read
+    Omega^2 = -omega eps a b [(omega - nu1+)(a - b)]^-1, whose solution is (12)."""
+    nu1p = e / (a - b)
+    k = e * a * b / (a - b)
+    disc = (k * nu1p) ** 2 - 4 * k * W             # k w^2 - k nu1+ w + W = 0
+    w12 = e * W / (W * (a - b) + e * a * b)
+    read_ok = W == -w12 * e * a * b / ((w12 - nu1p) * (a - b))
+    status = AuditStatus.MISPRINT if disc < 0 and read_ok else AuditStatus.UNDECIDED
+    return AuditRow("(11) as printed", "Omega^2 = -omega eps a b (omega - nu1+) (a - b)^-1",
+                    "Omega^2 = -omega eps a b [(omega - nu1+) (a - b)]^-1", None, status,
+                    f"as printed, a quadratic in omega with discriminant {float(disc):.6g} "
+                    f"({'< 0: no real solution' if disc < 0 else '>= 0'}; exact rational at the example); the "
+                    "reading (the factor (omega - nu1+) in the denominator) is solved exactly by (12), omega = "
+                    f"eps W/(W (a-b) + eps a b): {'checked' if read_ok else 'NOT reproduced'} in exact rationals "
+                    "at the example; (11)-(12) then approximate omega_1 (see the row '(12) label')")
+
+
+def _omega2_row() -> AuditRow:
+    return AuditRow("example: 'Omega_2 = 0.629'", "Omega_2 = 0.629", "Omega^2 = 0.629", None, AuditStatus.MISPRINT,
+                    "the paper defines only Omega^2 = H^2/(K3 A3) (no Omega_2); with Omega^2 = 0.629 the brackets "
+                    "(7)-(10) and (12)-(13) reproduce the printed Hz values (rows above)")
+
+
+def _k_monotone_row(a: fmpq, b: fmpq, e: fmpq, max_pieces: int = 4096) -> AuditRow:
+    """K(omega) = (omega - nu5)(omega - nu6)/((omega - nu3)(omega - nu4)) increasing on [0, nu1], the
+    property (3) uses (K(0) <= K <= K(nu1)): sign of N'D - N D' by bisection."""
+    q14, q26 = nu_quadratics(a, b, e)
+    r14, r26 = isolate_polynomial(q14), isolate_polynomial(q26)
+    if len(r14.real) != 2 or len(r26.real) != 2:
+        return AuditRow("(3) K monotone on [0, nu1]", "K(omega) is monotone on [0, nu1]", "K' > 0 there", None,
+                        AuditStatus.UNDECIDED, "the quadratics (4) do not have two real roots each")
+    nu1, nu4 = sorted(r14.real, key=lambda x: float(x.mid()))
+    nu2, nu6 = sorted(r26.real, key=lambda x: float(x.mid()))
+    nu3, nu5 = arb(1 / (b - 1)), arb(b / (b - 1))
+
+    def g(w: arb) -> arb:      # (N' D - N D'), N = (w - nu5)(w - nu6), D = (w - nu3)(w - nu4)
+        N, Np = (w - nu5) * (w - nu6), 2 * w - nu5 - nu6
+        D, Dp = (w - nu3) * (w - nu4), 2 * w - nu3 - nu4
+        return Np * D - N * Dp
+    todo, pieces, bad = [(arb(0), nu1)], 0, None
+    while todo and pieces < max_pieces:
+        lo, hi = todo.pop()
+        pieces += 1
+        box = lo.union(hi)
+        if certainly_positive(g(box)):
+            continue
+        mid = arb(((lo + hi) / 2).mid())
+        if certainly_negative(g(mid)):
+            bad = mid
+            break
+        todo += [(lo, mid), (mid, hi)]
+    if bad is not None:
+        st, note = AuditStatus.REFUTED, f"K' < 0 at omega = {_fmt(bad)} (certified)"
+    elif todo:
+        st, note = AuditStatus.UNDECIDED, f"not decided within {max_pieces} pieces"
+    else:
+        st, note = AuditStatus.CONFIRMED, (f"K is increasing on [0, nu1], nu1 = {_fmt(nu1)}: N'D - ND' > 0 on "
+                                           f"{pieces} pieces (certified), so K(0) <= K(omega) <= K(nu1) as (3) uses")
+    return AuditRow("(3) K monotone on [0, nu1]", "K(omega) is monotone on [0, nu1]", "K' > 0 there (example)", None,
+                    st, note)
+
+
+def _abstract_row(general: AuditRow | None) -> AuditRow | None:
+    if general is None:
+        return None
+    return AuditRow("abstract: 'the estimates are not asymptotic'",
+                    "upper and lower estimates for each frequency, and these estimates are not asymptotic",
+                    "the brackets (7)-(10) bound the roots for every parameter", general.value,
+                    general.status, f"the same counterexample as the row '{general.id}': {general.note}")
+
+
+def text_rows(a: fmpq, b: fmpq, e: fmpq, W: fmpq, general: AuditRow | None) -> list[AuditRow]:
+    rows = [_eq11_row(a, b, e, W), _omega2_row(), _k_monotone_row(a, b, e)]
+    ab = _abstract_row(general)
+    return rows + ([ab] if ab is not None else [])
