@@ -49,8 +49,8 @@ CASES = {
     "unstable_mode": (([1, 0, 0], [0, -2, 1], [0, 0, -5]), (1, 1, 1), (1, -1, "1/2"), "-1", "0"),
     "hysteresis_integrator": (([0, 1], [0, -1]), (0, 1), (1, 0), "-1", "1/10"),
     "relative_degree_one": (([-1, 0, 0], [0, -3, 1], [0, -1, -3]), (1, 0, 1), (1, 1, 0), "-1", "1/20"),
-    # a tiny direct term c . e = 1e-4: g = -S 1e-4 theta/2 + O(theta^3) has a root near theta = 0.035
-    "small_lead": (([0, 1], [-1, "-1/5"]), (0, 1), (1, "1/10000"), "-1", "0"),
+    # a tiny direct term c . e = -1e-4: g = -S (-1e-4 theta/2 + 0.2 theta^3/24 + ...) has a root near theta = 0.077
+    "small_lead": (([0, 1], [-1, "-1/5"]), (0, 1), (1, "-1/10000"), "-1", "0"),
 }
 
 
