@@ -96,7 +96,11 @@ OPTIONS = {"T_max": "auto", "theta_width": "1e-12", "orbit": ""}
 HEADLINE = {"theta_star": "half-period theta* (s)", "period": "period 2 theta* (s)",
             "multiplier_modulus_1": "largest multiplier modulus", "multiplier_modulus_2": "multiplier modulus 2",
             "multiplier_modulus_3": "multiplier modulus 3", "multiplier_modulus_4": "multiplier modulus 4",
-            "stability_margin": "stability margin 1 - max modulus"}
+            "stability_margin": "stability margin 1 - max modulus",
+            # a [plant] scene's (plant_report): the orbit's amplitude and the describing-function estimate
+            "amplitude": "amplitude: max over the period of abs(c . x)", "df_period": "describing-function period estimate",
+            "df_period_difference": "period minus the estimate", "df_amplitude": "describing-function amplitude estimate",
+            "df_amplitude_difference": "amplitude minus the estimate"}
 
 CLAIMS = {
     "half_period": "Every root of the half-period equation g(theta) = 0 (the paper's (13); g = beta(0) of the "

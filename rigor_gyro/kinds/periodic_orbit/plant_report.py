@@ -76,8 +76,8 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
               + "; ".join(f"theta = {_fmt(v.theta, 10)}: {v.reason}" for v in undecided[:3]))
     else:
         hp = (Status.PROVED, f"{len(an.roots)} roots of g on {rng}, each simple and alone in its piece "
-              f"({an.pieces} pieces by interval Newton; (0, {_fmt(ball(an.theta_min), 4)}] root-free by the exact "
-              f"near-0 bound); {len(genuine)} genuine ({', '.join(_fmt(v.theta, 10) for v in genuine)}), "
+              f"({an.pieces} pieces by interval Newton; (0, {_fmt(ball(an.theta_min), 4)}] root-free near 0: exact "
+              f"series bound or the sign of g's leading Taylor coefficient); {len(genuine)} genuine ({', '.join(_fmt(v.theta, 10) for v in genuine)}), "
               f"{len(spurious)} spurious with certified witnesses")
     if "half_period" in wanted:
         claims.append(_claim("half_period", *hp, pieces=an.pieces, roots=len(an.roots)))
