@@ -363,3 +363,39 @@ def test_checker_refuses_a_spurious_root_called_genuine():
     g = next(r for r in w["roots"] if r["kind"] == "genuine")
     w["roots"][k] = dict(g)
     assert _items(cert)["half_period"] is False
+
+
+def test_a_plant_whose_g_tends_to_zero_needs_t_max():
+    """c . x a derivative of the output (G(0) = 0, no integrator, stable): g -> 0 at infinity, no tail bound at
+    any precision: inconclusive at once (no escalation), and with T_max the searched range is stated and
+    nothing is refuted."""
+    M = ([0, 1, 0], [0, 0, 1], [-6, -11, -6])
+    cert = prove_scene(_scene(M, (0, 0, 1), (0, 1, 1), "-1")).to_json()
+    assert all(c["status"] == "inconclusive" for c in cert["claims"]) and cert["precision_bits"] == 64
+    assert "T_max" in cert["claims"][0]["reason"]
+    cert = json.loads(json.dumps(prove_scene(_scene(M, (0, 0, 1), (0, 1, 1), "-1",
+                                                    extra='[options]\nT_max = "20"')).to_json()))
+    assert cert["claims"][0]["status"] == "proved" and "T_max" in cert["claims"][0]["reason"]
+    assert all(c["status"] == "inconclusive" for c in cert["claims"][1:])
+    assert check_certificate(cert).ok
+
+
+def test_a_plant_scene_draws_its_orbit():
+    pytest.importorskip("matplotlib")
+    from rigor_gyro.kinds.periodic_orbit.plots import build_figures
+    scene = load_scene(PLANTS + "relay_autotune_integrator.toml")
+    figs = build_figures(scene, prove_scene(scene))
+    (name, fig), = figs.items()
+    line = [ln for ax in fig.axes for ln in ax.get_lines() if ln.get_gid() == "orbit"][0]
+    ys = line.get_ydata()
+    assert name == "relay_autotune_integrator_orbit.png" and abs(max(ys) - 0.2200370) < 1e-4 and abs(ys[0]) < 1e-12
+
+
+def test_a_plant_scene_with_a_tolerance_is_refused_with_a_clear_message(tmp_path):
+    p = tmp_path / "box.toml"
+    p.write_text('name = "box"\nkind = "periodic_orbit"\n[parameters]\nK = "[0.9, 1.1]"\n[plant]\n'
+                 'M = [["0", "1", "0"], ["0", "0", "1"], ["0", "-2", "-3"]]\ne = ["0", "0", "K"]\nc = ["1", "0", "0"]\n'
+                 'S = "-1"\n')
+    r = subprocess.run([sys.executable, "-m", "rigor_gyro", "prove", str(p), "-o", str(tmp_path)],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "proved at a point only" in r.stderr

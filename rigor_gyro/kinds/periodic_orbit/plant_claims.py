@@ -93,6 +93,17 @@ def tail_sign(sp: PlantSpectrum, model: PlantModel) -> int:
     return 1 if certainly_positive(b) else -1 if certainly_negative(b) else 0
 
 
+def exact_offset(model: PlantModel) -> fmpq | None:
+    """b = lim g(theta) as theta -> oo, exactly, for a plant without an integrator whose eigenvalues all have
+    Re < 0 (the caller checks that on the spectrum): then sum_k r_k / lambda_k = -G(0), so b = -h - S G(0)
+    with G(0) = N_c(0) / p(0) (exact rationals). None with an integrator (g grows linearly)."""
+    if model.zero_eigenvalue:
+        return None
+    p0 = model.charpoly[0]
+    Nc0 = model.numerator_c[0] if model.numerator_c.degree() >= 0 else fmpq(0)
+    return -model.h - model.S * Nc0 / p0
+
+
 def tail_point(sp: PlantSpectrum, model: PlantModel) -> Fraction | None:
     """An exact dyadic T with g of one strict sign on [T, oo) (a geometric ladder), or None."""
     sgn = tail_sign(sp, model)
@@ -258,6 +269,8 @@ class PlantAnalysis:
     problem: str = ""
     #: the spectrum at the guard precision the genuine orbits' quantities were recomputed with
     sp_fine: PlantSpectrum | None = None
+    #: True when more precision cannot decide what is open (the prover stops escalating)
+    stalled: bool = False
 
 
 def _q(x: Fraction) -> arb:
@@ -303,8 +316,15 @@ def analyse(model: PlantModel, phase: Phases | None = None) -> PlantAnalysis:
     elif an.T_tail is not None:
         an.T_search, an.covers_all = an.T_tail, True
     else:
-        an.problem = ("the tail of g (its sign beyond some T) is not certified: g tends to a constant of no certain "
-                      "sign or the slowest mode is too slow; set option T_max to search a finite range")
+        b0 = exact_offset(model) if all(m.sigma < 0 for m in sp.modes) else None
+        if b0 == 0:
+            an.problem = ("g tends to 0 at infinity (no integrator, a stable plant and b = -h - S G(0) = 0 exactly, "
+                          "G(s) = c (sI - M)^-1 e): no tail bound exists at any precision; set option T_max to search "
+                          "a finite range")
+            an.stalled = True
+        else:
+            an.problem = ("the tail of g (its sign beyond some T) is not certified: g tends to a constant of no "
+                          "certain sign or the slowest mode is too slow; set option T_max to search a finite range")
         return an
     fastest = max([float(abs(m.lam).mid()) for m in sp.modes] + [1.0])
     start = Fraction(1, 2 ** max(1, math.ceil(math.log2(int(fastest) + 1))))

@@ -48,8 +48,11 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
     claims, quantities, notes, extra = [], {}, [], {}
     if an.sp is None or an.problem:
         why = an.problem or "spectrum unavailable"
-        return Attempt([_claim(c, Status.INCONCLUSIVE, why) for c in wanted], quantities, notes=notes,
-                       widths_met=False)
+        claims = [_claim(c, Status.INCONCLUSIVE, why) for c in wanted]
+        if an.stalled:
+            for c in claims:
+                c.precision_cannot_help = why
+        return Attempt(claims, quantities, notes=notes, widths_met=False, stalled=an.stalled)
     sp = an.sp
     T = ball(an.T_search)
     rng = (f"(0, {_fmt(T, 8)}]" + (" and beyond it by the tail bound, i.e. all of (0, oo)" if an.covers_all
