@@ -161,3 +161,52 @@ def _theta_mp(params: dict, lo: float, hi: float):
             else:
                 b = c
         return (a + b) / 2
+
+
+def test_extend_covers_only_certified_pieces():
+    # continuation._extend: the stretch returned is covered by contiguous pieces on which the test held
+    from rigor_gyro.kinds.periodic_orbit.continuation import _extend
+    for direction, start, limit in ((+1, arb("0.01"), arb(1)), (-1, arb("0.9"), arb(0))):
+        calls = []
+
+        def holds(a, b):
+            ok = bool(b < arb("0.3")) if direction > 0 else bool(a > arb("0.6"))
+            calls.append((a, b, ok))
+            return ok
+        x = _extend(holds, arb(start.mid()), limit, direction)
+        good = [(a, b) for a, b, ok in calls if ok]
+        if direction > 0:
+            assert arb("0.15") < x <= arb("0.3")
+            ends = [arb(start.mid())] + [b for _, b in good]
+            assert all(good[i][0] == ends[i] for i in range(len(good))), "pieces not contiguous"
+        else:
+            assert arb("0.6") <= x < arb("0.75")
+            ends = [arb(start.mid())] + [a for a, _ in good]
+            assert all(good[i][1] == ends[i] for i in range(len(good))), "pieces not contiguous"
+        assert ends[-1] == x
+
+
+@pytest.mark.slow
+def test_h_box_genuine_by_extended_monotone_stretches_holds_samples():
+    # H +-2.75 % in one box: orbit_genuine and stable proved (the monotone stretches of beta extended piece by
+    # piece); beta > 0 on (0, theta*) and the largest modulus < 1 at sampled members (floats)
+    import numpy as np
+    from rigor_gyro.core.boxes import Box
+    from rigor_gyro.kinds.periodic_orbit.boxes import evaluate_box
+    approx = pytest.importorskip("rigor_gyro.kinds.periodic_orbit.approx")
+    m = validate(load_scene("roitenberg1947"))
+    box = Box.of({"H": (Fraction(100) * Fraction(3890, 4000), Fraction(100) * Fraction(4110, 4000))})
+    with working_precision(128):
+        out = evaluate_box(m, box, ["orbit_genuine", "stable"])
+    assert out["orbit_genuine"][0] == "proved" and out["stable"][0] == "proved", out
+    base = {k: Fraction(int(getattr(m.params, k).p), int(getattr(m.params, k).q)) for k in PARAMETER_NAMES}
+    for i in range(3):
+        pt = dict(base, H=box.interval("H")[0] + (box.interval("H")[1] - box.interval("H")[0]) * Fraction(i, 2))
+        th = approx.approx_roots_expm_brentq(pt, 0.2, grid=400)
+        th = min(th, key=lambda t: abs(t - 0.138))
+        from scipy.linalg import expm
+        _, _, _, aug = approx.matrices(pt)
+        x0 = approx.approx_x0(pt, th)
+        beta = [(expm(aug * t)[:5, :5] @ x0 + expm(aug * t)[:5, 5])[0] for t in np.linspace(0, th, 60)[1:-1]]
+        assert min(beta) > 0, min(beta)
+        assert max(abs(z) for z in approx.approx_multipliers(pt, th)) < 1

@@ -406,7 +406,12 @@ def _sign_condition(models: _Models, x0n, x0c, Theta: arb) -> tuple[bool, str]:
             break
     if d1 is None or d2 is None:
         return False, "the sign of beta' near the switchings was not certified over the box"
-    lo, hi = d1, (th_lo - d2).lower()
+    # extend both monotone stretches piece by piece towards the middle (beta' > 0 on [0, lo] with beta(0) = 0
+    # gives beta > 0 on (0, lo]; beta' < 0 on [hi, theta*(P)] with beta(theta*) = 0 gives beta > 0 on
+    # [hi, theta*)): near the ends beta is small and its enclosure over the box is not, so bisecting beta
+    # itself there reaches the precision limit
+    lo = _extend(lambda a, b: certainly_positive(enc(a, b, 1)), d1, (th_lo / 2).lower(), +1)
+    hi = _extend(lambda a, b: certainly_negative(enc(a, b, 1)), (th_lo - d2).lower(), (th_lo / 2).upper(), -1)
     pieces = 0
     if certainly_lt(lo, hi):
         stack = [(lo, hi)]
@@ -425,8 +430,34 @@ def _sign_condition(models: _Models, x0n, x0c, Theta: arb) -> tuple[bool, str]:
         middle = f"beta > 0 on [{_fmt(lo, 6)}, {_fmt(hi, 6)}] ({pieces} t pieces)"
     else:
         middle = "the two end intervals cover (0, theta*)"
-    return True, (f"beta' > 0 on [0, {_fmt(d1, 6)}], beta' < 0 on [theta*_lo - {_fmt(d2, 6)}, theta*_hi], "
+    return True, (f"beta' > 0 on [0, {_fmt(lo, 6)}], beta' < 0 on [{_fmt(hi, 6)}, theta*_hi], "
                   f"{middle}, each for every parameter in the box (second-order forms in t and P)")
+
+
+def _extend(holds, start: arb, limit: arb, direction: int, max_pieces: int = 64) -> arb:
+    """The farthest exact point x from ``start`` towards ``limit`` (``direction`` +1: to the right, -1: to the
+    left) such that ``holds(a, b)`` was certified on pieces [a, b] covering [start, x] (or [x, start]): steps
+    double on success and halve on failure, at most ``max_pieces`` tries; ``start`` when none succeeds.
+    Pieces share their exact end points, so they cover the stretch."""
+    if start.rad() != 0:
+        return start
+    x = start
+    h = abs(limit - x) / 8
+    floor = h / 256
+    for _ in range(max_pieces):
+        rest = (limit - x) * direction
+        if not certainly_positive(rest):
+            break
+        h = h.min(rest)
+        y = arb((x + direction * h).mid())
+        a, b = (x, y) if direction > 0 else (y, x)
+        if certainly_lt(a, b) and holds(a, b):
+            x, h = y, 2 * h
+        else:
+            h = h / 2
+            if certainly_lt(h, floor):
+                break
+    return x
 
 
 def _stability(models: _Models, out: OrbitOverBox, th_n: Jet, th_c: Jet, x0n, x0c) -> None:
