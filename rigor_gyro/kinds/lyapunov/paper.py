@@ -168,6 +168,11 @@ def audit(ctx, quantities: dict[str, arb]) -> tuple[list[AuditRow], list[dict[st
     if "R" in paper:
         rows += _region_rows(ctx, str(paper["R"]))
     rows += linear_section_rows(g, ctx.xs, ctx.m.max_pieces)
+    if "A0" in paper:
+        # a silent correction (issue 39): the unit the example prints for A0
+        rows.append(_row("unit of A0", f"A0 = {paper['A0']} g cm s", f"A0 = {paper['A0']} g cm s^2", None,
+                         AuditStatus.MISPRINT, "A0 = A + A1 + A2 is a sum of moments of inertia, like B0 and C0, which "
+                         "the example prints in g cm s^2; its m = a/A0 in s^-2 (a in g cm) needs A0 in g cm s^2"))
     return rows, formula_table(), notes
 
 
@@ -261,7 +266,10 @@ def _region_rows(ctx, printed_R: str) -> list[AuditRow]:
         verdict = certify_vdot_nonpositive(ctx.g, ctx.xs, radius, "radius", ctx.m.max_pieces)
         status = {Status.PROVED: AuditStatus.CONFIRMED, Status.REFUTED: AuditStatus.REFUTED}.get(
             verdict.status, AuditStatus.UNDECIDED)
-        note = ("Vdot <= 0 on it certified (" + verdict.reason.split(": ", 1)[-1][:160] + "); the paper does not "
-                "show it invariant: see invariant_estimate") if status is AuditStatus.CONFIRMED else verdict.reason
-        rows.append(_row(label, f"|x2| <= x2*, x1^2 + x3^2 < R, R = {printed_R}", reading, radius, status, note))
+        note = ("confirmed only as 'Vdot <= 0 there': Vdot <= 0 on it certified (" + verdict.reason.split(": ", 1)[-1][:160]
+                + "); the paper's claim is an attraction region, which needs the region positively invariant as well: "
+                "the paper does not show it (see invariant_estimate and the invariance rows)") \
+            if status is AuditStatus.CONFIRMED else verdict.reason
+        rows.append(_row(label, f"|x2| <= x2*, x1^2 + x3^2 < R, R = {printed_R}",
+                         reading + (": Vdot <= 0 there" if status is AuditStatus.CONFIRMED else ""), radius, status, note))
     return rows
