@@ -60,8 +60,10 @@ fallback of :mod:`.cellwise`). Measured at 128 bits (one box, no paving split, e
 claims proved at +-1 % in each of A, B, H, tau, sigma, n (0.1-1 s user each), and at +-50 % in n (3.2 s),
 +-11 % in sigma (3.6 s), +-5 % in A and B (4.8 s, 4.5 s), +-8.5 % in tau (3.7 s; the cubic's roots by the
 parametric Newton of :func:`rigor_gyro.core.implicit_roots.polynomial_root_over_box` where the family Newton
-fails: it did from +-5 %), +-2.5 % in H (3.9 s); not at sigma +-12 % (no genuine root certified), A, B +-6 %,
-H +-2.75 % and tau +-9 % (the sign of beta' near the switchings not certified over the box). All six at once:
+fails: it did from +-5 %), +-2.75 % in H (6.7 s; the monotone stretches of beta near the switchings extended
+piece by piece, :func:`.continuation._extend`: +-2.5 % before); not at sigma +-12 % (no genuine root
+certified), A, B +-6 %, H +-3 % and tau +-9 % (the sign of beta' near the switchings not certified over the box,
+nor beta > 0 in the middle on the cells). All six at once:
 +-0.1 % both (2.3 s), +-0.25 % orbit_genuine only (8 s), +-0.5 % neither (2 s): over a six-parameter box the
 derivative enclosures of the spectral forms (:mod:`.parametric`) are far wider than the quantities move (at
 +-0.1 %, dJ/dB over the box has radius 154 where it is -3.0 at the centre; on B alone 1.88).
