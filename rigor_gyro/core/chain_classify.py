@@ -47,13 +47,22 @@ def chain_window(printed: str, value: arb, slack: int) -> tuple[Fraction, Fracti
     (None when the ball is not finite)."""
     if not value.is_finite():
         return None
-    lo, hi = _ends(value)
-    h = half_unit(printed)
-    pad = h + 2 * h * slack
-    return lo - pad, hi + pad
+    key = (printed, value.mid().man_exp(), arb(value.rad()).man_exp(), slack)
+    hit = _WINDOWS.get(key)
+    if hit is None:
+        if len(_WINDOWS) > 16384:
+            _WINDOWS.clear()
+        lo, hi = _ends(value)
+        h = half_unit(printed)
+        pad = h + 2 * h * slack
+        hit = _WINDOWS[key] = (lo - pad, hi + pad)
+    return hit
 
 
 _ENDS: dict = {}
+#: chain windows memoised by (print, the ball's exact midpoint and radius, slack): the builder's passes ask
+#: the same windows again
+_WINDOWS: dict = {}
 
 
 def _ends(value: arb) -> tuple[Fraction, Fraction]:
