@@ -186,3 +186,14 @@ def test_rudenko_exact_values_share_one_scale_at_the_nearest_eps():
     assert all(audit_printed(x, s * w.sqrt())[0] is AuditStatus.AGREES for x, w in zip(exact, om))
     assert audit_printed("41.4", s * _omegas(a, b, fmpq(1076, 10000), W)[0].sqrt())[0] is not AuditStatus.AGREES \
         or audit_printed("121.5", s * _omegas(a, b, fmpq(1076, 10000), W)[1].sqrt())[0] is not AuditStatus.AGREES
+
+
+def test_theta_star_is_unexplained_against_the_root_of_12_with_the_printed_inputs(relay):
+    """(12) with the printed a_ij read exactly has a root at 0.13826727 (certified sign change): the printed
+    theta* = 0.13826994 is neither that nor one edit from it."""
+    from rigor_gyro.core.chain_classify import classify_against_chain
+    _, _, chains, fixes = relay
+    ch = chains["theta*"]
+    assert ch.value.contains(arb("0.1382672725")) and ch.value.rad() < arb("1e-11") and "theta*" not in fixes
+    c = classify_against_chain("0.13826994", arb("0.13826742966"), ch)
+    assert c.cls == "unexplained" and "0.1382672724" in c.reading

@@ -28,7 +28,7 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import Any
 
-from flint import acb, arb, arb_mat, fmpq, fmpq_poly
+from flint import acb, arb, arb_mat, ctx, fmpq, fmpq_poly
 
 from ...core.balls import ball, certainly_negative, certainly_positive, exact_endpoints
 from ...core.digit_edits import edits_into
@@ -129,6 +129,38 @@ def _roots_of_printed_cubic(coefs: list[str]):
     return -cplx[0].real, cplx[0].imag, -real[0].real
 
 
+#: the last theta* chain, by its printed inputs and the precision (each of the builder's passes asks it)
+_THETA: dict = {}
+
+
+def _theta_exact_inputs(paper: dict[str, Any], guess: arb) -> arb | None:
+    """An enclosure of a root of (12) near ``guess`` with the printed a_ij and exponents read exactly:
+    bisection of a certified sign change of the determinant (IVT) to width 1e-12; None without one
+    within +-1e-4 of the guess."""
+    from .paper_model import determinant_12
+    a = {(int(k[1]), int(k[2])): ball(v) for k, v in paper.get("a", {}).items()}
+    need = [(1, 6), (1, 7), (4, 7)] + [(G, j) for G in (2, 3, 4) for j in range(1, 7)]
+    if not all(k in a for k in need) or not all(k in paper for k in ("mu1", "omega", "mu2", "inv_sigma")):
+        return None
+    pc = {"a": a, "mu1": ball(paper["mu1"]), "omega": ball(paper["omega"]), "mu2": ball(paper["mu2"])}
+    sig = 1 / ball(paper["inv_sigma"])
+
+    def sgn(x: arb) -> int:
+        d = determinant_12(pc, sig, x)
+        return 1 if certainly_positive(d) else -1 if certainly_negative(d) else 0
+    lo, hi = arb((guess - arb("1e-4")).mid()), arb((guess + arb("1e-4")).mid())
+    sl, sh = sgn(lo), sgn(hi)
+    if sl == 0 or sh == 0 or sl == sh:
+        return None
+    while certainly_positive(hi - lo - arb("1e-12")):
+        m = arb(((lo + hi) / 2).mid())
+        sm = sgn(m)
+        if sm == 0:
+            break
+        lo, hi = (m, hi) if sm == sl else (lo, m)
+    return lo.union(hi)
+
+
 def _quartic_roots(q: list[arb]) -> dict[str, arb] | None:
     """Roots of lambda^4 + q3 lambda^3 + ... + q0 over the coefficient balls: the roots of the midpoint
     polynomial (exact rationals), each inflated by a Rouche radius r with |p_mid| > sum |dq_j| |z|^j on
@@ -203,10 +235,19 @@ def _build(paper: dict[str, Any], P, prints, rels, keep=(), forced: dict | None 
         a[(G, j)] = R.take(f"a{G}{j}", txt, v, "the printed mu1, omega, mu2, 1/sigma in (7)'s eigenvectors",
                            0 if exact else DEFAULT_SLACK, exact=exact) if txt else v
     # theta*: (12) with the printed a_ij read within their rounding does not bound a root (its enclosure
-    # is some 4e4 wide near theta*: a45 = 23299.0 enters with cancellation), so theta* has no chain; the
-    # later stages read the printed theta*
+    # is some 4e4 wide near theta*: a45 = 23299.0 enters with cancellation); with the printed numbers read
+    # exactly it brackets one (a sign change, certified): that is theta*'s chain (a narrower definition,
+    # said in its source); the later stages read the printed theta*
     if not paper.get("theta_star"):
         return R
+    key = (tuple(sorted(paper.get("a", {}).items())), tuple(paper.get(k) for k in ("mu1", "omega", "mu2", "inv_sigma",
+                                                                               "theta_star")), ctx.prec)
+    if key not in _THETA:
+        _THETA.clear()
+        _THETA[key] = _theta_exact_inputs(paper, ball(paper["theta_star"]))
+    th = _THETA[key]
+    R.take("theta*", paper["theta_star"], th, "a root of (12) with the printed a_ij, mu1, omega, mu2, 1/sigma read "
+           "exactly (certified sign change; read within their rounding, (12) bounds no root)")
     theta = rounding_interval(paper["theta_star"])
     e1 = (-mu1 * theta).exp() * (om * theta).sin()
     e2 = (-mu1 * theta).exp() * (om * theta).cos()
