@@ -66,7 +66,10 @@ def test_the_claim_is_opt_in_and_placed_after_largest_sublevel():
     assert "natural_sublevel" not in CLAIMS and "natural_sublevel" in OPT_IN_CLAIMS
     ids = list(ALL_CLAIMS)
     assert ids.index("natural_sublevel") == ids.index("largest_sublevel") + 1
-    assert [c for c in ids if c != "natural_sublevel"] == list(CLAIMS)
+    assert [c for c in ids if c not in OPT_IN_CLAIMS] == list(CLAIMS)
+    # the trajectory claims of issue 40 follow it, in the order attempt emits them
+    assert ids[ids.index("natural_sublevel") + 1:ids.index("natural_sublevel") + 3] == ["region_not_invariant",
+                                                                                      "initial_point"]
 
 
 def test_the_example_is_proved_on_the_natural_range_and_contains_the_independent_value(example):

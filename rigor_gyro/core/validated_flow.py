@@ -52,7 +52,7 @@ from typing import Callable, Sequence
 
 from flint import arb, arb_mat
 
-from .balls import certainly_positive, contains, current_precision, interval
+from .balls import SeriesTruncated, contains, current_precision, interval
 from .taylor_jets import Field, taylor_coefficients
 
 __all__ = ["FlowStep", "Flow", "LohnerSet", "validated_flow", "apriori_enclosure", "dyadic_below", "box_hull",
@@ -268,7 +268,17 @@ def _inverse(Q) -> list[list[arb]] | None:
 
 
 def lohner_step(field: Field, S: LohnerSet, h: Fraction, order: int):
-    """One step of size h (module docstring): (new set, end box, over-step box), or None if not verified."""
+    """One step of size h (module docstring): (new set, end box, over-step box), or None if not verified (also when
+    the field raises on a ball, e.g. python-flint's series division by a series whose leading ball contains 0)."""
+    try:
+        return _lohner_step(field, S, h, order)
+    except SeriesTruncated:
+        raise                       # a cap bug, never a refused step
+    except (ArithmeticError, ValueError):
+        return None
+
+
+def _lohner_step(field: Field, S: LohnerSet, h: Fraction, order: int):
     n = len(S.c)
     X = [b.union(c) for b, c in zip(S.box(), S.c)]
     if not all(x.is_finite() for x in X):
@@ -308,8 +318,13 @@ def _end_direct(tc, topx, h, order):
 
 def propose_step(field: Field, c: Sequence[arb], order: int, tol: float) -> float:
     """A float step proposal from the Taylor coefficients at c: min over k in {n-1, n} of (tol / |x_k|)^(1/k)
-    (the terms' size; no guarantee: the a-priori test decides)."""
-    tc = taylor_coefficients(field, c, order)
+    (the terms' size; no guarantee: the a-priori test decides). NaN when the field raises at c."""
+    try:
+        tc = taylor_coefficients(field, c, order)
+    except SeriesTruncated:
+        raise
+    except (ArithmeticError, ValueError):
+        return math.nan
     best = math.inf
     for k in (order - 1, order):
         if k < 1:

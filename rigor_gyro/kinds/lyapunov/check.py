@@ -48,6 +48,8 @@ from ...core.roots import RootStatus, enclose_f_df, newton_root
 from .claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
 from .equilibria import Equilibrium, classify as classify_equilibrium, pi_text
+from .trajectory_claims import check_initial_point, check_region_exit
+from .trajectories import equilibrium_other_than_origin
 from .natural_domain import band_function, exact_range, natural_lower_bound, positivity_functions, with_range
 from .model import (DIRECT_DOMAIN, c_star_lower, c_star_upper, closed_form_constants, cylinder_lower_bound,
                     damping_margin, direct_margin, faces_minimiser_inside, mean_value_enclosure, psi_min_functions, slice_extent,
@@ -674,6 +676,23 @@ def check(model, data: dict) -> list[CheckResult]:
                 say(cid, certainly_lt(A, 0), "A(0, t) < 0 at the stored t re-evaluated (Vdot > 0 arbitrarily near 0)")
         elif cid == "natural_sublevel":
             say(cid, st == "proved" and nat_ok, nat_msg)
+        elif cid == "region_not_invariant":
+            ok, msg = check_region_exit(g, R, xs, W.get("region_not_invariant")) if st == "proved" else \
+                (False, "only a proved region_not_invariant is checked")
+            say(cid, ok, msg)
+        elif cid == "initial_point":
+            if st == "proved":
+                level, reach = _natural_level(nat_ok, claims, W)
+                ok, msg = check_initial_point(g, model.initial_point, level, reach, W.get("initial_point"))
+                say(cid, ok, msg)
+            else:
+                eq = (cl_.get("counterexample") or {}).get("equilibrium")
+                pt = model.initial_point
+                r = None if pt is None else (pt[1].rational if pt[1].pi_power == 1 else
+                                             (Fraction(0) if pt[1].rational == 0 else None))
+                say(cid, pt is not None and eq == [p.text for p in pt] and
+                    equilibrium_other_than_origin(g, pt[0].rational, r, pt[2].rational),
+                    "the initial point is exactly an equilibrium other than 0, re-derived")
         elif cid == "v_positive":
             if st == "proved":
                 say(cid, v_ok, "S, f/x, psi > 0 on every stored piece of [0, x2*], re-evaluated")
@@ -776,6 +795,18 @@ def _check_sublevel(g, xs: arb, w: dict, details: dict, q: dict, verified: set, 
         return False, "the set {Vdot >= 0} is said to bind, but its level is not below the faces'"
     return True, (f"c_max bounds re-derived: {len(boxes)} (x2, t) boxes tile the domain, the lower bound re-evaluated "
                   "on each; faces in closed form; the point of {Vdot > 0} re-evaluated")
+
+
+def _natural_level(nat_ok: bool, claims: dict, W: dict):
+    """(natural_c_max_lower, reach) as balls of the exact stated decimals, when the natural_sublevel check passed."""
+    if not nat_ok:
+        return None, None
+    try:
+        lo = number(claims["natural_sublevel"]["details"]["c_max_lower"])
+        reach = number(W["natural_sublevel"]["reach"])
+    except (KeyError, TypeError, ValueError, ZeroDivisionError):
+        return None, None
+    return arb(fmpq_of(lo)), arb(fmpq_of(reach))
 
 
 def _check_natural(g, w: dict, details: dict, q: dict, verified: set, cert_prec: int) -> tuple[bool, str]:

@@ -70,6 +70,8 @@ from .equilibria import equilibria
 from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
 from .natural_domain import NATURAL_GAP, natural_sublevel
+from .trajectory_claims import (TRAJECTORY_CLAIMS, TRAJECTORY_OPTIONS, initial_point_claim, parse_initial_point,
+                                region_not_invariant_claim)
 from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_psi_test, certify_vdot_nonpositive,
                     closed_form_constants, cylinder_lower_bound, damping_margin, direct_margin, faces_minimiser_inside, hypot_ball,
                     mean_value_enclosure, rational_points_inside, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
@@ -92,7 +94,7 @@ DIRECT_MU_GAP = "5e-7"
 DIRECT_MU_PIECES = 400
 #: the box budget of the direct test at the searched mu_direct (past it, the scene's mu is tried)
 DIRECT_MU_BOXES = 2000
-OPTIONS = {"rel_width": "1e-15", "R": "", "max_pieces": "20000", "natural_sublevel": ""}
+OPTIONS = {"rel_width": "1e-15", "R": "", "max_pieces": "20000", "natural_sublevel": "", **TRAJECTORY_OPTIONS}
 MAX_PIECES_LIMIT = 1_000_000
 
 #: the numbers a report's summary opens with (quantity name -> what it is), in this order
@@ -170,6 +172,9 @@ OPT_IN_CLAIMS = {
                         "natural_sublevel (default 1e-6).",
 }
 
+#: the trajectory claims of issue 40 (validated flow of system (2); trajectory_claims.py)
+OPT_IN_CLAIMS.update(TRAJECTORY_CLAIMS)
+
 #: every claim in report order, the opt-in ones at their place (after largest_sublevel): the order attempt emits
 #: them in, so a scene whose claims_only names an opt-in claim gets its claims in this order
 ALL_CLAIMS = {}
@@ -190,6 +195,9 @@ class LyapunovModel:
     paper: dict
     #: the relative gap the natural_sublevel claim aims at ("" = not asked by option)
     natural_gap: str = ""
+    #: option initial_point (x1, x2, x3) exactly, or None; option initial_point_time (model time allowed)
+    initial_point: tuple | None = None
+    initial_time: Fraction = Fraction(1)
 
 
 def _err(name, text, need):
@@ -243,7 +251,11 @@ def validate(scene) -> LyapunovModel:
     if opts["natural_sublevel"]:
         option_number(opts["natural_sublevel"], "natural_sublevel", above="0", at_most="1/2")
         nat = str(opts["natural_sublevel"])
-    return LyapunovModel(g, v, dict(scene.parameters), rel, R, pieces, dict(scene.paper), nat)
+    point = parse_initial_point(opts["initial_point"]) if opts["initial_point"] else None
+    t_ip = option_number(opts["initial_point_time"], "initial_point_time", above="0", at_most="1000")
+    if not t_ip.is_rational:
+        raise ParameterError(f"option 'initial_point_time' = {opts['initial_point_time']!r}: need a rational number")
+    return LyapunovModel(g, v, dict(scene.parameters), rel, R, pieces, dict(scene.paper), nat, point, t_ip.rational)
 
 
 # ------------------------------------------------------------------------------------ helpers
@@ -564,6 +576,8 @@ def _natural_sublevel(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     lo, hi = _q(_fmpq(Fraction(r.c_lower))), _q(_fmpq(Fraction(r.c_upper)))
     X = r.X
     quantities["natural_c_max_lower"], quantities["natural_c_max_upper"] = lo, hi
+    # the certified level and reach the trajectory claims test against (trajectory_claims.initial_point_claim)
+    ctx.natural = (lo, None if r.reach is None else _fmpq(r.reach))
     quantities["natural_X"] = X.ball()
     ctx.witnesses["natural_sublevel"] = {
         "X": X.text, "band_lo": str(r.band_lo), "positivity": r.positivity, "band": r.band,
@@ -1200,6 +1214,16 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
     if "natural_sublevel" in wanted:
         with phase("natural_sublevel"):
             claims.append(_natural_sublevel(ctx, quantities))
+    if "region_not_invariant" in wanted:
+        with phase("region_not_invariant"):
+            Rr = R if R is not None else ctx.R_used()[0]
+            claims.append(region_not_invariant_claim(ctx.g, Rr, ctx.xs, quantities.get("c_star"), ctx.witnesses))
+    if "initial_point" in wanted:
+        with phase("initial_point"):
+            nat = getattr(ctx, "natural", None)
+            level, reach = (nat[0], None if nat[1] is None else arb(nat[1])) if nat else (None, None)
+            claims.append(initial_point_claim(ctx.g, model.initial_point, model.initial_time, level, reach,
+                                              ctx.witnesses))
     if "equilibria" in wanted:
         with phase("equilibria"):
             inv = next((c for c in claims if c.id == "invariant_estimate" and c.status is Status.PROVED), None)
