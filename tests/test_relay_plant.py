@@ -54,6 +54,20 @@ CASES = {
 }
 
 
+def _lags(n: int):
+    """n first-order lags in series with time constants 1, 1/2, ..., 1/n (a 10-state plant for n = 10)."""
+    M = [[0] * n for _ in range(n)]
+    for i in range(n):
+        M[i][i] = -(i + 1)
+        if i + 1 < n:
+            M[i][i + 1] = i + 1
+    return tuple(M), tuple([0] * (n - 1) + [n]), tuple([1] + [0] * (n - 1)), "-1", "0"
+
+
+#: dimension 10: two genuine orbits, the checker's monotone pieces next to a root
+CASES["ten_lags"] = _lags(10)
+
+
 def _model(name):
     M, e, c, S, h = CASES[name]
     return validate(_scene(M, e, c, S, h))

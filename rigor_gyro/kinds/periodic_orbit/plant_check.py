@@ -14,9 +14,9 @@ exponential. This checker takes another road to the same numbers, at twice the c
 * (0, theta_min] root-free by the exact near-0 bound (rational arithmetic, :func:`.plant_orbit.near_zero_bound`)
   or, with h = 0, by the sign of g's leading Taylor coefficient over [0, theta_min] from this diagonalisation;
 * the stored pieces tile [theta_min, T]; each "empty" piece has no root of g (exclusion by a Taylor-model
-  enclosure, or interval Newton; bisected up to :data:`SPLIT_DEPTH` times where a piece is too wide for
-  this g, which has the poles G does not), each "unique" piece exactly one (interval Newton; or split into a
-  unique part and empty parts);
+  enclosure, interval Newton, or strict monotonicity with one sign at both ends; bisected up to
+  :data:`SPLIT_DEPTH` times), each "unique" piece exactly one (interval Newton; or split into a unique part
+  and empty parts);
 * beyond T (when all of (0, oo) is claimed): the tail bound recomputed from this diagonalisation;
 * per root its classification (witness t; or d1, right_start and each middle piece, re-evaluated);
 * the multipliers of each genuine orbit by van der Hoeven-Mourrain (Rump if that fails), stability
@@ -220,9 +220,29 @@ def _newton(G: _G, X: arb) -> tuple[str, arb | None]:
     return "unknown", None
 
 
+def _sign(x: arb) -> int:
+    return 1 if certainly_positive(x) else -1 if certainly_negative(x) else 0
+
+
+def _monotone_root_free(G: _G, lo: arb, hi: arb) -> bool:
+    """No root of g on [lo, hi] because g is strictly monotone there with one strict sign at both ends:
+    g' of one strict sign on the piece, or g'' of one strict sign on it and g' of one strict sign at both
+    ends (then g' cannot vanish between them). Decides the pieces the prover closed next to a root, where
+    g is too small at the near end for an exclusion or a Newton step."""
+    a, b = G.coeffs(lo, 2), G.coeffs(hi, 2)
+    s0 = _sign(a[0])
+    if s0 == 0 or _sign(b[0]) != s0:
+        return False
+    d1, d2 = taylor_enclosure(G.coeffs, interval(lo, hi), TAYLOR_ORDER, (1, 2))
+    if _sign(d1) != 0:
+        return True
+    s1 = _sign(a[1])
+    return _sign(d2) != 0 and s1 != 0 and _sign(b[1]) == s1
+
+
 def _empty(G: _G, lo: arb, hi: arb, depth: int = 0) -> bool:
     st, _ = _newton(G, interval(lo, hi))
-    if st == "empty":
+    if st == "empty" or _monotone_root_free(G, lo, hi):
         return True
     if depth >= SPLIT_DEPTH:
         return False
