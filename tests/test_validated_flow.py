@@ -8,7 +8,7 @@ from fractions import Fraction
 
 import mpmath
 import pytest
-from flint import arb
+from flint import arb, fmpq
 
 from rigor_gyro.core.balls import exact_endpoints, working_precision
 from rigor_gyro.core.taylor_jets import Grad, taylor_coefficients
@@ -163,3 +163,29 @@ def test_dyadic_steps_are_exact_and_below_the_proposal():
         q = dyadic_below(x)
         assert 0 < q <= Fraction(x) and q.denominator & (q.denominator - 1) == 0
         assert q > Fraction(x) * Fraction(62, 64)
+
+
+def test_the_remainder_term_is_in_every_step_end():
+    """x' = x from 1 at order 2 over one step of 1/8: the Taylor polynomial 1 + h + h^2/2 misses e^h by 3e-4; only
+    the Lagrange remainder (coefficient 3 over the a-priori enclosure) brings e^(1/8) into the enclosure."""
+    with working_precision(64):
+        fl = validated_flow(lambda x: [x[0]], [arb(1)], Fraction(1, 8), order=2, steps=[Fraction(1, 8)])
+        assert fl.complete
+        e = fl.steps[0].end[0]
+        assert e.contains(arb(fmpq(1, 8)).exp())
+        assert not e.contains(1 + arb(fmpq(1, 8)) + arb(fmpq(1, 128)))   # the polynomial alone is not the value
+
+
+def test_a_box_image_contains_its_corners_under_a_nonlinear_flow():
+    """x' = x^2 from [0.4, 0.6] over t in [0, 1/2] (x(t) = x0 / (1 - x0 t)): the Jacobian varies by 30 % over the
+    box, so the mean-value form needs its correction term (J B - mid(J B)) r0; the image of every corner and of
+    the centre is enclosed at every step end."""
+    box = [arb(fmpq(1, 2)) + arb(0, fmpq(1, 10))]
+    with working_precision(64):
+        fl = validated_flow(lambda x: [x[0] * x[0]], box, Fraction(1, 2), order=8, steps=[Fraction(1, 2)])
+        assert fl.complete
+        for x0 in (Fraction(2, 5), Fraction(1, 2), Fraction(3, 5)):
+            for st in fl.steps:
+                t = st.t0 + st.h
+                exact = x0 / (1 - x0 * t)
+                assert st.end[0].contains(arb(fmpq(exact.numerator, exact.denominator))), (x0, st.end)
