@@ -244,7 +244,7 @@ def _structure(data: Any) -> None:
 def check_certificate(data: Any, file: str = "<data>", samples: int | None = None, executor=None) -> CheckReport:
     """Check a certificate given as parsed JSON; see the module docstring (``samples``: see :func:`check_file`)."""
     from .core.balls import MAX_PREC, working_precision
-    from .kinds import checker, claim_statements, kind_module
+    from .kinds import checker, claim_statements, kind_module, scene_claims
     from .prover import requested_claims
     from .scene import Scene
 
@@ -300,7 +300,7 @@ def check_certificate(data: Any, file: str = "<data>", samples: int | None = Non
         scene = Scene.from_header(sc)
         module = kind_module(scene.kind)
         model = module.validate(scene)
-        wanted = requested_claims(scene, module.CLAIMS, getattr(module, "ALL_CLAIMS", None))
+        wanted = requested_claims(scene, *scene_claims(module, scene))
     except (RigorGyroError, TypeError, ValueError) as e:
         add(CheckResult("scene", False, f"the certificate's scene is not valid: {e}"))
         report.seconds = time.perf_counter() - t0

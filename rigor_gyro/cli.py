@@ -286,7 +286,7 @@ def _check_out(out: str) -> str | None:
 
 
 def _cmd_prove(args) -> int:
-    from .kinds import kind_module
+    from .kinds import kind_module, scene_claims
     from .prover import requested_claims
     from .report import output_paths
     from .margins.paving import box_scene, has_tolerances
@@ -313,7 +313,7 @@ def _cmd_prove(args) -> int:
             else:
                 module = kind_module(scene.kind)
                 module.validate(scene)
-                requested_claims(scene, module.CLAIMS, getattr(module, "ALL_CLAIMS", None))
+                requested_claims(scene, *scene_claims(module, scene))
         except RigorGyroError as e:
             _say(_input_error(ref, e), err=True)
             codes.append(EXIT_BAD_INPUT)

@@ -31,7 +31,7 @@ from .core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, Escalation, check_precisi
 from .core.deadline import TimeLimitReached, check_time_limit, time_limit as _time_limit
 from .core.errors import ParameterError, SceneError
 from .core.outcome import AuditStatus, Claim, Status
-from .kinds import Attempt, Phases, claim_statements, kind_module
+from .kinds import Attempt, Phases, claim_statements, kind_module, scene_claims
 from .scene import Scene
 
 __all__ = ["prove_scene", "requested_claims"]
@@ -173,7 +173,7 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
         raise ParameterError(str(e)) from None
     module = kind_module(scene.kind)
     model = module.validate(scene)
-    wanted = requested_claims(scene, module.CLAIMS, getattr(module, "ALL_CLAIMS", None))
+    wanted = requested_claims(scene, *scene_claims(module, scene))
     history: list[tuple[int, Attempt]] = []
     t0 = time.perf_counter()
 

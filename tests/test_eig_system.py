@@ -285,9 +285,12 @@ def test_bad_models_exit_2_naming_the_entry(tmp_path, capsys, kw, match):
     assert re.search(match, err), err
 
 
-def test_a_system_scene_names_its_claims_and_a_paper_scene_has_no_system_claims():
-    with pytest.raises(ParameterError, match=r"a \[system\] scene names its claims"):
-        validate(dataclasses.replace(system(GOOD_M, GOOD_K), claims_only=None))
+def test_a_system_scene_gets_its_own_claims_by_default_and_a_paper_scene_has_no_system_claims():
+    from rigor_gyro.kinds import kind_module, scene_claims
+    from rigor_gyro.prover import requested_claims
+    bare = dataclasses.replace(system(GOOD_M, GOOD_K), claims_only=None)
+    validate(bare)
+    assert requested_claims(bare, *scene_claims(kind_module("eigenfrequencies"), bare)) == ["roots", "stability"]
     with pytest.raises(ParameterError, match=r"need a \[system\] table"):
         validate(dataclasses.replace(load_scene("rudenko1976"), claims_only=["roots", "stability"]))
     with pytest.raises(ParameterError, match=r"takes no \[paper\] table"):

@@ -60,3 +60,21 @@ def test_a_model_table_travels_to_the_workers_with_the_options():
     assert s.model == model and s.options == {"rel_width": "1e-9"} and s.claims_only == ["stable"]
     plain = settings_json({"rel_width": "1e-9"}, {})
     assert MODEL_KEY not in json.loads(plain) and task_scene("p", "lyapunov", "", {}, plain).model == {}
+
+
+def test_a_user_model_with_a_tolerance_is_paved_and_checked(tmp_path):
+    """A [system] scene with a tolerance goes through the margins layer with its own model (not the paper's
+    parameterisation) and its own default claims; the checker re-evaluates it the same way."""
+    import re
+    from importlib import resources
+
+    from rigor_gyro.cli import main
+    text = (resources.files("rigor_gyro") / "scenes" / "rudenko1976_system.toml").read_text()
+    text = text.replace('eps = "0.1076"', 'eps = "0.1076 +- 0.001"').replace('name = "rudenko1976_system"',
+                                                                          'name = "system_box"')
+    text = re.sub(r'\[claims\]\nonly = \[[^\]]*\]\n', "", text)
+    (tmp_path / "s.toml").write_text(text)
+    assert main(["prove", str(tmp_path / "s.toml"), "-o", str(tmp_path / "o"), "-q", "-j", "1"]) == 0
+    md = (tmp_path / "o" / "system_box.md").read_text()
+    assert "| roots | **proved** |" in md
+    assert main(["check", "-q", str(tmp_path / "o" / "system_box.json")]) == 0

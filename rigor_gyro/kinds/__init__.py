@@ -34,7 +34,7 @@ from ..core.errors import ParameterError, SceneError
 from ..core.outcome import AuditRow, AuditStatus, Claim, Status
 
 __all__ = ["KINDS", "PLANNED_KINDS", "Attempt", "Phases", "kind_module", "claim_statements", "optional_module", "plots_hook", "checker", "require_box_claims",
-           "box_outcomes"]
+           "box_outcomes", "scene_claims", "box_claims"]
 
 #: kind -> package implementing it (imported only when a scene of that kind is proved)
 KINDS = {
@@ -104,6 +104,23 @@ def claim_statements(module: ModuleType, model: Any) -> dict[str, str]:
     if statements is not None:
         return statements(model)
     return {**module.CLAIMS, **getattr(module, "OPT_IN_CLAIMS", {})}
+
+
+def scene_claims(module: ModuleType, scene: Any) -> tuple[dict[str, str], dict[str, str]]:
+    """(the claims a scene gets by default, every claim it may name): the kind's ``available_claims(scene)``
+    where the scene's own model changes them (a ``[system]`` scene), else (``CLAIMS``, ``ALL_CLAIMS`` or
+    ``CLAIMS``)."""
+    hook = getattr(module, "available_claims", None)
+    if hook is not None:
+        return hook(scene)
+    return dict(module.CLAIMS), dict(getattr(module, "ALL_CLAIMS", None) or module.CLAIMS)
+
+
+def box_claims(boxes: ModuleType, model: Any) -> dict[str, str]:
+    """The claims a kind's ``boxes`` module decides over a box for this model: its ``box_claims(model)``
+    where the model class changes them, else its ``BOX_CLAIMS``."""
+    hook = getattr(boxes, "box_claims", None)
+    return dict(hook(model)) if hook is not None else dict(boxes.BOX_CLAIMS)
 
 
 def require_box_claims(claims: list[str], box_claims) -> None:

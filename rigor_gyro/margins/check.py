@@ -56,7 +56,7 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES, executor=No
     ``samples``: decided sub-boxes per claim cross-checked by the point prover (0: none); ``executor``
     (:class:`.executors.Executor`): where the decided sub-boxes are re-evaluated (default: here)."""
     from .order import check_priority
-    from .paving import boxes_module, box_scene, evaluate_task, point_task
+    from .paving import box_scene, evaluate_task, point_task
     from .report import claim_numbers
     out: list = []
     add = out.append
@@ -93,7 +93,7 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES, executor=No
     add(CheckResult("claims", ids == bs.claims and skipped == bs.skipped,
                     f"claims {ids}" + ("" if skipped == bs.skipped else
                                        f"; the claims not decided over boxes are {bs.skipped}, not {skipped}")))
-    statements = boxes_module(bs.scene.kind).BOX_CLAIMS
+    statements = bs.box_statements
     pj = json.dumps(bs.points, sort_keys=True)
     oj = settings_json(bs.options, bs.scene.model)
     mj = json.dumps({k: fraction_text(q) for k, q in bs.box.midpoint().items()}, sort_keys=True)

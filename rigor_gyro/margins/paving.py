@@ -53,7 +53,7 @@ from ..core.boxes import Box, exact_decimal, fraction_text, split_parameters
 from ..core.deadline import Budget, check_time_limit
 from ..core.errors import ParameterError, SceneError
 from ..core.exact import option_count, option_number
-from ..kinds import KINDS, kind_module, optional_module
+from ..kinds import KINDS, box_claims, kind_module, optional_module, scene_claims
 from ..scene import Scene
 from .executors import Executor
 from .models import scene_model as _model, settings_json
@@ -109,6 +109,8 @@ class BoxScene:
     search_samples: int = 0
     monte_carlo: int = 0
     monte_carlo_seed: int = 0
+    #: {claim: statement} of the claims the kind decides over a box for this scene's model
+    box_statements: dict[str, str] = field(default_factory=dict)
 
     def searches(self) -> bool:
         return bool(self.search_points or self.monte_carlo)
@@ -197,21 +199,22 @@ def box_scene(scene: Scene) -> BoxScene:
         raise _bad_end(module, mid, box, e, scene.parameters) from None
     with working_precision(prec):
         boxes.validate_box(model, box)
-    wanted = requested_claims(scene, module.CLAIMS, getattr(module, "ALL_CLAIMS", None))
+    wanted = requested_claims(scene, *scene_claims(module, scene))
+    decidable = box_claims(boxes, model)
     if scene.claims_only is not None:
-        bad = [c for c in wanted if c not in boxes.BOX_CLAIMS]
+        bad = [c for c in wanted if c not in decidable]
         if bad:
             raise SceneError(f"claim {bad[0]!r} cannot be decided over a box; kind {scene.kind!r} decides "
-                             f"{list(boxes.BOX_CLAIMS)} over boxes")
+                             f"{list(decidable)} over boxes")
         claims, skipped = wanted, []
     else:
-        claims = [c for c in wanted if c in boxes.BOX_CLAIMS]
-        skipped = [c for c in wanted if c not in boxes.BOX_CLAIMS]
+        claims = [c for c in wanted if c in decidable]
+        skipped = [c for c in wanted if c not in decidable]
     frozen = tuple(n for n in box.names if n in getattr(boxes, "UNSPLIT_PARAMETERS", ()))
     if len(frozen) == len(box.names):
         frozen = frozen[1:]           # something must be splittable; the first frozen edge is
     bs = BoxScene(scene, points, box, kind_opts, claims, resolution, max_boxes, prec, max_points, skipped,
-                  frozen, range_boxes, range_gap)
+                  frozen, range_boxes, range_gap, box_statements=decidable)
     bs.search_points, bs.search_samples, bs.monte_carlo, bs.monte_carlo_seed = search
     return bs
 
@@ -301,7 +304,7 @@ class PaveState:
 
 def start_state(bs: BoxScene) -> PaveState:
     """A paving about to start: the whole box queued for every claim."""
-    statements = boxes_module(bs.scene.kind).BOX_CLAIMS
+    statements = bs.box_statements
     result = {c: ClaimPaving(c, "For every parameter value in the box: " + statements[c]) for c in bs.claims}
     return PaveState(result, Frontier(bs.priority, [Group((bs.box,), tuple(bs.claims))]), created=1)
 

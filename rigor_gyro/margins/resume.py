@@ -34,7 +34,8 @@ from ..core.boxes import Box, fraction_text
 from ..core.errors import ParameterError, RigorGyroError
 from ..scene import Scene
 from .order import Frontier, Group, check_priority
-from .paving import SCHEMA, BoxScene, ClaimPaving, PaveState, box_scene, boxes_module, evaluate_task
+from .models import settings_json
+from .paving import SCHEMA, BoxScene, ClaimPaving, PaveState, box_scene, evaluate_task
 
 __all__ = ["verify_paving", "resume_state"]
 
@@ -93,10 +94,10 @@ def resume_state(data: Any, executor=None, refine: str | None = None, priority: 
     first = {}
     if evaluated_whole and any(pend.values()):
         first = evaluate_task(bs.scene.kind, json.dumps(bs.points, sort_keys=True),
-                              json.dumps(bs.options, sort_keys=True),
+                              settings_json(bs.options, bs.scene.model),
                               json.dumps({k: fraction_text(q) for k, q in whole.midpoint().items()}, sort_keys=True),
                               json.dumps(whole.to_json()), tuple(bs.claims), bs.prec)
-    statements = boxes_module(bs.scene.kind).BOX_CLAIMS
+    statements = bs.box_statements
     result: dict[str, ClaimPaving] = {}
     reopen: dict[tuple, list[str]] = {}         # undecided leaves split again by --refine: their claims
     boxes_of: dict[tuple, Box] = {}

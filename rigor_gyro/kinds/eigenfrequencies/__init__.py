@@ -9,6 +9,8 @@ gimbal (Rudenko 1976, seed 002).
   written in the scene's ``[system]`` table (issue 42), its eigenfrequencies, stability and brackets;
 * :mod:`.approx`: numpy/mpmath cross-checks (never a verdict).
 """
-from .claims import ALL_CLAIMS, CLAIMS, HEADLINE, CLAIMS_INDEPENDENT_OF, PARAMETERS, attempt, statements, validate
+from .claims import (ALL_CLAIMS, CLAIMS, HEADLINE, CLAIMS_INDEPENDENT_OF, PARAMETERS, attempt, available_claims,
+                     statements, validate)
 
-__all__ = ["CLAIMS", "ALL_CLAIMS", "HEADLINE", "CLAIMS_INDEPENDENT_OF", "PARAMETERS", "validate", "attempt", "statements"]
+__all__ = ["CLAIMS", "ALL_CLAIMS", "HEADLINE", "CLAIMS_INDEPENDENT_OF", "PARAMETERS", "validate", "attempt", "statements",
+           "available_claims"]

@@ -34,6 +34,7 @@ from ...core.centred_forms import enclose, refined_extreme
 from ...core.dual_balls import constant
 from .boxes import box_roots
 from .slack_forms import GapSet
+from .system_model import SystemModel
 
 __all__ = ["BOX_QUANTITIES", "quantity_names", "quantities_box"]
 
@@ -48,7 +49,10 @@ BOX_QUANTITIES = {
 
 
 def quantity_names(model) -> list[str]:
-    """The quantities this scene has: the frequencies in Hz only when it gives ``hz_scale``."""
+    """The quantities this scene has: the frequencies in Hz only when it gives ``hz_scale``; none yet for a
+    ``[system]`` model (its ranges over a box are not built: its claims are still decided over boxes)."""
+    if isinstance(model, SystemModel):
+        return []
     return [k for k in BOX_QUANTITIES if model.hz_scale is not None or not k.startswith("freq_hz_")]
 
 

@@ -83,8 +83,8 @@ ALL_CLAIMS = {**CLAIMS, **SYSTEM_ONLY_CLAIMS}
 def available_claims(scene) -> tuple[dict[str, str], dict[str, str]]:
     """(the claims a scene gets by default, every claim it may name) for this scene: for a ``[system]`` scene
     :data:`SYSTEM_CLAIMS` (``brackets`` only when it gives brackets) and SYSTEM_CLAIMS; otherwise
-    (:data:`CLAIMS`, :data:`ALL_CLAIMS`). A hook for the prover and the checker (not wired yet: until it is, a
-    ``[system]`` scene names its claims in ``[claims] only``)."""
+    (:data:`CLAIMS`, :data:`ALL_CLAIMS`). The prover, the checker and the margins read it through
+    :func:`rigor_gyro.kinds.scene_claims`."""
     if scene.model:
         default = {k: v for k, v in SYSTEM_CLAIMS.items() if k != "brackets" or scene.model.get("brackets")}
         return default, dict(SYSTEM_CLAIMS)
@@ -118,13 +118,10 @@ class RudenkoModel:
 
 def validate(scene) -> RudenkoModel | SystemModel:
     """Check names and the domain b > 1, a > b, eps > 0, Omega2 > 0 (and hz_scale > 0); a scene with a
-    ``[system]`` table is validated by :func:`.system_model.validate_system` instead (it must name its claims
-    among :data:`SYSTEM_CLAIMS` in ``[claims] only``)."""
+    ``[system]`` table is validated by :func:`.system_model.validate_system` instead (its claims: those it names
+    among :data:`SYSTEM_CLAIMS`, by default :func:`available_claims`)."""
     if scene.model:
-        only = scene.claims_only
-        if only is None:
-            raise ParameterError(f"a [system] scene names its claims: add [claims] only = {list(SYSTEM_CLAIMS)} "
-                                 "(or a part of it)")
+        only = scene.claims_only if scene.claims_only is not None else list(available_claims(scene)[0])
         other = [c for c in only if c not in SYSTEM_CLAIMS]
         if other:
             raise ParameterError(f"claim(s) {other} belong to the paper's parameterisation (Rudenko 1976), not to a "
