@@ -962,6 +962,9 @@ MUTANTS = [
      '            steps.append(("tail bound beyond T", d.tail_ok(T)))',
      '            steps.append(("tail bound beyond T", True))',
      "the plant checker confirms (T, oo) root-free without the tail bound"),
+    ("plant_check_monotone_one_end", "rigor_gyro/kinds/periodic_orbit/plant_check.py",
+     "    if s0 == 0 or _sign(b[0]) != s0:", "    if s0 == 0:",
+     "the plant checker calls a monotone piece root-free without g's sign at its far end"),
 ]
 
 
