@@ -8,9 +8,9 @@ real roots of the exact polynomial Im(N_c(i w) conj p(i w)) (squarefree part, re
 :func:`rigor_gyro.core.polyroots.isolate_polynomial`), so the difference between the estimate and the
 certified orbit (claims) is itself enclosed.
 
-Guarantee: each returned pair of balls contains the estimate's w and A; every estimate with w > 0 and
-S Re G(i w) certainly > 0 is returned (a root with S Re G of no certain sign is skipped, said in
-``skipped``). Precision: the current one. Only for h = 0 (the hysteresis estimate involves pi inside the
+Guarantee: each returned triple of balls contains the estimate's w, A and period 2 pi / w; every root
+w > 0 with S Re G(i w) certainly > 0 is returned (a root where that sign is not certain at this precision
+is left out). Precision: the current one. Only for h = 0 (the hysteresis estimate involves pi inside the
 balance equation: not provided). Fails when: the roots are not isolated: an empty list and the reason.
 """
 from __future__ import annotations

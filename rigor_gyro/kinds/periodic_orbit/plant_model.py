@@ -135,10 +135,10 @@ def numerators(M: fmpq_mat, e: list, p: fmpq_poly) -> list[fmpq_poly]:
 
 
 def _imaginary_axis_roots(p: fmpq_poly) -> bool:
-    """Exactly: p(i w) = 0 for some real w != 0. With p(i w) = A(w) + i B(w) (A even, B odd, real
-    rational coefficients), such a w is a common real root of A and B, i.e. a nonzero real root of
-    gcd(A, B); that gcd's real roots are counted exactly (Sturm-free: its squarefree part's sign
-    changes are not needed, we ask for any real root via its degree and an exact real-root count)."""
+    """Whether p(i w) = 0 for some real w != 0. With p(i w) = A(w) + i B(w) (A even, B odd, rational
+    coefficients), such a w is a common real root of A and B, i.e. a nonzero real root of gcd(A, B) (exact);
+    the real roots of that gcd's squarefree part are isolated (:func:`~rigor_gyro.core.polyroots.isolate_polynomial`,
+    real only when certified). True also when the isolation fails (conservative: the plant is refused)."""
     deg = p.degree()
     A = [fmpq(0)] * (deg + 1)
     B = [fmpq(0)] * (deg + 1)
