@@ -58,7 +58,7 @@ __all__ = ["CertificateError", "CheckResult", "CheckReport", "check_certificate"
 
 #: the schema of each output kind, by the ``schema`` field of the file
 SCHEMA_FILES = {SCHEMA: "certificate-2", "rigor-gyro/paving/1": "paving-1", "rigor-gyro/threshold/1": "threshold-1",
-                "rigor-gyro/scan/1": "scan-1"}
+                "rigor-gyro/scan/1": "scan-1", "rigor-gyro/threshold-curve/1": "threshold-curve-1"}
 _SCHEMAS: dict[str, dict] = {}
 
 
@@ -250,7 +250,7 @@ def check_certificate(data: Any, file: str = "<data>", samples: int | None = Non
 
     t0 = time.perf_counter()
     kind = data.get("schema") if isinstance(data, dict) else None
-    if kind in ("rigor-gyro/paving/1", "rigor-gyro/threshold/1", "rigor-gyro/scan/1"):
+    if kind in ("rigor-gyro/paving/1", "rigor-gyro/threshold/1", "rigor-gyro/scan/1", "rigor-gyro/threshold-curve/1"):
         report = CheckReport(file)
         errors = _conformance(data, SCHEMA_FILES[kind])
         schema = CheckResult("schema", not errors, f"conforms to {SCHEMA_FILES[kind]}.schema.json" if not errors
@@ -265,6 +265,8 @@ def check_certificate(data: Any, file: str = "<data>", samples: int | None = Non
                     from .margins.check import check_paving as check_kind
                 elif kind == "rigor-gyro/threshold/1":
                     from .margins.threshold import check_threshold as check_kind
+                elif kind == "rigor-gyro/threshold-curve/1":
+                    from .margins.threshold_curve import check_curve as check_kind
                 else:
                     from .margins.scan import check_scan as check_kind
                 extra = {} if kind != "rigor-gyro/paving/1" else {

@@ -172,6 +172,14 @@ def _parser() -> argparse.ArgumentParser:
                          "a map of point proofs (exit 0 all decided, 3 some inconclusive); writes "
                          "scan_<scene>_<param>.json/.md with --out")
     mg.add_argument("--log", action="store_true", help="with --scan: points evenly spaced in log scale")
+    mg.add_argument("--along", default=None, metavar="PARAM2",
+                    help="a threshold curve: bracket the threshold in --param for every value of PARAM2 from --from to "
+                         "--to, cell by cell (pavings of each cell; writes curve_<scene>_<param>_<PARAM2>.json/.md)")
+    mg.add_argument("--from", dest="along_from", default=None, help="with --along: the first value of PARAM2")
+    mg.add_argument("--to", dest="along_to", default=None, help="with --along: the last value of PARAM2")
+    mg.add_argument("--cells", type=int, default=8, help="with --along: cells of PARAM2 to start from (default 8)")
+    mg.add_argument("--max-depth", type=int, default=4,
+                    help="with --along: halvings of a cell where the threshold moves within it (default 4)")
     mg.add_argument("--plots", action="store_true",
                     help="with --out: also draw the result (<stem>.png; needs the 'plots' extra: matplotlib)")
     mg.add_argument("--quantity", action="append", default=None, metavar="Q",
@@ -575,6 +583,16 @@ def _cmd_margin(args) -> int:
                               scheduler=args.scheduler), write_scan, args.out, args.plots)
     if args.log or args.quantity or args.workers != 1 or args.scheduler:
         return _bad("--log, --quantity, --workers and --scheduler go with --scan")
+    if args.along is not None:
+        from .margins.threshold_curve import find_curve, write_curve
+        if args.claim is None:
+            return _bad("--along brackets one claim's threshold: name it with --claim")
+        return _said(find_curve(scene, args.param, args.along, lo=args.lo, hi=args.hi, along_lo=args.along_from,
+                                along_hi=args.along_to, claim=args.claim, cells=args.cells,
+                                width=args.width if args.width is not None else "1e-3", max_depth=args.max_depth,
+                                time_limit=args.time_limit), write_curve, args.out, args.plots)
+    if args.along_from is not None or args.along_to is not None:
+        return _bad("--from and --to go with --along")
     return _said(find_threshold(scene, args.param, lo=args.lo, hi=args.hi, claim=args.claim,
                                 width=args.width if args.width is not None else "1e-6", time_limit=args.time_limit),
                  write_threshold, args.out, args.plots)

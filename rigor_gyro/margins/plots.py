@@ -224,6 +224,8 @@ def build_margin_figure(data: dict[str, Any]):
     """The Figure of a threshold or scan result (``to_json()`` of either) and its file stem."""
     if data["schema"].startswith("rigor-gyro/scan/"):
         return _scan_figure(data), f"scan_{data['scene']['name']}_{data['param']}"
+    if data["schema"].startswith("rigor-gyro/threshold-curve/"):
+        return _curve_figure(data), f"curve_{data['scene']['name']}_{data['param']}_{data['along']}"
     return _threshold_figure(data), f"margin_{data['scene']['name']}_{data['param']}"
 
 
@@ -344,4 +346,34 @@ def _threshold_figure(data: dict[str, Any]):
     fig.legend(handles=handles, fontsize=7, loc="lower center", ncol=len(handles), bbox_to_anchor=(0.5, 0.0))
     fig.tight_layout(rect=(0, 0.08, 1, 1))
     declutter_ticks(fig)
+    return fig
+
+
+def _curve_figure(data: dict[str, Any]):
+    """A threshold curve: each cell's certified band as a rectangle (the claim's outcome changes inside it for
+    every value of the cell), the proved side and the refuted side marked."""
+    from matplotlib.patches import Rectangle
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(8.5, 4.8))
+    for c in data["cells"]:
+        a0, a1 = (_f(x) for x in c["along"])
+        if c["band"] is None:
+            ax.axvspan(a0, a1, color=STATUS_COLOURS["undecided"], alpha=0.25, lw=0)
+            continue
+        lo, hi = (_f(x) for x in c["band"])
+        ax.add_patch(Rectangle((a0, lo), a1 - a0, hi - lo, facecolor="#444444", edgecolor="none", gid="band"))
+        p, r = _f(c["proved_at"]), _f(c["refuted_at"])
+        ax.plot([a0, a1], [p, p], color=STATUS_COLOURS["proved"], lw=1.5)
+        ax.plot([a0, a1], [r, r], color=STATUS_COLOURS["refuted"], lw=1.5)
+    ax.autoscale_view()
+    ax.set_xlabel(data["along"])
+    ax.set_ylabel(data["param"])
+    from matplotlib.lines import Line2D
+    handles = [Rectangle((0, 0), 1, 1, facecolor="#444444", label="certified band: the outcome changes inside"),
+               Line2D([], [], color=STATUS_COLOURS["proved"], label=f"{data['claim']} proved on the whole cell"),
+               Line2D([], [], color=STATUS_COLOURS["refuted"], label=f"{data['claim']} refuted on the whole cell")]
+    ax.legend(handles=handles, loc="best", fontsize=8)
+    ax.set_title(f"{data['scene']['name']}: threshold of {data['claim']} in {data['param']} along {data['along']}",
+                 fontsize=10)
+    fig.tight_layout()
     return fig
