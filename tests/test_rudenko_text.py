@@ -46,3 +46,18 @@ def test_the_text_rows_of_the_example():
     five = rows["error <= 0.05 for root 2 (Hz)"]["note"]
     assert "verdict on: lower by (8) as read" in five and "approx, upper already exceed 5 %" in five
     assert len(text_rows(A, B, E, W, None)) == 3
+
+
+def test_the_nu_order_threshold_is_where_nu2_meets_nu3():
+    """The order nu1 < ... < nu6 holds for eps below 0.72286 (a, b of the example) and fails above: the
+    smaller root of (4b) crosses nu3 = 1/(b-1) there (mpmath cross-check on both sides)."""
+    from rigor_gyro.kinds.eigenfrequencies.paper_text import _nu_order_row
+    row = _nu_order_row(A, B, E)
+    assert row.status is AuditStatus.CONFIRMED and "11501151/15910580" in row.reading
+    mpmath.mp.dps = 30
+    a, b = (mpmath.mpf(int(x.p)) / int(x.q) for x in (A, B))
+    t = mpmath.mpf(11501151) / 15910580
+    for eps, below in ((t - mpmath.mpf("1e-6"), True), (t + mpmath.mpf("1e-6"), False)):
+        c2 = (a - b) * (b - 1)
+        nu2 = min(mpmath.polyroots([c2, -(eps * (a - 1) + b * (a - b)), eps * a]))
+        assert (nu2 < 1 / (b - 1)) is below

@@ -1,6 +1,6 @@
 """Rudenko (1976): audit rows for the derivation's text (issue 39): (11) as printed has no real solution
 (a factor misplaced), "Omega_2" for Omega^2 in the example, the monotonicity of K that (3) rests on,
-and the abstract's "the estimates are not asymptotic".
+the eps range of the nu order (exact thresholds), and the abstract's "the estimates are not asymptotic".
 
 Guarantee: (11)'s discriminant is an exact rational; the reading's solution is checked equal to (12) in
 exact rationals at the example; K' > 0 on [0, nu1] is decided by interval bisection of the numerator
@@ -87,6 +87,49 @@ def _k_monotone_row(a: fmpq, b: fmpq, e: fmpq, max_pieces: int = 4096) -> AuditR
                     st, note)
 
 
+def _nu_order_row(a: fmpq, b: fmpq, e: fmpq) -> AuditRow:
+    """The eps range of the zeros' and poles' order nu1 < nu2 < nu3 < nu4 < nu5 < nu6 that the branches
+    assume, with a, b of the example, in exact rationals: nu3 = 1/(b-1) and nu5 = b/(b-1) meet a root of
+    (4) only where that quadratic vanishes there, which is linear in eps; the two quadratics of (4) share
+    a root only at eps = 0 (their difference is linear in omega). So the order, true at the example,
+    holds for 0 < eps < the least positive threshold."""
+    from flint import fmpq_poly
+    c2 = (a - b) * (b - 1)
+    nu3, nu5 = 1 / (b - 1), b / (b - 1)
+
+    def q14(w, eps):
+        return c2 * w * w - (eps * (a - 1) + a - b) * w + eps
+
+    def q26(w, eps):
+        return c2 * w * w - (eps * (a - 1) + b * (a - b)) * w + eps * a
+    found = []
+    for name, q, w in (("nu3 meets a root of (4b) (nu2 = nu3)", q26, nu3), ("nu5 meets a root of (4a) (nu4 = nu5)", q14, nu5),
+                       ("nu3 meets a root of (4a)", q14, nu3), ("nu5 meets a root of (4b)", q26, nu5)):
+        f0, f1 = q(w, fmpq(0)), q(w, fmpq(1))          # q(w, eps) is affine in eps
+        if f1 != f0:
+            t = -f0 / (f1 - f0)
+            if t > 0 and q(w, t) == 0:
+                found.append((t, name))
+    # a common root of the two quadratics: omega = eps (a-1)/c2 (their difference), then q14 = eps (1 - k (a-b)),
+    # k = (a-1)/c2: zero only at eps = 0 unless a = b
+    k = (a - 1) / c2
+    common = fmpq_poly([0, 1 - k * (a - b)])             # eps (1 - k (a - b)) in eps
+    shared_only_at_zero = common.degree() == 1
+    found.sort(key=lambda tn: tn[0])
+    if not found or not shared_only_at_zero or e >= found[0][0]:
+        return AuditRow("nu order: eps range", "nu1 < nu2 < nu3 < nu4 < nu5 < nu6 (the branches of F)",
+                        "exact eps thresholds", None, AuditStatus.UNDECIDED,
+                        "no positive threshold found, or the example's eps is beyond it")
+    t0, n0 = found[0]
+    rest = "; ".join(f"{n} at eps = {t.p}/{t.q} = {float(t.p) / float(t.q):.6g}" for t, n in found[1:])
+    return AuditRow("nu order: eps range", "nu1 < nu2 < nu3 < nu4 < nu5 < nu6 (the branches of F; the text: 'at small "
+                    "eps (~0.2)')", f"holds for 0 < eps < {t0.p}/{t0.q} = {float(t0.p) / float(t0.q):.6g} (a, b of the "
+                    "example)", None, AuditStatus.CONFIRMED,
+                    f"exact: the order can change only where {n0} (eps = {t0.p}/{t0.q}, the least positive threshold)"
+                    + (f"; then {rest}" if rest else "") + "; the quadratics (4) share a root only at eps = 0; the "
+                    "order holds at the example's eps (claims), so on the whole range")
+
+
 def _abstract_row(general: AuditRow | None) -> AuditRow | None:
     if general is None:
         return None
@@ -97,6 +140,6 @@ def _abstract_row(general: AuditRow | None) -> AuditRow | None:
 
 
 def text_rows(a: fmpq, b: fmpq, e: fmpq, W: fmpq, general: AuditRow | None) -> list[AuditRow]:
-    rows = [_eq11_row(a, b, e, W), _omega2_row(), _k_monotone_row(a, b, e)]
+    rows = [_eq11_row(a, b, e, W), _omega2_row(), _k_monotone_row(a, b, e), _nu_order_row(a, b, e)]
     ab = _abstract_row(general)
     return rows + ([ab] if ab is not None else [])
