@@ -45,7 +45,7 @@ def test_the_text_rows_of_the_example():
     assert rows["'exact' values: the eps that gives them one Hz scale"]["reading"].startswith("eps = 0.1073")
     five = rows["error <= 0.05 for root 2 (Hz)"]["note"]
     assert "verdict on: lower by (8) as read" in five and "approx, upper already exceed 5 %" in five
-    assert len(text_rows(A, B, E, W, None)) == 3
+    assert len(text_rows(A, B, E, W, None)) == 4
 
 
 def test_the_nu_order_threshold_is_where_nu2_meets_nu3():
