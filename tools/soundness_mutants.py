@@ -951,7 +951,7 @@ MUTANTS = [
      "    if False:\n        pos = certify_positive(phi, lo, hi, max_pieces=50000, record=middle)",
      "a plant's root called genuine without c . x + h > 0 on the middle of (0, theta)"),
     ("plant_check_empty_trusted", "rigor_gyro/kinds/periodic_orbit/plant_check.py",
-     '    if st == "empty":\n        return True\n    if depth >= SPLIT_DEPTH:',
+     '    if st == "empty" or _monotone_root_free(G, lo, hi):\n        return True\n    if depth >= SPLIT_DEPTH:',
      "    return True\n    if depth >= SPLIT_DEPTH:",
      "the plant checker takes a stored root-free piece on trust"),
     ("plant_check_spurious_witness_unchecked", "rigor_gyro/kinds/periodic_orbit/plant_check.py",
