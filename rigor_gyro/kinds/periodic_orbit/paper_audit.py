@@ -17,6 +17,7 @@ from ...core.audit import audit_printed, half_unit
 from ...core.balls import ball, certainly_negative, certainly_positive
 from ...core.chain_classify import MISPRINT_CLASSES, classify_against_chain
 from ...core.outcome import AuditRow, AuditStatus
+from ...core.paper_chain import Chain
 from .flow import Spectrum, amplitude_similarity, nutation_cubic, orbit_expsums
 from .paper_model import alpha_form, determinant_12, fmt_ball, form7, paper_coefficients, paper_tables
 from .paper_chain import relay_chains
@@ -124,10 +125,11 @@ def audit(model, sp: Spectrum, orbit) -> list[AuditRow]:
                            f"{note}; sign: printed {sp_}, certified {so}")
             if printed_pc is not None:
                 # the paper's own computation: (12) with its printed a_ij and exponents, each exactly as printed
-                row.propagated = determinant_12(printed_pc[0], printed_pc[1], ball(x))
-                row.propagated_from = ("determinant (12) with the paper's printed a_ij, mu1, omega, mu2 and 1/sigma, "
-                                       "each exactly as printed")
-                from_printed.append((x, row.propagated))
+                d_pr = determinant_12(printed_pc[0], printed_pc[1], ball(x))
+                row.propagated = Chain(d_pr, "determinant (12) with the paper's printed a_ij, mu1, omega, mu2 and "
+                                       "1/sigma, each exactly as printed; the printed table has another scale: see "
+                                       "the row 'g(x) table from (12) with the printed a_ij'", slack=0)
+                from_printed.append((x, d_pr))
             rows.append(row)
         if from_printed:
             rows.append(g_from_printed_row(gx, gv, from_printed))
