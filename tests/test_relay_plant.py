@@ -413,3 +413,44 @@ def test_a_plant_scene_with_a_tolerance_is_refused_with_a_clear_message(tmp_path
     r = subprocess.run([sys.executable, "-m", "rigor_gyro", "prove", str(p), "-o", str(tmp_path)],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "proved at a point only" in r.stderr
+
+
+# ---------------------------------------------------------------------------- random plants against a simulation
+
+from hypothesis import given, settings, strategies as st  # noqa: E402
+
+
+@settings(max_examples=16)
+@given(st.lists(st.integers(min_value=1, max_value=40), min_size=3, max_size=3, unique=True),
+       st.one_of(st.none(), st.integers(min_value=-3, max_value=3)), st.booleans())
+def test_random_third_order_plants_agree_with_a_simulation(poles, zero, integrator):
+    """G(s) = 1 or (s + z), over (s + p1/4)(s + p2/4)(s + p3/4) (one pole at 0 when ``integrator``), u = -sign(y):
+    every orbit the prover calls genuine is one in an event-driven float simulation (it switches at theta* and
+    lands on -x(0)), and every spurious root's orbit switches early in the simulation (or dips below 0 at once)."""
+    lam = [Fraction(0)] + [Fraction(p, 4) for p in poles[1:]] if integrator else [Fraction(p, 4) for p in poles]
+    a2 = sum(lam)
+    a1 = lam[0] * lam[1] + lam[0] * lam[2] + lam[1] * lam[2]
+    a0 = lam[0] * lam[1] * lam[2]
+    M = ((0, 1, 0), (0, 0, 1), (str(-a0), str(-a1), str(-a2)))
+    if zero is None:
+        c = (1, 0, 0)               # relative degree 3: genuine orbits are common
+    else:
+        z = Fraction(zero) if zero or a0 else Fraction(1)    # not s / (s ...): a cancelled integrator
+        c = (str(z), 1, 0)          # relative degree 2: mostly refuted (no orbit), spurious roots
+    cert = prove_scene(_scene(M, (0, 0, 1), c, "-1"), maxprec=512).to_json()
+    m = validate(_scene(M, (0, 0, 1), c, "-1"))
+    roots = (cert.get("extra") or {}).get("roots", [])
+    with working_precision(128):
+        sp = PlantSpectrum(m)
+        for r in roots:
+            th = (Fraction(r["theta"][0]) + Fraction(r["theta"][1])) / 2
+            x0 = np.array([float(v.mid()) for v in x0_at(sp, arb(fmpq(th.numerator, th.denominator)))])
+            t, x = approx.plant_simulate_half(m, x0, 1.2 * float(th), steps=3000)
+            if r["kind"] == "genuine":
+                assert t is not None and abs(t - float(th)) < 1e-7 * max(1, float(th)), (r, t)
+                assert np.max(np.abs(x + x0)) < 1e-7 * max(1, np.max(np.abs(x0)))
+            elif r["kind"] == "spurious":      # it switches before theta*, or c . x goes below 0 at once
+                early = t is not None and t < float(th) * (1 - 1e-9)
+                M_, e_, c_, S_, h_ = approx.plant_as_float(m)
+                dip = approx._plant_flow(M_, e_, S_, x0, float(th) * 1e-3) @ c_ < 0
+                assert early or dip, (r, t)
