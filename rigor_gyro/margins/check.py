@@ -206,17 +206,22 @@ def _pending_claims(pending, whole: Box) -> tuple[set, bool]:
 
 def _evaluate_decided(claims: list, bs, pj: str, oj: str, mj: str, executor) -> dict:
     """{(claim, box edges): [status, reason]}: every decided sub-box of every claim re-evaluated with the
-    kind's box rigour, on ``executor`` when given (the results do not depend on where they run)."""
+    kind's box rigour, on ``executor`` when given (the results do not depend on where they run). A sub-box
+    decided for several claims is evaluated once for all of them (in the paving's claim order), as the
+    paving evaluates a box for all its open claims at once."""
     from .paving import evaluate_task
-    keys, tasks = [], []
+    order = [c["id"] for c in claims]
+    wanted: dict[tuple, tuple[Box, set]] = {}
     for c in claims:
         for b in c["boxes"]:
             if b["status"] in ("proved", "refuted"):
                 box = Box.from_json(b["box"])
-                keys.append((c["id"], box.edges))
-                tasks.append((bs.scene.kind, pj, oj, mj, json.dumps(box.to_json()), (c["id"],), bs.prec))
+                wanted.setdefault(box.edges, (box, set()))[1].add(c["id"])
+    keys = list(wanted)
+    tasks = [(bs.scene.kind, pj, oj, mj, json.dumps(wanted[e][0].to_json()),
+              tuple(c for c in order if c in wanted[e][1]), bs.prec) for e in keys]
     outs = executor.map(evaluate_task, tasks) if executor is not None else [evaluate_task(*t) for t in tasks]
-    return {k: out[k[0]] for k, out in zip(keys, outs)}
+    return {(cid, e): out[cid] for e, out in zip(keys, outs) for cid in wanted[e][1]}
 
 
 def _check_pending(bs, pending, stopped: str, leaves: dict[str, dict]) -> tuple[str, bool, str]:
