@@ -53,10 +53,10 @@ REQUIRED = ("a", "b", "eps", "Omega2")
 OPTIONS = {"rel_width": "1e-30"}
 
 #: the numbers a report's summary opens with (quantity name -> what it is), in this order
-HEADLINE = {"freq_hz_1": "eigenfrequency 1 (Hz)", "freq_hz_2": "eigenfrequency 2 (Hz)",
-            "freq_hz_3": "eigenfrequency 3 (Hz)", "freq_hz_4": "eigenfrequency 4 (Hz)",
-            "omega_1": "omega_1 (root 1 of the quartic)", "omega_2": "omega_2", "omega_3": "omega_3",
-            "omega_4": "omega_4"}
+#: (a [system] scene has up to 12 eigenfrequencies: the names beyond 4 appear only in its certificates)
+HEADLINE = {**{f"freq_hz_{j}": f"eigenfrequency {j} (Hz)" for j in range(1, 13)},
+            "omega_1": "omega_1 (root 1 of the quartic)",
+            **{f"omega_{j}": f"omega_{j}" for j in range(2, 13)}}
 
 CLAIMS = {
     "roots": "The characteristic quartic in omega has exactly four roots, all real, positive and simple; "
