@@ -6,8 +6,11 @@ projectors, x0(theta), g(theta) = beta0(theta), the components x_i(t) of the hal
 half-period Jacobian) with every input a :class:`rigor_gyro.core.jets.Jet`: a ball and its gradient
 with respect to the box's parameters (and, when asked, theta or t). The eigenvalues of the nutation cubic
 (4) C(z; P) are jets by the implicit function theorem, dlambda/dP_k = -(dC/dP_k)(lambda) / C'(lambda),
-their value balls by interval Newton over the family (:mod:`rigor_gyro.core.family_roots`), narrowed by
-their own centred form.
+their value balls by interval Newton over the family (:mod:`rigor_gyro.core.family_roots`) or, where that
+fails (the coefficients vary independently there: over tau +-5 % the stiff real root near -1/tau is lost), by
+parametric Newton around a linear predictor (:func:`rigor_gyro.core.implicit_roots.polynomial_root_over_box`,
+as written or in the scaled variable z / c_2), narrowed by their own centred form; the three enclosures are
+disjoint (one real, the pair's in the upper half plane), so they hold the three roots of every member.
 
 Guarantee: given parameter jets whose value balls contain the box and whose gradients are the unit
 vectors, every output's value ball contains its value and every gradient ball contains its partial
