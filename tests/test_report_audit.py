@@ -17,8 +17,8 @@ def relay_rows():
 
 def test_the_audit_opens_with_counts_then_misprints_then_arithmetic_then_unexplained(relay_rows):
     text = "\n".join(audit_section(relay_rows, tables=AUDIT_TABLES))
-    heads = [text.index(h) for h in ("rows:**", "misprints found (printed -> intended", "paper's arithmetic, by table",
-                                     "unexplained (no chain")]
+    heads = [text.index(h) for h in ("rows:**", "### Misprints found", "paper's arithmetic, by table",
+                                     "unexplained: no chain")]
     assert heads == sorted(heads)
     assert "`D1`: **digit-substituted**: 0.0447756 -> 0.0417756" in text
     assert "`b5,1`: **digit-substituted**: -0.45 -> -0.15" in text and "h54" in text

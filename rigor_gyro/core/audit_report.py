@@ -21,6 +21,8 @@ MISPRINT_CLASSES = ("sign", "decimal-shift", "digits-transposed", "digit-dropped
 #: classes that say "the author's own arithmetic" (the print reproduces from the paper's own inputs)
 ARITHMETIC_CLASSES = ("propagated", "last-digit")
 _PLAIN = ("agrees", "assertion-confirmed")
+#: a misprint's evidence is cut to this many characters in the report (the JSON has it whole)
+_LINE = 260
 
 
 def _esc(text: Any) -> str:
@@ -63,7 +65,8 @@ def _one_line(r: dict) -> str:
     cls = r.get("class", r["status"])
     if cls == "misprint-reading" or not r.get("class_reading"):
         return f"{_esc(r['printed'])} -> {_esc(r['reading'])} ({_esc(r['note'])})"
-    return f"**{cls}**: {_esc(r['class_reading'])}"
+    text = _esc(r["class_reading"])
+    return f"**{cls}**: " + (text if len(text) <= _LINE else text[:_LINE - 3] + "...")
 
 
 def audit_section(rows: list[dict], edits_brief=lambda r: "", tables=()) -> list[str]:
@@ -83,7 +86,7 @@ def audit_section(rows: list[dict], edits_brief=lambda r: "", tables=()) -> list
     mis = [r for r in rows if r.get("class") in MISPRINT_CLASSES
            or (r.get("class") is None and r["status"] == "misprint")]
     if mis:
-        out += [f"### {len(mis)} misprints found (printed -> intended, the evidence)", ""]
+        out += [f"### Misprints found: {len(mis)} (printed -> intended, the evidence)", ""]
         out += [f"- `{_esc(r['id'])}`: {_one_line(r)}" for r in mis]
         out.append("")
     refuted = [r for r in rows if r.get("class", r["status"]) in ("assertion-refuted", "refuted")]
@@ -107,7 +110,7 @@ def audit_section(rows: list[dict], edits_brief=lambda r: "", tables=()) -> list
         out.append("")
     unex = [r for r in rows if r.get("class") in ("unexplained", "undecided")]
     if unex:
-        out += [f"### {len(unex)} unexplained (no chain from the paper's own inputs reproduces the print)", ""]
+        out += [f"### {len(unex)} unexplained: no chain from the paper's own inputs reproduces the print", ""]
         out += [f"- `{_esc(r['id'])}` {_esc(r['printed'])} (exact {_certified_digits(r['lo'], r['hi'], r['printed'])}): "
                 f"{_esc(r.get('class_reading', ''))}{edits_brief(r)}" for r in unex]
         out.append("")
