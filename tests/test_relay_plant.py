@@ -155,6 +155,15 @@ def test_float_simulation_agrees_with_each_certified_orbit(name):
     x0 = np.array([float(q[f"x0_{i}"]["mid"]) for i in range(1, m.n + 1)])
     t, x = approx.plant_simulate_half(m, x0, 1.5 * th, steps=6000)
     assert abs(t - th) < 1e-9 * max(1, th) and np.max(np.abs(x + x0)) < 1e-9
+    M_, e_, c_, S_, h_ = approx.plant_as_float(m)
+    y = lambda t: c_ @ approx._plant_flow(M_, e_, S_, x0, t)       # noqa: E731
+    ts = [th * k / 2000 for k in range(2001)]
+    k = int(np.argmax([y(t) for t in ts]))
+    from scipy.optimize import minimize_scalar
+    best = -minimize_scalar(lambda t: -y(t), bounds=(ts[max(k - 1, 0)], ts[min(k + 1, 2000)]), method="bounded",
+                            options={"xatol": 1e-12}).fun
+    lo, hi = _iv(q["amplitude"])                      # the amplitude: max of |c . x| over the period
+    assert float(lo) - 1e-12 <= best <= float(hi) + 1e-12
     J = approx.plant_jacobian_fd(m, x0, th, eps=1e-6)
     fd = sorted(np.abs(np.linalg.eigvals(J)))[::-1]
     cm = [float(q[f"multiplier_modulus_{j}"]["mid"]) for j in range(1, m.n)]
