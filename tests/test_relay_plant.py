@@ -463,3 +463,11 @@ def test_random_third_order_plants_agree_with_a_simulation(poles, zero, integrat
                 M_, e_, c_, S_, h_ = approx.plant_as_float(m)
                 dip = approx._plant_flow(M_, e_, S_, x0, float(th) * 1e-3) @ c_ < 0
                 assert early or dip, (r, t)
+
+
+def test_the_imaginary_axis_test_is_exact():
+    """(s^2 + 4)(s + 1) is refused (eigenvalues +-2i), (s^2 + 1e-20 s + 1) accepted (off the axis by 5e-21)."""
+    with pytest.raises(ParameterError, match="imaginary axis"):
+        validate(_scene(([0, 1, 0], [0, 0, 1], [-4, -4, -1]), (0, 0, 1), (1, 0, 0), "-1"))
+    m = validate(_scene(([0, 1], [-1, "-1/10^20"]), (0, 1), (1, 0), "-1"))
+    assert m.n == 2 and not m.zero_eigenvalue
