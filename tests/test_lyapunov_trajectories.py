@@ -158,3 +158,51 @@ def test_initial_point_option_is_parsed_exactly():
     for bad in ("1, 2", "pi, 0, 0", "a, b, c", "1,,2"):
         with pytest.raises(ParameterError):
             parse_initial_point(bad)
+
+
+# ------------------------------------------------------------------------------------ the slice paving (part 2b)
+
+DEMO = dict(AGAFONOV2013, H="100", a="1", k="20")
+DEMO_LEVEL = Fraction("0.00773069206889387")       # natural_c_max_lower of the demo parameters (certified)
+
+
+def test_a_small_slice_paving_is_certified_and_rechecked():
+    from rigor_gyro.kinds.lyapunov.attraction_paving import (PavedBox, above_level, ellipse_area, gained_area,
+                                                             recheck_box)
+    from rigor_gyro.kinds.lyapunov.trajectory_claims import check_paving, paving_claim
+    g = gimbal_from_parameters(DEMO)[0]
+    with working_precision(PREC):
+        level = arb(fmpq(DEMO_LEVEL.numerator, DEMO_LEVEL.denominator))
+        reach = arb(fmpq(583, 512))
+        w: dict = {}
+        c = paving_claim(g, level, reach, 2, Fraction(3, 2), Fraction(3), w)
+        assert c.status is Status.PROVED and c.details["area_ratio_lower"] in ("1", "1.0000000")
+        boxes = [PavedBox.from_json(b) for b in w["attraction_paving"]["boxes"]]
+        assert [b.status for b in boxes] == ["enters"] * 4
+        # all four boxes touch the origin's neighbourhood: none is disjoint from the ellipse, nothing is gained
+        assert not any(b.outside for b in boxes) and gained_area(boxes) == 0
+        ok, msg = check_paving(g, level, reach, w["attraction_paving"], c.details)    # re-runs every box
+        assert ok, msg
+        b = boxes[0]
+        # a box's steps cut short, or a false 'outside', or 'inside' at t = 0: not re-derived
+        assert not recheck_box(g, PavedBox(b.x1, b.x3, "enters", b.steps[:2], b.order), level, reach)
+        assert not recheck_box(g, PavedBox(b.x1, b.x3, "enters", b.steps, b.order, outside=True), level, reach)
+        assert not recheck_box(g, PavedBox(b.x1, b.x3, "inside"), level, reach)
+        # above_level: a rectangle far out is above c, one containing the origin is not
+        far = (Fraction(1, 50), Fraction(1, 40))
+        assert above_level(g, far, far, level) and not above_level(g, b.x1, b.x3, level)
+        # an entering box far out counts in the gain: its area, exactly
+        out = PavedBox(far, far, "enters", [Fraction(1)], 20, outside=True)
+        assert gained_area(boxes + [out]) == out.area() and gained_area([PavedBox(far, far, "undecided")]) == 0
+        area = ellipse_area(g, level)
+        # the stated ratio is re-derived from the boxes: above it, rejected (no boxes: the ratio is exactly 1)
+        empty = dict(w["attraction_paving"], boxes=[])
+        assert check_paving(g, level, reach, empty, {"area_ratio_lower": "1"})[0]
+        assert not check_paving(g, level, reach, empty, {"area_ratio_lower": "1.5"})[0]
+    # the ellipse's area in closed form against a float count of grid points (a cross-check only)
+    import numpy as np
+    fg = FloatGimbal(DEMO)
+    e1, e3 = 0.006, 0.0095
+    X1, X3 = np.meshgrid(np.linspace(-e1, e1, 1201), np.linspace(-e3, e3, 1201))
+    frac = float(np.mean(fg.V(X1, np.zeros_like(X1), X3) < float(DEMO_LEVEL)))
+    assert abs(frac * 4 * e1 * e3 / float(area.mid()) - 1) < 0.01

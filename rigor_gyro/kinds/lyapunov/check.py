@@ -48,7 +48,7 @@ from ...core.roots import RootStatus, enclose_f_df, newton_root
 from .claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
 from .equilibria import Equilibrium, classify as classify_equilibrium, pi_text
-from .trajectory_claims import check_initial_point, check_region_exit
+from .trajectory_claims import check_initial_point, check_paving, check_region_exit
 from .trajectories import equilibrium_other_than_origin
 from .natural_domain import band_function, exact_range, natural_lower_bound, positivity_functions, with_range
 from .model import (DIRECT_DOMAIN, c_star_lower, c_star_upper, closed_form_constants, cylinder_lower_bound,
@@ -676,6 +676,11 @@ def check(model, data: dict) -> list[CheckResult]:
                 say(cid, certainly_lt(A, 0), "A(0, t) < 0 at the stored t re-evaluated (Vdot > 0 arbitrarily near 0)")
         elif cid == "natural_sublevel":
             say(cid, st == "proved" and nat_ok, nat_msg)
+        elif cid == "attraction_paving":
+            level, reach = _natural_level(nat_ok, claims, W)
+            ok, msg = check_paving(g, level, reach, W.get("attraction_paving"), cl_.get("details") or {}) \
+                if st == "proved" else (False, "only a proved attraction_paving is checked")
+            say(cid, ok, msg)
         elif cid == "region_not_invariant":
             ok, msg = check_region_exit(g, R, xs, W.get("region_not_invariant")) if st == "proved" else \
                 (False, "only a proved region_not_invariant is checked")

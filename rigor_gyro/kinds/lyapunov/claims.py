@@ -71,7 +71,7 @@ from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
 from .natural_domain import NATURAL_GAP, natural_sublevel
 from .trajectory_claims import (TRAJECTORY_CLAIMS, TRAJECTORY_OPTIONS, initial_point_claim, parse_initial_point,
-                                region_not_invariant_claim)
+                                paving_claim, region_not_invariant_claim)
 from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_psi_test, certify_vdot_nonpositive,
                     closed_form_constants, cylinder_lower_bound, damping_margin, direct_margin, faces_minimiser_inside, hypot_ball,
                     mean_value_enclosure, rational_points_inside, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
@@ -198,6 +198,8 @@ class LyapunovModel:
     #: option initial_point (x1, x2, x3) exactly, or None; option initial_point_time (model time allowed)
     initial_point: tuple | None = None
     initial_time: Fraction = Fraction(1)
+    #: options of attraction_paving: grid size, half-width in units of the slice's extents, model time
+    paving: tuple = (8, Fraction(3), Fraction(3))
 
 
 def _err(name, text, need):
@@ -255,7 +257,13 @@ def validate(scene) -> LyapunovModel:
     t_ip = option_number(opts["initial_point_time"], "initial_point_time", above="0", at_most="1000")
     if not t_ip.is_rational:
         raise ParameterError(f"option 'initial_point_time' = {opts['initial_point_time']!r}: need a rational number")
-    return LyapunovModel(g, v, dict(scene.parameters), rel, R, pieces, dict(scene.paper), nat, point, t_ip.rational)
+    grid = option_count(opts["paving_grid"], "paving_grid", 1, 64)
+    scale = option_number(opts["paving_scale"], "paving_scale", above="0", at_most="100")
+    t_pv = option_number(opts["paving_time"], "paving_time", above="0", at_most="1000")
+    if not (scale.is_rational and t_pv.is_rational):
+        raise ParameterError("options 'paving_scale' and 'paving_time' must be rational numbers")
+    return LyapunovModel(g, v, dict(scene.parameters), rel, R, pieces, dict(scene.paper), nat, point, t_ip.rational,
+                         (grid, scale.rational, t_pv.rational))
 
 
 # ------------------------------------------------------------------------------------ helpers
@@ -1224,6 +1232,11 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
             level, reach = (nat[0], None if nat[1] is None else arb(nat[1])) if nat else (None, None)
             claims.append(initial_point_claim(ctx.g, model.initial_point, model.initial_time, level, reach,
                                               ctx.witnesses))
+    if "attraction_paving" in wanted:
+        with phase("attraction_paving"):
+            nat = getattr(ctx, "natural", None)
+            level, reach = (nat[0], None if nat[1] is None else arb(nat[1])) if nat else (None, None)
+            claims.append(paving_claim(ctx.g, level, reach, *model.paving, ctx.witnesses))
     if "equilibria" in wanted:
         with phase("equilibria"):
             inv = next((c for c in claims if c.id == "invariant_estimate" and c.status is Status.PROVED), None)

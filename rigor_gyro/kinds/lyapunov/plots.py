@@ -20,7 +20,13 @@ from flint import arb
 from ...core.balls import interval, working_precision
 from ...core.figure_style import OKABE_ITO, SERIES, declutter_ticks
 
-__all__ = ["plots", "build_figures"]
+__all__ = ["plots", "build_figures", "paving_figure", "PAVING_COLOURS"]
+
+#: status of a paved box -> (face colour, legend text)
+PAVING_COLOURS = {"enters": (OKABE_ITO["blue"], "box whose validated flow enters {V < c} (certified)"),
+                  "inside": (OKABE_ITO["bluish green"], "box inside {V < c} (certified)"),
+                  "undecided": ("0.75", "undecided within the time budget"),
+                  "skipped": ("0.92", "not tried")}
 
 SET_COLOUR = OKABE_ITO["bluish green"]
 
@@ -56,11 +62,16 @@ def build_figures(scene, cert) -> dict:
     g = model.gimbal
     fg = FloatGimbal(dict(scene.parameters))
     q = cert.quantities
+    figs = {}
+    paving = (getattr(cert, "witnesses", None) or {}).get("attraction_paving")
+    if paving:
+        figs[f"{scene.name}_attraction_paving.png"] = paving_figure(scene, cert, paving)
+    if not (q.get("R_used") or q.get("R")):
+        return figs
     R = float((q.get("R_used") or q["R"]).mid())
     c_set = float(q["c_set"].mid()) if "c_set" in q else None
     with working_precision(64):
         xs = float(g.x2_star.ball().mid())
-    figs = {}
 
     fig, axes = plt.subplots(1, 3, figsize=(13, 4.2))
     t = np.linspace(-1.05 * R, 1.05 * R, 241)
@@ -136,3 +147,56 @@ def build_figures(scene, cert) -> dict:
             declutter_ticks(fig)
             figs[f"{scene.name}_trajectories.png"] = fig
     return figs
+
+
+def paving_figure(scene, cert, paving: dict):
+    """The slice x2 = 0: the sublevel set {V(x1, 0, x3) < c} (float contour of the certified level), the paved boxes
+    by status (the certified data, exact ends), and float trajectories (scipy solve_ivp, vermillion) from the
+    corners of the outermost entering boxes, projected on (x1, x3): a cross-check drawing, never a verdict."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    from fractions import Fraction
+    from matplotlib.patches import Patch, Rectangle
+    from scipy.integrate import solve_ivp
+
+    from .approx import FloatGimbal
+
+    fg = FloatGimbal(dict(scene.parameters))
+    q = cert.quantities
+    c = float(q["natural_c_max_lower"].mid())
+    w1, w3 = (float(Fraction(x)) for x in paving["half_width"])
+    fig, ax = plt.subplots(figsize=(7.5, 6.5))
+    boxes = paving["boxes"]
+    for b in boxes:
+        x1 = [float(Fraction(x)) for x in b["x1"]]
+        x3 = [float(Fraction(x)) for x in b["x3"]]
+        colour, _ = PAVING_COLOURS.get(b["status"], ("white", ""))
+        ax.add_patch(Rectangle((x1[0], x3[0]), x1[1] - x1[0], x3[1] - x3[0], facecolor=colour, alpha=0.45,
+                               edgecolor="k", lw=0.4))
+    t1, t3 = np.linspace(-w1, w1, 301), np.linspace(-w3, w3, 301)
+    X1, X3 = np.meshgrid(t1, t3)
+    ax.contour(X1, X3, fg.V(X1, np.zeros_like(X1), X3), levels=[c], colors=[OKABE_ITO["reddish purple"]], linewidths=2)
+    T = float(Fraction(paving["t_max"]))
+    outer = sorted((b for b in boxes if b["status"] == "enters"),
+                   key=lambda b: -max(abs(float(Fraction(x))) for x in b["x1"] + b["x3"]))[:6]
+    for b in outer:
+        x1, x3 = float(Fraction(b["x1"][1])), float(Fraction(b["x3"][1]))
+        run = solve_ivp(fg.rhs_scalar, (0.0, T), [x1, 0.0, x3], rtol=1e-10, atol=1e-14, max_step=T / 400)
+        ax.plot(run.y[0], run.y[2], lw=0.7, color=OKABE_ITO["vermillion"])
+    handles = [Patch(facecolor=col, alpha=0.45, edgecolor="k", label=txt) for st, (col, txt) in PAVING_COLOURS.items()
+               if any(b["status"] == st for b in boxes)]
+    handles.append(plt.Line2D([], [], color=OKABE_ITO["reddish purple"], lw=2,
+                              label=f"V(x1, 0, x3) = natural_c_max_lower = {c:.6g} (contour drawn in floats)"))
+    handles.append(plt.Line2D([], [], color=OKABE_ITO["vermillion"], lw=0.7,
+                              label="float trajectories (solve_ivp) from box corners, projected"))
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.1), fontsize=7, ncol=1)
+    ax.set_xlim(-w1, w1)
+    ax.set_ylim(-w3, w3)
+    ax.set_xlabel("x1 = alpha-dot")
+    ax.set_ylabel("x3 = beta-dot")
+    ax.set_title(f"{scene.name}: slice x2 = 0, boxes entering the certified set within t = {T:g} s")
+    fig.tight_layout()
+    declutter_ticks(fig)
+    return fig

@@ -19,7 +19,7 @@ from fractions import Fraction
 
 from flint import arb
 
-from ...core.balls import certainly_gt, decimal_bounds
+from ...core.balls import certainly_gt, certainly_le, decimal_bounds
 from ...core.exact import Exact, parse_exact
 from ...core.errors import ParameterError
 from ...core.outcome import Claim, Status
@@ -27,7 +27,7 @@ from .model import Gimbal, law_is_odd
 from .trajectories import (FLOW_ORDER, enters_estimate, equilibrium_other_than_origin, exact_ball, exact_box,
                            fraction_text, parse_fraction, region_exit)
 
-__all__ = ["TRAJECTORY_CLAIMS", "TRAJECTORY_OPTIONS", "parse_initial_point", "region_not_invariant_claim",
+__all__ = ["paving_claim", "check_paving", "PAVING_TEXT", "TRAJECTORY_CLAIMS", "TRAJECTORY_OPTIONS", "parse_initial_point", "region_not_invariant_claim",
            "initial_point_claim", "check_region_exit", "check_initial_point", "INITIAL_POINT_STEPS"]
 
 TRAJECTORY_CLAIMS = {
@@ -185,3 +185,65 @@ def check_initial_point(g: Gimbal, point: tuple[Exact, Exact, Exact] | None, lev
     return tr.reached, (f"the stored integration re-run ({len(steps)} steps, order {order}): the enclosure lies in "
                         "{V < natural_c_max_lower}, |x2| <= reach" if tr.reached else
                         f"the re-run does not enter the estimate: {tr.reason}")
+
+
+# ------------------------------------------------------------------------------------ the slice paving (part 2b)
+
+PAVING_TEXT = ("On the slice x2 = 0 (the (x1, x3) plane), every box listed as 'enters' lies in the domain of attraction of "
+               "0: the validated flow of the whole box (stored steps and order) reaches the component of "
+               "{V < natural_c_max_lower} around 0 (natural_sublevel) within the model time paving_time; every box "
+               "listed 'inside' lies in that component already. The entering boxes on which V > natural_c_max_lower "
+               "(certainly, at t = 0) are disjoint from the sublevel set's slice, so the slice of the certified inner "
+               "estimate (the set's slice and those boxes) has area at least area_ratio_lower times the area of "
+               "{V(x1, 0, x3) < natural_c_max_lower} (an ellipse, its area enclosed in closed form).")
+TRAJECTORY_CLAIMS["attraction_paving"] = PAVING_TEXT
+TRAJECTORY_OPTIONS.update({"paving_grid": "8", "paving_scale": "3", "paving_time": "3"})
+
+
+def paving_claim(g: Gimbal, level: arb | None, reach: arb | None, grid: int, scale: Fraction, t_max: Fraction,
+                 witnesses: dict) -> Claim:
+    from .attraction_paving import ellipse_area, gained_area, pave_slice
+    if level is None or reach is None:
+        c = Claim("attraction_paving", PAVING_TEXT, Status.INCONCLUSIVE,
+                  "needs a proved natural_sublevel (its level and certified reach) in the same scene",
+                  details={}, counterexample=None, decides=None)
+        c.precision_cannot_help = c.reason
+        return c
+    pv = pave_slice(g, level, reach, grid, scale, t_max, FLOW_ORDER)
+    area = ellipse_area(g, level)
+    gain = gained_area(pv.boxes)
+    ratio = 1 + exact_ball(gain) / area
+    lo, _ = decimal_bounds(ratio, 8)
+    witnesses["attraction_paving"] = {"grid": grid, "half_width": [fraction_text(x) for x in pv.half_width],
+                                      "t_max": fraction_text(t_max), "boxes": [b.to_json() for b in pv.boxes]}
+    counts = {s: pv.count(s) for s in ("inside", "enters", "skipped", "undecided")}
+    steps = [len(b.steps) for b in pv.boxes if b.status == "enters"]
+    return Claim("attraction_paving", PAVING_TEXT, Status.PROVED,
+                 f"{grid} x {grid} boxes over |x1| <= {float(pv.half_width[0]):.6g}, |x3| <= {float(pv.half_width[1]):.6g} "
+                 f"({scale} times the slice's half-extents): {counts['inside']} inside, {counts['enters']} enter within "
+                 f"t = {float(t_max):.6g} ({min(steps) if steps else 0} to {max(steps) if steps else 0} steps of order "
+                 f"{FLOW_ORDER}), {counts['skipped']} not tried (V > {40} c at the centre), {counts['undecided']} undecided; "
+                 f"the entering boxes outside the sublevel slice add area {float(gain):.6g} to its {_fmt(area, 6)}: "
+                 f"the certified inner estimate's slice is at least {lo} times the sublevel set's",
+                 details={"area_ratio_lower": lo, "gained_area": fraction_text(gain), **counts},
+                 counterexample=None, decides=None)
+
+
+def check_paving(g: Gimbal, level: arb | None, reach: arb | None, w: dict | None, details: dict) -> tuple[bool, str]:
+    """Re-run every stored box (entering ones at their stored steps and order), re-derive the gained area exactly
+    and the stated lower bound of the area ratio."""
+    from .attraction_paving import PavedBox, ellipse_area, gained_area, recheck_box
+    if not w or level is None or reach is None:
+        return False, "no stored paving, or no re-verified natural_sublevel"
+    try:
+        boxes = [PavedBox.from_json(b) for b in w["boxes"]]
+        stated = parse_fraction(details["area_ratio_lower"])
+    except (KeyError, TypeError, ValueError, ZeroDivisionError):
+        return False, "the stored boxes or the stated ratio are not readable"
+    for b in boxes:
+        if not recheck_box(g, b, level, reach):
+            return False, f"the box x1 in {b.x1}, x3 in {b.x3} ({b.status}) is not re-derived"
+    ratio = 1 + exact_ball(gained_area(boxes)) / ellipse_area(g, level)
+    if not (ratio.is_finite() and certainly_le(exact_ball(stated), ratio)):
+        return False, "the stated area_ratio_lower is above the re-derived ratio"
+    return True, f"{len(boxes)} stored boxes re-derived (the entering ones re-integrated); the area ratio re-derived"
