@@ -103,9 +103,10 @@ def _builtin_dir():
 
 #: groups of built-in scenes: the papers' worked examples (``prove --all``), demonstrations of
 #: refuted and inconclusive outcomes (planted; ``prove --group demo``), and design margins and the
-#: papers' general claims over parameter boxes (pavings; ``prove --group margin``), and the stiff and
-#: extreme catalog (``prove --group stress``; ``rigor-gyro bench --stress`` tabulates it)
-GROUPS = {"paper": "", "demo": "demos", "margin": "margins", "stress": "stress"}
+#: papers' general claims over parameter boxes (pavings; ``prove --group margin``), the stiff and
+#: extreme catalog (``prove --group stress``; ``rigor-gyro bench --stress`` tabulates it), and users' own
+#: relay plants written as ``[plant]`` tables (``prove --group plant``)
+GROUPS = {"paper": "", "demo": "demos", "margin": "margins", "stress": "stress", "plant": "plants"}
 
 
 def builtin_scenes(group: str = "paper") -> dict[str, Any]:
