@@ -41,7 +41,7 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from ...core.balls import (certainly_le, certainly_lt, certainly_negative, certainly_positive, current_precision, decimal_bounds,
+from ...core.balls import (certainly_gt, certainly_le, certainly_lt, certainly_negative, certainly_positive, current_precision, decimal_bounds,
                            exact_fraction, sqrt_of_nonnegative)
 from ...core.boxes import even_in
 from ...core.exact import Exact
@@ -55,7 +55,7 @@ __all__ = ["Dual", "Gimbal", "ParameterBalls", "mean_value_enclosure", "hypot_ba
            "DAMPING_THRESHOLDS", "damping_margin", "rational_points_inside",
            "CIRCLE_DIRECTIONS", "cylinder_points", "faces_minimiser_inside", "c_star_lower", "c_star_upper",
            "DIRECT_DOMAIN", "vdot_polar", "direct_margin", "symmetric_in_x2",
-           "law_is_odd", "v_polar", "sublevel_lower_bound", "slice_extent", "slice_in_region"]
+           "law_is_odd", "v_polar", "square_from_ends", "sublevel_lower_bound", "slice_extent", "slice_in_region"]
 
 
 class Dual:
@@ -935,7 +935,31 @@ def v_polar(g: Gimbal, x2, t):
     c = g.c
     ct, st = t.cos(), t.sin()
     h = c.H * x2.cos() / c.B0
-    return (c.mu * g.F(x2), g.f3(x2) * st, ((h * ct + c.mu * st) ** 2 + g.S(x2) * st * st) / 2)
+    gamma = ((h * ct + c.mu * st) ** 2 + g.S(x2) * st * st) / 2
+    if type(x2) is arb and type(t) is arb and not certainly_positive(gamma.lower()) and \
+            not certainly_gt(x2.cos().lower(), GIMBAL_LOCK_COS):
+        # near the gimbal lock h cos t and cos^2 x2 span wide balls and Arb's square, mid^2 - 2 |mid| rad - rad^2 at
+        # its lower end, reaches below 0 ([-0.36, 13.3] for x2 within 1e-3 of pi/2): squares from the balls' ends
+        # instead (>= 0, and > 0 where the ball excludes 0). Only near the lock (cos x2 <= GIMBAL_LOCK_COS on the
+        # box) and only where the direct form does not decide: every certificate away from the lock is unchanged.
+        # S = f2 + mu (f1 - mu) with f2 = H^2 cos^2 x2 / (D B0): its cos^2 from the ends too
+        S = c.H ** 2 * square_from_ends(x2.cos()) / (g.D(x2) * c.B0) + c.mu * (g.f1(x2) - c.mu)
+        tight = (square_from_ends(h * ct + c.mu * st) + S * square_from_ends(st)) / 2
+        if tight.is_finite():
+            gamma = tight
+    return (c.mu * g.F(x2), g.f3(x2) * st, gamma)
+
+
+#: v_polar squares from the balls' ends where cos x2 may be below this (the gimbal lock; see v_polar)
+GIMBAL_LOCK_COS = arb(1) / 8
+
+
+def square_from_ends(x: arb) -> arb:
+    """A ball containing y^2 for every y in the ball x, from the ends of |x| (never below 0)."""
+    a = abs(x)
+    lo = arb(0) if x.contains(0) else a.lower()
+    hi = a.upper()
+    return (lo * lo).union(hi * hi)
 
 
 def sublevel_lower_bound(g: Gimbal):
