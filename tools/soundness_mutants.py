@@ -1024,6 +1024,9 @@ MUTANTS = [
      "    if certainly_gt(g.V(*balls), level):\n        return True\n",
      "    if not certainly_le(g.V(*balls), level):\n        return True\n",
      "a rectangle only possibly above the level taken to be disjoint from the sublevel set"),
+    ("gimbal_lock_square_lower_end_high", "rigor_gyro/kinds/lyapunov/model.py",
+     "    lo = arb(0) if x.contains(0) else a.lower()\n", "    lo = a.upper()\n",
+     "near the gimbal lock, a square from the ball's ends starts at the larger end: gamma's enclosure misses values"),
 ]
 
 
