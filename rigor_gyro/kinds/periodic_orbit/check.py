@@ -36,6 +36,7 @@ from ...core.stored import encloses, fmpq_of, interval as stored_interval, numbe
 from .claims import TAYLOR_ORDER, RootVerdict
 from .tracked import nearest_root
 from .tracked_claims import TRACKED
+from .check_verdicts import redecide
 from .flow import (DegenerateSpectrum, Spectrum, g_coeffs, half_period_jacobian, moment_zero_orders, pole_free_coeffs,
                    orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure, x0_at)
 from .paper import orbit_quantities
@@ -423,30 +424,10 @@ def check(model, data: dict) -> list[CheckResult]:
         elif cid in TRACKED and getattr(model, "orbit", None) is not None:
             say(cid, *_tracked_verdict(cid, st, tracked, main, moduli_main, len(other_moduli) == len(others),
                                        exhaustive and not roots))
-        elif cid == "half_period":
-            say(cid, st == "proved" and half_ok, why)
-        elif cid == "orbit_genuine":
-            if st == "proved":
-                say(cid, main is not None, "the stored theta* is a re-verified genuine root" if main is not None
-                    else "no re-verified genuine root inside the stored theta*")
-            else:
-                say(cid, exhaustive and not genuine, "exhaustive search with every root spurious, re-verified")
-        elif cid == "initial_point":
-            say(cid, (main is not None) if st == "proved" else (exhaustive and not genuine),
-                "x(0) of the re-verified orbit recomputed")
-        elif cid == "multipliers":
-            say(cid, (moduli_main is not None and len(other_moduli) == len(others)) if st == "proved"
-                else (exhaustive and not genuine), "eigenvalues of the recomputed Jacobian (another algorithm)")
-        elif cid == "stable":
-            if st == "proved":
-                ok = any(m is not None and all(certainly_lt(x, 1) for x in m) for m in all_moduli)
-                say(cid, ok, "a genuine orbit with every modulus < 1, re-decided")
-            else:
-                ok = exhaustive and (not genuine or (len(all_moduli) == len(genuine) and
-                                                     all(any(certainly_gt(x, 1) for x in m) for m in all_moduli)))
-                say(cid, ok, "exhaustive: no genuine orbit, or every one with a modulus > 1, re-decided")
         else:
-            say(cid, False, f"unknown claim {cid!r}")
+            say(cid, *redecide(cid, st, half_ok=half_ok, why=why, main=main, genuine=genuine, exhaustive=exhaustive,
+                               moduli_ok=(moduli_main is not None and len(other_moduli) == len(others)),
+                               all_moduli=all_moduli))
     for cid, names in REQUIRED.items():
         if claims.get(cid, {}).get("status") == "proved":
             missing = [n for n in names if n not in q]

@@ -33,10 +33,11 @@ from fractions import Fraction
 from flint import acb, acb_mat, acb_series, arb, arb_mat, fmpq
 
 from ...check import CheckResult
-from ...core.balls import (ball, certainly_gt, certainly_lt, certainly_negative, certainly_positive, interval,
+from ...core.balls import (ball, certainly_lt, certainly_negative, certainly_positive, interval,
                            series_coefficients, series_length)
 from ...core.stored import encloses, fmpq_of, interval as stored_interval, number
 from ...core.subdivision import enclose_max
+from .check_verdicts import redecide
 from .flow import ExpSum, taylor_enclosure
 from .plant_df import describing_function
 from .plant_orbit import leading_coefficient, matrix_ball, near_zero_bound, near_zero_order, section_index
@@ -484,30 +485,10 @@ def check(model, data: dict) -> list[CheckResult]:
         st = c["status"]
         if st == "inconclusive":
             say(cid, True, "inconclusive: claims nothing")
-        elif cid == "half_period":
-            say(cid, st == "proved" and half_ok, why)
-        elif cid == "orbit_genuine":
-            if st == "proved":
-                say(cid, main is not None, "the stored theta* is a re-verified genuine root" if main is not None
-                    else "no re-verified genuine root inside the stored theta*")
-            else:
-                say(cid, exhaustive and not genuine, "exhaustive search with every root spurious, re-verified")
-        elif cid == "initial_point":
-            say(cid, (main is not None) if st == "proved" else (exhaustive and not genuine),
-                "x(0) of the re-verified orbit recomputed")
-        elif cid == "multipliers":
-            say(cid, (moduli_main is not None and len(other_moduli) == len(others)) if st == "proved"
-                else (exhaustive and not genuine), "eigenvalues of the recomputed Jacobian (another algorithm)")
-        elif cid == "stable":
-            if st == "proved":
-                ok = any(m is not None and all(certainly_lt(x, 1) for x in m) for m in all_moduli)
-                say(cid, ok, "a genuine orbit with every modulus < 1, re-decided")
-            else:
-                ok = exhaustive and (not genuine or (len(all_moduli) == len(genuine) and
-                                                     all(any(certainly_gt(x, 1) for x in m) for m in all_moduli)))
-                say(cid, ok, "exhaustive: no genuine orbit, or every one with a modulus > 1, re-decided")
         else:
-            say(cid, False, f"unknown claim {cid!r}")
+            say(cid, *redecide(cid, st, half_ok=half_ok, why=why, main=main, genuine=genuine, exhaustive=exhaustive,
+                               moduli_ok=(moduli_main is not None and len(other_moduli) == len(others)),
+                               all_moduli=all_moduli))
     required = {"orbit_genuine": ("theta_star", "period"),
                 "initial_point": tuple(f"x0_{i}" for i in range(1, model.n + 1)),
                 "multipliers": tuple(f"multiplier_modulus_{j}" for j in range(1, model.n)),
