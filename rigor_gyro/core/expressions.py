@@ -19,7 +19,9 @@ formula with the operations of the values given (exact for ``Fraction``/``fmpq``
 with balls, a ball containing the exact value). Every number is read as an exact rational.
 
 Limits (checked while parsing, before any arithmetic): at most :data:`MAX_LENGTH` characters, nesting depth
-:data:`MAX_DEPTH`, integer exponents of magnitude <= :data:`MAX_POWER`, each number at most
+:data:`MAX_DEPTH`, :data:`MAX_OPERATIONS` binary operations, a degree of at most :data:`MAX_DEGREE` (so nested
+powers cannot multiply without bound), integer exponents of magnitude <= :data:`MAX_POWER`, functions of one
+argument, each number at most
 :data:`rigor_gyro.core.exact.MAX_DIGITS` digits and a decimal exponent within +-``MAX_EXPONENT``.
 
 Fails when: the text is not in the grammar, names an unknown parameter or function, or exceeds a limit
@@ -40,11 +42,17 @@ from typing import Any, Callable, Mapping
 from .errors import ParameterError
 from .exact import MAX_DIGITS, MAX_EXPONENT
 
-__all__ = ["Expr", "parse", "evaluate_exact", "MAX_LENGTH", "MAX_DEPTH", "MAX_POWER"]
+__all__ = ["Expr", "parse", "degree", "evaluate_exact", "MAX_LENGTH", "MAX_DEPTH", "MAX_POWER", "MAX_OPERATIONS", "MAX_DEGREE"]
 
 MAX_LENGTH = 4000
 MAX_DEPTH = 60
 MAX_POWER = 64
+#: binary operations in one expression (each adds a level to the tree's evaluation)
+MAX_OPERATIONS = 200
+#: the degree of an expression as a polynomial in its numbers and names (sums: the larger, products and quotients:
+#: the sum, a power: times the exponent): nested powers such as ((2^64)^64)^64 multiply, and exact arithmetic
+#: on them would exhaust memory
+MAX_DEGREE = 128
 
 _TOKEN = re.compile(r"\s*(?:(?P<num>(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)|(?P<name>[A-Za-z_][A-Za-z0-9_]*)"
                     r"|(?P<op>\*\*|[-+*/^(),]))", re.ASCII)
@@ -147,6 +155,9 @@ def parse(text: object, where: str, names: set[str] | frozenset[str] | Mapping =
     tree = p.expr(0)
     if p.i != len(tokens):
         raise ParameterError(f"{where}: cannot read {s!r}: unexpected {tokens[p.i][1]!r}")
+    if _degree(tree) > MAX_DEGREE:
+        raise ParameterError(f"{where}: cannot read {s!r}: its degree (powers multiplied through nested powers "
+                             f"and products) exceeds {MAX_DEGREE}; expand or simplify it")
     if len(_TREES) < 65536:
         _TREES[key] = tree
     return Expr(tree, s, where)
@@ -160,6 +171,12 @@ class _Parser:
     def __init__(self, tokens, text, where, names, functions):
         self.t, self.text, self.where, self.names, self.functions, self.i = tokens, text, where, names, functions, 0
         self.n = len(tokens)
+        self.operations = 0
+
+    def operation(self):
+        self.operations += 1
+        if self.operations > MAX_OPERATIONS:
+            self.fail(f"more than {MAX_OPERATIONS} operations; split it with defs")
 
     def fail(self, what: str):
         raise ParameterError(f"{self.where}: cannot read {self.text!r}: {what}")
@@ -183,6 +200,7 @@ class _Parser:
         left = self.term(depth)
         while self.peek()[1] in ("+", "-"):
             op = self.take()[1]
+            self.operation()
             left = (op, left, self.term(depth))
         return left
 
@@ -190,6 +208,7 @@ class _Parser:
         left = self.unary(depth)
         while self.peek()[1] in ("*", "/"):
             op = self.take()[1]
+            self.operation()
             left = (op, left, self.unary(depth))
         return left
 
@@ -230,6 +249,8 @@ class _Parser:
                     self.take()
                     args.append(self.expr(depth + 1))
                 self.take(")")
+                if len(args) != 1:
+                    self.fail(f"{value}() takes one argument, given {len(args)}")
                 return ("call", value, tuple(args))
             if value not in self.names:
                 import difflib
@@ -275,6 +296,30 @@ def _integer_constant(t: tuple) -> int | None:
     except ParameterError:
         return None
     return int(v) if v.denominator == 1 else None
+
+
+def _degree(t: tuple, names: Mapping[str, int] | None = None) -> int:
+    """The degree bound of the module docstring (MAX_DEGREE); ``names``: the degree a name stands for (a def's
+    own degree), 1 otherwise."""
+    op = t[0]
+    if op == "num":
+        return 1
+    if op == "name":
+        return (names or {}).get(t[1], 1)
+    if op == "neg":
+        return _degree(t[1], names)
+    if op == "call":
+        return max(_degree(a, names) for a in t[2])
+    if op == "^":
+        return _degree(t[1], names) * abs(t[2])
+    a, b = _degree(t[1], names), _degree(t[2], names)
+    return max(a, b) if op in "+-" else a + b
+
+
+def degree(expr: "Expr", names: Mapping[str, int] | None = None) -> int:
+    """The expression's degree with each name in ``names`` standing for that degree (a chain of defs each of
+    degree 64 multiplies: callers bound the result by MAX_DEGREE)."""
+    return _degree(expr.tree, names)
 
 
 def _has_call(t: tuple) -> bool:

@@ -318,7 +318,9 @@ def audit(model, p: Params, omegas: list[arb]) -> list[AuditRow]:
         if disjoint:
             from decimal import Decimal
             eps_text = format(Decimal(int(e.p)) / Decimal(int(e.q)), "f")
-            rows.append(consistent_eps_row(a, b, e, W, eps_text, list(exact)))
+            row = consistent_eps_row(a, b, e, W, eps_text, list(exact))
+            if row is not None:
+                rows.append(row)
     for key, kind in (("hz_lower", "lower"), ("hz_upper", "upper")):
         for j, x in enumerate(paper.get(key, []), start=1):
             br = BRACKETS[j]

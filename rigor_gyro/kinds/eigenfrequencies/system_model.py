@@ -46,7 +46,7 @@ from flint import arb, fmpq, fmpq_mat, fmpq_poly
 from ...core.balls import certainly_lt, decimal_bounds
 from ...core.errors import ParameterError
 from ...core.exact import Exact, option_count, option_number, parse_exact, parse_options
-from ...core.expressions import Expr, parse
+from ...core.expressions import MAX_DEGREE, Expr, degree, parse
 from ...core.polymat import det_by_interpolation
 
 __all__ = ["SystemModel", "validate_system", "SYSTEM_OPTIONS", "SYSTEM_KEYS", "frequency_polynomial",
@@ -103,13 +103,26 @@ class SystemModel:
     def hz(self) -> fmpq | None:
         return None if self.hz_scale is None else _exact(self.hz_scale, self.values)
 
+    def defs_needed(self, exprs) -> list[tuple[str, Expr]]:
+        """The defs the expressions use, directly or through other defs, in their order."""
+        defs = dict(self.defs)
+        want: set[str] = set()
+        todo = [n for e in exprs for n in e.names() if n in defs]
+        while todo:
+            n = todo.pop()
+            if n not in want:
+                want.add(n)
+                todo.extend(m for m in defs[n].names() if m in defs)
+        return [(n, e) for n, e in self.defs if n in want]
+
     def bracket_balls(self, j: int) -> tuple[arb, arb]:
         """Balls of the lower and upper bound of bracket j (1-based) at the working precision; NotRealBound
-        when a square root's argument is certainly negative."""
-        env = {k: arb(_q(x.rational)) for k, x in self.params.items()}   # defs with sqrt: in balls, in order
-        for name, e in self.defs:
-            env[name] = ball_value(e, env)
+        when a square root's argument is certainly negative in the bracket or in a def it uses (a def that
+        only other brackets use never decides this one)."""
         lo, hi = self.brackets[j - 1]
+        env = {k: arb(_q(x.rational)) for k, x in self.params.items()}   # defs with sqrt: in balls, in order
+        for name, e in self.defs_needed((lo, hi)):
+            env[name] = ball_value(e, env)
         return ball_value(lo, env), ball_value(hi, env)
 
 
@@ -212,6 +225,7 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
     if not isinstance(raw_defs, list) or not all(isinstance(d, str) for d in raw_defs):
         raise ParameterError("[system] defs: expected a list of strings \"name = expression\"")
     rational = dict(values)        # names with exact values (defs without sqrt)
+    def_degrees: dict[str, int] = {}
     for i, d in enumerate(raw_defs, start=1):
         name, eq, text = d.partition("=")
         name = name.strip()
@@ -220,6 +234,10 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
         if name in values or name in ("sqrt",):
             raise ParameterError(f"[system] defs[{i}]: the name {name!r} is already a parameter or an earlier def")
         e = parse(text, f"[system] defs[{i}] ({name})", set(values), _FUNCTIONS)
+        def_degrees[name] = degree(e, def_degrees)
+        if def_degrees[name] > MAX_DEGREE:
+            raise ParameterError(f"[system] defs[{i}] ({name}): its degree through the defs it uses is "
+                                 f"{def_degrees[name]}, above {MAX_DEGREE} (nested powers multiply); simplify it")
         defs.append((name, e))
         values[name] = fmpq(0)              # a placeholder: known name
         if not _uses_sqrt(e) and set(e.names()) <= set(rational):
