@@ -45,3 +45,49 @@ def test_a_chain_of_defs_cannot_multiply_degrees(tmp_path):
                                                   'defs = ["A = k^64", "B = A^64", "C = B^64"]')
     (tmp_path / "s.toml").write_text(text)
     assert main(["prove", str(tmp_path / "s.toml"), "-o", str(tmp_path / "o"), "-q"]) == 2
+
+
+FLUTTER = """name = "flutter"
+kind = "eigenfrequencies"
+source = "review"
+[parameters]
+k = "1"
+[system]
+M = [["1","0"],["0","1"]]
+K = [["k","0"],["0","1"]]
+G = [["0","1/2"],["-1/2","0"]]
+D = [["1","0"],["0","-1"]]
+"""
+DAMPED = """name = "damped"
+kind = "eigenfrequencies"
+source = "review"
+[parameters]
+d = "1/1000000"
+[system]
+M = [["1"]]
+K = [["1"]]
+D = [["d"]]
+"""
+
+
+@pytest.mark.parametrize("text,key,value", [
+    (FLUTTER, "nonreal_roots", [{"re": ["5", "6"], "im": ["1", "2"]}]), (FLUTTER, "frequency_polynomial", ["1", "2", "3"]),
+    (DAMPED, "odd_coefficients", ["0"]), (DAMPED, "offaxis_roots", [{"re": ["5", "6"], "im": ["1", "2"]}])])
+def test_the_checker_re_derives_a_refutations_counterexample(tmp_path, text, key, value):
+    """Made-up counterexample data is refused even when the text comparison is off (another software version)."""
+    import json
+
+    from rigor_gyro.check import check_file, digest
+    (tmp_path / "s.toml").write_text(text)
+    assert main(["prove", str(tmp_path / "s.toml"), "-o", str(tmp_path / "o"), "-q"]) == 1
+    path = next((tmp_path / "o").glob("*.json"))
+    assert check_file(path).ok
+    data = json.loads(path.read_text())
+    for c in data["claims"]:
+        if c.get("counterexample"):
+            c["counterexample"][key] = value
+    data["software"]["rigor_gyro"] = "9.9.9"
+    data["integrity"]["sha256"] = digest(data)
+    path.write_text(json.dumps(data))
+    report = check_file(path)
+    assert not report.ok and "counterexample" in report.first_failure.item

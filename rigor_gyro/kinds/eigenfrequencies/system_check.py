@@ -195,7 +195,60 @@ def check_system(model: SystemModel, data: dict) -> list[CheckResult]:
                     f"brackets re-decided: certainly violated for {outside}, the certificate names {claimed_out}")
         else:
             say(cid, False, f"unknown claim {cid!r} for a [system] scene")
+            continue
+        if not proved and cid in ("roots", "stability") and c.get("counterexample"):
+            say(f"{cid} counterexample", *counterexample_ok(c["counterexample"], P, mu, odd, Q, model.zero_roots))
     unverified = sorted(set(q) - verified)
     say("quantities", not unverified, f"{len(verified)} stored enclosures verified"
         + (f"; not verified: {unverified}" if unverified else ""))
     return out
+
+
+def _box_holds_root(box: dict, roots: list) -> bool:
+    """Whether the stored box {"re": [lo, hi], "im": [lo, hi]} certainly contains one of ``roots`` (acb balls,
+    each holding exactly one root)."""
+    (rl, rh), (il, ih) = interval(box["re"]), interval(box["im"])
+    for z in roots:
+        re, im = z.real, z.imag
+        if (arb(fmpq_of(rl)) <= re.lower() and re.upper() <= arb(fmpq_of(rh))
+                and arb(fmpq_of(il)) <= im.lower() and im.upper() <= arb(fmpq_of(ih))):
+            return True
+    return False
+
+
+def counterexample_ok(ce: dict, P, mu: int, odd: list[int], Q, zero_roots: int) -> tuple[bool, str]:
+    """A refuted claim's stored counterexample re-derived: its exact parts (the characteristic and frequency
+    polynomials' coefficients, the zero-root multiplicity, the odd terms) equal to the checker's own (Laplace
+    expansion), and each stored root box certainly holding a root of that polynomial (Arb's roots of the
+    checker's exact polynomial at its precision)."""
+    c = P.coeffs()
+    checks = {"characteristic_coefficients": [str(x) for x in c],
+              "zero_root_multiplicity": mu, "zero_roots_declared": zero_roots,
+              "odd_powers": [k + mu for k in odd], "odd_coefficients": [str(c[k + mu]) for k in odd]}
+    if Q is not None:
+        checks["frequency_polynomial"] = [str(x) for x in Q.coeffs()]
+        checks["gcd_with_derivative"] = str(Q.gcd(Q.derivative()))
+    for key, want in checks.items():
+        if key in ce and ce[key] != want:
+            return False, f"the stored {key} is not the re-derived one"
+    unknown = set(ce) - set(checks) - {"nonreal_roots", "negative_roots", "offaxis_roots"}
+    if unknown:
+        return False, f"unknown counterexample data {sorted(unknown)}"
+    if "nonreal_roots" in ce or "negative_roots" in ce:
+        if Q is None:
+            return False, "roots of the frequency polynomial stored, but P is not lambda^z times an even polynomial"
+        roots = [z for z, _ in Q.complex_roots()]
+        boxes = list(ce.get("nonreal_roots", [])) + [{"re": r, "im": ["0", "0"]} for r in ce.get("negative_roots", [])]
+        if not all(_box_holds_root(b, roots) for b in boxes):
+            return False, "a stored root box of the frequency polynomial holds none of its roots"
+        if not all(interval(b["im"])[0] > 0 or interval(b["im"])[1] < 0 for b in ce.get("nonreal_roots", [])):
+            return False, "a stored non-real root box does not exclude the real axis"
+        if not all(interval(r)[1] < 0 for r in ce.get("negative_roots", [])):
+            return False, "a stored negative root interval is not below 0"
+    if "offaxis_roots" in ce:
+        roots = [z for z, _ in fmpq_poly(c[mu:]).complex_roots()]
+        if not all(_box_holds_root(b, roots) for b in ce["offaxis_roots"]):
+            return False, "a stored off-axis root box holds none of the roots of P / lambda^z"
+        if not all(interval(b["re"])[0] > 0 or interval(b["re"])[1] < 0 for b in ce["offaxis_roots"]):
+            return False, "a stored off-axis root box does not exclude the imaginary axis"
+    return True, "the counterexample re-derived from the checker's own expansion"
