@@ -91,3 +91,13 @@ def test_the_checker_re_derives_a_refutations_counterexample(tmp_path, text, key
     path.write_text(json.dumps(data))
     report = check_file(path)
     assert not report.ok and "counterexample" in report.first_failure.item
+
+
+def test_zero_roots_leaving_no_frequency_and_an_exact_division_by_zero_are_bad_input(tmp_path, capsys):
+    base = SCENE.format(k="1", lo="1/2").replace('defs = ["S = sqrt(k-2)"]\n', "")
+    (tmp_path / "z.toml").write_text(base.replace("[system]", '[options]\nzero_roots = "4"\n[system]'))
+    assert main(["prove", str(tmp_path / "z.toml"), "-o", str(tmp_path / "o"), "-q"]) == 2
+    assert "zero_roots" in capsys.readouterr().err
+    (tmp_path / "d.toml").write_text(base.replace('[["1/2","3/2"]', '[["1/(k-1)","3/2"]'))
+    assert main(["prove", str(tmp_path / "d.toml"), "-o", str(tmp_path / "o"), "-q"]) == 2
+    assert "divides by zero" in capsys.readouterr().err

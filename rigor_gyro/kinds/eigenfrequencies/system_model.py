@@ -262,6 +262,9 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
     opts = parse_options(scene.options, SYSTEM_OPTIONS, "eigenfrequencies ([system])")
     rel = option_number(opts["rel_width"], "rel_width", above="0", at_most="1")
     z = option_count(opts["zero_roots"], "zero_roots", 0, 2 * n)
+    if z == 2 * n:
+        raise ParameterError(f"option 'zero_roots' = {opts['zero_roots']!r}: every root of the {n}-degree-of-freedom "
+                             f"system would be lambda = 0, leaving no frequency; at most {2 * n - 2}")
     if z % 2:
         raise ParameterError(f"option 'zero_roots' = {opts['zero_roots']!r}: must be even (lambda = 0 roots of a system "
                              "M q'' + G q' + K q come in pairs)")
@@ -283,6 +286,10 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
     brackets = tuple((parse(lo, f"[system] brackets[{j}] lower", names, _FUNCTIONS),
                       parse(hi, f"[system] brackets[{j}] upper", names, _FUNCTIONS))
                      for j, (lo, hi) in enumerate(raw, start=1))
+    for j, pair in enumerate(brackets, start=1):      # an exact bound (no sqrt) is computed exactly: a division by
+        for side, e in zip(("lower", "upper"), pair):   # an exact zero is bad input, not a precision to escalate
+            if not _uses_sqrt(e) and set(e.names()) <= set(rational):
+                _exact(e, rational)
     if scene.paper:
         raise ParameterError("a [system] scene takes no [paper] table (the audit is the paper scene's)")
     return SystemModel(rational, params, n, M, G, K, D, tuple(defs), brackets, hz, rel, z, tuple(wanted), dict(table),
