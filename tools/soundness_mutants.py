@@ -170,7 +170,7 @@ MUTANTS = [
     ("spurious_witness_possibly", "rigor_gyro/kinds/periodic_orbit/claims.py",
      "            if certainly_negative(beta(t)):", "            if not certainly_positive(beta(t)):",
      "a spurious-root witness accepted on 'possibly <= 0'"),
-    ("stable_possibly_below_1", "rigor_gyro/kinds/periodic_orbit/claims.py",
+    ("stable_possibly_below_1", "rigor_gyro/kinds/periodic_orbit/multipliers.py",
      "    if all(certainly_lt(m, 1) for m in v.moduli):", "    if all(not certainly_gt(m, 1) for m in v.moduli):",
      "stability accepted on 'possibly < 1'"),
     ("psi_disc_term_dropped", "rigor_gyro/kinds/lyapunov/model.py", "        return c10 - R * hypot_ball(c11, c13)",

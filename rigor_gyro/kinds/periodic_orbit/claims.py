@@ -67,6 +67,7 @@ from .texts import complex_text as _fmt_c, interval_text as _fmt, modulus_text a
 from .tracked import statements as tracked_statements
 from .tracked_claims import choose, tracked_claims, tracked_extra
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table, orbit_quantities
+from .multipliers import decide_multipliers
 from .flow import (AMPLITUDE_PARAMETERS, PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, envelope_margin, g_coeffs, pole_free_coeffs,
                    moment_zero_orders, orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure,
                    x0_at)
@@ -334,28 +335,8 @@ def _multipliers(sp: Spectrum, v: RootVerdict) -> None:
                               or certainly_lt(z.rad(), eig[k].rad())):
             eig[k] = z
             v.jacobian_note += "; the smallest multiplier is enclosed as that product divided by the other three"
-    # J is real, so its spectrum is closed under conjugation: an eigenvalue whose conjugate ball meets
-    # no other eigenvalue's ball is its own conjugate, i.e. exactly real (imaginary part set to 0)
-    for k, z in enumerate(eig):
-        zc = z.conjugate()
-        if z.imag.contains(0) and not any(zc.overlaps(w) for j, w in enumerate(eig) if j != k):
-            eig[k] = acb(z.real, 0)
-    order = sorted(range(4), key=lambda k: -float(abs(eig[k]).mid()))  # float orders, balls decide
-    mults = [eig[k] for k in order]
-    for k in range(3):  # a conjugate pair (equal moduli): the member with Im > 0 first, deterministically
-        a, b = mults[k], mults[k + 1]
-        if abs(a).overlaps(abs(b)) and certainly_negative(a.imag) and certainly_positive(b.imag):
-            mults[k], mults[k + 1] = b, a
-    v.multipliers = mults
-    v.moduli = [abs(z) for z in v.multipliers]
-    mx = v.moduli[0]
-    for m in v.moduli[1:]:
-        mx = mx.max(m)
-    v.margin = 1 - mx
-    if all(certainly_lt(m, 1) for m in v.moduli):
-        v.stable = True
-    elif any(certainly_gt(m, 1) for m in v.moduli):
-        v.stable = False
+    # J is real: exactly real eigenvalues, ordered multipliers, moduli, margin and the stability decision
+    decide_multipliers(v, eig)
 
 
 @dataclass

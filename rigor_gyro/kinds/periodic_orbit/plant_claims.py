@@ -32,7 +32,7 @@ from fractions import Fraction
 
 from flint import acb, acb_mat, arb, fmpq
 
-from ...core.balls import (ball, certainly_gt, certainly_lt, certainly_negative, certainly_positive,
+from ...core.balls import (ball, certainly_lt, certainly_negative, certainly_positive,
                            current_precision, interval, working_precision)
 from ...core.outcome import Status
 from ...core.roots import RootStatus, newton_root
@@ -40,6 +40,7 @@ from ...core.subdivision import certify_positive
 from .. import Attempt, Phases
 from .claims import RootVerdict, dyadic_up as _dyadic_up, g_series_function as _g_series_function, isolate_pieces as _isolate
 from .flow import DegenerateSpectrum, taylor_enclosure
+from .multipliers import decide_multipliers
 from .plant_model import PlantModel, validate_plant
 from .plant_report import assemble
 from .plant_statements import GUARD_BITS, PLANT_CLAIMS, TAYLOR_ORDER
@@ -233,24 +234,7 @@ def plant_multipliers(sp: PlantSpectrum, v: RootVerdict) -> None:
             if z.is_finite() and (not certainly_positive(abs(eig[s])) or certainly_lt(z.rad(), eig[s].rad())):
                 eig[s] = z
                 v.jacobian_note += "; the smallest multiplier is enclosed as that product divided by the others"
-    for i, z in enumerate(eig):
-        if z.imag.contains(0) and not any(z.conjugate().overlaps(w) for j, w in enumerate(eig) if j != i):
-            eig[i] = acb(z.real, 0)
-    mults = sorted(eig, key=lambda z: -float(abs(z).mid()))
-    for i in range(k - 1):
-        a, b = mults[i], mults[i + 1]
-        if abs(a).overlaps(abs(b)) and certainly_negative(a.imag) and certainly_positive(b.imag):
-            mults[i], mults[i + 1] = b, a
-    v.multipliers = mults
-    v.moduli = [abs(z) for z in mults]
-    mx = v.moduli[0]
-    for m in v.moduli[1:]:
-        mx = mx.max(m)
-    v.margin = 1 - mx
-    if all(certainly_lt(m, 1) for m in v.moduli):
-        v.stable = True
-    elif any(certainly_gt(m, 1) for m in v.moduli):
-        v.stable = False
+    decide_multipliers(v, eig)
 
 
 # ------------------------------------------------------------------------------ analysis
