@@ -36,7 +36,7 @@ from ...core.stored import encloses, fmpq_of, interval as stored_interval, numbe
 from .claims import TAYLOR_ORDER, RootVerdict
 from .tracked import nearest_root
 from .tracked_claims import TRACKED
-from .check_verdicts import redecide
+from .check_verdicts import other_orbit_moduli, redecide
 from .flow import (DegenerateSpectrum, Spectrum, g_coeffs, half_period_jacobian, moment_zero_orders, pole_free_coeffs,
                    orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure, x0_at)
 from .paper import orbit_quantities
@@ -404,17 +404,7 @@ def check(model, data: dict) -> list[CheckResult]:
             for m in moduli_main[1:]:
                 mx = mx.max(m)
             contains("stability_margin", 1 - mx)
-    others = [th for th in genuine if th is not main]
-    other_moduli = {}
-    for k, th in enumerate(others, start=2):
-        contains(f"theta_star_{k}", th)
-        mm = _multipliers(sp, th)
-        if mm is not None:
-            other_moduli[k] = [abs(z) for z in mm]
-            mx = other_moduli[k][0]
-            for m in other_moduli[k][1:]:
-                mx = mx.max(m)
-            contains(f"stability_margin_{k}", 1 - mx)
+    others, other_moduli = other_orbit_moduli(genuine, main, lambda th: _multipliers(sp, th), contains)
     exhaustive = half_ok and w["covers_all"]
     all_moduli = ([moduli_main] if moduli_main else []) + list(other_moduli.values())
     for cid, c in claims.items():

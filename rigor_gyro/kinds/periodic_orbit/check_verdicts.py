@@ -13,10 +13,28 @@ from __future__ import annotations
 
 from ...core.balls import certainly_gt, certainly_lt
 
-__all__ = ["ORBIT_CLAIMS", "redecide"]
+__all__ = ["ORBIT_CLAIMS", "other_orbit_moduli", "redecide"]
 
 #: the claims whose stored status :func:`redecide` re-decides
 ORBIT_CLAIMS = ("half_period", "orbit_genuine", "initial_point", "multipliers", "stable")
+
+
+def other_orbit_moduli(genuine: list, main, multipliers_of, contains) -> tuple[list, dict]:
+    """(the genuine roots other than ``main``, {k: their recomputed moduli}), k = 2, 3, ... in order; each root's
+    stored theta_star_k and, where its multipliers are recomputed (``multipliers_of(theta)``, None when not),
+    its stored stability_margin_k checked through ``contains(name, ball)``."""
+    others = [th for th in genuine if th is not main]
+    other_moduli = {}
+    for k, th in enumerate(others, start=2):
+        contains(f"theta_star_{k}", th)
+        mm = multipliers_of(th)
+        if mm is not None:
+            other_moduli[k] = [abs(z) for z in mm]
+            mx = other_moduli[k][0]
+            for m in other_moduli[k][1:]:
+                mx = mx.max(m)
+            contains(f"stability_margin_{k}", 1 - mx)
+    return others, other_moduli
 
 
 def redecide(cid: str, st: str, *, half_ok: bool, why: str, main, genuine: list, exhaustive: bool,

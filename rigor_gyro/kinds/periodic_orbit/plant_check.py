@@ -37,7 +37,7 @@ from ...core.balls import (ball, certainly_lt, certainly_negative, certainly_pos
                            series_coefficients, series_length)
 from ...core.stored import encloses, fmpq_of, interval as stored_interval, number
 from ...core.subdivision import enclose_max
-from .check_verdicts import redecide
+from .check_verdicts import other_orbit_moduli, redecide
 from .flow import ExpSum, taylor_enclosure
 from .plant_df import describing_function
 from .plant_orbit import leading_coefficient, matrix_ball, near_zero_bound, near_zero_order, section_index
@@ -468,17 +468,7 @@ def check(model, data: dict) -> list[CheckResult]:
                     contains("df_amplitude", Adf)
                     contains("df_period_difference", 2 * main - Pdf)
                     contains("df_amplitude_difference", A - Adf)
-    others = [th for th in genuine if th is not main]
-    other_moduli = {}
-    for k, th in enumerate(others, start=2):
-        contains(f"theta_star_{k}", th)
-        mm = _multipliers(d, th)
-        if mm is not None:
-            other_moduli[k] = [abs(z) for z in mm]
-            mx = other_moduli[k][0]
-            for m in other_moduli[k][1:]:
-                mx = mx.max(m)
-            contains(f"stability_margin_{k}", 1 - mx)
+    others, other_moduli = other_orbit_moduli(genuine, main, lambda th: _multipliers(d, th), contains)
     exhaustive = half_ok and w["covers_all"]
     all_moduli = ([moduli_main] if moduli_main else []) + list(other_moduli.values())
     for cid, c in claims.items():
