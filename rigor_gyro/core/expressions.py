@@ -30,6 +30,13 @@ Fails when: the text is not in the grammar, names an unknown parameter or functi
 
 Precision: none of its own (the values' arithmetic decides).
 
+Calculus on trees (for callers that allow the standard functions :data:`UNARY_FUNCTIONS`): :func:`derivative`
+is the exact symbolic derivative in one name (the chain rule with each function's own rule; ``abs``' derivative
+is ``sign``, which a caller must evaluate as undefined where its argument may vanish), and :func:`parity` decides
+from the tree alone whether an expression is odd or even in one name (a sufficient, exact test: an expression it
+calls odd satisfies e(-x) = -e(x) identically wherever both sides are defined; None means "not shown", never
+"not odd").
+
 This module knows nothing of gyroscopes: any kind may read its model entries with it.
 """
 from __future__ import annotations
@@ -42,7 +49,8 @@ from typing import Any, Callable, Mapping
 from .errors import ParameterError
 from .exact import MAX_DIGITS, MAX_EXPONENT
 
-__all__ = ["Expr", "parse", "degree", "evaluate_exact", "MAX_LENGTH", "MAX_DEPTH", "MAX_POWER", "MAX_OPERATIONS", "MAX_DEGREE"]
+__all__ = ["Expr", "parse", "degree", "evaluate_exact", "derivative", "parity", "tree_size", "UNARY_FUNCTIONS", "MAX_LENGTH",
+           "MAX_DEPTH", "MAX_POWER", "MAX_OPERATIONS", "MAX_DEGREE", "MAX_DERIVATIVE_NODES"]
 
 MAX_LENGTH = 4000
 MAX_DEPTH = 60
@@ -53,6 +61,15 @@ MAX_OPERATIONS = 200
 #: the sum, a power: times the exponent): nested powers such as ((2^64)^64)^64 multiply, and exact arithmetic
 #: on them would exhaust memory
 MAX_DEGREE = 128
+
+#: the standard unary functions a caller may allow (``parse(..., functions=UNARY_FUNCTIONS)``); their derivative
+#: rules are in :func:`derivative` and their parities in :func:`parity`. ``sign`` is not written by users: it is
+#: abs' derivative, produced by :func:`derivative`
+UNARY_FUNCTIONS = frozenset({"sin", "cos", "tan", "exp", "log", "sqrt", "tanh", "atan", "abs"})
+#: a derivative tree larger than this many nodes is refused (ParameterError): products of long factors grow it
+MAX_DERIVATIVE_NODES = 20000
+_ODD_FUNCTIONS = frozenset({"sin", "tan", "tanh", "atan", "sign"})
+_EVEN_FUNCTIONS = frozenset({"cos", "abs"})
 
 _TOKEN = re.compile(r"\s*(?:(?P<num>(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)|(?P<name>[A-Za-z_][A-Za-z0-9_]*)"
                     r"|(?P<op>\*\*|[-+*/^(),]))", re.ASCII)
@@ -330,3 +347,186 @@ def evaluate_exact(expr: Expr, env: Mapping[str, Fraction]) -> Fraction:
     """The exact rational value of an expression without functions at exact rational ``env``
     (ParameterError naming the entry on a division by zero)."""
     return expr.evaluate(env)
+
+
+# ------------------------------------------------------------------------------------ calculus on trees
+
+_ZERO, _ONE = ("num", Fraction(0)), ("num", Fraction(1))
+
+
+def _num(t) -> Fraction | None:
+    return t[1] if t[0] == "num" else None
+
+
+def _add(a, b):
+    if _num(a) == 0:
+        return b
+    if _num(b) == 0:
+        return a
+    if _num(a) is not None and _num(b) is not None:
+        return ("num", a[1] + b[1])
+    return ("+", a, b)
+
+
+def _sub(a, b):
+    if _num(b) == 0:
+        return a
+    if _num(a) == 0:
+        return _neg(b)
+    return ("-", a, b)
+
+
+def _neg(a):
+    if _num(a) is not None:
+        return ("num", -a[1])
+    return a[1] if a[0] == "neg" else ("neg", a)
+
+
+def _mul(a, b):
+    if _num(a) == 0 or _num(b) == 0:
+        return _ZERO
+    if _num(a) == 1:
+        return b
+    if _num(b) == 1:
+        return a
+    if _num(a) is not None and _num(b) is not None:
+        return ("num", a[1] * b[1])
+    return ("*", a, b)
+
+
+def _div(a, b):
+    if _num(a) == 0:
+        return _ZERO
+    if _num(b) == 1:
+        return a
+    return ("/", a, b)
+
+
+def _call(name, u):
+    return ("call", name, (u,))
+
+
+def _pow(u, n: int):
+    if n == 0:
+        return _ONE
+    if n == 1:
+        return u
+    return ("^", u, n)
+
+
+def _d(t, x: str):
+    op = t[0]
+    if op == "num":
+        return _ZERO
+    if op == "name":
+        return _ONE if t[1] == x else _ZERO
+    if op == "neg":
+        return _neg(_d(t[1], x))
+    if op in "+-":
+        a, b = _d(t[1], x), _d(t[2], x)
+        return _add(a, b) if op == "+" else _sub(a, b)
+    if op == "*":
+        return _add(_mul(_d(t[1], x), t[2]), _mul(t[1], _d(t[2], x)))
+    if op == "/":
+        # (u/v)' = u'/v - u v'/v^2
+        u, v = t[1], t[2]
+        du, dv = _d(u, x), _d(v, x)
+        return _sub(_div(du, v), _div(_mul(u, dv), _pow(v, 2)))
+    if op == "^":
+        u, n = t[1], t[2]
+        du = _d(u, x)
+        if n == 0 or _num(du) == 0:
+            return _ZERO
+        # n u^(n-1) u'  (n < 0 included: u^(n-1) is a negative power again)
+        return _mul(_mul(("num", Fraction(n)), _pow(u, n - 1)), du)
+    if op == "call":
+        name, (u,) = t[1], t[2]
+        du = _d(u, x)
+        if _num(du) == 0:
+            return _ZERO
+        rule = {
+            "sin": lambda: _call("cos", u),
+            "cos": lambda: _neg(_call("sin", u)),
+            "tan": lambda: _add(_ONE, _pow(_call("tan", u), 2)),
+            "exp": lambda: _call("exp", u),
+            "log": lambda: _div(_ONE, u),
+            "sqrt": lambda: _div(_ONE, _mul(("num", Fraction(2)), _call("sqrt", u))),
+            "tanh": lambda: _sub(_ONE, _pow(_call("tanh", u), 2)),
+            "atan": lambda: _div(_ONE, _add(_ONE, _pow(u, 2))),
+            "abs": lambda: _call("sign", u),
+            "sign": lambda: _ZERO,
+        }.get(name)
+        if rule is None:
+            raise ParameterError(f"no derivative rule for the function {name!r}")
+        return _mul(rule(), du)
+    raise ValueError(f"unknown node {op!r}")
+
+
+def tree_size(t: tuple) -> int:
+    """The number of nodes of a tree."""
+    if t[0] in ("num", "name"):
+        return 1
+    if t[0] == "call":
+        return 1 + sum(tree_size(a) for a in t[2])
+    if t[0] in ("neg", "^"):
+        return 1 + tree_size(t[1])
+    return 1 + tree_size(t[1]) + tree_size(t[2])
+
+
+def derivative(expr: Expr, name: str) -> Expr:
+    """The exact derivative of ``expr`` in ``name`` (the other names constants), as an Expr over the same names
+    and the functions of :data:`UNARY_FUNCTIONS` plus ``sign`` (abs' derivative). Guarantee: where the expression
+    and every function in the derivative are defined, the derivative's value is the derivative of the value (the
+    rules are the textbook ones, applied symbolically; light simplification of exact 0 and 1 only). Fails when: a
+    function has no rule, or the derivative has more than :data:`MAX_DERIVATIVE_NODES` nodes (ParameterError
+    naming the entry)."""
+    t = _d(expr.tree, name)
+    if tree_size(t) > MAX_DERIVATIVE_NODES:
+        raise ParameterError(f"{expr.where}: the derivative of {expr.text!r} has more than {MAX_DERIVATIVE_NODES} "
+                             "nodes; simplify the expression")
+    return Expr(t, f"d/d{name} ({expr.text})", expr.where)
+
+
+def parity(expr: Expr, name: str) -> str | None:
+    """"odd" or "even" when the tree shows e(-x) = -e(x) (resp. e(x)) identically in ``name`` (every other name
+    and number a constant, so even); None when it does not show either (not a proof of the contrary). Rules:
+    sums of odd (even) terms, products by the sign rule, integer powers, odd functions (sin, tan, tanh, atan,
+    sign) keep their argument's parity, even ones (cos, abs) make it even, any function of an even argument is
+    even; anything else (exp, log, sqrt of an odd argument, a sum of an odd and an even term) is None."""
+    def p(t):
+        op = t[0]
+        if op == "num":
+            return "even"
+        if op == "name":
+            return "odd" if t[1] == name else "even"
+        if op == "neg":
+            return p(t[1])
+        if op in "+-":
+            a, b = p(t[1]), p(t[2])
+            if _num(t[1]) == 0:
+                return b
+            if _num(t[2]) == 0:
+                return a
+            return a if a == b else None
+        if op in "*/":
+            a, b = p(t[1]), p(t[2])
+            if a is None or b is None:
+                return None
+            return "even" if a == b else "odd"
+        if op == "^":
+            a = p(t[1])
+            if a is None:
+                return None
+            return "odd" if a == "odd" and t[2] % 2 else "even"
+        if op == "call":
+            a = p(t[2][0])
+            if a == "even":
+                return "even"
+            if a == "odd":
+                if t[1] in _ODD_FUNCTIONS:
+                    return "odd"
+                if t[1] in _EVEN_FUNCTIONS:
+                    return "even"
+            return None
+        return None
+    return p(expr.tree)

@@ -76,6 +76,7 @@ from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_p
                     closed_form_constants, cylinder_lower_bound, damping_margin, direct_margin, faces_minimiser_inside, hypot_ball,
                     mean_value_enclosure, rational_points_inside, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
 from .moments import MOMENTS
+from .moment_scene import KNOWN as KNOWN_MOMENTS, scene_moment_law
 from .paper import PAPER_SCHEMA, audit as audit_paper
 
 __all__ = ["CLAIMS", "OPT_IN_CLAIMS", "ALL_CLAIMS", "PARAMETERS", "LyapunovModel", "validate", "attempt", "gimbal_from_parameters", "maximum_M"]
@@ -206,13 +207,13 @@ def _err(name, text, need):
     return ParameterError(f"parameter {name!r} = {text!r}: need {need}")
 
 
-def gimbal_from_parameters(text: dict[str, str]) -> tuple[Gimbal, dict[str, Exact]]:
-    """Parse and check the parameters (exact strings) of the lyapunov kind; ParameterError names the
-    parameter to change."""
+def gimbal_from_parameters(text: dict[str, str], table: dict | None = None) -> tuple[Gimbal, dict[str, Exact]]:
+    """Parse and check the parameters (exact strings) of the lyapunov kind and the scene's [moment] table
+    (``table``, issue 42: :func:`.moment_scene.scene_moment_law`); ParameterError names the parameter to change."""
     v = parse_parameters(text, "lyapunov", PARAMETERS, PARAMETERS, text_keys=("moment",))
     moment = text["moment"]
-    if not isinstance(moment, str) or moment not in MOMENTS:
-        raise ParameterError(f"parameter 'moment' = {moment!r}: unknown moment law; known: {sorted(MOMENTS)}")
+    if not isinstance(moment, str) or moment not in KNOWN_MOMENTS:
+        raise ParameterError(f"parameter 'moment' = {moment!r}: unknown moment law; known: {KNOWN_MOMENTS}")
     require_rational(v, RATIONAL)
     q = {k: v[k].rational for k in RATIONAL}
     for k in ("A", "C", "H", "k", "a", "mu"):
@@ -238,12 +239,12 @@ def gimbal_from_parameters(text: dict[str, str]) -> tuple[Gimbal, dict[str, Exac
         raise _err("x2_star", text["x2_star"], "0 < x2_star < pi/2 (e.g. \"pi/6\")")
     f = {k: fmpq(x.numerator, x.denominator) for k, x in
          {"A0": A0, "B0": B0, "C0": C0, **q}.items()}
-    g = Gimbal(f["A0"], f["B0"], f["C0"], f["H"], f["k"], f["a"], f["mu"], xs, MOMENTS[moment])
+    g = Gimbal(f["A0"], f["B0"], f["C0"], f["H"], f["k"], f["a"], f["mu"], xs, scene_moment_law(moment, table, xs))
     return g, v
 
 
 def validate(scene) -> LyapunovModel:
-    g, v = gimbal_from_parameters(dict(scene.parameters))
+    g, v = gimbal_from_parameters(dict(scene.parameters), getattr(scene, "model", None))
     opts = parse_options(scene.options, OPTIONS, "lyapunov")
     rel = option_number(opts["rel_width"], "rel_width", above="0", at_most="1").fmpq()
     R = option_number(opts["R"], "R", above="0", at_most="1e6").fmpq() if opts["R"] else None

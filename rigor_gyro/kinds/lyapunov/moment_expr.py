@@ -1,0 +1,414 @@
+"""A moment law written as an expression in the scene's ``[moment]`` table (issue 42, part 2).
+
+A scene of kind ``lyapunov`` with ``moment = "expression"`` gives its law as
+
+    [moment]
+    f = "a*sin(x2) + b*x2^3"      # over + - * / ^ (integer exponents), sin cos tan exp log sqrt tanh atan abs
+    b = "0.05"                    # its own named parameters: exact decimals (or constant expressions)
+
+The names f may use are ``x2``, the scene's parameter ``a`` (so a tolerance box over ``a`` varies the law) and
+the table's own parameters. The text is parsed by :mod:`rigor_gyro.core.expressions` (a grammar of its own, never
+``eval``); f' is its exact symbolic derivative (:func:`rigor_gyro.core.expressions.derivative`). Both are
+evaluated on ``arb`` balls, :class:`.model.Dual` numbers (forward mode: f on a Dual gives f', f' on a Dual gives
+f''), ``arb_series`` (the equilibria's interval Newton) and, inside the quadrature of G, ``acb`` balls with
+Arb's analyticity flag (log, sqrt, atan and abs refuse a ball touching their branch cut or kink, so the
+integration's error bound stays rigorous).
+
+What the law certifies before it is used (:func:`expression_law`, bad input otherwise, naming the entry):
+
+* f(0) = 0 exactly, by exact evaluation at x2 = 0 (rationals, and sin 0 = 0, cos 0 = 1, exp 0 = 1, log 1 = 0,
+  ...; the scene's ``a`` a real of unknown value): a value certainly nonzero, or one the exact evaluation
+  cannot show to be 0, is refused;
+* f is odd, read off the formula (:func:`rigor_gyro.core.expressions.parity`). The kind's claims use the
+  symmetry x2 -> -x2 that an odd law gives (V(-x) = V(x): v_positive and the cylinder bounds run over
+  [0, x2*]), so a law not certified odd is refused (a bad-input message naming f), never assumed odd;
+* x2 f(x2) > 0 is not assumed either: the claim v_positive certifies f(x2)/x2 > 0 on [0, x2*] (undecided if
+  it fails there).
+
+The exact zeros of f at x2 in {-pi, -pi/2, 0, pi/2, pi} (:meth:`ExpressionMoment.zeros_over_pi`) come from the
+same exact evaluation (sin(k pi) = 0, cos(pi/2) = 0, ...), so the equilibria of ``a*sin(x2)`` at +-pi are named.
+
+f(x)/x through 0: the Taylor form c1 + x (c2 + x (c3 + x c4(hull(0, x)))), c_k = f^(k)(0)/k! from an
+``arb_series`` at 0 and c4 over the hull (Lagrange remainder; the series cap is set for the length read), and
+for x away from 0 intersected with f(x)/x directly. G(x) = int_0^x cos(s) f(s) / (A0 - C0 sin^2 s) ds by
+``acb.integral`` at a point (or thin ball) x.
+
+Guarantee: every method returns a ball containing the exact value for every argument in its balls, at the
+current precision (set by the caller). Fails when: an argument leaves f's domain (log of a ball reaching 0,
+a pole of tan): the result is a non-finite ball (undecided upstream), never a wrong enclosure.
+"""
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Mapping
+
+from flint import acb, arb, arb_series, fmpq
+
+from ...core.balls import current_precision, series_coefficients, series_length
+from ...core.errors import ParameterError
+from ...core.expressions import UNARY_FUNCTIONS, Expr, derivative, evaluate_exact, parse, parity
+from .model import Dual
+from .moments import MomentLaw
+
+__all__ = ["ExpressionMoment", "OddExpressionMoment", "expression_law", "exact_value", "FINITE", "RESERVED",
+           "TAYLOR_ORDER", "MAX_PARAMETERS"]
+
+#: names a [moment] table may not give its own parameters
+RESERVED = frozenset({"x2", "a", "f", "pi", "e", "x2_points", "interpolant"}) | UNARY_FUNCTIONS | {"sign"}
+#: the order n of f(x)/x's Taylor form (the remainder coefficient c_n over hull(0, x))
+TAYLOR_ORDER = 4
+MAX_PARAMETERS = 32
+
+
+def _q(q: Fraction) -> fmpq:
+    return fmpq(q.numerator, q.denominator)
+
+
+def _nan():
+    return arb("nan")
+
+
+# ------------------------------------------------------------------------------------ functions per value type
+
+def _sign(v: arb) -> arb:
+    if v > 0:
+        return arb(1)
+    if v < 0:
+        return arb(-1)
+    return _nan()
+
+
+_ARB = {"sin": arb.sin, "cos": arb.cos, "tan": arb.tan, "exp": arb.exp, "log": arb.log, "sqrt": arb.sqrt,
+        "tanh": arb.tanh, "atan": arb.atan, "abs": abs, "sign": _sign}
+
+#: f'(v) of each function, for Dual numbers (v a ball)
+_DERIV = {"sin": arb.cos, "cos": lambda v: -v.sin(), "tan": lambda v: 1 + v.tan() ** 2, "exp": arb.exp,
+          "log": lambda v: 1 / v if v > 0 else _nan(), "sqrt": lambda v: 1 / (2 * v.sqrt()) if v > 0 else _nan(),
+          "tanh": lambda v: 1 - v.tanh() ** 2, "atan": lambda v: 1 / (1 + v * v), "abs": _sign,
+          "sign": lambda v: arb(0) if (v > 0 or v < 0) else _nan()}
+
+
+def _series_tanh(s):
+    return 1 - 2 / ((2 * s).exp() + 1)
+
+
+def _series_abs(s):
+    c0 = series_coefficients(s, 1)[0]
+    if c0 > 0:
+        return s
+    if c0 < 0:
+        return -s
+    return s * _nan()
+
+
+def _series_sign(s):
+    c0 = series_coefficients(s, 1)[0]
+    return 0 * s + _sign(c0)
+
+
+_SERIES = {"sin": arb_series.sin, "cos": arb_series.cos, "tan": arb_series.tan, "exp": arb_series.exp,
+           "log": arb_series.log, "sqrt": arb_series.sqrt, "tanh": _series_tanh, "atan": arb_series.atan,
+           "abs": _series_abs, "sign": _series_sign}
+
+
+def _apply(name: str, v):
+    t = type(v)
+    if t is arb:
+        return _ARB[name](v)
+    if t is Dual:
+        return Dual(_ARB[name](v.v), _DERIV[name](v.v) * v.d)
+    if t is arb_series:
+        return _SERIES[name](v)
+    raise TypeError(f"cannot apply {name} to {t.__name__}")
+
+
+_FUNCTIONS = {name: (lambda v, _n=name: _apply(_n, v)) for name in _ARB}
+
+
+def _acb_functions(analytic: bool) -> dict:
+    """The functions on complex balls for acb.integral: log, sqrt, atan (through logs) and abs (real_abs)
+    with Arb's analyticity flag, so a ball meeting a branch cut or the kink of abs gives a non-finite value."""
+    def atan(z):
+        iz = acb(0, 1) * z
+        return acb(0, 1) / 2 * ((1 - iz).log(analytic=analytic) - (1 + iz).log(analytic=analytic))
+    return {"sin": acb.sin, "cos": acb.cos, "tan": acb.tan, "exp": acb.exp, "tanh": acb.tanh,
+            "log": lambda z: z.log(analytic=analytic), "sqrt": lambda z: z.sqrt(analytic=analytic), "atan": atan,
+            "abs": lambda z: z.real_abs(analytic=analytic), "sign": lambda z: z.real_sgn(analytic=analytic)}
+
+
+# ------------------------------------------------------------------------------------ exact evaluation
+
+class _Finite:
+    """A real number of unknown value (the scene's ``a``, sin of an irrational point, ...)."""
+
+    def __repr__(self):
+        return "FINITE"
+
+
+FINITE = _Finite()
+
+
+def _pi(r: Fraction):
+    return Fraction(0) if r == 0 else ("pi", r)
+
+
+def exact_value(expr: Expr, x2, params: Mapping[str, Fraction]):
+    """The exact value of ``expr`` at x2 = ``x2`` (a Fraction, or ("pi", r) for r pi), the scene's ``a`` a real
+    of unknown value: a Fraction, ("pi", r), :data:`FINITE` (a real, value unknown) or None (unknown, possibly
+    undefined: a division by something that may be 0, log of something that may be <= 0, tan at a pole).
+
+    Guarantee: a Fraction returned is the exact value for every real a; FINITE means defined and real."""
+    def ev(t):
+        op = t[0]
+        if op == "num":
+            return t[1]
+        if op == "name":
+            n = t[1]
+            return x2 if n == "x2" else FINITE if n == "a" else params[n]
+        if op == "neg":
+            v = ev(t[1])
+            return -v if isinstance(v, Fraction) else _pi(-v[1]) if isinstance(v, tuple) else v
+        if op == "call":
+            return _exact_call(t[1], ev(t[2][0]))
+        if op == "^":
+            v, n = ev(t[1]), t[2]
+            if v is None:
+                return None
+            if n == 0:
+                return Fraction(1)
+            if isinstance(v, Fraction):
+                return None if (v == 0 and n < 0) else v ** n
+            if isinstance(v, tuple):
+                return v if n == 1 else FINITE
+            return FINITE if n > 0 else None
+        x, y = ev(t[1]), ev(t[2])
+        if op in "+-":
+            if x is None or y is None:
+                return None
+            if isinstance(y, tuple) and op == "-":
+                y = _pi(-y[1])
+            elif isinstance(y, Fraction) and op == "-":
+                y = -y
+            if isinstance(x, Fraction) and isinstance(y, Fraction):
+                return x + y
+            if isinstance(x, tuple) and isinstance(y, tuple):
+                return _pi(x[1] + y[1])
+            if isinstance(x, Fraction) and x == 0:
+                return y
+            if isinstance(y, Fraction) and y == 0:
+                return x
+            return FINITE
+        if op == "*":
+            if x is None or y is None:
+                return None
+            if (isinstance(x, Fraction) and x == 0) or (isinstance(y, Fraction) and y == 0):
+                return Fraction(0)
+            if isinstance(x, Fraction) and isinstance(y, Fraction):
+                return x * y
+            if isinstance(x, Fraction) and isinstance(y, tuple):
+                return _pi(x * y[1])
+            if isinstance(y, Fraction) and isinstance(x, tuple):
+                return _pi(y * x[1])
+            return FINITE
+        # division
+        if x is None or y is None or y is FINITE or (isinstance(y, Fraction) and y == 0):
+            return None
+        if isinstance(y, Fraction):
+            return x / y if isinstance(x, Fraction) else _pi(x[1] / y) if isinstance(x, tuple) else FINITE
+        # y = r pi, r != 0
+        if isinstance(x, Fraction) and x == 0:
+            return Fraction(0)
+        return x[1] / y[1] if isinstance(x, tuple) else FINITE
+    return ev(expr.tree)
+
+
+def _exact_call(name: str, v):
+    if v is None:
+        return None
+    zero = isinstance(v, Fraction) and v == 0
+    half_pi = isinstance(v, tuple) and (2 * v[1]).denominator == 1      # v = k pi / 2
+    if name == "sin":
+        if zero:
+            return Fraction(0)
+        if half_pi:
+            k = int(2 * v[1])
+            return Fraction(0) if k % 2 == 0 else Fraction(1 if k % 4 == 1 else -1)
+        return FINITE
+    if name == "cos":
+        if zero:
+            return Fraction(1)
+        if half_pi:
+            k = int(2 * v[1])
+            return Fraction(0) if k % 2 else Fraction(1 if k % 4 == 0 else -1)
+        return FINITE
+    if name == "tan":
+        if zero or (half_pi and v[1].denominator == 1):
+            return Fraction(0)
+        return None                                        # possibly a pole
+    if name in ("tanh", "atan"):
+        return Fraction(0) if zero else FINITE
+    if name == "exp":
+        return Fraction(1) if zero else FINITE
+    if name == "abs":
+        return abs(v) if isinstance(v, Fraction) else _pi(abs(v[1])) if isinstance(v, tuple) else FINITE
+    if name == "log":
+        if isinstance(v, Fraction):
+            return Fraction(0) if v == 1 else FINITE if v > 0 else None
+        return FINITE if isinstance(v, tuple) and v[1] > 0 else None
+    if name == "sqrt":
+        if isinstance(v, Fraction):
+            if v < 0:
+                return None
+            p, q = _isqrt(v.numerator), _isqrt(v.denominator)
+            return Fraction(p, q) if p is not None and q is not None else FINITE
+        return FINITE if isinstance(v, tuple) and v[1] > 0 else None
+    return None
+
+
+def _isqrt(n: int) -> int | None:
+    import math
+    r = math.isqrt(n)
+    return r if r * r == n else None
+
+
+# ------------------------------------------------------------------------------------ the law
+
+class ExpressionMoment(MomentLaw):
+    """f(x2) given as an expression (module docstring). Not odd by declaration: only
+    :class:`OddExpressionMoment` (built when the formula is certified odd) declares ``odd``."""
+
+    G_on_balls = False
+
+    def __init__(self, f: Expr, params: dict[str, Fraction]):
+        self.expr = f
+        self.dexpr = derivative(f, "x2")
+        self.params = dict(params)
+        shown = ", ".join(f"{k} = {v}" for k, v in self.params.items())
+        self.formula = f"f(x2) = {f.text}" + (f" with {shown}" if shown else "")
+        #: unique per law (the boxes' shared extrema cache is keyed by it)
+        self.name = "expression: " + f.text + (f" ({shown})" if shown else "")
+        self._balls: dict[int, dict[str, arb]] = {}
+        self._zeros = tuple(r for r in (Fraction(-1), Fraction(-1, 2), Fraction(0), Fraction(1, 2), Fraction(1))
+                            if exact_value(f, _pi(r), self.params) == 0)
+        self._c0: dict = {}
+
+    def _env(self, a, x) -> dict:
+        p = current_precision()
+        b = self._balls.get(p)
+        if b is None:
+            b = self._balls[p] = {k: arb(_q(v)) for k, v in self.params.items()}
+        return {**b, "a": a, "x2": x}
+
+    def _eval(self, e: Expr, a, x):
+        r = e.evaluate(self._env(a, x), number=lambda q: arb(_q(q)), functions=_FUNCTIONS)
+        if type(r) is not type(x) and type(r) is arb:
+            r = r + 0 * x                                 # a constant: the argument's type (Dual, series)
+        return r
+
+    def f(self, a, x):
+        return self._eval(self.expr, a, x)
+
+    def df(self, a, x):
+        return self._eval(self.dexpr, a, x)
+
+    def zeros_over_pi(self):
+        return self._zeros
+
+    def _taylor_at_zero(self, a: arb) -> list:
+        """c_1 .. c_{n-1} of f at 0 (c_k = f^(k)(0)/k!), cached per precision and ball a."""
+        key = (current_precision(), a.mid().man_exp(), a.rad().man_exp())
+        c = self._c0.get(key)
+        if c is None:
+            n = TAYLOR_ORDER
+            with series_length(n):
+                s = self.f(a, arb_series([arb(0), 1], prec=n))
+                c = series_coefficients(s if isinstance(s, arb_series) else s, n)[1:]
+            if len(self._c0) > 64:
+                self._c0.clear()
+            self._c0[key] = c
+        return c
+
+    def f_over_x(self, a, x):
+        """f(x)/x for every x in the ball (f(0) = 0 certified when the law was built): the Taylor form of the
+        module docstring, intersected with f(x)/x where x excludes 0."""
+        if type(a) is not arb or type(x) is not arb:
+            return _nan()
+        n = TAYLOR_ORDER
+        c = self._taylor_at_zero(a)
+        hull = arb(0).union(x)
+        with series_length(n + 1):
+            s = self.f(a, arb_series([hull, 1], prec=n + 1))
+            rem = series_coefficients(s, n + 1)[n]
+        t = rem
+        for ck in reversed(c):
+            t = ck + x * t
+        if x.contains(0):
+            return t
+        direct = self.f(a, x) / x
+        if not t.is_finite():
+            return direct
+        if not direct.is_finite():
+            return t
+        return direct.intersection(t) if direct.overlaps(t) else t
+
+    def G(self, a, A0, C0, x):
+        """int_0^x cos(s) f(s) / (A0 - C0 sin^2 s) ds by acb.integral (x a point or thin ball)."""
+        if x.is_zero():
+            return arb(0)
+        if type(a) is not arb:
+            return _nan()
+        A0c, C0c, ac = acb(A0), acb(C0), acb(a)
+        p = current_precision()
+        b = self._balls.get(p) or {k: arb(_q(v)) for k, v in self.params.items()}
+        consts = {k: acb(v) for k, v in b.items()}
+        expr = self.expr
+
+        def integrand(t, analytic):
+            fns = _acb_functions(bool(analytic))
+            fv = expr.evaluate({**consts, "a": ac, "x2": t}, number=lambda q: acb(arb(_q(q))), functions=fns)
+            return t.cos() * fv / (A0c - C0c * t.sin() ** 2)
+        return acb.integral(integrand, 0, acb(x)).real
+
+
+class OddExpressionMoment(ExpressionMoment):
+    """An expression law whose formula is certified odd (:func:`rigor_gyro.core.expressions.parity`)."""
+
+    odd = True
+
+
+def expression_law(table: Mapping[str, object]) -> ExpressionMoment:
+    """The law of a ``[moment]`` table with ``f = "..."`` and named parameters; ParameterError naming the entry
+    when the table or the expression is unusable or f(0) = 0 / oddness cannot be certified."""
+    where = "[moment] f"
+    params: dict[str, Fraction] = {}
+    names = [k for k in table if k != "f"]
+    if len(names) > MAX_PARAMETERS:
+        raise ParameterError(f"[moment]: at most {MAX_PARAMETERS} parameters, given {len(names)}")
+    for k in names:
+        if k in RESERVED or not k.isidentifier() or not k.isascii():
+            raise ParameterError(f"[moment] {k}: a parameter may not be called {k!r} (reserved: x2, a, f, the "
+                                 f"function names); name it otherwise")
+        v = table[k]
+        if isinstance(v, list):
+            raise ParameterError(f"[moment] {k}: a parameter is one exact number (a list is a table law's x2_points / f)")
+        e = parse(v, f"[moment] {k}")
+        params[k] = evaluate_exact(e, {})
+    text = table.get("f")
+    if text is None:
+        raise ParameterError("[moment]: missing f (the law, e.g. f = \"a*sin(x2) + b*x2^3\")")
+    if isinstance(text, list):
+        raise ParameterError("[moment] f: a list of values needs moment = \"table\" and x2_points")
+    f = parse(text, where, names={"x2", "a", *params}, functions=UNARY_FUNCTIONS)
+    if "x2" not in f.names():
+        raise ParameterError(f"{where} = {f.text!r}: does not depend on x2")
+    if parity(f, "x2") != "odd":
+        raise ParameterError(f"{where} = {f.text!r}: not certified odd in x2 from its formula; the lyapunov kind's "
+                             "claims use the symmetry x2 -> -x2 of an odd law (V(-x) = V(x)), so f must be odd: "
+                             "sums of odd terms, odd powers of x2, sin/tan/tanh/atan of odd arguments, products "
+                             "by the sign rule")
+    f0 = exact_value(f, Fraction(0), params)
+    if f0 != 0:
+        what = f"f(0) = {f0}" if isinstance(f0, Fraction) else "f(0) could not be shown to be exactly 0"
+        raise ParameterError(f"{where} = {f.text!r}: {what}; the origin must be an equilibrium (f(0) = 0)")
+    law = OddExpressionMoment(f, params)
+    return law
