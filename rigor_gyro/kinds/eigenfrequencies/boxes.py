@@ -51,6 +51,7 @@ from .claims import CLAIMS, REQUIRED
 from .system_boxes import SYSTEM_BOX_CLAIMS, evaluate_system_box, validate_system_box
 from .system_model import SystemModel
 from .slack_forms import GapSet, Roots, nu_value, quartic_value
+from .second_order import gap_sign
 
 __all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "box_claims", "validate_box", "evaluate_box", "box_roots"]
 
@@ -286,20 +287,28 @@ def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str
             out[cid] = _parametric(_nu_bounds(p, nus), nus is not None, gaps.bound_gaps, box)
         elif cid.startswith("bracket_"):
             j = int(cid[-1])
-            out[cid] = _parametric(_bracket(j, p, omegas), omegas is not None, lambda j=j: gaps.bracket_gaps(j), box)
+            second = None
+            if omegas is not None:
+                second = lambda i, strict, j=j: gap_sign(model, box, j, ("lower", "upper")[i], omegas[j - 1], strict)
+            out[cid] = _parametric(_bracket(j, p, omegas), omegas is not None, lambda j=j: gaps.bracket_gaps(j), box,
+                                   second)
     return out
 
 
-def _parametric(direct: tuple[str, str], enclosed: bool, gaps, box: Box) -> tuple[str, str]:
+def _parametric(direct: tuple[str, str], enclosed: bool, gaps, box: Box, second=None) -> tuple[str, str]:
     """The direct verdict, or where it is undecided and the roots are enclosed, the verdict of the claim's
     gaps (each must be > 0, or >= 0) in centred form with monotone faces decided exactly
-    (:func:`rigor_gyro.core.centred_forms.sign_over_box`): refuted when one gap is certainly negative on the
-    whole box, proved when every gap is certainly positive (non-negative)."""
+    (:func:`rigor_gyro.core.centred_forms.sign_over_box`), and where that is undecided, by ``second(i,
+    strict)`` for the i-th gap when given (a bracket's second-order form, :func:`.second_order.gap_sign`):
+    refuted when one gap is certainly negative on the whole box, proved when every gap is certainly positive
+    (non-negative)."""
     if direct[0] != "undecided" or not enclosed:
         return direct
     hows, open_ = [], []
-    for label, f, strict in gaps():
+    for i, (label, f, strict) in enumerate(gaps()):
         st, how, _, _ = sign_over_box(f, box, strict)
+        if st == "undecided" and second is not None:
+            st, how = second(i, strict)
         if st == "negative":
             return "refuted", f"{label} < 0 for every parameter in the box: {how} (parametric form)"
         if st == "undecided":
