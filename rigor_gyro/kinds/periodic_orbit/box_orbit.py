@@ -15,14 +15,15 @@ from __future__ import annotations
 
 import dataclasses
 
-from flint import acb, arb
+from flint import acb, arb, fmpq
 
 from ...core.balls import ball, current_precision
 from ...core.boxes import Box
 from ...core.polyroots import isolate_polynomial
 from .claims import analyse
-from .continuation import continue_orbit
-from .flow import nutation_cubic
+from .normed_orbit import continue_orbit_normed as continue_orbit
+from .flow import PARAMETER_NAMES, RelayParams, nutation_cubic
+from .similarity import conjugacy_holds, similar_box, similar_point
 from .parametric import PHYSICAL
 
 __all__ = ["continued_outcomes", "centre_orbits", "box_directions"]
@@ -58,12 +59,65 @@ def centre_orbits(model, want_stable: bool):
 
 def continued_outcomes(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str]]:
     """{claim: ("proved", reason)} for the claims among orbit_genuine and stable that the continuation
-    proves on the box (module docstring); the others are left out."""
+    proves on the box (module docstring); the others are left out. A box that varies A, H or tau is first
+    decided on its similar box of (B, sigma, n) (:mod:`.similarity`), bisected up to SIMILAR_DEPTH times."""
     wanted = [c for c in ("orbit_genuine", "stable") if c in claims]
     if not wanted or getattr(model, "orbit", None) is not None:
         # a tracked orbit (option orbit) is the root of g certified NEAREST the option for every member: the
         # continuation does not certify nearness over the box, so those claims go to the whole-range search
         return {}
+    out: dict[str, tuple[str, str]] = {}
+    red = similar_box(model.params, box)
+    if red is not None:
+        rbox, fixed = red
+        if not conjugacy_holds(model.params, similar_point(model.params, fixed)):
+            raise AssertionError("the relay model is no longer similar across equal (a, b, s): a bug")
+        got = _cover(model, rbox, rbox, fixed, wanted, SIMILAR_DEPTH)
+        lead = ("decided on the similar box " + ", ".join(f"{k}' in [{_frac(lo)}, {_frac(hi)}]" for k, lo, hi in rbox.edges)
+                + f" at {', '.join(f'{k} = {_frac(v)}' for k, v in fixed.items())} (every member has the invariants "
+                "H^2 tau^2/(A B), n tau/A, sigma/tau of a member of it: the same orbits up to time tau/tau' and a "
+                "positive diagonal change of state, the same multipliers; theta* quoted for that system): ")
+        out = {c: (st, lead + why) for c, (st, why) in got.items()}
+        wanted = [c for c in wanted if c not in out]
+        if not wanted:
+            return out
+    out.update(_continued(model, box, wanted))
+    return out
+
+
+#: bisections of a similar box (:func:`_cover`): at most 2^SIMILAR_DEPTH leaves per claim
+SIMILAR_DEPTH = 2
+
+
+def _frac(q) -> str:
+    return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
+
+
+def _cover(model, rbox: Box, whole: Box, fixed: dict, wanted: list[str], depth: int) -> dict[str, tuple[str, str]]:
+    """The claims proved on every leaf of a bisection of the similar box ``rbox`` (each leaf continued from its
+    own centre's orbit; both claims assert existence per member, so leaves may follow different orbits)."""
+    mid = rbox.midpoint()
+    q = lambda x: fmpq(x.numerator, x.denominator)
+    vals = {k: getattr(model.params, k) for k in PARAMETER_NAMES}
+    vals.update({k: q(v) for k, v in fixed.items()})
+    vals.update({k: q(v) for k, v in mid.items()})
+    got = _continued(dataclasses.replace(model, params=RelayParams(**vals)), rbox, wanted)
+    rest = [c for c in wanted if c not in got]
+    if not rest or depth == 0:
+        return got
+    left, right = rbox.split(whole)
+    sub = _cover(model, left, whole, fixed, rest, depth - 1)
+    rest2 = [c for c in rest if c in sub]
+    if rest2:
+        sub2 = _cover(model, right, whole, fixed, rest2, depth - 1)
+        for c in rest2:
+            if c in sub2:
+                got[c] = ("proved", f"on both halves of a bisection, e.g. {sub[c][1]}")
+    return got
+
+
+def _continued(model, box: Box, wanted: list[str]) -> dict[str, tuple[str, str]]:
+    """The claims of ``wanted`` proved by continuing the centre's orbits over ``box`` (``model`` at its centre)."""
     dirs = box_directions(box)
     balls = {k: box.ball(k) for k in dirs}
     iso = isolate_polynomial(nutation_cubic(model.params))

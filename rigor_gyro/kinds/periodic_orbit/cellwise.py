@@ -116,13 +116,17 @@ def decide_by_cells(centre, box: dict[str, arb], dirs: list[str], guesses, out, 
                           f"centre)")
     out.problem = ""
     if stability and not stack:
-        out.multipliers = [_union([o.multipliers[i] for o in results]) for i in range(4)]
-        out.moduli = [_union([o.moduli[i] for o in results]) for i in range(4)]
         mx = results[0].max_modulus
         for o in results[1:]:
             mx = mx.union(o.max_modulus)
         out.max_modulus = mx
-        out.stable = all(certainly_lt(mm, 1) for mm in out.moduli)
+        if all(len(o.moduli) == 4 for o in results):
+            out.multipliers = [_union([o.multipliers[i] for o in results]) for i in range(4)]
+            out.moduli = [_union([o.moduli[i] for o in results]) for i in range(4)]
+            out.stable = all(certainly_lt(mm, 1) for mm in out.moduli)
+        else:       # some cell bounded the spectral radius without isolating the multipliers (normed_orbit)
+            out.multipliers, out.moduli = [], []
+            out.stable = all(o.stable is True for o in results) and certainly_lt(mx, 1)
     if stability and out.stable is not True:
         out.problem = f"the multipliers were not decided in {evaluated} parameter cells"
 
