@@ -719,7 +719,7 @@ FORGERIES = [
      ["best_mu_direct"]),
     ("direct sup stated low", lambda d: _claim(d, "best_mu_direct")["details"].update(R_direct_sup_upper_bound="0.0278723"),
      ["best_mu_direct"]),
-    ("direct gap stated low", lambda d: _claim(d, "best_mu_direct")["details"].update(relative_gap="1e-9"),
+    ("direct gap stated low", lambda d: _claim(d, "best_mu_direct")["details"].update(relative_gap="1e-13"),
      ["best_mu_direct"]),
     ("direct mu outside (16)", lambda d: (d["witnesses"]["best_mu_direct"].update(mu="0.001"),
                                           _claim(d, "best_mu_direct")["details"].update(mu_direct="0.001")),

@@ -47,12 +47,13 @@ from ...core.exact import Exact
 from ...core.roots import RootStatus, enclose_f_df, newton_root
 from .claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
+from .direct_face import face_margin
 from .equilibria import Equilibrium, classify as classify_equilibrium, pi_text
 from .trajectory_claims import check_initial_point, check_paving, check_region_exit
 from .trajectories import equilibrium_other_than_origin
 from .natural_domain import band_function, exact_range, natural_lower_bound, positivity_functions, with_range
 from .model import (DIRECT_DOMAIN, c_star_lower, c_star_upper, closed_form_constants, cylinder_lower_bound,
-                    damping_margin, direct_margin, faces_minimiser_inside, mean_value_enclosure, psi_min_functions, slice_extent,
+                    damping_margin, faces_minimiser_inside, mean_value_enclosure, psi_min_functions, slice_extent,
                     slice_in_region, sublevel_lower_bound, symmetric_in_x2, vdot_polar)
 
 __all__ = ["check"]
@@ -222,7 +223,7 @@ def _direct_boxes_hold(g, R: arb, stored_boxes, cert_prec: int) -> bool:
     on each (the better lower end of two precisions)."""
     boxes = [Box.from_json(b) for b in stored_boxes]
     return (certainly_positive(R) and tiles_by_bisection(Box.of(DIRECT_DOMAIN), boxes)
-            and all(_positive_end(lo) for lo in _box_lower_ends(lambda: symmetric_in_x2(g, direct_margin(g, R)), boxes,
+            and all(_positive_end(lo) for lo in _box_lower_ends(lambda: symmetric_in_x2(g, face_margin(g, R)), boxes,
                                                                  cert_prec)))
 
 

@@ -68,12 +68,13 @@ from ...core.subdivision import best_first_bisection, certify_positive, certify_
 from .. import Attempt, Phases
 from .equilibria import equilibria
 from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
+from .direct_face import face_margin, face_polish
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
 from .natural_domain import NATURAL_GAP, natural_sublevel
 from .trajectory_claims import (TRAJECTORY_CLAIMS, TRAJECTORY_OPTIONS, initial_point_claim, parse_initial_point,
                                 paving_claim, region_not_invariant_claim)
 from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_psi_test, certify_vdot_nonpositive,
-                    closed_form_constants, cylinder_lower_bound, damping_margin, direct_margin, faces_minimiser_inside, hypot_ball,
+                    closed_form_constants, cylinder_lower_bound, damping_margin, faces_minimiser_inside, hypot_ball,
                     mean_value_enclosure, rational_points_inside, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
 from .moments import MOMENTS
 from .moment_scene import KNOWN as KNOWN_MOMENTS, scene_moment_law
@@ -90,8 +91,9 @@ RATIONAL = ("A", "C", "A1", "B1", "C1", "A2", "H", "k", "a", "mu")
 #: best_mu: branch and bound over mu stops once its upper bound is within this relative gap of R_max
 BEST_MU_GAP = "1e-6"    # escalation beyond this only repeats the same subdivision (see attempt)
 #: best_mu_direct: the branch and bound over mu stops once its bound is within this relative gap of the
-#: search's best estimate (R_direct_max is certified 4e-7 below the estimate: the gap stays below 1e-6)
-DIRECT_MU_GAP = "5e-7"
+#: search's best estimate (R_direct_max is certified FACE_MARGIN below the estimate where the minimiser is on a
+#: face, else 4e-7: the gap stays below 1e-9, else below 1e-6)
+DIRECT_MU_GAP = "5e-10"
 DIRECT_MU_PIECES = 400
 #: the box budget of the direct test at the searched mu_direct (past it, the scene's mu is tried)
 DIRECT_MU_BOXES = 2000
@@ -388,6 +390,9 @@ def _vdot_claim(ctx: _Ctx, R: arb, how: str, cid: str = "vdot_nonpositive") -> t
 
 #: relative distance of R_direct below, and of the counterexample's radius above, the searched infimum
 DIRECT_MARGINS = ("4e-7", "4e-6", "4e-5", "4e-4", "4e-3")
+#: where the search's minimiser lies on a face |x2| = x2* (direct_face: interval Newton there), first this
+#: margin, R_direct and R_direct_upper with FACE_DIGITS significant digits, on at most FACE_BOXES boxes
+FACE_MARGIN, FACE_DIGITS, FACE_BOXES = "2e-11", 15, 3000
 
 
 #: how many times the direct test searches again from the point where a certification failed
@@ -432,16 +437,24 @@ def _certify_direct(g: Gimbal, max_pieces: int, cap: float | None = None) -> _Di
     est, u0, s0, amin = direct_point_search(g)
     if cap is not None and math.isfinite(cap) and 0 < cap < est:
         est = cap
+    face = int(u0) if abs(u0) == 1 else None
+    if face is not None and math.isfinite(est):
+        # on the face the minimiser solves F'(s) = 0: Newton steps put it there to the precision's digits
+        Fp, sp = face_polish(g, face, s0)
+        if math.isfinite(Fp) and Fp <= est and (cap is None or not math.isfinite(cap) or Fp <= cap):
+            est, s0 = Fp, float(sp)
     d = _Direct(est, u0, s0, amin)
     if not (math.isfinite(est) and est > 0 and amin > 0):
         return d
     whole = Box.of(DIRECT_DOMAIN)
+    margins = ((FACE_MARGIN, FACE_DIGITS, min(max_pieces, FACE_BOXES)),) if face is not None else ()
+    margins += tuple((m, 10, max_pieces) for m in DIRECT_MARGINS)
     for _ in range(DIRECT_RESEARCHES + 1):
         better = None
-        for m in DIRECT_MARGINS:
-            d.R_text = decimal_bounds(arb(d.est) * (1 - arb(m)), 10)[0]
-            d.cert = certify_positive_on_box(symmetric_in_x2(g, direct_margin(g, _q(_fmpq(Fraction(d.R_text))))),
-                                             whole, max_pieces=max_pieces)
+        for m, digits, boxes in margins:
+            d.R_text = decimal_bounds(arb(d.est) * (1 - arb(m)), digits)[0]
+            d.cert = certify_positive_on_box(symmetric_in_x2(g, face_margin(g, _q(_fmpq(Fraction(d.R_text))))),
+                                             whole, max_pieces=boxes)
             if d.cert.status is Status.PROVED:
                 break
             # below the loosest margin's radius: no margin can succeed, the search missed the minimiser
@@ -460,13 +473,13 @@ def _certify_direct(g: Gimbal, max_pieces: int, cap: float | None = None) -> _Di
     pi = arb.pi()
     x2p = _q(_fmpq(exact_fraction((xs * arb(u0)).mid())))
     x2p = x2p if certainly_le(abs(x2p), xs) else (xs.lower() if u0 > 0 else -xs.lower())
-    for m in DIRECT_MARGINS:
+    for m, digits, _ in margins:
         rr = arb(est) * (1 + arb(m))
         t = pi * arb(s0)
         x1, x3 = (_q(_fmpq(exact_fraction((rr * t.cos()).mid()))), _q(_fmpq(exact_fraction((rr * t.sin()).mid()))))
         if certainly_le(abs(x2p), xs) and certainly_positive(g.vdot(x1, x2p, x3)):
             d.point = (x1, x2p, x3)
-            d.up_text = decimal_bounds((x1 * x1 + x3 * x3).sqrt(), 12)[1]
+            d.up_text = decimal_bounds((x1 * x1 + x3 * x3).sqrt(), max(12, digits))[1]
             break
     return d
 
