@@ -205,3 +205,24 @@ def test_all_six_at_a_fifth_percent_stable_and_half_percent_genuine():
         assert out["stable"][0] == "proved" and "similar box" in out["stable"][1]
         out = evaluate_box(m, _box(m.params, F(1, 200)), ["orbit_genuine"])
         assert out["orbit_genuine"][0] == "proved" and "similar box" in out["orbit_genuine"][1]
+
+
+def test_lower_end_only_from_an_isolated_disc():
+    # eigenvalues 0, 0 (nilpotent) although |K_11| - R_1 = 1 > 0: the discs overlap, so no lower end from them
+    K = acb_mat([[acb(3), acb(2)], [acb("-4.5"), acb(-3)]])
+    r = largest_modulus_range(K)
+    assert r.contains(0) and spectral_radius_bound(K) >= 0
+
+
+def test_stable_not_claimed_where_the_disc_bound_reaches_one(monkeypatch):
+    """B +-0.75 % alone without the cell fallback: neither Rump's method nor the discs decide (bound > 1), so
+    the orbit is not called stable over the box."""
+    import rigor_gyro.kinds.periodic_orbit.normed_orbit as NO
+    monkeypatch.setattr(NO, "decide_by_cells", lambda *a, **k: None)
+    P = _model().params
+    with working_precision(128):
+        box = {"B": interval(ball(_q(_frac(P.B) * F(397, 400))), ball(_q(_frac(P.B) * F(403, 400))))}
+        iso = isolate_polynomial(nutation_cubic(P))
+        guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
+        o = continue_orbit_normed(P, box, ["B"], guesses, arb("0.138133574136"))
+    assert o.genuine and o.stable is not True and "Gershgorin bound" in o.problem
