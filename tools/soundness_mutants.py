@@ -1064,6 +1064,33 @@ MUTANTS = [
     ("gimbal_lock_square_lower_end_high", "rigor_gyro/kinds/lyapunov/model.py",
      "    lo = arb(0) if x.contains(0) else a.lower()\n", "    lo = a.upper()\n",
      "near the gimbal lock, a square from the ball's ends starts at the larger end: gamma's enclosure misses values"),
+    # issue 37: relay boxes of all six parameters on their similar box (similarity.py) and stable by the
+    # Gershgorin discs (norm_stability.py, normed_orbit.py; group relay_box6)
+    ("similar_box_a_lower_corner_wrong", "rigor_gyro/kinds/periodic_orbit/similarity.py",
+     "    a = (H[0] ** 2 * tau[0] ** 2 / (A[1] * B[1]),", "    a = (H[0] ** 2 * tau[0] ** 2 / (A[0] * B[1]),",
+     "the similar box's B' edge from a corner that is not the extreme of H^2 tau^2/(A B): members left out"),
+    ("similar_box_s_ends_swapped", "rigor_gyro/kinds/periodic_orbit/similarity.py",
+     "    s = (sigma[0] / tau[1], sigma[1] / tau[0])", "    s = (sigma[0] / tau[0], sigma[1] / tau[1])",
+     "sigma/tau's range from the wrong corners: the similar box misses members"),
+    ("similar_box_b_lower_corner_wrong", "rigor_gyro/kinds/periodic_orbit/similarity.py",
+     "    b = (n[0] * tau[0] / A[1], n[1] * tau[1] / A[0])", "    b = (n[0] * tau[0] / A[0], n[1] * tau[1] / A[0])",
+     "n tau/A's lower end from the wrong corner: the similar box misses members"),
+    ("similar_point_n_without_tau", "rigor_gyro/kinds/periodic_orbit/similarity.py",
+     "n=P.n * P.tau * Ac / (P.A * tc),", "n=P.n * Ac / P.A,",
+     "the similar member's n' without the time scale: a different invariant n tau/A"),
+    ("conjugacy_matrix_unchecked", "rigor_gyro/kinds/periodic_orbit/similarity.py",
+     "    return lhs == N and c > 0 and", "    return c > 0 and",
+     "the exact conjugacy check passes for points with other invariants"),
+    ("gershgorin_radius_dropped", "rigor_gyro/kinds/periodic_orbit/norm_stability.py",
+     "                R = R + abs(e) * s", "                R = R + 0 * s",
+     "the spectral radius bounded by the largest diagonal entry alone (the discs' radii dropped)"),
+    ("gershgorin_lower_end_without_isolation", "rigor_gyro/kinds/periodic_orbit/norm_stability.py",
+     "            if j != i and not certainly_positive(abs(ci - K[j, j]) - ri - Rj):",
+     "            if False:",
+     "the largest modulus's lower end from a disc that overlaps others (it may hold no eigenvalue)"),
+    ("normed_stable_possibly_below_1", "rigor_gyro/kinds/periodic_orbit/normed_orbit.py",
+     "    if best is not None and certainly_lt(best, 1):", "    if best is not None and best.lower() < 1:",
+     "stable over a box where the disc bound of the spectral radius only possibly stays below 1"),
 ]
 
 
