@@ -108,10 +108,11 @@ class Expr:
         return not self.names()
 
     def evaluate(self, env: Mapping[str, Any], number: Callable[[Fraction], Any] = lambda q: q,
-                 functions: Mapping[str, Callable] | None = None) -> Any:
+                 functions: Mapping[str, Callable] | None = None, power: Callable[[Any, int], Any] | None = None) -> Any:
         """The value with ``env[name]`` for each name and ``number(q)`` for each written rational q
-        (default: the Fraction itself). An exact division by zero (ZeroDivisionError of the values'
-        arithmetic) is a ParameterError naming ``where``."""
+        (default: the Fraction itself); ``power(base, n)`` for each integer power when given (n of either sign;
+        default ``base ** n``, and 1/base^-n for n < 0). An exact division by zero (ZeroDivisionError of the
+        values' arithmetic) is a ParameterError naming ``where``."""
         fns = functions or {}
 
         def ev(t):
@@ -126,6 +127,8 @@ class Expr:
                 return fns[t[1]](*(ev(a) for a in t[2]))
             if op == "^":
                 base, n = ev(t[1]), t[2]
+                if power is not None:
+                    return power(base, n)
                 if n < 0:
                     return number(Fraction(1)) / base ** (-n)
                 return base ** n

@@ -50,7 +50,7 @@ from ...core.expressions import UNARY_FUNCTIONS, Expr, derivative, evaluate_exac
 from .model import Dual
 from .moments import MomentLaw
 
-__all__ = ["ExpressionMoment", "OddExpressionMoment", "expression_law", "exact_value", "FINITE", "RESERVED",
+__all__ = ["ExpressionMoment", "OddExpressionMoment", "expression_law", "exact_value", "arb_power", "FINITE", "RESERVED",
            "TAYLOR_ORDER", "MAX_PARAMETERS"]
 
 #: names a [moment] table may not give its own parameters
@@ -82,9 +82,9 @@ _ARB = {"sin": arb.sin, "cos": arb.cos, "tan": arb.tan, "exp": arb.exp, "log": a
         "tanh": arb.tanh, "atan": arb.atan, "abs": abs, "sign": _sign}
 
 #: f'(v) of each function, for Dual numbers (v a ball)
-_DERIV = {"sin": arb.cos, "cos": lambda v: -v.sin(), "tan": lambda v: 1 + v.tan() ** 2, "exp": arb.exp,
+_DERIV = {"sin": arb.cos, "cos": lambda v: -v.sin(), "tan": lambda v: 1 + arb_power(v.tan(), 2), "exp": arb.exp,
           "log": lambda v: 1 / v if v > 0 else _nan(), "sqrt": lambda v: 1 / (2 * v.sqrt()) if v > 0 else _nan(),
-          "tanh": lambda v: 1 - v.tanh() ** 2, "atan": lambda v: 1 / (1 + v * v), "abs": _sign,
+          "tanh": lambda v: 1 - arb_power(v.tanh(), 2), "atan": lambda v: 1 / (1 + arb_power(v, 2)), "abs": _sign,
           "sign": lambda v: arb(0) if (v > 0 or v < 0) else _nan()}
 
 
@@ -123,6 +123,50 @@ def _apply(name: str, v):
 
 
 _FUNCTIONS = {name: (lambda v, _n=name: _apply(_n, v)) for name in _ARB}
+
+
+def _mul_power(x, n: int):
+    """x^n (n >= 1) by repeated squaring with ``*`` (any ring: arb points, series, acb)."""
+    out = None
+    while n:
+        if n & 1:
+            out = x if out is None else out * x
+        n >>= 1
+        if n:
+            x = x * x
+    return out
+
+
+def arb_power(x: arb, n: int) -> arb:
+    """x^n (n >= 0) for every x in the ball, from its exact ends by monotonicity (odd n: increasing; even n:
+    |x|^n, 0 included where the ball contains 0). Not Arb's ``**``, which returns nan on some balls about 0."""
+    if n == 0:
+        return arb(1)
+    if n == 1:
+        return x
+    if not x.is_finite():
+        return _nan()
+    lo, hi = _mul_power(arb(x.lower()), n), _mul_power(arb(x.upper()), n)
+    r = lo.union(hi)
+    if n % 2 == 0 and x.contains(0):
+        r = r.union(arb(0))
+    return r
+
+
+def _power(base, n: int):
+    """base^n for an integer n of either sign, on every value type the law meets."""
+    if n < 0:
+        return 1 / _power(base, -n)
+    t = type(base)
+    if t is arb:
+        return arb_power(base, n)
+    if t is Dual:
+        if n == 0:
+            return Dual(arb(1), 0 * base.d)
+        return Dual(arb_power(base.v, n), n * arb_power(base.v, n - 1) * base.d)
+    if n == 0:
+        return 1 + 0 * base
+    return _mul_power(base, n)
 
 
 def _acb_functions(analytic: bool) -> dict:
@@ -300,7 +344,7 @@ class ExpressionMoment(MomentLaw):
         return {**b, "a": a, "x2": x}
 
     def _eval(self, e: Expr, a, x):
-        r = e.evaluate(self._env(a, x), number=lambda q: arb(_q(q)), functions=_FUNCTIONS)
+        r = e.evaluate(self._env(a, x), number=lambda q: arb(_q(q)), functions=_FUNCTIONS, power=_power)
         if type(r) is not type(x) and type(r) is arb:
             r = r + 0 * x                                 # a constant: the argument's type (Dual, series)
         return r
@@ -365,8 +409,10 @@ class ExpressionMoment(MomentLaw):
 
         def integrand(t, analytic):
             fns = _acb_functions(bool(analytic))
-            fv = expr.evaluate({**consts, "a": ac, "x2": t}, number=lambda q: acb(arb(_q(q))), functions=fns)
-            return t.cos() * fv / (A0c - C0c * t.sin() ** 2)
+            fv = expr.evaluate({**consts, "a": ac, "x2": t}, number=lambda q: acb(arb(_q(q))), functions=fns,
+                               power=_power)
+            s = t.sin()
+            return t.cos() * fv / (A0c - C0c * s * s)
         return acb.integral(integrand, 0, acb(x)).real
 
 

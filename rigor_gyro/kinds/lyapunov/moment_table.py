@@ -186,7 +186,8 @@ class SplineMoment(MomentLaw):
 
     # ------------------------------------------------------------------ G
     def _integrand_ball(self, A0, C0, s: arb) -> arb:
-        return s.cos() * self._enclose(s, 0) / (A0 - C0 * s.sin() ** 2)
+        sn = s.sin()
+        return s.cos() * self._enclose(s, 0) / (A0 - C0 * sn * sn)
 
     def _piece_integral(self, k: int, A0, C0, lo, hi) -> arb:
         _, _, b, co = self._balls()[k]
@@ -195,7 +196,8 @@ class SplineMoment(MomentLaw):
 
         def integrand(t, analytic):
             u = t - bc
-            return t.cos() * (cc[0] + u * (cc[1] + u * (cc[2] + u * cc[3]))) / (A0c - C0c * t.sin() ** 2)
+            sn = t.sin()
+            return t.cos() * (cc[0] + u * (cc[1] + u * (cc[2] + u * cc[3]))) / (A0c - C0c * sn * sn)
         return acb.integral(integrand, acb(lo), acb(hi)).real
 
     def _G_at_knots(self, A0, C0) -> list[arb]:
