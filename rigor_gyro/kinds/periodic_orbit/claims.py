@@ -68,6 +68,7 @@ from .tracked import statements as tracked_statements
 from .tracked_claims import choose, tracked_claims, tracked_extra
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table, orbit_quantities
 from .multipliers import decide_multipliers
+from .nutation_form import fast_nutation, nutation_form
 from .flow import (AMPLITUDE_PARAMETERS, PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, envelope_margin, g_coeffs, pole_free_coeffs,
                    moment_zero_orders, orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure,
                    x0_at)
@@ -423,7 +424,7 @@ def _g_series_function(sp: Spectrum, coeffs=None):
 COEFF_MEMO_LIMIT = 100_000
 
 
-def isolation_coeffs(sp: Spectrum):
+def isolation_coeffs(sp: Spectrum, T: arb | None = None):
     """The Taylor coefficients of the function whose roots the search isolates, and its name in the
     witness: G = g K (:func:`~.flow.pole_free_coeffs`: same roots as g, no poles next to the real axis).
 
@@ -431,8 +432,14 @@ def isolation_coeffs(sp: Spectrum):
     length: Arb is deterministic given those, so a memoised list holds the very balls a new call would
     return (certificates are unchanged; the root search asks for the same piece's coefficients again
     and again: about a third of the calls on the H = 1e4 stress scene). Non-finite or complex centres
-    are computed, never memoised."""
-    memo = sp.__dict__.setdefault("_pole_free_memo", {})
+    are computed, never memoised.
+
+    Given the searched end ``T`` of a fast-nutation search (:func:`.nutation_form.fast_nutation`),
+    the same G's coefficients come from its nutation form (:class:`.nutation_form.NutationForm`,
+    cheaper; other balls, so only there: the paper scenes keep their certificates byte for byte)."""
+    form = nutation_form(sp) if T is not None and fast_nutation(sp, T) else None
+    compute = form.coeffs if form is not None else (lambda ctr, n: pole_free_coeffs(sp, ctr, n))
+    memo = sp.__dict__.setdefault("_nutation_memo" if form is not None else "_pole_free_memo", {})
 
     def coeffs(ctr, n):
         if type(ctr) is not arb or not ctr.is_finite():
@@ -442,8 +449,9 @@ def isolation_coeffs(sp: Spectrum):
         if hit is None:
             if len(memo) >= COEFF_MEMO_LIMIT:
                 memo.clear()
-            hit = memo[key] = tuple(pole_free_coeffs(sp, ctr, n))
+            hit = memo[key] = tuple(compute(ctr, n))
         return list(hit)
+    coeffs.nutation = form is not None      # _newton_bracket starts where Newton cannot overshoot
     return coeffs, "pole_free"
 
 
@@ -507,6 +515,8 @@ def _newton_bracket(coeffs, a: arb, b: arb, ga: int) -> tuple[arb, arb] | None:
     it), then the signs at lo and hi are certified (g(lo) has sign ga, g(hi) sign -ga), so the root
     is in [lo, hi]. None when no certified bracket is found (the caller bisects)."""
     x = ((a + b) / 2).mid()
+    if getattr(coeffs, "nutation", False):
+        x = _quadratic_start(coeffs, a, b, x)
     step = b - a
     prec = current_precision()
     for _ in range(64):
@@ -522,14 +532,45 @@ def _newton_bracket(coeffs, a: arb, b: arb, ga: int) -> tuple[arb, arb] | None:
         if certainly_le(abs(step), abs(x) * arb(2) ** (8 - prec)):
             break
     d = abs(step) * 4 + abs(x) * arb(2) ** (-(prec // 2))
+    clip = getattr(coeffs, "nutation", False)
     for _ in range(8):
         lo = (x - d).mid()
         hi = (x + d).mid()
-        if certainly_lt(a, lo) and certainly_lt(hi, b) and _sign(coeffs(lo, 1)[0]) == ga \
+        if clip:        # a root next to an end: that end's sign is the caller's (certified ga, -ga)
+            lo_in, hi_in = certainly_lt(a, lo), certainly_lt(hi, b)
+            lo, hi = (lo if lo_in else a), (hi if hi_in else b)
+            if certainly_lt(lo, hi) and (not lo_in or _sign(coeffs(lo, 1)[0]) == ga) \
+                    and (not hi_in or _sign(coeffs(hi, 1)[0]) == -ga):
+                return arb(lo), arb(hi)
+        elif certainly_lt(a, lo) and certainly_lt(hi, b) and _sign(coeffs(lo, 1)[0]) == ga \
                 and _sign(coeffs(hi, 1)[0]) == -ga:
             return arb(lo), arb(hi)
         d = d * 16
     return None
+
+
+def _quadratic_start(coeffs, a: arb, b: arb, x: arb) -> arb:
+    """A starting point for :func:`_newton_bracket` (a proposal: it decides nothing): the root of the
+    quadratic Taylor model of g at the end of [a, b] nearer a turning point (the smaller |g'|), when it
+    lies inside (a, b), else ``x``. Why: next to a turning point g is quadratic and Newton from the
+    midpoint only halves the distance per step (24 steps on the fast-nutation pairs); the quadratic
+    model lands next to the root and Newton then converges quadratically."""
+    ends = []
+    for e in (a, b):
+        c = [v.mid() for v in coeffs(e, 3)]
+        ends.append((abs(c[1]), e, c))
+    _, e, (c0, c1, c2) = min(ends, key=lambda t: float(t[0]))      # float only picks the end
+    disc = c1 * c1 - 4 * c0 * c2
+    if not (disc.is_finite() and certainly_le(0, disc)) or c2.is_zero():
+        return x
+    r = disc.sqrt().mid()
+    qq = -(c1 + r) / 2 if certainly_le(0, c1) else -(c1 - r) / 2
+    for t in ((qq / c2).mid(), (c0 / qq).mid() if not qq.is_zero() else None):
+        if t is not None and t.is_finite():
+            xn = (e + t).mid()
+            if certainly_lt(a, xn) and certainly_lt(xn, b):
+                return xn
+    return x
 
 
 def _critical_split(f, coeffs, a: arb, b: arb) -> list[RootPiece] | None:
@@ -701,7 +742,7 @@ def analyse(model: RelayModel, spectrum=None, phase: Phases | None = None) -> An
         an.problem = "could not certify g^(5) > 0 near theta = 0 (raise precision)"
         return an
     with phase("half_period: root isolation"):
-        coeffs, an.isolated = isolation_coeffs(sp)
+        coeffs, an.isolated = isolation_coeffs(sp, an.T_search if spectrum is None else None)
         key = (an.isolated, exact_fraction(an.theta_min), exact_fraction(an.T_search))
         cached = model.decided.get(key) if spectrum is None else None
         if cached is not None and cached[1] is None:        # an earlier attempt isolated every root:

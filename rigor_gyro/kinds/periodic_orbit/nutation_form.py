@@ -1,0 +1,122 @@
+"""The pole-free half-period function G of a fast, lightly damped nutation, in its nutation form.
+
+With one complex pair lambda = d + i omega (d < 0) and real modes only otherwise, the pole-free
+G = g K of :func:`~.flow.pole_free_coeffs` (K = |1 + E|^2, E = exp(lambda theta)) is exactly
+
+    G(theta) = s(theta) (1 + 2 Re E + |E|^2) + 4 q_i Im E + 2 q_r (1 - |E|^2),
+
+q = pe_0 / lambda (q_r, q_i its real and imaginary parts), s = g's slow part: -p0e_0 theta / 2 minus
+the real modes' pe_0 tanh(lambda_r theta / 2) / lambda_r (the algebra: -2 Re[q (E - 1)(1 + conj E)]
+= 4 q_i Im E + 2 q_r (1 - |E|^2); the same identity the envelope bound uses,
+:func:`~.flow.envelope_margin`). Its Taylor coefficients at a point c are then a few exponentials
+at c times precomputed powers lambda^j / j! and (2 d)^j / j!, one real series for s and one real
+series product: a fraction of the cost of :func:`~.flow.pole_free_coeffs`' complex series algebra
+(the root search of the fast-nutation scenes calls it tens of thousands of times).
+
+Guarantee: :meth:`NutationForm.coeffs` returns balls containing G^(j)(c)/j!, j < n, for every point c
+of the ball ``center`` (ball arithmetic on an exact identity; the same function as pole_free_coeffs,
+other balls). Precision: the current working precision; the powers are recomputed when it changes.
+Fails when: the spectrum has not exactly one complex pair, or carries ``near_zero`` (a box
+spectrum): :func:`nutation_form` returns None and the caller keeps pole_free_coeffs.
+
+Used only where the root search would otherwise need thousands of pieces (:func:`fast_nutation`):
+the built-in paper scenes keep pole_free_coeffs and their certificates byte for byte.
+"""
+from __future__ import annotations
+
+import math
+from math import factorial
+
+from flint import acb, arb, arb_series
+
+from ...core.balls import current_precision, series_coefficients, series_length
+
+__all__ = ["NutationForm", "nutation_form", "fast_nutation", "FAST_NUTATION_HALF_PERIODS"]
+
+#: the nutation form is used when the searched range holds at least this many nutation half-periods
+#: (omega T / pi): the paper scenes have a handful, the stress scenes H = 1e3, 1e4 under 2000
+FAST_NUTATION_HALF_PERIODS = 2000
+
+
+def fast_nutation(sp, T: arb) -> bool:
+    """Whether the search over (0, T] is in the fast-nutation regime (a float heuristic: it chooses
+    which correct coefficient function is used, it decides nothing)."""
+    if getattr(sp, "near_zero", None) is not None:
+        return False
+    pairs = [m for m in sp.modes if m.weight == 2]
+    if len(pairs) != 1:
+        return False
+    om = abs(float(pairs[0].lam.imag.mid()))
+    return om * float(T.mid()) / math.pi >= FAST_NUTATION_HALF_PERIODS
+
+
+class NutationForm:
+    """G's Taylor coefficients from the nutation form (see the module docstring)."""
+
+    def __init__(self, sp):
+        pairs = [m for m in sp.modes if m.weight == 2]
+        if len(pairs) != 1 or getattr(sp, "near_zero", None) is not None:
+            raise ValueError("the nutation form needs exactly one complex pair and a point spectrum")
+        pair = pairs[0]
+        self.lam = pair.lam
+        self.two_d = 2 * pair.lam.real
+        q = pair.pe[0] / pair.lam
+        self.four_qi = 4 * q.imag
+        self.two_qr = 2 * q.real
+        self.real = [(m.lam.real, (m.pe[0] / m.lam).real) for m in sp.modes if m.weight == 1]
+        self.half_p0 = sp.p0e[0] / 2
+        self._prec = None
+        self._pow: tuple = ([], [], [])
+
+    def _powers(self, n: int) -> tuple[list[acb], list[arb], list[list[arb]]]:
+        prec = current_precision()
+        if self._prec != prec or len(self._pow[0]) < n:
+            m = max(n, 12)
+            L, D = [acb(1)], [arb(1)]
+            R = [[arb(1)] for _ in self.real]
+            for j in range(1, m):
+                L.append(L[-1] * self.lam / j)
+                D.append(D[-1] * self.two_d / j)
+                for (lam_r, _), Rr in zip(self.real, R):
+                    Rr.append(Rr[-1] * lam_r / j)
+            self._prec, self._pow = prec, (L, D, R)
+        return self._pow
+
+    def coeffs(self, center: arb, n: int) -> list[arb]:
+        """Balls containing G^(j)(c)/j!, j < n, for every point c of ``center``."""
+        L, D, R = self._powers(n)
+        Ec = (self.lam * acb(center)).exp()
+        R2c = (self.two_d * center).exp()
+        ImE, R2, U = [], [], []
+        one = arb(1)
+        for j in range(n):
+            e = Ec * L[j]
+            ImE.append(e.imag)
+            r2 = R2c * D[j]
+            R2.append(r2)
+            U.append(r2 + 2 * e.real)
+        U[0] += one
+        # s = -p0e_0 theta / 2 - sum_r c_r (E_r - 1) / (E_r + 1), E_r = exp(lam_r theta), real series
+        s = [-self.half_p0 * center, -self.half_p0] + [arb(0)] * (n - 2) if n > 1 else [-self.half_p0 * center]
+        with series_length(n):
+            for (lam_r, c_r), Rr in zip(self.real, R):
+                Erc = (lam_r * center).exp()
+                Er = [Erc * Rr[j] for j in range(n)]
+                num, den = list(Er), list(Er)
+                num[0] -= one
+                den[0] += one
+                y = arb_series(num, prec=n) / arb_series(den, prec=n)
+                for j in range(n):
+                    s[j] -= c_r * y[j]
+            sU = arb_series(s, prec=n) * arb_series(U, prec=n)
+            out = [sU[j] + self.four_qi * ImE[j] - self.two_qr * R2[j] for j in range(n)]
+        out[0] += self.two_qr
+        return out
+
+
+def nutation_form(sp) -> NutationForm | None:
+    """The spectrum's :class:`NutationForm`, or None where it does not apply."""
+    try:
+        return NutationForm(sp)
+    except ValueError:
+        return None
