@@ -1,5 +1,5 @@
 """The direct test's minimiser on a face |x2| = x2* (kinds/lyapunov/direct_face.py) and the direct radius over
-mu (direct_mu.point_upper): every certified bound against mpmath's values of A/|B| (MpGimbal's Psi
+mu (direct_mu.piece_upper): every certified bound against mpmath's values of A/|B| (MpGimbal's Psi
 coefficients, an independent formula), sampled; the claims' brackets to 1e-9 relative (issue 40)."""
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ from rigor_gyro.core.outcome import Status
 from rigor_gyro.kinds.lyapunov.approx import AGAFONOV2013, MpGimbal
 from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters
 from rigor_gyro.kinds.lyapunov.direct_face import face_margin, face_min_lower, face_polish, face_series
-from rigor_gyro.kinds.lyapunov.direct_mu import point_upper
+from rigor_gyro.kinds.lyapunov.direct_mu import piece_upper
 from rigor_gyro.kinds.lyapunov.model import DIRECT_DOMAIN, symmetric_in_x2
 
 from tests.forgery import certificate
@@ -86,12 +86,13 @@ def test_face_min_lower_is_below_and_within_1e_13_of_mpmath_minimum_and_below_ev
                 assert _mpf(low.lower()) <= Fmin
                 assert (Fmin - _mpf(low.lower())) / Fmin < 1e-13
         # an interval without the critical point: the minimum at its end, every sample above the bound
-        low = face_min_lower(g, 1, Fraction(1, 4), Fraction(5, 16))
+        low = face_min_lower(g, 1, Fraction(1, 4), Fraction(17, 64))
+        assert low is not None
         if low is not None:
             mg = MpGimbal(AGAFONOV2013)
             with mpmath.workdps(DPS):
                 for k in range(17):
-                    A, B = _mp_F(mg, 1, mpmath.mpf(1) / 4 + mpmath.mpf(k) / 256)
+                    A, B = _mp_F(mg, 1, mpmath.mpf(1) / 4 + mpmath.mpf(k) / 1024)
                     assert A / abs(B) >= _mpf(low.lower())
 
 
@@ -114,6 +115,37 @@ def test_face_margin_lower_end_is_below_mpmath_samples_of_a_minus_r_abs_b(box):
                     s = _mq(box[1][0]) + (_mq(box[1][1]) - _mq(box[1][0])) * j / 5
                     A, B = _mp_F(mg, u, s)
                     assert A - mpmath.mpf(R.numerator) / R.denominator * abs(B) >= lo, (i, j)
+
+
+@pytest.mark.parametrize("u_box, s_box", [
+    ((Fraction(7, 8), Fraction(1)), (Fraction(1, 4), Fraction(17, 64))),
+    ((Fraction(7, 8), Fraction(15, 16)), (Fraction(1, 4), Fraction(17, 64))),
+    ((Fraction(-1), Fraction(-7, 8)), (Fraction(1, 4), Fraction(17, 64))),
+    # dF/du < 0 on the box itself, > 0 between it and the face
+    ((Fraction(7, 8), Fraction(113, 128)), (Fraction(7, 32), Fraction(29, 128)))])
+def test_face_margin_where_a_over_b_grows_towards_the_face_stays_below_mpmath_samples(u_box, s_box):
+    """x2* = 1.3, s near 1/4: there A/|B| is smaller inside than on the face u = 1, so the face's minimum is no
+    bound for the box; R between the box's sampled minimum and the face's: A - R |B| < 0 at a sample, and
+    the box function's lower end must stay below it."""
+    params = dict(AGAFONOV2013, x2_star="1.3")
+    g, mg = gimbal_from_parameters(params)[0], MpGimbal(params)
+    with mpmath.workdps(DPS):
+        grid = [(_mq(u_box[0]) + (_mq(u_box[1]) - _mq(u_box[0])) * i / 8, _mq(s_box[0]) + (_mq(s_box[1]) - _mq(s_box[0])) * j / 8)
+                for i in range(9) for j in range(9)]
+        vals = [(lambda A, B: (A, B))(*_mp_F(mg, u, s)) for u, s in grid]
+        box_min = min(A / abs(B) for A, B in vals)
+        face = 1 if u_box[1] > 0 else -1
+        face_min = min(A / abs(B) for A, B in (_mp_F(mg, face, _mq(s_box[0]) + (_mq(s_box[1]) - _mq(s_box[0])) * j / 64)
+                                               for j in range(65)))
+        assert box_min < face_min
+        R = Fraction(mpmath.nstr((box_min + face_min) / 2, 20))
+        worst = min(A - _mq(R) * abs(B) for A, B in vals)
+        assert worst < 0
+    with working_precision(64):
+        b = Box.of({"u": u_box, "s": s_box})
+        v = face_margin(g, arb(fmpq(R.numerator, R.denominator)))({k: b.ball(k) for k in b.names})
+    with mpmath.workdps(DPS):
+        assert _mpf(v.lower()) <= worst
 
 
 def test_the_face_argument_decides_the_minimiser_s_box_below_the_infimum_and_never_above_it():
@@ -141,21 +173,23 @@ def test_face_polish_reaches_mpmath_minimiser():
     assert abs(float(s) - float(smin)) < 1e-7
 
 
-def test_point_upper_bounds_mpmath_radius_at_every_sampled_mu_of_a_ball():
-    """The mean-value branch (slope of both signs on the ball, near the optimum over mu) and the monotone one."""
+def test_piece_upper_from_a_polished_point_bounds_mpmath_radius_at_every_sampled_mu_of_a_ball():
+    """A point polished on the face at some mu of the ball (the piece bounds of best_mu_direct) bounds A/|B| there."""
     g = _g()
     with mpmath.workdps(DPS):
         mg = MpGimbal(AGAFONOV2013)
-    for lo, hi in (("0.02318", "0.023182"), ("0.0231", "0.0233"), ("0.020", "0.021")):
+    for lo, hi, at in (("0.02318", "0.023182", None), ("0.0231", "0.0233", None), ("0.020", "0.021", None),
+                       ("0.02317958", "0.02318358", "0.02318058")):
         a, b = Fraction(lo), Fraction(hi)
+        c = (a + b) / 2 if at is None else Fraction(at)
         with working_precision(64):
             Mu = arb(fmpq(a.numerator, a.denominator)).union(arb(fmpq(b.numerator, b.denominator)))
-            _, sp = face_polish(g.with_mu(fmpq(((a + b) / 2).numerator, ((a + b) / 2).denominator)), 1, 0.332)
-            up = point_upper(g, fmpq(1), fmpq(sp.numerator, sp.denominator), Mu)
+            _, sp = face_polish(g.with_mu(fmpq(c.numerator, c.denominator)), 1, 0.332)
+            up = piece_upper(g, Mu, [(fmpq(1), fmpq(sp.numerator, sp.denominator))])
         assert up.is_finite()
         with mpmath.workdps(DPS):
-            for k in range(9):
-                mu = _mq(a) + _mq(b - a) * k / 8
+            for k in range(17):
+                mu = _mq(a) + _mq(b - a) * k / 16
                 A, B = _mp_F(mg, 1, mpmath.mpf(sp.numerator) / sp.denominator, mu)
                 assert A / abs(B) <= _mpf(up.upper()), (lo, k)
 

@@ -109,11 +109,12 @@ def face_min_lower(g: Gimbal, face: int, s_lo: Fraction, s_hi: Fraction, mu: arb
 
 
 def _face_of(U: arb) -> int | None:
-    """The face (+1 or -1) within FACE_BOX_U of the u-ball, or None."""
-    near = _point(1 - FACE_BOX_U)
-    if U.lower() >= near:
+    """The face (+1 or -1) whose distance from the u-ball's midpoint is at most FACE_BOX_U, or None (a choice
+    of which boxes to try: the argument holds on any box, extended to its face)."""
+    near, m = _point(1 - FACE_BOX_U), arb(U.mid())
+    if m >= near:
         return 1
-    if U.upper() <= -near:
+    if m <= -near:
         return -1
     return None
 

@@ -22,13 +22,13 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from ...core.balls import certainly_gt, certainly_le, certainly_lt, certainly_positive, exact_fraction
+from ...core.balls import certainly_gt, certainly_le, certainly_lt, exact_fraction
 from ...core.subdivision import best_first_bisection
 from .direct_face import face_polish
-from .model import Dual, Gimbal, direct_radius_upper, vdot_polar
-from .search import compass, grid_then_compass
+from .model import Gimbal, direct_radius_upper, vdot_polar
+from .search import compass, grid_then_compass, scaled_ratio
 
-__all__ = ["direct_sup_upper_bound", "direct_point_search", "piece_upper", "point_upper"]
+__all__ = ["direct_sup_upper_bound", "direct_point_search", "piece_upper"]
 
 
 def _fq(x: float) -> fmpq:
@@ -50,7 +50,7 @@ def direct_point_search(g: Gimbal, start: tuple[float, float] | None = None) -> 
         A, B = vdot_polar(g, xs * arb(u), pi * arb(s))
         a, b = float(A.mid()), float(B.mid())
         amin = min(amin, a)
-        return (a / abs(b) if b != 0 else math.inf), None
+        return scaled_ratio(A, B, a, b), None
     if start is None:
         v, u, s, _ = grid_then_compass(value, (17, 33), 90)
     else:
@@ -59,39 +59,12 @@ def direct_point_search(g: Gimbal, start: tuple[float, float] | None = None) -> 
     return v, u, s, amin
 
 
-def point_upper(g: Gimbal, u: fmpq, s: fmpq, Mu: arb) -> arb:
-    """An upper bound of R_dsup over the mu ball ``Mu`` from the point (u, s):
-    :func:`~rigor_gyro.kinds.lyapunov.model.direct_radius_upper`, and where rho = A/|B| at the point may turn
-    on Mu (the ball of d rho / d mu contains 0, near the optimum over mu) the smaller of that and the
-    mean-value form max(rho(m) + rho'(Mu) (Mu - m), 0) (m the exact midpoint of Mu; B of one sign over Mu, so
-    rho is smooth there and the mean value theorem holds; R_dsup <= max(rho, 0) as in direct_radius_upper).
-    Its overestimation is quadratic in Mu's width, the ball evaluation's linear."""
-    b = direct_radius_upper(g, u, s, Mu)
-    if Mu.rad().is_zero() or not certainly_le(abs(arb(u)), 1):
-        return b
-    X, T = g.c.x2_star * arb(u), arb.pi() * arb(s)
-    Ad, Bd = vdot_polar(g, X, T, Dual(Mu, arb(1)))
-    if not (certainly_gt(Bd.v, 0) or certainly_lt(Bd.v, 0)):
-        return b
-    sgn = 1 if certainly_gt(Bd.v, 0) else -1
-    slope = sgn * (Ad / Bd).d
-    if certainly_le(arb(0), slope) or certainly_le(slope, 0):
-        return b                         # monotone on Mu: direct_radius_upper took the end it points to
-    m = arb(Mu.mid())
-    A, B = vdot_polar(g, X, T, m)
-    mv = sgn * A / B + slope * (Mu - m)
-    if not mv.is_finite():
-        return b
-    up = mv.upper() if certainly_positive(mv.upper()) else arb(0)
-    return up if not b.is_finite() or certainly_lt(up, b) else b
-
-
 def piece_upper(g: Gimbal, Mu: arb, points: list[tuple[fmpq, fmpq]]) -> arb:
-    """The smallest of the points' bounds (:func:`point_upper`) of R_dsup over the mu ball ``Mu`` (exact
-    comparisons: arb's min of two balls widens), +inf if none is finite."""
+    """The smallest of the points' bounds of R_dsup over the mu ball ``Mu`` (exact comparisons: arb's min of
+    two balls widens), +inf if none is finite."""
     best = arb("inf")
     for u, s in points:
-        b = point_upper(g, u, s, Mu)
+        b = direct_radius_upper(g, u, s, Mu)
         if b.is_finite() and (not best.is_finite() or certainly_lt(b, best)):
             best = b
     return best
