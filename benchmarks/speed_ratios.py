@@ -1,6 +1,23 @@
-"""The three speed ratios of issue 12, measured in one run on this machine. Prints a table; asserts nothing.
+"""The speed ratios of issues 12 and 41, measured in one run on this machine. Prints tables; asserts nothing.
 
-    python benchmarks/speed_ratios.py [--repeat 3]
+    python benchmarks/speed_ratios.py [--repeat 3]            everything below
+    python benchmarks/speed_ratios.py --goals [--repeat 7]    only issue 41's goals (0. below), a minute or two
+    python benchmarks/speed_ratios.py --goals --before DIR    the same, each run paired with a run of the
+                                                              source tree DIR (e.g. ``git archive <commit>``
+                                                              unpacked there), interleaved: before/after
+
+0. Issue 41's goals. (a) Cold ``rigor-gyro prove rudenko1976 roitenberg1947 agafonov2013 --workers 1`` (every
+   claim they prove, certificates and reports written) against the float script of the same three scenes
+   (``--float-script --scenes ...``, and with ``--full``: also the Lyapunov polar-form quantities), median
+   wall time and median user CPU of ``--repeat`` paired runs, interleaved. Goal: <= 0.6x the float script's
+   wall, <= 0.35 s user CPU. (b) The gimbal extremes: agafonov2013 with H = 1e300 and with a = 1e-300
+   (temporary scenes, its [paper] table left out): wall, user CPU and each claim's status. Goal: decided
+   or honestly inconclusive in under 10 s.
+   Every subprocess runs with bytecode caches (PYTHONPYCACHEPREFIX in a temporary folder, warmed by one
+   run that is not counted; PYTHONDONTWRITEBYTECODE removed): an installed package has its ``.pyc``
+   files, and numpy/scipy's are in site-packages already. OPENBLAS_NUM_THREADS=1 for every run: on a
+   shared 2-core machine OpenBLAS's threads made scipy's 5x5 ``expm`` 30-100x slower (the float script's
+   relay part took 10-25 s instead of 0.4 s), which would flatter the certified path.
 
 1. Cold processes: ``rigor-gyro prove --all`` (certified, writes the certificates and reports; one scene per core, and
    with ``--workers 1``) against
@@ -22,6 +39,10 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import json
+import os
+import pathlib
+import resource
 import statistics
 import subprocess
 import sys
@@ -31,9 +52,14 @@ import time
 PAPER = ("agafonov2013", "roitenberg1947", "roitenberg1947_b2over15", "rudenko1976")
 #: the range the relay certificates search, (0, T]: the float script is given the same range
 RELAY_T = {"roitenberg1947": 0.7283, "roitenberg1947_b2over15": 0.7283}
+#: the three papers' scenes of issue 41's cold-prove goal
+THREE = ("rudenko1976", "roitenberg1947", "agafonov2013")
+#: issue 41's gimbal extremes: agafonov2013 with one parameter replaced
+EXTREMES = (("H", "1e300"), ("a", "1e-300"))
+HERE = pathlib.Path(__file__).resolve()
 
 
-def float_script(full: bool = False) -> None:
+def float_script(full: bool = False, scenes=PAPER) -> None:
     """The uncertified equivalent of ``prove --all``: every quantity in floats, nothing certified. ``full``:
     also the quantities of the Lyapunov kind's polar-form claims (R_direct at the scene's mu, c_max, and
     the direct test's search over mu: mu_direct, R_direct_max), which ``prove --all`` certifies too."""
@@ -41,7 +67,7 @@ def float_script(full: bool = False) -> None:
     from rigor_gyro.kinds.eigenfrequencies.approx import bench_float as eig
     from rigor_gyro.kinds.lyapunov.approx import float_constants, float_polar_estimates
     from rigor_gyro.kinds.periodic_orbit.approx import bench_float as relay
-    for name in PAPER:
+    for name in scenes:
         sc = load_scene(name)
         p = dict(sc.parameters)
         if sc.kind == "eigenfrequencies":
@@ -66,6 +92,106 @@ def _medians_cold(cmds, repeat):
     return [statistics.median(t_list) for t_list in ts]
 
 
+def _env(tree: str | None, cache: str) -> dict:
+    """The subprocesses' environment: bytecode caches under ``cache``, one BLAS thread, and the source tree
+    ``tree`` first on the path (None: the installed one)."""
+    env = dict(os.environ, PYTHONPYCACHEPREFIX=cache, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    if tree is not None:
+        env["PYTHONPATH"] = os.pathsep.join([tree] + ([env["PYTHONPATH"]] if env.get("PYTHONPATH") else []))
+    return env
+
+
+def _run(cmd, env, timeout=None):
+    """(wall s, user CPU s, completed process) of one run of ``cmd``."""
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime
+    t = time.perf_counter()
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout)
+    wall = time.perf_counter() - t
+    return wall, resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime - r0, p
+
+
+def _paired(cmds, repeat):
+    """Median (wall, user CPU) of each (cmd, env), the commands interleaved run by run, after one warm-up
+    run each (it fills the bytecode cache; not counted). A failing run raises."""
+    for cmd, env in cmds:
+        subprocess.run(cmd, check=True, capture_output=True, env=env)
+    ts = [([], []) for _ in cmds]
+    for _ in range(repeat):
+        for (cmd, env), (w, u) in zip(cmds, ts):
+            wall, user, p = _run(cmd, env)
+            if p.returncode not in (0, 3):
+                raise RuntimeError(f"{cmd} exited {p.returncode}: {p.stderr[-2000:]}")
+            w.append(wall)
+            u.append(user)
+    return [(statistics.median(w), statistics.median(u)) for w, u in ts]
+
+
+def extreme_scene(folder: str, param: str, value: str) -> str:
+    """A temporary copy of agafonov2013 with ``param`` = ``value`` (its [paper] table left out: the printed
+    numbers are the paper's scene's). Returns the TOML path."""
+    from rigor_gyro.scene import builtin_scenes
+    lines, out = builtin_scenes()["agafonov2013"].read_text().splitlines(), []
+    for line in lines:
+        if line.strip() == "[paper]":
+            break
+        if line.startswith("name = "):
+            line = f'name = "agafonov2013_{param}_{value}"'
+        elif line.startswith(f"{param} = "):
+            line = f'{param} = "{value}"'
+        out.append(line)
+    path = os.path.join(folder, f"agafonov2013_{param}_{value}.toml")
+    pathlib.Path(path).write_text("\n".join(out) + "\n")
+    return path
+
+
+def goals(repeat: int, before: str | None) -> None:
+    """Issue 41's goal rows (0. in the module's docstring)."""
+    cache, out = tempfile.mkdtemp(), tempfile.mkdtemp()
+    trees = [("after", None)] + ([("before", before)] if before else [])
+    cmds, names = [], []
+    for label, tree in trees:
+        env = _env(tree, os.path.join(cache, label))
+        cmds.append(([sys.executable, "-m", "rigor_gyro", "prove", *THREE, "-q", "--workers", "1", "--out",
+                      os.path.join(out, label)], env))
+        names.append(f"`rigor-gyro prove {' '.join(THREE)} --workers 1` ({label})")
+    env = _env(None, os.path.join(cache, "float"))
+    fl = [sys.executable, str(HERE), "--float-script", "--scenes", ",".join(THREE)]
+    cmds += [(fl, env), (fl + ["--full"], env)]
+    names += ["float script, the same three scenes", "float script --full (+ R_direct, c_max, mu_direct)"]
+    res = _paired(cmds, repeat)
+    load = os.getloadavg()
+    print(f"Cold processes, median of {repeat} paired interleaved runs (load average {load[0]:.2f} {load[1]:.2f} "
+          f"{load[2]:.2f}; {os.cpu_count()} cores):\n")
+    print("| run | wall s | user CPU s | wall / float script | wall / float script --full |")
+    print("|---|---|---|---|---|")
+    t_fl, t_full = res[-2][0], res[-1][0]
+    for name, (w, u) in zip(names, res):
+        print(f"| {name} | {w:.2f} | {u:.2f} | {w / t_fl:.2f}x | {w / t_full:.2f}x |")
+    print("\nGoal: the certified run <= 0.6x the float script's wall and <= 0.35 s user CPU.\n")
+    print("| extreme scene | tree | wall s | user CPU s | verdict | bits tried | claims (status) |")
+    print("|---|---|---|---|---|---|---|")
+    for param, value in EXTREMES:
+        path = extreme_scene(out, param, value)
+        for label, tree in trees:
+            env = _env(tree, os.path.join(cache, label))
+            o = os.path.join(out, f"x_{label}")
+            try:
+                wall, user, p = _run([sys.executable, "-m", "rigor_gyro", "prove", path, "-q", "--workers", "1",
+                                      "--out", o], env, timeout=600)
+            except subprocess.TimeoutExpired:
+                print(f"| agafonov2013, {param} = {value} | {label} | > 600 | - | timed out | - | - |")
+                continue
+            cert = json.loads(pathlib.Path(o, f"agafonov2013_{param}_{value}.json").read_text())
+            st: dict[str, list[str]] = {}
+            for c in cert["claims"]:
+                st.setdefault(c["status"], []).append(c["id"])
+            text = "; ".join(f"{k}: {', '.join(v)}" if k != "proved" else f"proved: {len(v)}" for k, v in st.items())
+            print(f"| agafonov2013, {param} = {value} | {label} | {wall:.2f} | {user:.2f} | {cert['verdict']} | "
+                  f"{cert['precisions_tried']} | {text} |")
+    print("\nGoal: decided or honestly inconclusive in under 10 s.")
+
+
 def _median(fn, repeat):
     ts = []
     for _ in range(repeat):
@@ -78,12 +204,20 @@ def _median(fn, repeat):
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--goals", action="store_true", help="only issue 41's goal rows (0. above)")
+    ap.add_argument("--before", metavar="DIR", help="with --goals: also run the source tree DIR (a `git archive` "
+                    "of an older commit unpacked there), paired and interleaved with the current one")
     ap.add_argument("--float-script", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--full", action="store_true", help=argparse.SUPPRESS)
+    ap.add_argument("--scenes", default=",".join(PAPER), help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.float_script:
-        float_script(args.full)
+        float_script(args.full, args.scenes.split(","))
         return
+    goals(args.repeat, args.before)
+    if args.goals:
+        return
+    print()
     out = tempfile.mkdtemp()
     prove = [sys.executable, "-m", "rigor_gyro", "prove", "--all", "--quiet", "--out", out]
     fl = [sys.executable, __file__, "--float-script"]

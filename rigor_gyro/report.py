@@ -12,7 +12,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from .certificate import Certificate
+from .certificate import Certificate, dumps_indented
 from .core.errors import SceneError
 from .scene import check_name
 
@@ -436,7 +436,7 @@ def write_outputs(cert: Certificate, out_dir: str | Path) -> tuple[Path, Path]:
     timings file never is: it is run-dependent and git-ignored).
     Fails when: the folder cannot be created or written (OSError), the name is unsafe (SceneError)."""
     data = cert.to_json()
-    return write_pair(out_dir, data["scene"]["name"], json.dumps(data, indent=2, ensure_ascii=False) + "\n",
+    return write_pair(out_dir, data["scene"]["name"], dumps_indented(data) + "\n",
                       render_markdown(data), cert.timings_json())
 
 

@@ -26,7 +26,7 @@ from ...core.balls import certainly_gt, certainly_le, certainly_lt, exact_fracti
 from ...core.subdivision import best_first_bisection
 from .direct_face import face_polish
 from .model import Gimbal, direct_radius_upper, vdot_polar
-from .search import compass, grid_then_compass
+from .search import compass, grid_then_compass, scaled_ratio
 
 __all__ = ["direct_sup_upper_bound", "direct_point_search", "piece_upper"]
 
@@ -50,7 +50,7 @@ def direct_point_search(g: Gimbal, start: tuple[float, float] | None = None) -> 
         A, B = vdot_polar(g, xs * arb(u), pi * arb(s))
         a, b = float(A.mid()), float(B.mid())
         amin = min(amin, a)
-        return (a / abs(b) if b != 0 else math.inf), None
+        return scaled_ratio(A, B, a, b), None
     if start is None:
         v, u, s, _ = grid_then_compass(value, (17, 33), 90)
     else:

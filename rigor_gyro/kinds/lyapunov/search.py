@@ -9,7 +9,31 @@ from __future__ import annotations
 import math
 from typing import Any, Callable
 
-__all__ = ["grid_then_compass", "compass"]
+__all__ = ["grid_then_compass", "compass", "scaled_ratio"]
+
+#: the smallest positive normal double: below it a float has lost relative precision (or is 0)
+_TINY = 2.2250738585072014e-308
+
+
+def _float_ok(x: float, ball) -> bool:
+    """Whether the float ``x`` of a ball's midpoint kept its magnitude: finite, and a normal double or an
+    exact zero."""
+    return math.isfinite(x) and (abs(x) >= _TINY or (x == 0 and ball.mid().is_zero()))
+
+
+def scaled_ratio(A, B, a: float, b: float) -> float:
+    """A/|B| as a float for a search to compare, from the balls A, B and their midpoints a, b as floats: a/|b|
+    where both floats kept their magnitude (the common case, unchanged), else the quotient of the balls'
+    exact midpoints taken in arb (its exponent range is unbounded) and only then made a float, so terms
+    beyond the double range (H = 1e300 makes A and B about H^2; a = 1e-300 makes terms about a) give their
+    ratio instead of inf/inf = nan or x/0. +inf where B's midpoint is 0. A heuristic value: it only chooses
+    where to search; nothing decides on it."""
+    if _float_ok(a, A) and _float_ok(b, B):
+        return a / abs(b) if b != 0 else math.inf
+    mb = B.mid()
+    if mb.is_zero():
+        return math.inf
+    return float((A.mid() / abs(mb)).mid())
 
 
 def grid_then_compass(value: Callable[[float, float], tuple[float, Any]], grid: tuple[int, int], steps: int,
