@@ -49,7 +49,7 @@ from typing import Any, Callable, Mapping
 from .errors import ParameterError
 from .exact import MAX_DIGITS, MAX_EXPONENT
 
-__all__ = ["Expr", "parse", "degree", "evaluate_exact", "derivative", "parity", "tree_size", "UNARY_FUNCTIONS", "MAX_LENGTH",
+__all__ = ["Expr", "parse", "compile_expr", "degree", "evaluate_exact", "derivative", "parity", "tree_size", "UNARY_FUNCTIONS", "MAX_LENGTH",
            "MAX_DEPTH", "MAX_POWER", "MAX_OPERATIONS", "MAX_DEGREE", "MAX_DERIVATIVE_NODES"]
 
 MAX_LENGTH = 4000
@@ -144,6 +144,54 @@ class Expr:
             return ev(self.tree)
         except ZeroDivisionError:
             raise ParameterError(f"{self.where}: {self.text!r} divides by zero") from None
+
+
+def compile_expr(expr: "Expr", number: Callable[[Fraction], Any], functions: Mapping[str, Callable] | None = None,
+                 power: Callable[[Any, int], Any] | None = None) -> Callable[[Mapping[str, Any]], Any]:
+    """``expr`` as a function of ``env`` computing exactly what :meth:`Expr.evaluate` computes with these
+    arguments, the tree walked once (nested closures; ``number(q)`` called once per written number, so the
+    caller recompiles where numbers depend on a context such as Arb's precision). Not ``eval``: no code is
+    generated from text."""
+    fns = functions or {}
+
+    def c(t):
+        op = t[0]
+        if op == "num":
+            v = number(t[1])
+            return lambda env: v
+        if op == "name":
+            n = t[1]
+            return lambda env: env[n]
+        if op == "neg":
+            f = c(t[1])
+            return lambda env: -f(env)
+        if op == "call":
+            g, f = fns[t[1]], c(t[2][0])
+            return lambda env: g(f(env))
+        if op == "^":
+            f, n = c(t[1]), t[2]
+            if power is not None:
+                return lambda env: power(f(env), n)
+            if n < 0:
+                one = number(Fraction(1))
+                return lambda env: one / f(env) ** (-n)
+            return lambda env: f(env) ** n
+        f1, f2 = c(t[1]), c(t[2])
+        if op == "+":
+            return lambda env: f1(env) + f2(env)
+        if op == "-":
+            return lambda env: f1(env) - f2(env)
+        if op == "*":
+            return lambda env: f1(env) * f2(env)
+        return lambda env: f1(env) / f2(env)
+    run = c(expr.tree)
+
+    def call(env):
+        try:
+            return run(env)
+        except ZeroDivisionError:
+            raise ParameterError(f"{expr.where}: {expr.text!r} divides by zero") from None
+    return call
 
 
 def parse(text: object, where: str, names: set[str] | frozenset[str] | Mapping = frozenset(),

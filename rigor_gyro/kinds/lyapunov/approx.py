@@ -229,8 +229,9 @@ FLOAT_MOMENTS: dict[str, _Law] = {law.name: law for law in (_Sine(), _Linear())}
 
 # ------------------------------------------------------------------------------------ parameters
 
-def _parse(params: dict) -> tuple[dict[str, tuple[Fraction, int]], _Law]:
-    """Exact values (rational, pi power) of the parameters, and the law; ParameterError names the culprit."""
+def _parse(params: dict, moment: dict | None = None) -> tuple[dict[str, tuple[Fraction, int]], _Law]:
+    """Exact values (rational, pi power) of the parameters, and the law (``moment``: the scene's [moment] table,
+    for a law written in the scene, :mod:`.approx_moments`); ParameterError names the culprit."""
     if not isinstance(params, dict):
         raise ParameterError(f"parameters must be a dict of strings, got {type(params).__name__}")
     missing = [k for k in PARAMETER_NAMES if k not in params]
@@ -240,6 +241,9 @@ def _parse(params: dict) -> tuple[dict[str, tuple[Fraction, int]], _Law]:
     if unknown:
         raise ParameterError(f"unknown parameter(s) {unknown}; expected {list(PARAMETER_NAMES)}")
     law = FLOAT_MOMENTS.get(params["moment"])
+    if moment:
+        from .approx_moments import float_scene_law
+        law = float_scene_law(params, moment)
     if law is None:
         raise ParameterError(f"parameter 'moment' = {params['moment']!r}: unknown; known {sorted(FLOAT_MOMENTS)}")
     out = {}
@@ -263,8 +267,8 @@ def _parse(params: dict) -> tuple[dict[str, tuple[Fraction, int]], _Law]:
 class _Model:
     """System (2), V (7) and the Psi form over one backend (float64 arrays or mpmath scalars)."""
 
-    def __init__(self, params: dict, lib):
-        exact, self.law = _parse(params)
+    def __init__(self, params: dict, lib, moment: dict | None = None):
+        exact, self.law = _parse(params, moment)
         self.params = dict(params)
         self.lib = lib
         n = {k: lib.num(r) * (lib.pi if pw else 1) for k, (r, pw) in exact.items()}
@@ -448,8 +452,8 @@ class FloatGimbal(_Model):
         True
     """
 
-    def __init__(self, params: dict):
-        super().__init__(params, NP)
+    def __init__(self, params: dict, moment: dict | None = None):
+        super().__init__(params, NP, moment)
 
     def rhs(self, t, y):
         """solve_ivp right-hand side: y of shape (3,) or (3, n) (also (3n,) for n stacked starts)."""
@@ -497,8 +501,8 @@ class FloatGimbal(_Model):
 class MpGimbal(_Model):
     """The same model in mpmath scalars at the caller's ``mpmath.mp.dps`` (no guarantee)."""
 
-    def __init__(self, params: dict):
-        super().__init__(params, MP)
+    def __init__(self, params: dict, moment: dict | None = None):
+        super().__init__(params, MP, moment)
 
 
 # ------------------------------------------------------------------------------------ 1-D searches

@@ -46,7 +46,7 @@ from flint import acb, arb, arb_series, fmpq
 
 from ...core.balls import current_precision, series_coefficients, series_length
 from ...core.errors import ParameterError
-from ...core.expressions import UNARY_FUNCTIONS, Expr, derivative, evaluate_exact, parse, parity
+from ...core.expressions import UNARY_FUNCTIONS, Expr, compile_expr, derivative, evaluate_exact, parse, parity
 from .model import Dual
 from .moments import MomentLaw
 
@@ -169,7 +169,7 @@ def _power(base, n: int):
     return _mul_power(base, n)
 
 
-def _acb_functions(analytic: bool) -> dict:
+def _acb_functions_of(analytic: bool) -> dict:
     """The functions on complex balls for acb.integral: log, sqrt, atan (through logs) and abs (real_abs)
     with Arb's analyticity flag, so a ball meeting a branch cut or the kink of abs gives a non-finite value."""
     def atan(z):
@@ -178,6 +178,13 @@ def _acb_functions(analytic: bool) -> dict:
     return {"sin": acb.sin, "cos": acb.cos, "tan": acb.tan, "exp": acb.exp, "tanh": acb.tanh,
             "log": lambda z: z.log(analytic=analytic), "sqrt": lambda z: z.sqrt(analytic=analytic), "atan": atan,
             "abs": lambda z: z.real_abs(analytic=analytic), "sign": lambda z: z.real_sgn(analytic=analytic)}
+
+
+_ACB_FUNCTIONS = {flag: _acb_functions_of(flag) for flag in (False, True)}
+
+
+def _acb_functions(analytic: bool) -> dict:
+    return _ACB_FUNCTIONS[analytic]
 
 
 # ------------------------------------------------------------------------------------ exact evaluation
@@ -335,6 +342,23 @@ class ExpressionMoment(MomentLaw):
         self._zeros = tuple(r for r in (Fraction(-1), Fraction(-1, 2), Fraction(0), Fraction(1, 2), Fraction(1))
                             if exact_value(f, _pi(r), self.params) == 0)
         self._c0: dict = {}
+        self._compiled: dict = {}
+
+    def _code(self, which: str, kind: object):
+        """The compiled expression (``which``: "f" or "df") for real values (kind None) or complex balls in
+        the quadrature (kind: the analyticity flag), per precision (its numbers are balls of that precision)."""
+        key = (which, kind, current_precision())
+        fn = self._compiled.get(key)
+        if fn is None:
+            e = self.expr if which == "f" else self.dexpr
+            if kind is None:
+                fn = compile_expr(e, lambda q: arb(_q(q)), _FUNCTIONS, _power)
+            else:
+                fn = compile_expr(e, lambda q: acb(arb(_q(q))), _acb_functions(kind), _power)
+            if len(self._compiled) > 64:
+                self._compiled.clear()
+            self._compiled[key] = fn
+        return fn
 
     def _env(self, a, x) -> dict:
         p = current_precision()
@@ -343,17 +367,17 @@ class ExpressionMoment(MomentLaw):
             b = self._balls[p] = {k: arb(_q(v)) for k, v in self.params.items()}
         return {**b, "a": a, "x2": x}
 
-    def _eval(self, e: Expr, a, x):
-        r = e.evaluate(self._env(a, x), number=lambda q: arb(_q(q)), functions=_FUNCTIONS, power=_power)
+    def _eval(self, which: str, a, x):
+        r = self._code(which, None)(self._env(a, x))
         if type(r) is not type(x) and type(r) is arb:
             r = r + 0 * x                                 # a constant: the argument's type (Dual, series)
         return r
 
     def f(self, a, x):
-        return self._eval(self.expr, a, x)
+        return self._eval("f", a, x)
 
     def df(self, a, x):
-        return self._eval(self.dexpr, a, x)
+        return self._eval("df", a, x)
 
     def zeros_over_pi(self):
         return self._zeros
@@ -405,12 +429,12 @@ class ExpressionMoment(MomentLaw):
         p = current_precision()
         b = self._balls.get(p) or {k: arb(_q(v)) for k, v in self.params.items()}
         consts = {k: acb(v) for k, v in b.items()}
-        expr = self.expr
+        codes = {flag: self._code("f", flag) for flag in (False, True)}
+        env = {**consts, "a": ac}
 
         def integrand(t, analytic):
-            fns = _acb_functions(bool(analytic))
-            fv = expr.evaluate({**consts, "a": ac, "x2": t}, number=lambda q: acb(arb(_q(q))), functions=fns,
-                               power=_power)
+            env["x2"] = t
+            fv = codes[bool(analytic)](env)
             s = t.sin()
             return t.cos() * fv / (A0c - C0c * s * s)
         return acb.integral(integrand, 0, acb(x)).real
