@@ -1135,7 +1135,7 @@ MUTANTS = [
      "\"atan\": lambda v: 1 / (1 + arb_power(v, 2))", "\"atan\": lambda v: 1 / (1 - arb_power(v, 2))",
      "forward mode with a wrong derivative rule (atan' = 1/(1 - v^2)): f' on Duals not f's derivative"),
     ("moment_expr_G_not_analytic_flag", "rigor_gyro/kinds/lyapunov/moment_expr.py",
-     "            fns = _acb_functions(bool(analytic))\n", "            fns = _acb_functions(False)\n",
+     "            fv = codes[bool(analytic)](env)\n", "            fv = codes[False](env)\n",
      "the quadrature of G not told where abs, log, sqrt are not analytic (its error bound assumes they are)"),
     ("moment_table_last_piece_dropped", "rigor_gyro/kinds/lyapunov/moment_table.py",
      "        return range(i, j + 1)\n", "        return range(i, j)\n",
