@@ -20,6 +20,7 @@ from rigor_gyro.core.errors import ParameterError
 from rigor_gyro.core.exact import parse_exact
 from rigor_gyro.core.expressions import UNARY_FUNCTIONS, derivative, parity, parse
 from rigor_gyro.kinds.lyapunov.model import Dual, law_is_odd
+from rigor_gyro.kinds.lyapunov import moment_scene
 from rigor_gyro.kinds.lyapunov.moment_expr import FINITE, expression_law, exact_value
 from rigor_gyro.kinds.lyapunov.moment_table import natural_spline, table_law
 
@@ -333,8 +334,10 @@ def _overlap(p, q):
 
 
 @pytest.mark.parametrize("builtin,formula", [("sine", "a*sin(x2)"), ("linear", "a*x2")])
-def test_a_builtin_law_written_as_an_expression_gives_the_same_certificate(builtin, formula):
-    """Claim by claim: the same ids and verdicts, overlapping quantities (agafonov2013, the cheap claims)."""
+def test_a_builtin_law_written_as_an_expression_gives_the_same_certificate(builtin, formula, monkeypatch):
+    """The generic path (the fast path of recognised built-in forms switched off), claim by claim: the same ids
+    and verdicts, overlapping quantities (agafonov2013, the cheap claims)."""
+    monkeypatch.setattr(moment_scene, "FAST_PATHS", {})
     a = prove_scene(parse_scene(scene_text(builtin, claims=CHEAP))).to_json()
     b = prove_scene(parse_scene(scene_text("expression", f'[moment]\nf = "{formula}"\n', claims=CHEAP))).to_json()
     assert [(c["id"], c["status"]) for c in a["claims"]] == [(c["id"], c["status"]) for c in b["claims"]]
@@ -346,6 +349,19 @@ def test_a_builtin_law_written_as_an_expression_gives_the_same_certificate(built
                        for c in cert["claims"] if c["id"] == "equilibria" for e in c["details"]["equilibria"]]
     assert eq(a) == eq(b)
     assert b["extra"]["moment"]["formula"] == f"f(x2) = {formula}"
+
+
+def test_an_expression_that_is_a_builtin_law_takes_its_fast_path():
+    """a*sin(x2) written in the scene is the SineMoment class: the certificate's claims and quantities are the
+    built-in scene's, byte for byte; a*sin(x2) with a table parameter, or another spelling, is generic."""
+    claims = ["constants", "v_positive", "vdot_nonpositive"]
+    a = prove_scene(parse_scene(scene_text("sine", claims=claims))).to_json()
+    b = prove_scene(parse_scene(scene_text("expression", '[moment]\nf = "sin(x2)*a"\n', claims=claims))).to_json()
+    assert json.dumps(a["claims"]) == json.dumps(b["claims"]) and json.dumps(a["quantities"]) == json.dumps(b["quantities"])
+    assert b["extra"]["moment"]["name"] == "sine"
+    assert moment_scene.scene_moment_law("expression", {"f": "a*x2"}, parse_exact("pi/6")).name == "linear"
+    assert moment_scene.scene_moment_law("expression", {"f": "b*sin(x2)", "b": "100"}, parse_exact("pi/6")).name \
+        .startswith("expression")
 
 
 # ------------------------------------------------------------------------------------ example scenes and the checker

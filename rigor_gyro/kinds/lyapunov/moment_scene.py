@@ -2,7 +2,8 @@
 the specialised classes of :mod:`.moments`, the fast path, unchanged) or the user's own in a ``[moment]`` table
 (issue 42): ``moment = "expression"`` (:mod:`.moment_expr`) or ``moment = "table"`` (:mod:`.moment_table`).
 
-Guarantee: a scene without a ``[moment]`` table gets exactly the built-in law it names (certificates unchanged).
+Guarantee: a scene without a ``[moment]`` table gets exactly the built-in law it names (certificates unchanged);
+an expression that is exactly a built-in law (:data:`FAST_PATHS`: ``a*sin(x2)``, ``a*x2``) gets that law's class.
 Fails when: the name and the table do not match, or the table is unusable: ParameterError naming the parameter
 or the table's entry (exit 2).
 """
@@ -14,7 +15,15 @@ from ...core.errors import ParameterError
 from ...core.exact import Exact
 from .moments import MOMENTS, MomentLaw
 
-__all__ = ["USER_LAWS", "KNOWN", "scene_moment_law"]
+__all__ = ["USER_LAWS", "KNOWN", "FAST_PATHS", "scene_moment_law"]
+
+#: expressions that are a built-in law exactly (as parsed trees, no parameters of the table): the specialised class
+#: is used for them, the fast path (``a*sin(x2)`` gets SineMoment's closed forms of G and q); the generic path
+#: gives the same verdicts and overlapping enclosures (tests/test_moment_expr.py) at about twice the cost
+FAST_PATHS = {("*", ("name", "a"), ("call", "sin", (("name", "x2"),))): "sine",
+              ("*", ("call", "sin", (("name", "x2"),)), ("name", "a")): "sine",
+              ("*", ("name", "a"), ("name", "x2")): "linear",
+              ("*", ("name", "x2"), ("name", "a")): "linear"}
 
 #: the names of the laws a [moment] table defines
 USER_LAWS = ("expression", "table")
@@ -37,6 +46,8 @@ def scene_moment_law(moment: object, table: Mapping[str, object] | None, x2_star
                                 "with x2 = [...] and f = [...] (measured points)"))
     if moment == "expression":
         from .moment_expr import expression_law
-        return expression_law(table)
+        law = expression_law(table)
+        fast = FAST_PATHS.get(law.expr.tree) if not law.params else None
+        return MOMENTS[fast] if fast else law
     from .moment_table import table_law
     return table_law(table, x2_star)
