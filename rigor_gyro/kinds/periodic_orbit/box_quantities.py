@@ -27,6 +27,7 @@ from ...core.polyroots import isolate_polynomial
 from .box_orbit import box_directions, centre_orbits
 from .continuation import continue_orbit
 from .flow import AMPLITUDE_PARAMETERS, nutation_cubic
+from .plant_model import PlantModel
 
 __all__ = ["BOX_QUANTITIES", "quantities_box"]
 
@@ -46,8 +47,8 @@ def _q(x):
 def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
     """{quantity: BoxValue} for the requested names it can enclose on the box (module docstring)."""
     names = [k for k in names if k in BOX_QUANTITIES]
-    if not names:
-        return {}
+    if not names or isinstance(model, PlantModel):
+        return {}           # a [plant] model: no quantity ranges over a box yet (its claims only: plant_box)
     mid = box.midpoint()
     fixed = {k: _q(box.interval(k)[0]) for k in AMPLITUDE_PARAMETERS if k in box.names}
     Pc = dataclasses.replace(model.params, **{**{k: _q(v) for k, v in mid.items()}, **fixed})

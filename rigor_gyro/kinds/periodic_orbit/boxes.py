@@ -54,6 +54,20 @@ so there the paving keeps an undecided sliver whatever the resolution (never ref
 fails to be provable there, not to hold). ``orbit_genuine`` and ``stable`` do not need every root
 classified and hold across the fold.
 
+A box that varies A, H or tau is first decided on its similar box of (B, sigma, n) at the midpoint's A, H, tau
+(:mod:`.similarity`: the orbit's existence, genuineness and multipliers depend only on H^2 tau^2/(A B),
+n tau/A and sigma/tau; checked by an exact conjugacy), bisected up to twice (:func:`.box_orbit._cover`), and
+``stable`` also by a Gershgorin bound of the spectral radius where Rump's method does not isolate the
+multipliers (:mod:`.norm_stability`, :mod:`.normed_orbit`). Measured at 128 bits, all six at once (evaluate_box,
+one box, 2026-12-06, helper H5): ``orbit_genuine`` +-0.5 % proved in 10.8 s (was undecided; +-0.25 % before),
+``stable`` +-0.2 % in 21.5 s and +-0.15 % in 10.8 s (was +-0.1 %); ``stable`` +-0.25 % undecided (54 s), +-0.5 %
+undecided (103 s even with 64 leaves of the similar box): the centred Jacobian over a box is still far wider
+than J moves (theta*'s gradient over B' +-0.75 % encloses [-0.95, 0.95] where it is 0.4).
+
+A ``[plant]`` model (:class:`.plant_model.PlantModel`) is decided over a box by :mod:`.plant_box` (naive ball
+forms of its matrices over the box: ``orbit_genuine`` and ``stable`` over boxes of relative width ~1e-6 in A and
+H, ~1e-8 in all six of the Roitenberg plant, the same verdicts as this path there).
+
 ``orbit_genuine`` and ``stable`` are first tried by continuing the centre's orbit over the whole box
 (:mod:`.box_orbit`, :mod:`.continuation`, with the band Newton step of :mod:`.subbox_union` and the cell
 fallback of :mod:`.cellwise`). Measured at 128 bits (one box, no paving split, evaluate_box; 2026-12-06): both
@@ -85,10 +99,13 @@ from ...core.polyroots import isolate_polynomial
 from .. import box_outcomes, require_box_claims
 from .claims import CLAIMS, attempt
 from .box_orbit import continued_outcomes
+from .plant_box import PLANT_BOX_CLAIMS, evaluate_plant_box, validate_plant_box
+from .plant_claims import statements as plant_statements
+from .plant_model import PlantModel
 from .jacobian_box import centred_jacobian, centred_terms, eigen_coordinate_multipliers
 from .flow import AMPLITUDE_PARAMETERS, PARAMETER_NAMES, amplitude_similarity, DegenerateSpectrum, NearZeroSeries, RelayParams, Spectrum, nutation_cubic
 
-__all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "BoxSpectrum", "validate_box", "evaluate_box"]
+__all__ = ["BOX_CLAIMS", "BOX_PARAMETERS", "BoxSpectrum", "box_claims", "validate_box", "evaluate_box"]
 
 BOX_CLAIMS = {c: CLAIMS[c] for c in ("half_period", "orbit_genuine", "stable")}
 BOX_PARAMETERS = PARAMETER_NAMES
@@ -202,7 +219,18 @@ class BoxSpectrum(Spectrum):
         return self._mode(acb(nu), 1, r, l, "-1/sigma (current I)")
 
 
+def box_claims(model) -> dict[str, str]:
+    """The claims decided over a box for this model: a ``[plant]`` model's are those of :mod:`.plant_box`."""
+    if isinstance(model, PlantModel):
+        st = plant_statements(model)
+        return {c: st[c] for c in PLANT_BOX_CLAIMS}
+    return dict(BOX_CLAIMS)
+
+
 def validate_box(model, box: Box) -> None:
+    if isinstance(model, PlantModel):
+        validate_plant_box(model, box)
+        return
     bad = [n for n in box.names if n not in BOX_PARAMETERS]
     if bad:
         raise ParameterError(f"parameter {bad[0]!r}: not a parameter of kind 'periodic_orbit'")
@@ -213,7 +241,10 @@ def validate_box(model, box: Box) -> None:
 
 
 def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str]]:
-    """{claim: (status, reason)} over the box (see the module docstring)."""
+    """{claim: (status, reason)} over the box (see the module docstring; a ``[plant]`` model: :mod:`.plant_box`)."""
+    if isinstance(model, PlantModel):
+        require_box_claims(claims, box_claims(model))
+        return evaluate_plant_box(model, box, claims)
     require_box_claims(claims, BOX_CLAIMS)
     # S enters homogeneously: x(t; S) = S x(t; 1) (linear plant, relay amplitude S > 0), so the roots of
     # g = S g_1, the signs of beta and the multipliers (the half-period map is homogeneous of degree 1,

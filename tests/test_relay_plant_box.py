@@ -1,0 +1,186 @@
+"""A [plant] relay model over a box of its parameters (kinds/periodic_orbit/plant_box.py, issue 42 part 1): the same
+verdicts as the paper's parameterisation over the same boxes, every certified enclosure against mpmath samples
+of the box, the refusals."""
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import random
+from fractions import Fraction as F
+
+import pytest
+from flint import arb
+
+from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.boxes import Box
+from rigor_gyro.core.errors import ParameterError
+from rigor_gyro.kinds.periodic_orbit import validate
+from rigor_gyro.kinds.periodic_orbit.boxes import box_claims, evaluate_box, validate_box
+from rigor_gyro.kinds.periodic_orbit.flow import DegenerateSpectrum
+from rigor_gyro.kinds.periodic_orbit.plant_box import PlantBoxSpectrum, _theta_over_box, disc_bound, plant_balls
+from rigor_gyro.kinds.periodic_orbit.plant_claims import analyse, classify, plant_multipliers
+from rigor_gyro.scene import load_scene
+
+mp = pytest.importorskip("mpmath")
+approx = pytest.importorskip("rigor_gyro.kinds.periodic_orbit.approx")
+np = pytest.importorskip("numpy")
+
+SIX = ("A", "B", "H", "tau", "sigma", "n")
+
+
+def _scene(name="roitenberg1947_plant"):
+    return load_scene(name)
+
+
+def _exact(scene) -> dict:
+    return {k: F(str(v)) for k, v in scene.parameters.items()}
+
+
+def _box(scene, rel: F, names) -> Box:
+    ex = _exact(scene)
+    return Box.of({k: (ex[k] * (1 - rel), ex[k] * (1 + rel)) for k in names})
+
+
+def _member(scene, point: dict):
+    """The validated [plant] model at a point of the box (exact)."""
+    params = dict(scene.parameters)
+    params.update({k: f"{v.numerator}/{v.denominator}" for k, v in point.items()})
+    return validate(dataclasses.replace(scene, parameters=params))
+
+
+def _samples(box: Box, n: int, seed: int = 7):
+    rng = random.Random(seed)
+    ivs = [box.interval(k) for k in box.names]
+    for c in itertools.product(*ivs):
+        yield dict(zip(box.names, c))
+    for _ in range(n):
+        yield {k: lo + (hi - lo) * F(rng.randrange(1001), 1000) for k, (lo, hi) in zip(box.names, ivs)}
+
+
+@pytest.mark.parametrize("rel,names", [(F(1, 10 ** 6), ("H",)), (F(1, 10 ** 6), ("A", "H")), (F(1, 10 ** 8), SIX)])
+def test_plant_and_paper_give_the_same_verdicts_over_the_same_box(rel, names):
+    plant, paper = _scene(), _scene("roitenberg1947")
+    with working_precision(128):
+        outs = []
+        for sc in (plant, paper):
+            m = validate(sc)
+            box = _box(sc, rel, names)
+            validate_box(m, box)
+            outs.append(evaluate_box(m, box, ["orbit_genuine", "stable"]))
+    assert {c: st for c, (st, _) in outs[0].items()} == {c: st for c, (st, _) in outs[1].items()} == \
+        {"orbit_genuine": "proved", "stable": "proved"}
+
+
+def test_box_claims_of_a_plant_model_are_genuine_and_stable():
+    assert set(box_claims(validate(_scene()))) == {"orbit_genuine", "stable"}
+
+
+def _theta_mp(model, lo: float, hi: float) -> float:
+    with mp.workdps(20):
+        a, b = mp.mpf(lo), mp.mpf(hi)
+        ga = approx.plant_g_mp(model, a, 20)
+        assert ga * approx.plant_g_mp(model, b, 20) < 0
+        for _ in range(32):
+            c = (a + b) / 2
+            if approx.plant_g_mp(model, c, 20) * ga > 0:
+                a = c
+            else:
+                b = c
+        return float((a + b) / 2)
+
+
+def test_box_enclosures_hold_mpmath_samples():
+    """Eigenvalues, theta*(P) and the largest multiplier modulus over a box of A and H (+-1e-6 relative): each
+    sampled member's value (mpmath; the multipliers by scipy) inside the certified enclosure."""
+    sc = _scene()
+    m = validate(sc)
+    box = _box(sc, F(1, 10 ** 6), ("A", "H"))
+    with working_precision(128):
+        sp = PlantBoxSpectrum(m, box)
+        v = [r for r in analyse(m).roots if r.kind == "genuine"][0]
+        Theta = _theta_over_box(sp, v.theta)
+        assert Theta is not None
+        w = classify(sp, Theta)
+        assert w.kind == "genuine"
+        mx = disc_bound(sp, w)
+        plant_multipliers(sp, w)
+        Mb = plant_balls(m, box)[0]
+    ranges = [mx] if mx is not None and mx < 1 else []
+    if w.stable is True:
+        top = w.moduli[0]
+        for r in w.moduli[1:]:
+            top = top.max(r)
+        ranges.append(top)
+    assert ranges, "neither Rump's method nor the discs decided the box"
+    for pt in _samples(box, 2):
+        mm = _member(sc, pt)
+        M = mp.matrix([[mp.mpf(int(mm.M[i, j].p)) / int(mm.M[i, j].q) for j in range(5)] for i in range(5)])
+        with working_precision(128):
+            assert all(Mb[i, j].contains(arb(mm.M[i, j])) for i in range(5) for j in range(5))
+        ev = mp.eig(M)[0]
+        for mode in sp.modes:                    # every enclosed eigenvalue holds one of the member's
+            assert any(mode.lam.real.lower() <= float(mp.re(z)) <= mode.lam.real.upper() and
+                       abs(float(mp.im(z))) >= float(abs(mode.lam.imag).lower()) - 1e-12 and
+                       abs(float(mp.im(z))) <= float(abs(mode.lam.imag).upper()) + 1e-12 for z in ev)
+        th = _theta_mp(mm, float(Theta.lower()) - 1e-6, float(Theta.upper()) + 1e-6)
+        assert float(Theta.lower()) <= th <= float(Theta.upper())
+        pd = {k: F(str(v)) for k, v in sc.parameters.items()}
+        pd.update(pt)
+        mods = [abs(z) for z in approx.approx_multipliers(pd, th)]
+        for r in ranges:
+            assert float(r.lower()) <= max(mods) <= float(r.upper())
+        if w.stable is True:          # every modulus (sorted) inside its ball
+            for r, z in zip(sorted(w.moduli, key=lambda b: float(b.mid())), sorted(mods)):
+                assert float(r.lower()) - 1e-12 <= z <= float(r.upper()) + 1e-12
+
+
+def test_stable_not_claimed_where_the_multipliers_are_not_decided():
+    """All six at +-1e-7: the naive box forms prove orbit_genuine but not stable (neither Rump nor the discs)."""
+    sc = _scene()
+    m = validate(sc)
+    with working_precision(128):
+        out = evaluate_box(m, _box(sc, F(1, 10 ** 7), SIX), ["orbit_genuine", "stable"])
+    assert out["orbit_genuine"][0] == "proved"
+    assert out["stable"][0] == "undecided"
+
+
+_NONSTRUCTURAL = """
+name = "plant_nonstructural_zero"
+kind = "periodic_orbit"
+source = "test"
+[parameters]
+a = "2"
+[plant]
+M = [["0", "1", "0"], ["0", "-a", "1"], ["0", "0", "-1"]]
+e = ["0", "0", "1"]
+c = ["1", "0", "0"]
+[options]
+T_max = "20"
+"""
+
+
+def test_zero_eigenvalue_kept_only_when_structural(tmp_path):
+    sc = _scene()
+    m = validate(sc)
+    with working_precision(128):
+        PlantBoxSpectrum(m, _box(sc, F(1, 10 ** 6), ("H",)))        # first column zero: structural
+    p = tmp_path / "z.toml"
+    # a zero eigenvalue at a = 2 only through a cancellation: M[2][1] = a - 2 (0 at the centre, not a constant)
+    p.write_text(_NONSTRUCTURAL.replace('M = [["0", "1", "0"], ["0", "-a", "1"]',
+                                        'M = [["a - 2", "1", "0"], ["0", "-a", "1"]'), encoding="utf-8")
+    m2 = validate(load_scene(str(p)))
+    assert m2.zero_eigenvalue
+    with working_precision(128), pytest.raises(DegenerateSpectrum):
+        PlantBoxSpectrum(m2, Box.of({"a": (F(199, 100), F(201, 100))}))
+
+
+def test_box_refusals_name_what_fails(tmp_path):
+    sc = _scene()
+    m = validate(sc)
+    with working_precision(128), pytest.raises(ParameterError, match="not a parameter"):
+        validate_box(m, Box.of({"zeta": (F(1), F(2))}))
+    p = tmp_path / "h.toml"
+    p.write_text(_NONSTRUCTURAL.replace('c = ["1", "0", "0"]', 'c = ["1", "0", "0"]\nh = "a - 2"'), encoding="utf-8")
+    m2 = validate(load_scene(str(p)))
+    with working_precision(128), pytest.raises(ParameterError, match="h"):
+        validate_box(m2, Box.of({"a": (F(199, 100), F(201, 100))}))
