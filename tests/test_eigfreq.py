@@ -151,16 +151,26 @@ def test_an_approximation_without_a_real_value_is_never_proved():
 
 
 def test_hz_values_are_judged_at_the_paper_s_own_scale_interval():
-    """The paper's four 'exact' Hz values need different scales sqrt(K3/A3)/(2 pi) (their ranges do not meet);
-    a printed Hz value is `propagated` (the paper's computation) when some scale in the hull of those ranges
-    reproduces it, and stays unexplained when none does."""
+    """The paper's four 'exact' Hz values need different scales sqrt(K3/A3)/(2 pi) at the printed eps; at
+    eps = 0.1073 they share the scales [617.7423, 617.8084], which is the Hz scale of every Hz row's paper
+    chain (issue 39): an 'exact' value is reproduced by the scales the other three share there (leave one
+    out); a bracket's print by scale * sqrt(bound) over the printed inputs (each within its rounding)."""
     data = prove_scene(load_scene("rudenko1976")).to_json()
     rows = {r["id"]: r for r in data["paper"]}
-    assert rows["(9) lambda_3- (Hz)"]["class"] == "propagated"           # 513.4: hz_scale 617.56
-    assert "hz_scale = 617.5" in rows["(9) lambda_3- (Hz)"]["class_reading"]
-    assert rows["'exact' lambda_2 (Hz)"]["class"] == "propagated"        # 121.5: hz_scale 616.98
-    assert rows["(8) lambda_2- (Hz)"]["class"] == "unexplained"          # 119.5 against 108.6: no scale near
-    assert rows["(10) lambda_4+ (Hz)"]["class"] == "unexplained"         # 950.8 needs 618.3, outside
+    for j in (1, 2):                                                     # 41.4, 121.5: at eps = 0.1073
+        r = rows[f"'exact' lambda_{j} (Hz)"]
+        assert r["class"] == "propagated" and "eps = 0.1073" in r["class_reading"]
+        assert "other three 'exact' values" in r["class_reading"]
+    assert rows["(9) lambda_3- (Hz)"]["class"] == "last-digit"           # 513.4 against [513.49, 513.66]
+    assert "[617.7423, 617.8084]" in rows["(9) lambda_3- (Hz)"]["class_reading"]
+    r8 = rows["(8) lambda_2- (Hz)"]                                       # 119.5: the linear form of (8)
+    assert r8["class"] == "propagated" and "linear form" in r8["class_reading"]
+    assert "at eps = 0.1073: [119.4546, 119.4675] Hz (a correct rounding)" in r8["note"]
+    r9 = rows["(9) lambda_3+ (Hz)"]                                       # 546: nu4^- and b (nu5 - nu4^-)
+    assert r9["class"] == "propagated" and "nu4^-" in r9["class_reading"]
+    assert "at the printed eps = 0.1076: [546.3596, 546.4181] Hz (a correct rounding)" in r9["note"]
+    for rid in ("(8) lambda_2+ (Hz)", "(10) lambda_4+ (Hz)", "(13) lambda_2~ (Hz)"):
+        assert rows[rid]["class"] == "unexplained", rid                  # 130.4, 950.8, 128
     assert rows["'exact' values share one Hz scale"]["class"] == "assertion-refuted"
 
 

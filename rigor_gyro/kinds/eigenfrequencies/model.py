@@ -234,7 +234,8 @@ BRACKETS: dict[int, Bracket] = {
                "(eps a (b-1) + W (1+eps)(a-b)) / ((a-b)(b-1)(b + W(1+eps)))",
                lambda p: _lo8(p, +1), _hi8, lambda p: _lo8(p, -1), None,
                "... + R1 (1/(b-1) - eps a/(b(a-b))) = R1 (nu3 - nu2^+)", "",
-               "lower: '-' before eps a/(b(a-b)) (the printed '+' makes the bound negative)"),
+               "lower: '-' before eps a/(b(a-b)) (the printed '+' makes the bound negative); the paper's 119.5 Hz "
+               "is another reading of it, its linear form (see the audit), not the bound proved here"),
     3: Bracket("(9)",
                "b/(b-1) + (D+R2)/2 - sqrt((D+R2)^2/4 + R2 (1 + eps/b)), R2 = W (b-1)/b (b/(b-1) - eps/(a-b)) "
                "(b/(b-1) - eps a/(b(a-b)))^-1",
@@ -243,7 +244,8 @@ BRACKETS: dict[int, Bracket] = {
                lambda p: _lo9_10(p, -1, True, True), lambda p: _hi9(p, 2),
                "... + R2 (1 - eps/(b-1)) = R2 (nu5 - nu4^-)",
                "(1+eps)/(b-1) + eps^2 (a-1)/(...) + ...: the first two terms are nu4^+ of (5)",
-               "lower: c = nu5 - nu4^- = 1 - eps/(b-1) for the printed 1 + eps/b; upper: eps^2 as in (5)"),
+               "lower: c = nu5 - nu4^- = 1 - eps/(b-1) for the printed 1 + eps/b; upper: eps^2 as in (5); the "
+               "paper's 546 Hz is another reading of the upper bound (see the audit), not the bound proved here"),
     4: Bracket("(10)",
                "b/(b-1) + (D+R2)/2 + sqrt((D+R2)/4 + R2 (1 + eps/b))",
                "b/(b-1) + R3 + sqrt(R3^2 + W), R3 = [eps/(b(b-1)) + eps^2 a(a-1)/(b(a-b)((a-b)b + eps(a-1))) + W]/2",

@@ -15,12 +15,15 @@ from typing import Callable
 from flint import arb, fmpq
 
 from ...core.audit import NUMBER, audit_printed, half_unit, numbers
+from ...core.chain_classify import classify_against_chain
 from ...core.formula_edits import search_single_edits
+from ...core.paper_chain import Chain
 from ...core.balls import (ball, certainly_gt, certainly_le, certainly_lt, certainly_positive, current_precision,
                            decimal_bounds)
 from ...core.outcome import AuditRow, AuditStatus
 from ...core.polyroots import isolate_polynomial
-from .paper_scale import consistent_eps_row
+from .paper_hz import READ_FORMULAS, derived_row, exact_chain, hz_chain, input_box
+from .paper_scale import consistent_eps, consistent_eps_row
 from .paper_text import text_rows
 from .model import (APPROX_TEXT, BRACKETS, EDIT_FORMULAS, NotReal, Params, approximation, bracket,
                     characteristic_quartic)
@@ -202,7 +205,13 @@ def _with_edits(row: AuditRow, key: tuple[str, int], eq: str, printed: str, p: P
     scale the paper's 'exact' values allow (at the scene's hz_scale when there is no such interval).
     ``hull``: that interval as an outer ball; ``inner``: exact ends of an interval inside it (an edit
     reproduces only at an exact scale certainly inside; where that is not certain it is undecided)."""
-    if row.status in (AuditStatus.AGREES, AuditStatus.MISPRINT) or row.propagated is not None:
+    if row.status in (AuditStatus.AGREES, AuditStatus.MISPRINT):
+        return row
+    if isinstance(row.propagated, Chain):
+        if row.value is None or not row.value.is_finite() or \
+                classify_against_chain(printed, row.value, row.propagated).cls != "unexplained":
+            return row
+    elif row.propagated is not None:
         return row
     text, defs = EDIT_FORMULAS[key]
     a, b, e, W = (ball(x) for x in p)
@@ -216,11 +225,24 @@ def _with_edits(row: AuditRow, key: tuple[str, int], eq: str, printed: str, p: P
         if not _meets(_scale_range(printed, w), hull):
             return False                # no scale of the (outer) interval gives the print: certainly not
         return True if _scale_reproduces(printed, w, inner) is not None else None
-    res = search_single_edits(text, {"a": a, "b": b, "eps": e, "W": W}, printed, defs, reproduces)
+    env = {"a": a, "b": b, "eps": e, "W": W}
+    res = search_single_edits(text, env, printed, defs, reproduces)
     how = ("in Hz at an exact scale inside the interval the paper's own 'exact' values imply" if inner is not None
            else "in Hz at the scene's hz_scale")
     row.formula_edits = res.to_json(f"{eq} as printed", how)
     row.note += "; " + res.summary(f"{eq} as printed", how)
+    if not res.reproducing and key in READ_FORMULAS:
+        # widened to two edits of the print: one edit of the reading (itself one edit of the print)
+        rtext, rdefs = READ_FORMULAS[key]
+        res2 = search_single_edits(rtext, env, printed, rdefs, reproduces)
+        two = res2.to_json(f"{eq} as read", how)
+        fe = row.formula_edits
+        fe["formula"] = f"{eq} as printed, then {eq} as read (one edit of the reading: two of the print)"
+        fe["tried"] += two["tried"]
+        fe["reproducing"] = fe["reproducing"] + [f"of the reading: {h}" for h in two["reproducing"]]
+        fe["reproducing_formulas"] = fe["reproducing_formulas"] + two["reproducing_formulas"]
+        fe["summary"] += "; " + res2.summary(f"{eq} as read (two edits of the print)", how)
+        row.note += "; " + res2.summary(f"{eq} as read (two edits of the print)", how)
     return row
 
 
@@ -260,6 +282,16 @@ def _number_row(rid: str, printed: str, s: arb, w_printed: arb, w_read: arb | No
     return _at_paper_scale(row, printed, w_read, inner, hull)
 
 
+def _attach_chain(row: AuditRow, scale, f, box, what: str, eps_text: str) -> None:
+    """Give a Hz row its paper chain (:func:`.paper_hz.hz_chain`) when the paper's scale is known."""
+    if scale is None:
+        return
+    ch = hz_chain(f, box, scale, what, eps_text)
+    if ch is not None:
+        row.propagated = ch
+        row.note += f"; paper chain ({ch.source}): {_fmt(ch.value)} Hz"
+
+
 def audit(model, p: Params, omegas: list[arb]) -> list[AuditRow]:
     """Audit rows for every number the paper prints in its example (needs ``hz_scale``)."""
     rows: list[AuditRow] = []
@@ -284,7 +316,9 @@ def audit(model, p: Params, omegas: list[arb]) -> list[AuditRow]:
         rows.append(AuditRow("Hz values", "", "", None, AuditStatus.UNDECIDED,
                              "no hz_scale in the scene: printed Hz values not audited"))
         return rows
-    hull, inner = None, None
+    hull, inner, scale = None, None, None
+    from decimal import Decimal
+    eps_text = format(Decimal(int(e.p)) / Decimal(int(e.q)), "f")
     if exact:
         ranges = [_scale_range(x, omegas[j - 1]) for j, x in enumerate(exact, start=1)]
         # the scales the paper's 'exact' values imply: each value's range, kept when it meets the hull of
@@ -294,48 +328,62 @@ def audit(model, p: Params, omegas: list[arb]) -> list[AuditRow]:
         hull = _hull(consistent)
         inner_ends = [_scale_inner(x, omegas[j - 1]) for j, x in enumerate(exact, start=1)]
         inner = _inner_of([e for e, r in zip(inner_ends, ranges) if r in consistent])
-        for j, x in enumerate(exact, start=1):
-            st, note = audit_printed(x, s * omegas[j - 1].sqrt())
-            rng = ranges[j - 1]
-            # an 'exact' value is judged against the scales the *other* consistent values imply
-            own_hull = _hull([r for i, r in enumerate(ranges) if i != j - 1 and r in consistent])
-            own_inner = _inner_of([e for i, (e, r) in enumerate(zip(inner_ends, ranges))
-                                   if i != j - 1 and r in consistent])
-            rows.append(_at_paper_scale(AuditRow(f"'exact' lambda_{j} (Hz)", x, f"hz_scale * sqrt(omega_{j})",
-                                                 s * omegas[j - 1].sqrt(), st,
-                                                 f"{note}; correct rounding for scales in {_fmt(rng)}"),
-                                        x, omegas[j - 1], own_inner, own_hull))
         lo_max = max(ranges, key=lambda r: float(r.lower().mid()))  # float picks; balls decide below
         hi_min = min(ranges, key=lambda r: float(r.upper().mid()))
         disjoint = certainly_gt(lo_max.lower(), hi_min.upper())
         overlap = certainly_le(lo_max.upper(), hi_min.lower())
+        # the paper's Hz scale: the scales its four 'exact' values share at the eps that makes them consistent
+        scale = consistent_eps(a, b, W, eps_text, list(exact)) if len(exact) == 4 and (disjoint or overlap) else None
+        if scale is not None:
+            hull, inner = scale.outer(), (scale.lo.upper(), scale.hi.lower())
+        for j, x in enumerate(exact, start=1):
+            st, note = audit_printed(x, s * omegas[j - 1].sqrt())
+            rng = ranges[j - 1]
+            row = AuditRow(f"'exact' lambda_{j} (Hz)", x, f"hz_scale * sqrt(omega_{j})", s * omegas[j - 1].sqrt(), st,
+                           f"{note}; correct rounding for scales in {_fmt(rng)}")
+            if scale is not None:
+                got = exact_chain(j, list(exact), scale)
+                if got is not None:
+                    row.propagated = got[0]
+                    row.note += (f"; at eps = {scale.text} the other three 'exact' values share the scales {got[1]}, "
+                                 f"and omega_{j} there times them gives {_fmt(got[0].value)} Hz")
+                rows.append(row)
+                continue
+            # an 'exact' value is judged against the scales the *other* consistent values imply
+            own_hull = _hull([r for i, r in enumerate(ranges) if i != j - 1 and r in consistent])
+            own_inner = _inner_of([e for i, (e, r) in enumerate(zip(inner_ends, ranges))
+                                   if i != j - 1 and r in consistent])
+            rows.append(_at_paper_scale(row, x, omegas[j - 1], own_inner, own_hull))
         rows.append(AuditRow("'exact' values share one Hz scale", ", ".join(exact),
                              "intersection of the scale ranges above", None,
                              AuditStatus.REFUTED if disjoint else AuditStatus.CONFIRMED if overlap else AuditStatus.UNDECIDED,
                              f"ranges {[_fmt(r) for r in ranges]}; " + (
                                  "their intersection is certainly empty: no single sqrt(K3/A3)/(2 pi) reproduces all four"
                                  if disjoint else "a common scale exists")))
-        if disjoint:
-            from decimal import Decimal
-            eps_text = format(Decimal(int(e.p)) / Decimal(int(e.q)), "f")
-            row = consistent_eps_row(a, b, e, W, eps_text, list(exact))
+        if disjoint and scale is not None:
+            row = consistent_eps_row(a, b, e, W, eps_text, list(exact), found=scale)
             if row is not None:
                 rows.append(row)
+    box = input_box(model)
     for key, kind in (("hz_lower", "lower"), ("hz_upper", "upper")):
         for j, x in enumerate(paper.get(key, []), start=1):
             br = BRACKETS[j]
             pf = br.lo if kind == "lower" else br.hi
             rf = br.lo_read if kind == "lower" else br.hi_read
-            rows.append(_with_edits(_number_row(f"{br.eq} lambda_{j}{'-' if kind == 'lower' else '+'} (Hz)", x, s,
-                                                _value(pf, p), _value(rf, p),
-                                                br.lo_printed if kind == "lower" else br.hi_printed,
-                                                (br.lo_reading if kind == "lower" else br.hi_reading) or "as printed",
-                                                hull, inner), (kind, j), br.eq, x, p, s, hull, inner))
+            row = _number_row(f"{br.eq} lambda_{j}{'-' if kind == 'lower' else '+'} (Hz)", x, s,
+                              _value(pf, p), _value(rf, p), br.lo_printed if kind == "lower" else br.hi_printed,
+                              (br.lo_reading if kind == "lower" else br.hi_reading) or "as printed",
+                              *((None, None) if scale is not None else (hull, inner)))
+            _attach_chain(row, scale, rf or pf, box, f"{br.eq} {kind} bound{' as read' if rf else ''}", eps_text)
+            if scale is not None and row.status is not AuditStatus.AGREES:
+                derived_row(row, (kind, j), x, box, scale, eps_text, p, Params(p.a, p.b, arb(scale.eps), p.W))
+            rows.append(_with_edits(row, (kind, j), br.eq, x, p, s, hull, inner))
     for j, x in enumerate(paper.get("hz_approx", []), start=1):
         eq = "(12)" if j == 1 else "(13)"
-        rows.append(_with_edits(_number_row(f"{eq} lambda_{j}~ (Hz)", x, s,
-                                            _value(lambda q: approximation(j, q), p), None,
-                                            APPROX_TEXT[j], "as printed", hull, inner), ("approx", j), eq, x, p, s, hull, inner))
+        row = _number_row(f"{eq} lambda_{j}~ (Hz)", x, s, _value(lambda q, j=j: approximation(j, q), p), None,
+                          APPROX_TEXT[j], "as printed", *((None, None) if scale is not None else (hull, inner)))
+        _attach_chain(row, scale, lambda q, j=j: approximation(j, q), box, f"{eq} approximation of omega_{j}", eps_text)
+        rows.append(_with_edits(row, ("approx", j), eq, x, p, s, hull, inner))
     bound = paper.get("error_bound")
     if bound is not None:
         rows.extend(_five_percent_rows(bound, p, omegas, paper))
