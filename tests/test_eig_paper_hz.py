@@ -61,7 +61,7 @@ def test_the_scale_is_the_one_the_exact_values_share_at_eps_0_1073(setting):
     _, scale = setting
     assert scale.text == "0.1073" and scale.k == -3
     assert scale.outer().lower() < arb("617.7424") and scale.outer().upper() > arb("617.8083")
-    assert scale.outer().upper() < arb("617.8085")
+    assert scale.outer().upper() < arb("617.8085") and scale.outer().lower() > arb("617.7422")
 
 
 @pytest.mark.parametrize("name", ["lower 2", "upper 3", "approx 2", "linear 8"])
