@@ -128,6 +128,8 @@ GUARD_BITS = 32
 #: the tail point is searched up to this multiple of the slowest time scale 1/min|Re lambda|
 TAIL_CAP_FACTOR = 100
 MAX_PIECES = 200000
+#: interval Newton steps on a bracketed root of a fast-nutation search (:func:`_monotone_side`)
+NUTATION_NEWTON_STEPS = 12
 
 
 #: claims that do not depend on a parameter (a threshold search over it is bad input): the relay
@@ -493,8 +495,11 @@ def _monotone_side(f, coeffs, a: arb, b: arb) -> list[RootPiece] | None:
     near = _newton_bracket(coeffs, a, b, ga)
     if near is not None:                    # usually one interval Newton step away from a unique root
         lo, hi = near
+    # fast nutation: a unique root is refined a few steps only (Newton contracts slowly next to a turning
+    # point; classification needs no more, and a genuine orbit's theta* is refined at guard bits later)
+    steps = NUTATION_NEWTON_STEPS if getattr(coeffs, "nutation", False) else 200
     for _ in range(200):
-        piece = newton_root(f, lo, hi)
+        piece = newton_root(f, lo, hi, max_iter=steps)
         if piece.status is RootStatus.UNIQUE:
             out = [_monotone(a, lo, "before the root")] if certainly_lt(a, lo) else []
             out.append(piece)
@@ -515,15 +520,22 @@ def _newton_bracket(coeffs, a: arb, b: arb, ga: int) -> tuple[arb, arb] | None:
     it), then the signs at lo and hi are certified (g(lo) has sign ga, g(hi) sign -ga), so the root
     is in [lo, hi]. None when no certified bracket is found (the caller bisects)."""
     x = ((a + b) / 2).mid()
-    if getattr(coeffs, "nutation", False):
+    nutation = getattr(coeffs, "nutation", False)
+    if nutation:
         x = _quadratic_start(coeffs, a, b, x)
     step = b - a
     prec = current_precision()
     for _ in range(64):
-        c = coeffs(x, 2)
+        c = coeffs(x, 3 if nutation else 2)
         if not (c[0].is_finite() and c[1].is_finite()) or certainly_le(abs(c[1]), 0):
             return None
         step = (c[0].mid() / c[1].mid()).mid()
+        if nutation and c[0].contains(0):   # g's midpoint is noise below its radius: stop chasing it
+            step = ((abs(c[0].mid()) + c[0].rad()) / abs(c[1].mid())).mid()
+            break
+        if nutation:            # the root of the local quadratic (third order; Newton's step otherwise)
+            t = _quadratic_root(c[0].mid(), c[1].mid(), c[2].mid())
+            step = (-t).mid() if t is not None else step
         xn = (x - step).mid()
         if not (certainly_lt(a, xn) and certainly_lt(xn, b)):      # stay inside: halve towards that end
             end = a if certainly_lt(xn, (a + b) / 2) else b
@@ -571,6 +583,19 @@ def _quadratic_start(coeffs, a: arb, b: arb, x: arb) -> arb:
             if certainly_lt(a, xn) and certainly_lt(xn, b):
                 return xn
     return x
+
+
+def _quadratic_root(c0: arb, c1: arb, c2: arb) -> arb | None:
+    """The root nearest 0 of c0 + c1 t + c2 t^2 (exact midpoints in; a proposal, decides nothing), by
+    the form without cancellation -2 c0 / (c1 + sign(c1) sqrt(c1^2 - 4 c0 c2)); None if it has none."""
+    disc = c1 * c1 - 4 * c0 * c2
+    if not (disc.is_finite() and certainly_le(0, disc)):
+        return None
+    r = disc.sqrt().mid()
+    den = c1 + r if certainly_le(0, c1) else c1 - r
+    if den.is_zero() or not den.is_finite():
+        return None
+    return (-2 * c0 / den).mid()
 
 
 def _critical_split(f, coeffs, a: arb, b: arb) -> list[RootPiece] | None:

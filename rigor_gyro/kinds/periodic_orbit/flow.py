@@ -617,11 +617,14 @@ def taylor_enclosure(coeff_fn: CoeffFn, X: arb, order: int = 8, derivs: Sequence
     over = coeff_fn(X, order + 1)       # one evaluation over X: the direct enclosures and the remainder's
     direct, cN = over[:kmax + 1], over[order]
     out = []
+    pw = [arb(1)]                       # w^i by the products _ipow makes (the same balls), made once
+    for _ in range(order - min(derivs)):
+        pw.append(pw[-1] * w)
     for k in derivs:
         tot = arb(0)
         for j in range(k, order):
-            tot += comb(j, k) * c[j] * _ipow(w, j - k)
-        tot += comb(order, k) * cN * _ipow(w, order - k)
+            tot += comb(j, k) * c[j] * pw[j - k]
+        tot += comb(order, k) * cN * pw[order - k]
         tot *= factorial(k)
         d = direct[k] * factorial(k)
         if not d.is_finite():
