@@ -228,7 +228,7 @@ def certify_positive_on_box(f: BoxFunction, whole, *, max_pieces: int = 20000) -
     while stack:
         box = stack.pop()
         count += 1
-        v = f({k: box.ball(k) for k in box.names})
+        v = f(box.balls())
         if certainly_positive(v):
             leaves.append(box)
             continue
@@ -303,7 +303,7 @@ def lower_bound_on_box(f: BoxFunction, whole, target: object, *, max_pieces: int
     def push(box) -> None:
         nonlocal count
         count += 1
-        heapq.heappush(heap, (_SmallestFirst(f({k: box.ball(k) for k in box.names})), count, box))
+        heapq.heappush(heap, (_SmallestFirst(f(box.balls())), count, box))
 
     push(whole)
     reached = False

@@ -15,21 +15,15 @@ __all__ = ["grid_then_compass", "compass", "scaled_ratio"]
 _TINY = 2.2250738585072014e-308
 
 
-def _float_ok(x: float, ball) -> bool:
-    """Whether the float ``x`` of a ball's midpoint kept its magnitude: finite, and a normal double or an
-    exact zero."""
-    return math.isfinite(x) and (abs(x) >= _TINY or (x == 0 and ball.mid().is_zero()))
-
-
 def scaled_ratio(A, B, a: float, b: float) -> float:
     """A/|B| as a float for a search to compare, from the balls A, B and their midpoints a, b as floats: a/|b|
-    where both floats kept their magnitude (the common case, unchanged), else the quotient of the balls'
-    exact midpoints taken in arb (its exponent range is unbounded) and only then made a float, so terms
-    beyond the double range (H = 1e300 makes A and B about H^2; a = 1e-300 makes terms about a) give their
-    ratio instead of inf/inf = nan or x/0. +inf where B's midpoint is 0. A heuristic value: it only chooses
-    where to search; nothing decides on it."""
-    if _float_ok(a, A) and _float_ok(b, B):
-        return a / abs(b) if b != 0 else math.inf
+    where both floats kept their magnitude (normal doubles, or an exact 0 for a: the common case,
+    unchanged), +inf where B's midpoint is exactly 0, else the quotient of the balls' exact midpoints taken
+    in arb (its exponent range is unbounded) and only then made a float, so terms beyond the double range
+    (H = 1e300 makes A and B about H^2; a = 1e-300 makes terms about a) give their ratio instead of
+    inf/inf = nan or x/0. A heuristic value: it only chooses where to search; nothing decides on it."""
+    if _TINY <= abs(b) < math.inf and (_TINY <= abs(a) < math.inf or (a == 0 and A.mid().is_zero())):
+        return a / abs(b)
     mb = B.mid()
     if mb.is_zero():
         return math.inf
