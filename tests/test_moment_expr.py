@@ -416,6 +416,32 @@ def test_the_measured_scene_proves_its_cheap_claims():
     assert rep.ok, [r for r in rep.results if not r.ok]
 
 
+def test_a_saturating_law_gets_its_maximum_M_at_0():
+    """f = a c tanh(x2/c): M = f'(0) = a, attained at x2 = 0 (the Taylor form of q through 0 lets the branch and
+    bound converge there); the law's q contains mpmath's on balls about and near 0."""
+    text = (MOMENTS_DIR / "agafonov2013_saturating.toml").read_text().replace(
+        "[moment]", '[claims]\nonly = ["constants", "v_positive"]\n\n[moment]')
+    cert = json.loads(json.dumps(prove_scene(parse_scene(text)).to_json()))
+    assert [c["status"] for c in cert["claims"]] == ["proved"] * 2
+    lo, hi = _iv(cert["quantities"]["M"])
+    assert lo <= 100 <= hi and hi - lo < Fraction(1, 10 ** 9)
+    L = expression_law({"f": "a*c*tanh(x2/c)", "c": "0.3"})
+    mp.mp.dps = 40
+    A0, C0 = mp.mpf(127) / 10, mp.mpf(7) / 5
+
+    def q(x):
+        f = 30 * mp.tanh(x / mp.mpf("0.3"))
+        G = mp.quad(lambda s: mp.cos(s) * 30 * mp.tanh(s / mp.mpf("0.3")) / (A0 - C0 * mp.sin(s) ** 2), [0, x])
+        return f * f / (2 * (A0 - C0 * mp.sin(x) ** 2) * G)
+    with working_precision(96):
+        for X in (arb(0, "0.05"), arb("0.01", "1e-4"), arb("0.1", "1e-3"), arb("0.2"), arb("0.24"),
+                  arb("0.1"), arb("0.05"), arb("0.02")):
+            Q = L.q_closed(arb(100), arb(127) / 10, arb(7) / 5, X)
+            assert Q is not None and (Q.rad() < 5 or not X.contains(0) and X.lower() > arb("0.05"))
+            for x in _samples(X, 5):
+                assert _inside(Q, q(x) if x != 0 else mp.mpf(100))
+
+
 def test_random_expression_laws_are_enclosed():
     """A few random odd polynomial-trigonometric laws: f and f' at random balls contain mpmath's values."""
     rng = random.Random(7)

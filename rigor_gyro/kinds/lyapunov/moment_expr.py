@@ -50,7 +50,8 @@ from ...core.expressions import UNARY_FUNCTIONS, Expr, compile_expr, derivative,
 from .model import Dual
 from .moments import MomentLaw
 
-__all__ = ["ExpressionMoment", "OddExpressionMoment", "expression_law", "exact_value", "arb_power", "FINITE", "RESERVED",
+__all__ = ["ExpressionMoment", "OddExpressionMoment", "expression_law", "exact_value", "arb_power", "taylor_q", "f_over_x_form", "Q_ORDER",
+           "Q_NEAR", "FINITE", "RESERVED",
            "TAYLOR_ORDER", "MAX_PARAMETERS"]
 
 #: names a [moment] table may not give its own parameters
@@ -89,7 +90,19 @@ _DERIV = {"sin": arb.cos, "cos": lambda v: -v.sin(), "tan": lambda v: 1 + arb_po
 
 
 def _series_tanh(s):
-    return 1 - 2 / ((2 * s).exp() + 1)
+    """tanh of a series by the recurrence of T' = (1 - T^2) S' from T_0 = tanh(S_0) (Arb's tanh of the ball):
+    k T_k = sum_{j=1..k} j S_j ([k = j] - (T^2)_{k-j}); tight on wide balls, where 1 - 2/(exp(2S) + 1) is not."""
+    n = s.prec
+    S = series_coefficients(s, n)
+    T = [S[0].tanh()]
+    T2 = [T[0] * T[0]]
+    for k in range(1, n):
+        acc = arb(0)
+        for j in range(1, k + 1):
+            acc += j * S[j] * ((1 if k == j else 0) - T2[k - j])
+        T.append(acc / k)
+        T2.append(sum((T[i] * T[k - i] for i in range(k + 1)), arb(0)))
+    return arb_series(T, prec=n)
 
 
 def _series_abs(s):
@@ -322,6 +335,70 @@ def _isqrt(n: int) -> int | None:
     return r if r * r == n else None
 
 
+# ------------------------------------------------------------------------------------ q through 0
+
+def f_over_x_form(c: list, rem: arb, x: arb) -> arb:
+    """f(x)/x = c_1 + c_2 x + ... + c_{n-1} x^(n-2) + rem x^(n-1) by Horner's scheme in the ball x, where
+    c = [c_1, ..., c_{n-1}] are f's Taylor coefficients at 0 (f(0) = 0) and rem encloses f's n-th coefficient
+    over hull(0, x) (the Lagrange remainder)."""
+    t = rem
+    for ck in reversed(c):
+        t = ck + x * t
+    return t
+
+
+def taylor_q(f_series, A0: arb, C0: arb, x: arb, n: int = None, cache: dict | None = None) -> arb | None:
+    """q = f^2 / (2 D G) on the ball x, with the 0/0 at x = 0 removed by Taylor forms in x (f(0) = 0):
+    f(x)/x = sum_{k<n} f_k x^(k-1) + f_n(H) x^(n-1) and 2 G(x)/x^2 = sum_{1<=j<=n-2} 2 g_j x^(j-1)/(j+1) +
+    2 g_{n-1}(H) x^(n-2)/n, where f_k, g_j are the Taylor coefficients at 0 of f and of g = cos f / D
+    (G' = g, G(0) = 0, g(0) = 0), and f_n(H), g_{n-1}(H) their coefficients over H = hull(0, x) (Lagrange
+    remainders; the remainder of G integrates r(s) s^(n-1) whose second factor keeps its sign on [0, x]).
+    ``f_series`` maps an arb_series to f's series and must be valid (f analytic) on H. Each polynomial is
+    Horner's in the ball x, so the enclosure shrinks with x's width (a branch and bound converges at a
+    maximum at 0, where the mean-value form of f^2/(2 D G) does not). None when not finite. ``cache``: a dict
+    for the coefficients at 0 (keyed by the precision and the balls A0, C0)."""
+    n = n or Q_ORDER
+    H = arb(0).union(x)
+
+    def g(s):
+        sn = s.sin()
+        return s.cos() * f_series(s) / (A0 - C0 * sn * sn)
+    key = (current_precision(), n, A0.mid().man_exp(), A0.rad().man_exp(), C0.mid().man_exp(), C0.rad().man_exp())
+    with series_length(n + 1):
+        try:
+            return _taylor_q(f_series, g, A0, C0, x, n, H, key, cache)
+        except ValueError:          # a series division with a leading term that may be 0: no enclosure here
+            return None
+
+
+def _taylor_q(f_series, g, A0, C0, x, n, H, key, cache):
+    """:func:`taylor_q`'s body (inside its series length)."""
+    at0 = cache.get(key) if cache is not None else None
+    if at0 is None:
+        s0 = arb_series([arb(0), 1], prec=n + 1)
+        at0 = (series_coefficients(f_series(s0), n + 1), series_coefficients(g(s0), n))
+        if cache is not None:
+            if len(cache) > 64:
+                cache.clear()
+            cache[key] = at0
+    sH = arb_series([H, 1], prec=n + 1)
+    fH, gH = series_coefficients(f_series(sH), n + 1), series_coefficients(g(sH), n)
+    f0, g0 = at0
+    t = f_over_x_form(f0[1:n], fH[n], x)
+    u = 2 * gH[n - 1] / n
+    for j in range(n - 2, 0, -1):
+        u = 2 * g0[j] / (j + 1) + x * u
+    sn = x.sin()
+    q = t * t / ((A0 - C0 * sn * sn) * u)
+    return q if q.is_finite() else None
+
+
+#: the order of :func:`taylor_q`, and the |x2| up to which the laws use it (beyond, the mean-value form of
+#: f^2 / (2 D G) converges without it)
+Q_ORDER = 8
+Q_NEAR = Fraction(1, 4)
+
+
 # ------------------------------------------------------------------------------------ the law
 
 class ExpressionMoment(MomentLaw):
@@ -343,6 +420,7 @@ class ExpressionMoment(MomentLaw):
                             if exact_value(f, _pi(r), self.params) == 0)
         self._c0: dict = {}
         self._compiled: dict = {}
+        self._qcache: dict = {}
 
     def _code(self, which: str, kind: object):
         """The compiled expression (``which``: "f" or "df") for real values (kind None) or complex balls in
@@ -368,7 +446,13 @@ class ExpressionMoment(MomentLaw):
         return {**b, "a": a, "x2": x}
 
     def _eval(self, which: str, a, x):
-        r = self._code(which, None)(self._env(a, x))
+        try:
+            r = self._code(which, None)(self._env(a, x))
+        except ValueError:
+            # python-flint refuses a series division whose leading term may be 0 (a wide ball): not finite
+            if type(x) is not arb_series:
+                raise
+            return arb_series([_nan()] * x.prec, prec=x.prec)
         if type(r) is not type(x) and type(r) is arb:
             r = r + 0 * x                                 # a constant: the argument's type (Dual, series)
         return r
@@ -407,9 +491,7 @@ class ExpressionMoment(MomentLaw):
         with series_length(n + 1):
             s = self.f(a, arb_series([hull, 1], prec=n + 1))
             rem = series_coefficients(s, n + 1)[n]
-        t = rem
-        for ck in reversed(c):
-            t = ck + x * t
+        t = f_over_x_form(c, rem, x)
         if x.contains(0):
             return t
         direct = self.f(a, x) / x
@@ -418,6 +500,13 @@ class ExpressionMoment(MomentLaw):
         if not direct.is_finite():
             return t
         return direct.intersection(t) if direct.overlaps(t) else t
+
+    def q_closed(self, a, A0, C0, x):
+        """f^2 / (2 D G) by :func:`taylor_q` for |x| <= Q_NEAR (None beyond, or for a non-ball a)."""
+        if type(a) is not arb or type(x) is not arb or not abs(x).upper() <= arb(_q(Q_NEAR)):
+            return None
+        return taylor_q(lambda s: self.f(a, s), A0, C0, x, cache=self._qcache.setdefault(
+            (a.mid().man_exp(), a.rad().man_exp()), {}) if len(self._qcache) < 64 else None)
 
     def G(self, a, A0, C0, x):
         """int_0^x cos(s) f(s) / (A0 - C0 sin^2 s) ds by acb.integral (x a point or thin ball)."""

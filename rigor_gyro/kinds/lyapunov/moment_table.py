@@ -44,6 +44,7 @@ from ...core.errors import ParameterError
 from ...core.exact import Exact
 from ...core.expressions import evaluate_exact, parse
 from .model import Dual
+from .moment_expr import taylor_q
 from .moments import MomentLaw
 
 __all__ = ["SplineMoment", "table_law", "natural_spline", "MAX_POINTS"]
@@ -108,6 +109,7 @@ class SplineMoment(MomentLaw):
                         f"reflections, continued along its end tangent beyond |x2| = {xs[-1]}")
         self._coef: dict[int, list] = {}
         self._G: dict = {}
+        self._qcache: dict = {}
 
     # ------------------------------------------------------------------ piecewise enclosures
     def _balls(self):
@@ -183,6 +185,16 @@ class SplineMoment(MomentLaw):
             return t
         direct = self._enclose(x, 0) / x
         return direct.intersection(t) if direct.overlaps(t) else direct
+
+    def q_closed(self, a, A0, C0, x):
+        """f^2 / (2 D G) for |x| <= x_1 (the first knot) by :func:`.moment_expr.taylor_q`: there S is the odd
+        cubic p1 s + p3 s^3 of the piece at 0 (its p0 and p2 are exactly 0), analytic; None elsewhere."""
+        x1 = self.points[1][0]
+        p0, p1, p2, p3 = self.pieces[len(self.knots) // 2 + 1][3]
+        if p0 != 0 or p2 != 0 or type(x) is not arb or type(A0) is not arb or not abs(x).upper() <= arb(_q(x1)):
+            return None
+        c1, c3 = arb(_q(p1)), arb(_q(p3))
+        return taylor_q(lambda t: c1 * t + c3 * t * t * t, A0, C0, x, cache=self._qcache)
 
     # ------------------------------------------------------------------ G
     def _integrand_ball(self, A0, C0, s: arb) -> arb:
