@@ -1158,7 +1158,7 @@ MUTANTS = [
      "            return Fraction(0)\n",
      "sin(k pi/2) taken as 0 for odd k: zeros of f named at +-pi/2 where there are none (equilibria)"),
     ("moment_expr_taylor_remainder_dropped", "rigor_gyro/kinds/lyapunov/moment_expr.py",
-     "        t = rem\n        for ck in reversed(c):", "        t = 0 * rem\n        for ck in reversed(c):",
+     "    t = rem\n    for ck in reversed(c):", "    t = 0 * rem\n    for ck in reversed(c):",
      "f(x)/x through 0 without its Lagrange remainder (a truncated Taylor polynomial as an enclosure)"),
     ("moment_expr_even_power_without_zero", "rigor_gyro/kinds/lyapunov/moment_expr.py",
      "    if n % 2 == 0 and x.contains(0):\n        r = r.union(arb(0))\n", "",
@@ -1182,6 +1182,16 @@ MUTANTS = [
     ("moment_table_f0_not_checked", "rigor_gyro/kinds/lyapunov/moment_table.py",
      "    if xs[0] != 0 or fs[0] != 0:\n", "    if xs[0] != 0:\n",
      "a first point (0, f0 != 0) accepted: the odd reflection then is not odd (f(0) = f0 and -f0)"),
+    ("moment_q_taylor_remainder_dropped", "rigor_gyro/kinds/lyapunov/moment_expr.py",
+     "    u = 2 * gH[n - 1] / n\n", "    u = 0 * gH[n - 1]\n",
+     "2 G/x^2 through 0 without its Lagrange remainder (q's Taylor form as a truncated polynomial)"),
+    ("moment_q_integration_coefficient", "rigor_gyro/kinds/lyapunov/moment_expr.py",
+     "        u = 2 * g0[j] / (j + 1) + x * u\n", "        u = 2 * g0[j] / (j + 2) + x * u\n",
+     "G's Taylor coefficients integrated with the wrong power (g_j x^(j+1)/(j+2))"),
+    ("moment_tanh_series_sign", "rigor_gyro/kinds/lyapunov/moment_expr.py",
+     "            acc += j * S[j] * ((1 if k == j else 0) - T2[k - j])\n",
+     "            acc += j * S[j] * ((1 if k == j else 0) + T2[k - j])\n",
+     "tanh's series by the recurrence of T' = (1 + T^2) S' (tan's, not tanh's)"),
 ]
 
 
