@@ -5,9 +5,13 @@ last continued analytically through x = 0, so quotients that are 0/0 at the equi
 enclosed rigorously, never skipped), and G(x) = int_0^x cos(s) f(s) / D(s) ds with
 D(s) = A0 - C0 sin^2 s (so that F = (H/B0) G is the integral in the Lyapunov function (7)).
 
-To add a third law, write a class with these methods and add one line to :data:`MOMENTS`; a scene
-names it with ``moment = "<name>"``. Every law must be odd with x f(x) > 0 for 0 < |x| < pi/2
-(the scene certifies f(x)/x > 0 over its range; a law violating it is refuted, not trusted).
+A scene may also write its own law in a ``[moment]`` table (issue 42): ``moment = "expression"`` (a formula,
+:mod:`.moment_expr`) or ``moment = "table"`` (measured points, :mod:`.moment_table`), chosen by
+:mod:`.moment_scene`; an expression that is exactly ``a*sin(x2)`` or ``a*x2`` gets the class here (the fast
+path). To add a built-in law, write a class with these methods and add one line to :data:`MOMENTS`; a scene
+names it with ``moment = "<name>"``. Every law must be odd (certified, never assumed: the claims use the
+symmetry x2 -> -x2) with x f(x) > 0 for 0 < |x| < pi/2 (the scene certifies f(x)/x > 0 over its range; a law
+violating it is not proved, not trusted).
 
 Guarantee: each method returns a ball containing the exact value for every x in the ball argument,
 at the current working precision (set by the caller through :mod:`rigor_gyro.core.balls`).
