@@ -216,3 +216,14 @@ def test_gap_sign_says_the_sign_of_the_second_order_form():
         rp, _ = box_roots(model, pos, True, False)
         assert gap_sign(model, neg, 2, "lower", rn.omegas[1], False)[0] == "negative"
         assert gap_sign(model, pos, 2, "lower", rp.omegas[1], False)[0] == "positive"
+
+
+def test_the_halving_tiles_the_box():
+    from rigor_gyro.kinds.eigenfrequencies.second_order import _quarters
+    box = Box((("a", Fr(15), Fr(15)), ("eps", Fr(1, 10), Fr(1, 5)), ("Omega2", Fr(1, 100), Fr(3, 100))))
+    subs = _quarters(box)
+    assert len(subs) == 4 and sum(b.volume() for b in subs) == box.volume()
+    for k, lo, hi in box.edges:
+        assert min(b.interval(k)[0] for b in subs) == lo and max(b.interval(k)[1] for b in subs) == hi
+    corners = {tuple(b.interval(k)[0] for k in ("eps", "Omega2")) for b in subs}
+    assert corners == {(Fr(1, 10), Fr(1, 100)), (Fr(3, 20), Fr(1, 100)), (Fr(1, 10), Fr(1, 50)), (Fr(3, 20), Fr(1, 50))}

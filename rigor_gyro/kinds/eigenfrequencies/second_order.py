@@ -286,20 +286,45 @@ def box_root(model, box: Box, root_ball: arb) -> arb | None:
                  root_ball, True)
 
 
-def gap_sign(model, box: Box, j: int, side: str, root_ball: arb, strict: bool) -> tuple[str, str]:
-    """("positive" | "negative" | "undecided", how) for the gap of :func:`gap_form` over the box."""
+def _one_sign(model, box: Box, j: int, side: str, root_ball: arb, strict: bool) -> tuple[str, arb | None]:
     narrow = box_root(model, box, root_ball)
-    pr = point_root(model, box, narrow if narrow is not None else root_ball)
     if narrow is not None:
         root_ball = narrow
+    pr = point_root(model, box, root_ball)
     if pr is None:
-        return "undecided", "the midpoint's root was not contracted"
+        return "undecided", None
     g = gap_form(model, box, j, side, root_ball, pr)
     if g is None:
-        return "undecided", "the second-order form could not be enclosed"
-    lo, hi = g.lower(), g.upper()
-    if (lo > 0) if strict else (lo >= 0):
-        return "positive", f"second-order Taylor form of the gap, >= {g.lower().str(3, radius=False)}"
-    if hi < 0:
-        return "negative", f"second-order Taylor form of the gap, <= {g.upper().str(3, radius=False)}"
+        return "undecided", None
+    if (g.lower() > 0) if strict else (g.lower() >= 0):
+        return "positive", g
+    if g.upper() < 0:
+        return "negative", g
+    return "undecided", g
+
+
+def _quarters(box: Box) -> list[Box]:
+    """The box halved along every non-degenerate edge (2^k sub-boxes tiling it, exact rational edges)."""
+    out = [[]]
+    for k, lo, hi in box.edges:
+        if hi > lo:
+            m = (lo + hi) / 2
+            out = [e + [(k, lo, m)] for e in out] + [e + [(k, m, hi)] for e in out]
+        else:
+            out = [e + [(k, lo, hi)] for e in out]
+    return [Box(tuple(e)) for e in out]
+
+
+def gap_sign(model, box: Box, j: int, side: str, root_ball: arb, strict: bool) -> tuple[str, str]:
+    """("positive" | "negative" | "undecided", how) for the gap of :func:`gap_form` over the box; where the
+    whole box's form straddles 0, the same form on the sub-boxes of one halving of every edge decides when
+    all of them agree (they tile the box; ``root_ball`` holds the root for each, the only one there)."""
+    st, g = _one_sign(model, box, j, side, root_ball, strict)
+    if st != "undecided":
+        word = ">=" if st == "positive" else "<="
+        end = g.lower() if st == "positive" else g.upper()
+        return st, f"second-order Taylor form of the gap, {word} {end.str(3, radius=False)}"
+    subs = [_one_sign(model, b, j, side, root_ball, strict)[0] for b in _quarters(box)]
+    if len(subs) > 1 and all(x == subs[0] for x in subs) and subs[0] != "undecided":
+        return subs[0], f"second-order Taylor form of the gap on {len(subs)} sub-boxes tiling the box, each {subs[0]}"
     return "undecided", "second-order form straddles 0"
