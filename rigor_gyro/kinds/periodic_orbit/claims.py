@@ -130,6 +130,9 @@ TAIL_CAP_FACTOR = 100
 MAX_PIECES = 200000
 #: interval Newton steps on a bracketed root of a fast-nutation search (:func:`_monotone_side`)
 NUTATION_NEWTON_STEPS = 12
+#: omega times the width above which a fast-nutation piece is bisected without trying Newton (the widest
+#: piece a Taylor model of order 8 decided on the H = 1e6 scenes spans 2.68 rad)
+NUTATION_WIDE_PHASE = 6
 
 
 #: claims that do not depend on a parameter (a threshold search over it is bad input): the relay
@@ -454,6 +457,8 @@ def isolation_coeffs(sp: Spectrum, T: arb | None = None):
             hit = memo[key] = tuple(compute(ctr, n))
         return list(hit)
     coeffs.nutation = form is not None      # _newton_bracket starts where Newton cannot overshoot
+    if form is not None:
+        coeffs.omega = abs(form.lam.imag)   # _isolate bisects pieces spanning much nutation phase at once
     return coeffs, "pole_free"
 
 
@@ -497,9 +502,11 @@ def _monotone_side(f, coeffs, a: arb, b: arb) -> list[RootPiece] | None:
         lo, hi = near
     # fast nutation: a unique root is refined a few steps only (Newton contracts slowly next to a turning
     # point; classification needs no more, and a genuine orbit's theta* is refined at guard bits later)
-    steps = NUTATION_NEWTON_STEPS if getattr(coeffs, "nutation", False) else 200
+    nutation = getattr(coeffs, "nutation", False)
+    steps = NUTATION_NEWTON_STEPS if nutation else 200
+    tol = arb(2) ** (-(current_precision() // 2)) if nutation else None
     for _ in range(200):
-        piece = newton_root(f, lo, hi, max_iter=steps)
+        piece = newton_root(f, lo, hi, max_iter=steps, rel_tol=tol)
         if piece.status is RootStatus.UNIQUE:
             out = [_monotone(a, lo, "before the root")] if certainly_lt(a, lo) else []
             out.append(piece)
@@ -598,6 +605,26 @@ def _quadratic_root(c0: arb, c1: arb, c2: arb) -> arb | None:
     return (-2 * c0 / den).mid()
 
 
+def _widen_critical(coeffs, a: arb, b: arb, c_lo: arb, c_hi: arb, da: int, db: int) -> tuple[arb, arb]:
+    """[c_lo, c_hi] widened (by 2^k times its width, k = 1, 2, ...) until g' has the signs da at its
+    lower and db at its upper end, as :func:`_critical_split` needs, staying inside (a, b); unchanged
+    if that happens at once or never. Why: Newton refines the critical point until its enclosure is as
+    narrow as g' can resolve, so g' at the enclosure's ends is noise of no certain sign (seen at
+    H = 1e7: the fast nutation's close pairs). The widened piece is still checked (g excludes 0 on
+    it, g' signs at its ends) by the caller: this only chooses which piece is tried."""
+    if _sign(coeffs(c_lo, 2)[1]) == da and _sign(coeffs(c_hi, 2)[1]) == db:
+        return c_lo, c_hi
+    w = c_hi - c_lo
+    for _ in range(48):
+        w = 2 * w
+        lo, hi = (c_lo - w).lower(), (c_hi + w).upper()
+        if not (certainly_lt(a, lo) and certainly_lt(hi, b)):
+            break
+        if _sign(coeffs(lo, 2)[1]) == da and _sign(coeffs(hi, 2)[1]) == db:
+            return lo, hi
+    return c_lo, c_hi
+
+
 def _critical_split(f, coeffs, a: arb, b: arb) -> list[RootPiece] | None:
     """Decide [a, b] where g'' has one sign (g strictly convex or concave: at most one critical point,
     at most two roots), instead of bisecting towards a close pair of roots or a near-tangency:
@@ -616,6 +643,8 @@ def _critical_split(f, coeffs, a: arb, b: arb) -> list[RootPiece] | None:
     if crit.status is not RootStatus.UNIQUE or not crit.enclosure.is_finite():
         return None
     c_lo, c_hi = crit.enclosure.lower(), crit.enclosure.upper()
+    if getattr(coeffs, "nutation", False):
+        c_lo, c_hi = _widen_critical(coeffs, a, b, c_lo, c_hi, da, db)
     if not (certainly_lt(a, c_lo) and certainly_lt(c_hi, b)):
         return None
     mid = RootPiece(c_lo, c_hi, RootStatus.EMPTY, reason="g excludes 0 around its critical point")
@@ -693,13 +722,21 @@ def _isolate(f, lo: arb, hi: arb, *, coeffs=None, max_depth: int = 48,
     stack: list[tuple[arb, arb, int]] = [(resume[1], hi, 1)] if resume else [(lo, hi, 0)]
     stopped = None
     rel = arb(2) ** (-(current_precision() // 2))
+    wide = getattr(coeffs, "omega", None)       # the nutation frequency of a fast-nutation search
     while stack:
         a, b, depth = stack.pop()
         if root_free is not None and root_free(a, b):
             done.append(RootPiece(a, b, RootStatus.EMPTY, reason=ENVELOPE_REASON))
             continue
-        piece = newton_root(f, a, b)
-        if piece.status is RootStatus.UNKNOWN and coeffs is not None and depth > 0:
+        if wide is not None and certainly_gt((b - a) * wide, NUTATION_WIDE_PHASE):
+            # fast nutation: a piece spanning this much phase is never decided by a Taylor model of
+            # G (nor split at one turning point): bisect at once (which pieces are tried is no proof)
+            piece = RootPiece(a, b, RootStatus.UNKNOWN, reason="wider than a Taylor model of G resolves")
+        else:
+            piece = newton_root(f, a, b)
+        if piece.status is RootStatus.UNKNOWN and coeffs is not None and depth > 0 and wide is None \
+                or piece.status is RootStatus.UNKNOWN and wide is not None and depth > 0 \
+                and not certainly_gt((b - a) * wide, NUTATION_WIDE_PHASE):
             split = _critical_split(f, coeffs, a, b)
             if split is not None:
                 done.extend(split)
