@@ -1192,6 +1192,16 @@ MUTANTS = [
      "            acc += j * S[j] * ((1 if k == j else 0) - T2[k - j])\n",
      "            acc += j * S[j] * ((1 if k == j else 0) + T2[k - j])\n",
      "tanh's series by the recurrence of T' = (1 + T^2) S' (tan's, not tanh's)"),
+    # relay extremes (issue 41): the nutation form of the pole-free G (fast-nutation root searches)
+    ("nutation_form_qi_term_dropped", "rigor_gyro/kinds/periodic_orbit/nutation_form.py",
+     "sU[j] + self.four_qi * ImE[j]", "sU[j] + 0 * ImE[j]",
+     "G's nutation form without the sine amplitude 4 q_i Im E (coefficients that miss G)"),
+    ("nutation_form_cos_factor_halved", "rigor_gyro/kinds/periodic_orbit/nutation_form.py",
+     "            U.append(r2 + 2 * e.real)", "            U.append(r2 + e.real)",
+     "the slow part multiplied by 1 + Re E + |E|^2 instead of K = |1 + E|^2"),
+    ("nutation_form_real_mode_sign", "rigor_gyro/kinds/periodic_orbit/nutation_form.py",
+     "                    s[j] -= c_r * y[j]", "                    s[j] += c_r * y[j]",
+     "the real modes' tanh terms added to g's slow part with the wrong sign"),
 ]
 
 
