@@ -117,7 +117,42 @@ def decide(text: str, chain: Chain):
     ``none``; ``narrowed`` says whether the identity-narrowed chain decided (else the computed one).
     The narrowed chain is tried first; where it only rejects the print (no edit lands in it), the computed
     chain decides (the prints break the identity by a few units: the paper's arithmetic, not evidence)."""
-    x = Fraction(text)
+    key = (text, _ball_key(chain.value), _NO_BALL if chain.computed is None else _ball_key(chain.computed),
+           chain.slack, chain.accepted)
+    hit = _DECIDED.get(key)
+    if hit is None:
+        if len(_DECIDED) > 16384:
+            _DECIDED.clear()
+        hit = _DECIDED[key] = _decide(text, chain)
+    return hit
+
+
+#: decide's verdicts memoised by (print, the exact midpoints and radii of the chain's balls, slack, accepted):
+#: its result is a function of these alone, and the chain builder's passes ask the same question again
+_DECIDED: dict = {}
+_NO_BALL = ("no ball",)
+
+
+def _ball_key(value: arb):
+    """A finite ball's exact midpoint and radius (None for any non-finite ball: every window is None)."""
+    return (value.mid().man_exp(), arb(value.rad()).man_exp()) if value.is_finite() else None
+
+
+def _print_value(text: str) -> Fraction:
+    hit = _PRINTS.get(text)
+    if hit is None:
+        if len(_PRINTS) > 16384:
+            _PRINTS.clear()
+        hit = _PRINTS[text] = Fraction(text)
+    return hit
+
+
+_PRINTS: dict = {}
+
+
+def _decide(text: str, chain: Chain):
+    """:func:`decide` without its memo."""
+    x = _print_value(text)
     refs = [(chain.value, True)] + ([(chain.computed, False)] if chain.computed is not None else [])
     for val, narrowed in refs:
         w0, ws = chain_window(text, val, 0), chain_window(text, val, chain.slack)
