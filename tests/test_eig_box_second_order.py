@@ -227,3 +227,16 @@ def test_the_halving_tiles_the_box():
         assert min(b.interval(k)[0] for b in subs) == lo and max(b.interval(k)[1] for b in subs) == hi
     corners = {tuple(b.interval(k)[0] for k in ("eps", "Omega2")) for b in subs}
     assert corners == {(Fr(1, 10), Fr(1, 100)), (Fr(3, 20), Fr(1, 100)), (Fr(1, 10), Fr(1, 50)), (Fr(3, 20), Fr(1, 50))}
+
+
+def test_a_box_whose_sub_boxes_disagree_stays_undecided():
+    """On this box of the layer the second-order form is negative on the first of its four sub-boxes and
+    undecided on others: the box is not decided (one sub-box says nothing about the rest)."""
+    from rigor_gyro.kinds.eigenfrequencies.second_order import _one_sign, _quarters
+    model = _model()
+    box = _box((Fr(1, 20), Fr(67, 1280)), (Fr(83, 64000), Fr(51, 32000)))
+    with working_precision(128):
+        r, _ = box_roots(model, box, True, False)
+        subs = [_one_sign(model, b, 2, "lower", r.omegas[1], False)[0] for b in _quarters(box)]
+        assert subs[0] == "negative" and "undecided" in subs
+        assert gap_sign(model, box, 2, "lower", r.omegas[1], False)[0] == "undecided"
