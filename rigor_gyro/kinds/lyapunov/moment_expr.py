@@ -421,6 +421,7 @@ class ExpressionMoment(MomentLaw):
         self._c0: dict = {}
         self._compiled: dict = {}
         self._qcache: dict = {}
+        self._gmemo: dict = {}
 
     def _code(self, which: str, kind: object):
         """The compiled expression (``which``: "f" or "df") for real values (kind None) or complex balls in
@@ -512,8 +513,19 @@ class ExpressionMoment(MomentLaw):
         """int_0^x cos(s) f(s) / (A0 - C0 sin^2 s) ds by acb.integral (x a point or thin ball)."""
         if x.is_zero():
             return arb(0)
-        if type(a) is not arb:
+        if type(a) is not arb or not (x.is_finite() and type(A0) is arb and type(C0) is arb):
             return _nan()
+        # memoised: Arb's quadrature is deterministic given the precision and the exact balls, and adjacent
+        # pieces ask for G at their shared ends
+        key = tuple(v.man_exp() for b in (x, a, A0, C0) for v in (b.mid(), b.rad())) + (current_precision(),)
+        hit = self._gmemo.get(key)
+        if hit is None:
+            if len(self._gmemo) > 100_000:
+                self._gmemo.clear()
+            hit = self._gmemo[key] = self._G(a, A0, C0, x)
+        return hit
+
+    def _G(self, a, A0, C0, x):
         A0c, C0c, ac = acb(A0), acb(C0), acb(a)
         p = current_precision()
         b = self._balls.get(p) or {k: arb(_q(v)) for k, v in self.params.items()}
