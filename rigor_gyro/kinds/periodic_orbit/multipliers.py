@@ -5,11 +5,15 @@ Guarantee: an eigenvalue is made exactly real only when its conjugate ball meets
 (the Jacobian is real, so its spectrum is closed under conjugation: the ball is its own conjugate); the
 multipliers are ordered by modulus (floats order, balls decide nothing there), a conjugate pair with the member
 of positive imaginary part first; ``stable`` is True only when every modulus is certainly < 1, False only when
-one is certainly > 1, else None (undecided). Precision: the balls'. Fails when: never.
+one is certainly > 1, else None (undecided). A plant of dimension 1 (``eig`` empty: the section c . x = h is a
+point, the return map's Jacobian is 0x0) has no multipliers: its orbit is stable (True) with margin 1 (the
+spectral radius of the zero map): every nearby solution with the same relay state moves monotonically (a scalar
+ODE whose field does not vanish on the orbit, else the orbit could not run from h to -h) to the switching point
+and follows the orbit from there on. Precision: the balls'. Fails when: never.
 """
 from __future__ import annotations
 
-from flint import acb
+from flint import acb, arb
 
 from ...core.balls import certainly_gt, certainly_lt, certainly_negative, certainly_positive
 
@@ -29,6 +33,10 @@ def decide_multipliers(v, eig: list) -> None:
             mults[k], mults[k + 1] = b, a
     v.multipliers = mults
     v.moduli = [abs(z) for z in mults]
+    if not eig:                 # dimension 1: no nontrivial multiplier (module docstring)
+        v.margin = arb(1)
+        v.stable = True
+        return
     mx = v.moduli[0]
     for m in v.moduli[1:]:
         mx = mx.max(m)

@@ -39,6 +39,7 @@ from ...core.stored import encloses, fmpq_of, interval as stored_interval, numbe
 from ...core.subdivision import enclose_max
 from .check_verdicts import other_orbit_moduli, redecide
 from .flow import ExpSum, taylor_enclosure
+from .plant_check_rows import check_root_rows
 from .plant_df import describing_function
 from .plant_orbit import leading_coefficient, matrix_ball, near_zero_bound, near_zero_order, section_index
 from .plant_statements import AMPLITUDE_REL, TAYLOR_ORDER
@@ -314,6 +315,8 @@ def _classify(d: Diagonal, theta: arb, w: dict) -> tuple[bool, str]:
 
 def _multipliers(d: Diagonal, theta: arb) -> list[acb] | None:
     model, n = d.model, d.n
+    if n == 1:          # the section is a point: no multipliers (multipliers.decide_multipliers)
+        return []
     x0 = d.x0(theta)
     E = d.expm(theta)
     M = matrix_ball(model.M)
@@ -447,7 +450,7 @@ def check(model, data: dict) -> list[CheckResult]:
                 contains(f"multiplier_modulus_{j}", m)
                 contains(f"multiplier_{j}_re", z.real)
                 contains(f"multiplier_{j}_im", z.imag)
-            mx = moduli_main[0]
+            mx = moduli_main[0] if moduli_main else arb(0)      # dimension 1: the zero map's radius
             for m in moduli_main[1:]:
                 mx = mx.max(m)
             contains("stability_margin", 1 - mx)
@@ -470,7 +473,7 @@ def check(model, data: dict) -> list[CheckResult]:
                     contains("df_amplitude_difference", A - Adf)
     others, other_moduli = other_orbit_moduli(genuine, main, lambda th: _multipliers(d, th), contains)
     exhaustive = half_ok and w["covers_all"]
-    all_moduli = ([moduli_main] if moduli_main else []) + list(other_moduli.values())
+    all_moduli = ([moduli_main] if moduli_main is not None else []) + list(other_moduli.values())
     for cid, c in claims.items():
         st = c["status"]
         if st == "inconclusive":
@@ -494,4 +497,19 @@ def check(model, data: dict) -> list[CheckResult]:
     if classes:
         say("roots", all(ok for ok, _ in classes), f"{len(classes)} roots classified: "
             + "; ".join(m for _, m in classes[:3]) + (" ..." if len(classes) > 3 else ""))
+    if "roots" in (data.get("extra") or {}):
+        say("extra.roots", *_rows(d, G, data["extra"]["roots"], roots, (w or {}).get("roots") if classes and all(
+            ok for ok, _ in classes) else None, main, moduli_main))
     return res
+
+
+def _rows(d: Diagonal, G: _G, rows, roots: list, kinds_w, main, moduli_main) -> tuple[bool, str]:
+    """The roots' table re-verified (:mod:`.plant_check_rows`); the main orbit's moduli reused."""
+    kinds = [r["kind"] for r in kinds_w] if kinds_w is not None and len(kinds_w) == len(roots) else None
+
+    def moduli_of(th):
+        if th is main and moduli_main is not None:
+            return moduli_main
+        mm = _multipliers(d, th)
+        return None if mm is None else [abs(z) for z in mm]
+    return check_root_rows(rows, d.n, roots, kinds, moduli_of, lambda lo, hi: _unique(G, lo, hi))

@@ -203,6 +203,12 @@ def plant_multipliers(sp: PlantSpectrum, v: RootVerdict) -> None:
     the smallest replaced by that product over the others when tighter (a stiff plant's tiny multiplier)."""
     model = sp.model
     k = model.n - 1
+    if k == 0:      # dimension 1: the section is a point, no multipliers; stable (multipliers.decide_multipliers)
+        v.jacobian_note = ("dimension 1: the section c . x = h is a point, the return map's Jacobian is 0x0 (no "
+                           "multipliers); a nearby solution runs monotonically to the switching point and follows "
+                           "the orbit from there")
+        decide_multipliers(v, [])
+        return
     J = jacobian(sp.M, sp.e, sp.c, sp.S, v.theta, v.x0, section_index(model))
     try:
         eig = list(acb_mat(J).eig(algorithm="rump"))

@@ -114,7 +114,7 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
         else:
             st = (Status.INCONCLUSIVE, "no genuine orbit certified yet" + beyond)
         claims.append(_claim("initial_point", *st))
-    if main is not None and main.moduli:
+    if main is not None and main.margin is not None:
         for j, m in enumerate(main.moduli, start=1):
             quantities[f"multiplier_modulus_{j}"] = m
         for j, z in enumerate(main.multipliers, start=1):
@@ -127,10 +127,11 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
         if v.margin is not None:
             quantities[f"stability_margin_{k}"] = v.margin
     if "multipliers" in wanted:
-        bad = [v for v in genuine if not v.moduli]
+        bad = [v for v in genuine if v.margin is None]
         if genuine and not bad:
-            st = (Status.PROVED, "; ".join(f"theta = {_fmt(v.theta, 10)}: " + ", ".join(
-                f"{_fmt_c(z, 10)} (|.| = {_fmt(m, 10)})" for z, m in zip(v.multipliers, v.moduli)) for v in genuine)
+            st = (Status.PROVED, "; ".join(f"theta = {_fmt(v.theta, 10)}: " + (", ".join(
+                f"{_fmt_c(z, 10)} (|.| = {_fmt(m, 10)})" for z, m in zip(v.multipliers, v.moduli)) or "none")
+                for v in genuine)
                 + f"; {main.jacobian_note}")
         elif none_exists:
             st = (Status.REFUTED, "no genuine orbit exists (see orbit_genuine)", no_orbit)
@@ -142,8 +143,10 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
         stable = [v for v in genuine if v.stable is True]
         if stable:
             s = main if main in stable else stable[0]
-            st = (Status.PROVED, f"the orbit theta* = {_fmt(s.theta, 12)} has max modulus {_fmt1(s.moduli[0], 10)} "
-                  f"< 1; stability margin {_fmt(s.margin, 10)}"
+            top = (f"has max modulus {_fmt1(s.moduli[0], 10)} < 1" if s.moduli else
+                   "has no multipliers (dimension 1: the section is a point, a nearby solution reaches the switching "
+                   "point and follows the orbit)")
+            st = (Status.PROVED, f"the orbit theta* = {_fmt(s.theta, 12)} {top}; stability margin {_fmt(s.margin, 10)}"
                   + (f"; {len(stable)} stable genuine orbits" if len(stable) > 1 else "")
                   + (f"; unstable: {', '.join(_fmt(v.theta, 8) for v in genuine if v.stable is False)}"
                      if any(v.stable is False for v in genuine) else ""))
@@ -188,7 +191,7 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
     rows = []
     for k, v in enumerate(an.roots, start=1):
         line = f"root {k}: theta = {_fmt(v.theta, 14)}: {v.kind}: {v.reason}"
-        if v.moduli:
+        if v.margin is not None:
             line += "; multipliers " + ", ".join(_fmt_c(z, 8) for z in v.multipliers) + "; moduli " + ", ".join(
                 _fmt1(m, 8) for m in v.moduli) + ("; STABLE" if v.stable else "; UNSTABLE" if v.stable is False else "")
         rows.append({"theta": list(decimal_bounds(v.theta, 20)), "kind": v.kind, "reason": v.reason,

@@ -1,0 +1,116 @@
+"""Regressions of a hostile review of the [plant] path (issue 42 part 1): each test failed before its fix."""
+from __future__ import annotations
+
+import copy
+import json
+import subprocess
+import sys
+
+import pytest
+
+from rigor_gyro.certificate import digest
+from rigor_gyro.check import check_certificate
+from rigor_gyro.prover import prove_scene
+from rigor_gyro.scene import load_scene, parse_scene
+
+PLANTS = "rigor_gyro/scenes/plants/"
+
+
+def _scene(M, e, c, S="1", h="0", params=None, extra="", name="t"):
+    rows = ", ".join("[" + ", ".join(f'"{x}"' for x in r) + "]" for r in M)
+    vec = lambda v: "[" + ", ".join(f'"{x}"' for x in v) + "]"        # noqa: E731
+    ps = "\n".join(f'{k} = "{v}"' for k, v in (params or {}).items())
+    return parse_scene(f'name = "{name}"\nkind = "periodic_orbit"\n[parameters]\n{ps}\n{extra}\n[plant]\nM = [{rows}]\n'
+                       f'e = {vec(e)}\nc = {vec(c)}\nS = "{S}"\nh = "{h}"\n')
+
+
+def _cert(scene):
+    return json.loads(json.dumps(prove_scene(scene).to_json()))
+
+
+def _foreign(cert, edit=None):
+    """The certificate edited by ``edit``, signed as another version (texts then not compared), digest refixed."""
+    d = copy.deepcopy(cert)
+    if edit:
+        edit(d)
+    d["software"]["rigor_gyro"] = "0.0.0-other"
+    d["integrity"]["sha256"] = digest(d)
+    return d
+
+
+def _items(cert):
+    return {r.item: (r.ok, r.message) for r in check_certificate(cert).results}
+
+
+# ---------------------------------------------------------------- 1. extra.roots re-verified, whatever the version
+
+@pytest.fixture(scope="module")
+def two_modes():
+    return _cert(load_scene(PLANTS + "relay_two_modes.toml"))
+
+
+def test_a_foreign_certificate_is_confirmed_and_says_its_texts_were_not_compared(two_modes):
+    it = _items(_foreign(two_modes))
+    assert all(ok for ok, _ in it.values()), it
+    assert it["extra.roots"][0] and "NOT compared" in it["texts"][1]
+
+
+def _unstable_row(d):
+    return next(r for r in d["extra"]["roots"] if r["stable"] is False)
+
+
+@pytest.mark.parametrize("edit", [
+    lambda d: _unstable_row(d).update(stable=True),
+    lambda d: _unstable_row(d).update(stable=True, moduli=[["0.5", "0.5"], ["0.6", "0.6"], ["0.6", "0.6"]]),
+    lambda d: _unstable_row(d).update(moduli=_unstable_row(d)["moduli"][1:]),
+    lambda d: next(r for r in d["extra"]["roots"] if r["stable"] is True).update(stable=False),
+    lambda d: next(r for r in d["extra"]["roots"] if r["kind"] == "spurious").update(stable=True),
+    lambda d: next(r for r in d["extra"]["roots"] if r["kind"] == "spurious").update(kind="genuine"),
+    lambda d: d["extra"]["roots"][0].update(theta=["1.47", "1.471"]),
+    lambda d: d["extra"]["roots"].pop(),
+], ids=["unstable_called_stable", "moduli_and_flag", "a_modulus_dropped", "stable_called_unstable",
+        "spurious_flagged", "spurious_called_genuine", "theta_moved", "row_dropped"])
+def test_a_tampered_roots_table_is_refused_whatever_the_version(two_modes, edit):
+    it = _items(_foreign(two_modes, edit))
+    assert it["extra.roots"][0] is False, it["extra.roots"]
+
+
+def test_rows_without_a_reverified_half_period_locate_their_roots(two_modes):
+    """The isolation witness dropped (the half-period then fails): each row's moduli and flag are still
+    re-verified at a root located inside its own theta."""
+    d = copy.deepcopy(two_modes)
+    d["witnesses"].pop("half_period")
+    ok, msg = _items(_foreign(d))["extra.roots"]
+    assert ok and "kinds are not" in msg
+    _unstable_row(d).update(stable=True)
+    assert _items(_foreign(d))["extra.roots"][0] is False
+
+
+# ---------------------------------------------------------------- 3. dimension 1
+
+N1 = dict(M=[["-1"]], e=["1"], c=["1"], S="-1", h="1/2")
+
+
+def test_a_one_state_plant_with_an_orbit_is_stable_and_checked():
+    """x' = -x - sign(x) with hysteresis 1/2: the orbit runs between x = 1/2 and -1/2, theta = ln 3; the
+    section is a point, no multipliers, stable (a nearby solution reaches the switching point)."""
+    cert = _cert(_scene(**N1))
+    st = {c["id"]: c["status"] for c in cert["claims"]}
+    assert set(st.values()) == {"proved"}, cert["claims"]
+    row = cert["extra"]["roots"][0]
+    assert row["kind"] == "genuine" and row["moduli"] == [] and row["stable"] is True
+    lo, hi = (float(x) for x in row["theta"])
+    assert lo <= 1.0986122886681098 <= hi
+    rep = check_certificate(cert)
+    assert rep.ok, [r for r in rep.results if not r.ok]
+    bad = _foreign(cert, lambda d: d["extra"]["roots"][0].update(stable=None))
+    assert _items(bad)["extra.roots"][0] is False
+
+
+def test_a_one_state_plant_on_the_command_line_exits_0(tmp_path):
+    f = tmp_path / "n1.toml"
+    f.write_text('name = "n1"\nkind = "periodic_orbit"\n[parameters]\n[plant]\nM = [["1"]]\ne = ["1"]\nc = ["1"]\nS = "-1"\n'
+                 'h = "1/2"\n')
+    r = subprocess.run([sys.executable, "-m", "rigor_gyro", "prove", str(f), "-o", str(tmp_path)],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
