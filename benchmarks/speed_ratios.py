@@ -2,9 +2,9 @@
 
     python benchmarks/speed_ratios.py [--repeat 3]            everything below
     python benchmarks/speed_ratios.py --goals [--repeat 7]    only issue 41's goals (0. below), a minute or two
-    python benchmarks/speed_ratios.py --goals --before DIR    the same, each run paired with a run of the
-                                                              source tree DIR (e.g. ``git archive <commit>``
-                                                              unpacked there), interleaved: before/after
+    python benchmarks/speed_ratios.py --goals --before DIR [--after DIR2]
+        the same, each run paired with a run of the source tree DIR (``git archive <commit>`` unpacked
+        there), interleaved: before/after (after: the installed tree, or DIR2)
 
 0. Issue 41's goals. (a) Cold ``rigor-gyro prove rudenko1976 roitenberg1947 agafonov2013 --workers 1`` (every
    claim they prove, certificates and reports written) against the float script of the same three scenes
@@ -145,10 +145,10 @@ def extreme_scene(folder: str, param: str, value: str) -> str:
     return path
 
 
-def goals(repeat: int, before: str | None) -> None:
+def goals(repeat: int, before: str | None, after: str | None = None) -> None:
     """Issue 41's goal rows (0. in the module's docstring)."""
     cache, out = tempfile.mkdtemp(), tempfile.mkdtemp()
-    trees = [("after", None)] + ([("before", before)] if before else [])
+    trees = [("after", after)] + ([("before", before)] if before else [])
     cmds, names = [], []
     for label, tree in trees:
         env = _env(tree, os.path.join(cache, label))
@@ -207,6 +207,8 @@ def main() -> None:
     ap.add_argument("--goals", action="store_true", help="only issue 41's goal rows (0. above)")
     ap.add_argument("--before", metavar="DIR", help="with --goals: also run the source tree DIR (a `git archive` "
                     "of an older commit unpacked there), paired and interleaved with the current one")
+    ap.add_argument("--after", metavar="DIR", help="with --goals: run the source tree DIR as 'after' instead of the "
+                    "installed one (two `git archive`s compared, whatever the work tree holds)")
     ap.add_argument("--float-script", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--full", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--scenes", default=",".join(PAPER), help=argparse.SUPPRESS)
@@ -214,7 +216,7 @@ def main() -> None:
     if args.float_script:
         float_script(args.full, args.scenes.split(","))
         return
-    goals(args.repeat, args.before)
+    goals(args.repeat, args.before, args.after)
     if args.goals:
         return
     print()
