@@ -297,7 +297,7 @@ def _cmd_prove(args) -> int:
     from .kinds import kind_module, scene_claims
     from .prover import requested_claims
     from .report import output_paths
-    from .margins.paving import box_scene, has_tolerances
+    from .core.boxes import is_tolerance
     from .scene import builtin_scenes, load_scene
 
     if args.resume is not None:
@@ -316,7 +316,8 @@ def _cmd_prove(args) -> int:
     for ref in refs:
         try:
             scene = load_scene(ref)
-            if has_tolerances(scene):
+            if any(is_tolerance(v) for v in scene.parameters.values()):   # margins.paving.has_tolerances
+                from .margins.paving import box_scene       # imported only for a paving (issue 41)
                 scene = box_scene(scene)        # a claim for every parameter in the box: a paving
             else:
                 module = kind_module(scene.kind)
@@ -390,7 +391,8 @@ def _prove_points(points: list, args) -> list[int]:
     than one worker (``--workers``, default the cores). Each worker writes its scene's files and returns
     its exit code and printed text; the text is printed in the order of the scenes, so the output and
     the files are the same whatever the worker count."""
-    from .margins.executors import default_workers
+    if args.workers is None:
+        from .margins.executors import default_workers
     workers = min(len(points), default_workers() if args.workers is None else args.workers)
     if workers <= 1 or "fork" not in _mp_start_methods():
         return [_prove_point(ref, scene, args) for ref, scene in points]
