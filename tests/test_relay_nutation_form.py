@@ -51,9 +51,10 @@ def _mp(x) -> mpmath.mpf:
 
 
 @pytest.mark.parametrize("H", ["100", "1e5"])
-def test_the_nutation_form_encloses_G_and_its_derivatives_over_a_ball(H):
+def test_the_nutation_form_encloses_G_and_its_derivatives_over_a_ball(H, monkeypatch):
     """Every mpmath value of G^(j)(t)/j! (j < 4) at points t of the ball lies in the certified ball, and the
-    point coefficients overlap pole_free_coeffs' (the same function)."""
+    point coefficients overlap those of pole_free_coeffs' complex series algebra (the same function)."""
+    monkeypatch.setattr(NF, "FAST_NUTATION_RATIO", 10 ** 12)      # pole_free_coeffs: the series algebra
     P = _params(H=H)
     G = _mp_G(P)
     with working_precision(128):
@@ -80,31 +81,34 @@ def test_the_nutation_form_refuses_what_it_does_not_fit():
         sp = Spectrum(_params(tau="1"))            # three real roots of the cubic: no pair
         if sum(m.weight == 2 for m in sp.modes) == 0:
             assert NF.nutation_form(sp) is None
-            assert not NF.fast_nutation(sp, arb(1))
+            assert NF.fast_form(sp) is None
         sp = Spectrum(_params())
         assert NF.nutation_form(sp) is not None
 
 
-def test_only_a_search_over_thousands_of_half_periods_is_fast():
-    """The paper scene (H = 100) keeps pole_free_coeffs (its certificate bytes); H = 1e5 uses the form."""
+def test_only_a_fast_nutation_takes_the_form_in_pole_free_coeffs():
+    """The paper scene (H = 100) and H = 1e4 keep the complex series algebra (certificate bytes); H = 1e5
+    gets the nutation form from pole_free_coeffs itself (the checker's function too)."""
     with working_precision(64):
-        sp = Spectrum(_params())
-        assert not NF.fast_nutation(sp, arb("0.36"))
+        for H in ("100", "1e4"):
+            sp = Spectrum(_params(H=H))
+            assert NF.fast_form(sp) is None
+            coeffs, _ = C.isolation_coeffs(sp)
+            assert not coeffs.nutation
         sp5 = Spectrum(_params(H="1e5"))
-        assert NF.fast_nutation(sp5, arb("0.36"))
-        _, name = C.isolation_coeffs(sp5, arb("0.36"))
-        assert name == "pole_free"                 # the same function: the checker re-decides with its own
-        coeffs, _ = C.isolation_coeffs(sp5, arb("0.36"))
-        assert coeffs.nutation
-        coeffs, _ = C.isolation_coeffs(sp)
-        assert not coeffs.nutation
+        form = NF.fast_form(sp5)
+        assert form is not None and NF.fast_form(sp5) is form
+        c = arb("0.0123").mid()
+        assert all(x.mid() == y.mid() and x.rad() == y.rad() for x, y in zip(pole_free_coeffs(sp5, c, 9), form.coeffs(c, 9)))
+        coeffs, name = C.isolation_coeffs(sp5)
+        assert name == "pole_free" and coeffs.nutation
 
 
 def _roots(H: str, fast: bool, monkeypatch, lo: str, hi: str):
-    monkeypatch.setattr(NF, "FAST_NUTATION_HALF_PERIODS", 0 if fast else 10 ** 12)
+    monkeypatch.setattr(NF, "FAST_NUTATION_RATIO", 0 if fast else 10 ** 12)
     with working_precision(64):
         sp = Spectrum(_params(H=H))
-        coeffs, _ = C.isolation_coeffs(sp, arb(hi))
+        coeffs, _ = C.isolation_coeffs(sp)
         assert coeffs.nutation == fast
         iso = C._isolate(C._g_series_function(sp, coeffs), arb(lo), arb(hi), coeffs=coeffs,
                          root_free=C.envelope_test(sp))
@@ -114,7 +118,7 @@ def _roots(H: str, fast: bool, monkeypatch, lo: str, hi: str):
 
 @pytest.mark.parametrize("H, lo, hi", [("1e4", "0.001", "0.03"), ("1e3", "0.004", "0.2")])
 def test_the_fast_search_finds_the_default_searchs_roots_and_mpmath_sees_each_sign_change(H, lo, hi, monkeypatch):
-    """Same number of roots as the default search (pole_free_coeffs, midpoint Newton start), pairwise
+    """Same number of roots as the default search (the complex series algebra, midpoint Newton start), pairwise
     overlapping enclosures; G changes sign across every UNIQUE piece's enclosure (mpmath, 50 digits,
     at the enclosure's ends widened by its radius: a root counted that is not there would fail)."""
     fast = _roots(H, True, monkeypatch, lo, hi)
@@ -133,10 +137,10 @@ def test_the_fast_search_finds_the_default_searchs_roots_and_mpmath_sees_each_si
 def test_a_bracket_next_to_an_end_is_clipped_to_that_end(monkeypatch):
     """A monotone stretch whose root lies within the bracket's half-width of an end: the clipped bracket uses
     that end (its sign certified by the caller) and interval Newton then proves the root inside it."""
-    monkeypatch.setattr(NF, "FAST_NUTATION_HALF_PERIODS", 0)
+    monkeypatch.setattr(NF, "FAST_NUTATION_RATIO", 0)
     with working_precision(64):
         sp = Spectrum(_params(H="1e4"))
-        coeffs, _ = C.isolation_coeffs(sp, arb("0.03"))
+        coeffs, _ = C.isolation_coeffs(sp)
         f = C._g_series_function(sp, coeffs)
         iso = C._isolate(f, arb("0.001"), arb("0.03"), coeffs=coeffs, root_free=C.envelope_test(sp))
         r = iso.roots[len(iso.roots) // 2]

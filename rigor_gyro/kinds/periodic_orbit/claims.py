@@ -68,7 +68,7 @@ from .tracked import statements as tracked_statements
 from .tracked_claims import choose, tracked_claims, tracked_extra
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table, orbit_quantities
 from .multipliers import decide_multipliers
-from .nutation_form import fast_nutation, nutation_form
+from .nutation_form import fast_form
 from .flow import (AMPLITUDE_PARAMETERS, PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, envelope_margin, g_coeffs, pole_free_coeffs,
                    moment_zero_orders, orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure,
                    x0_at)
@@ -429,7 +429,7 @@ def _g_series_function(sp: Spectrum, coeffs=None):
 COEFF_MEMO_LIMIT = 100_000
 
 
-def isolation_coeffs(sp: Spectrum, T: arb | None = None):
+def isolation_coeffs(sp: Spectrum):
     """The Taylor coefficients of the function whose roots the search isolates, and its name in the
     witness: G = g K (:func:`~.flow.pole_free_coeffs`: same roots as g, no poles next to the real axis).
 
@@ -439,12 +439,12 @@ def isolation_coeffs(sp: Spectrum, T: arb | None = None):
     and again: about a third of the calls on the H = 1e4 stress scene). Non-finite or complex centres
     are computed, never memoised.
 
-    Given the searched end ``T`` of a fast-nutation search (:func:`.nutation_form.fast_nutation`),
-    the same G's coefficients come from its nutation form (:class:`.nutation_form.NutationForm`,
-    cheaper; other balls, so only there: the paper scenes keep their certificates byte for byte)."""
-    form = nutation_form(sp) if T is not None and fast_nutation(sp, T) else None
-    compute = form.coeffs if form is not None else (lambda ctr, n: pole_free_coeffs(sp, ctr, n))
-    memo = sp.__dict__.setdefault("_nutation_memo" if form is not None else "_pole_free_memo", {})
+    For a fast nutation (:func:`.nutation_form.fast_form`) pole_free_coeffs gives G's nutation form,
+    and the returned function carries ``nutation`` and ``omega``: the search then chooses its pieces
+    and starts its Newton iterations by the nutation (:func:`_newton_bracket`, :func:`_isolate`)."""
+    form = fast_form(sp)
+    compute = lambda ctr, n: pole_free_coeffs(sp, ctr, n)     # noqa: E731 (the nutation form when fast)
+    memo = sp.__dict__.setdefault("_pole_free_memo", {})
 
     def coeffs(ctr, n):
         if type(ctr) is not arb or not ctr.is_finite():
@@ -804,7 +804,7 @@ def analyse(model: RelayModel, spectrum=None, phase: Phases | None = None) -> An
         an.problem = "could not certify g^(5) > 0 near theta = 0 (raise precision)"
         return an
     with phase("half_period: root isolation"):
-        coeffs, an.isolated = isolation_coeffs(sp, an.T_search if spectrum is None else None)
+        coeffs, an.isolated = isolation_coeffs(sp)
         key = (an.isolated, exact_fraction(an.theta_min), exact_fraction(an.T_search))
         cached = model.decided.get(key) if spectrum is None else None
         if cached is not None and cached[1] is None:        # an earlier attempt isolated every root:

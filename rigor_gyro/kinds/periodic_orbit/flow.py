@@ -59,6 +59,7 @@ from flint import acb, acb_mat, acb_series, arb, arb_mat, arb_poly, fmpq, fmpq_m
 from ...core.balls import ball, certainly_positive, series_coefficients, series_length
 from ...core.exact import parse_exact
 from ...core.polyroots import isolate_polynomial
+from .nutation_form import fast_form
 
 __all__ = ["PARAMETER_NAMES", "RelayParams", "DegenerateSpectrum", "Mode", "Spectrum", "envelope_margin", "system_matrix",
            "forcing", "nutation_cubic", "g_coeffs", "pole_free_coeffs", "x0_at", "ExpSum", "orbit_expsums", "state_at",
@@ -315,10 +316,16 @@ def pole_free_coeffs(sp: Spectrum, center: arb, n: int) -> list[arb]:
     that distance, so the root search bisects towards every one of them. K > 0 for real theta > 0
     (|E| < 1 when Re lambda < 0), so G and g have the same roots, with the same multiplicities; and
     in G each pair's own term is (E - 1)(1 + conj E) / lambda, pole-free. Same series trap as g_coeffs.
+    A fast, lightly damped nutation (:func:`.nutation_form.fast_form`: one complex pair, omega >= 1000
+    times the slowest real rate) takes G's nutation form instead (the same function, other and tighter
+    balls, a fraction of the cost); the prover and rigor-gyro check both come here, so they agree.
 
     Requires: a spectrum whose complex modes have Re lambda < 0 (a stable nutation cubic). Where a box
     spectrum's ``near_zero`` series applies, g comes from it (its spectral terms cancel there) and G's
     coefficients are the Cauchy product with K's."""
+    form = fast_form(sp)
+    if form is not None:
+        return form.coeffs(center, n)
     pairs = [m for m in sp.modes if m.weight == 2]
     tot = [arb(0)] * n
     with series_length(n):

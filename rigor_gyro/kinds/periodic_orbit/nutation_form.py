@@ -19,13 +19,12 @@ other balls). Precision: the current working precision; the powers are recompute
 Fails when: the spectrum has not exactly one complex pair, or carries ``near_zero`` (a box
 spectrum): :func:`nutation_form` returns None and the caller keeps pole_free_coeffs.
 
-Used only where the root search would otherwise need thousands of pieces (:func:`fast_nutation`):
-the built-in paper scenes keep pole_free_coeffs and their certificates byte for byte.
+Used only for a fast nutation (:func:`fast_form`), by :func:`~.flow.pole_free_coeffs` itself (so the
+prover and rigor-gyro check evaluate the same form): the built-in paper scenes keep the complex series
+algebra and their certificates byte for byte.
 """
 from __future__ import annotations
 
-import math
-from math import factorial
 
 from contextlib import nullcontext
 
@@ -33,23 +32,30 @@ from flint import acb, arb, arb_series, ctx
 
 from ...core.balls import current_precision, series_coefficients, series_length
 
-__all__ = ["NutationForm", "nutation_form", "fast_nutation", "FAST_NUTATION_HALF_PERIODS"]
+__all__ = ["NutationForm", "nutation_form", "fast_form", "FAST_NUTATION_RATIO"]
 
-#: the nutation form is used when the searched range holds at least this many nutation half-periods
-#: (omega T / pi): the paper scenes have a handful, the stress scenes H = 1e3, 1e4 under 2000
-FAST_NUTATION_HALF_PERIODS = 2000
+#: a spectrum is a fast nutation when its pair's omega is at least this multiple of the slowest real
+#: rate |lambda_r| (the searched range (0, T] then spans thousands of nutation half-periods): the
+#: paper scenes' ratio is 3.2, the stress scenes' H = 1e3, 1e4 32 and 322, H = 1e5 3227
+FAST_NUTATION_RATIO = 1000
 
 
-def fast_nutation(sp, T: arb) -> bool:
-    """Whether the search over (0, T] is in the fast-nutation regime (a float heuristic: it chooses
-    which correct coefficient function is used, it decides nothing)."""
-    if getattr(sp, "near_zero", None) is not None:
-        return False
-    pairs = [m for m in sp.modes if m.weight == 2]
-    if len(pairs) != 1:
-        return False
-    om = abs(float(pairs[0].lam.imag.mid()))
-    return om * float(T.mid()) / math.pi >= FAST_NUTATION_HALF_PERIODS
+def fast_form(sp) -> "NutationForm | None":
+    """The spectrum's nutation form when it is a fast nutation (a point spectrum, one complex pair,
+    omega >= FAST_NUTATION_RATIO min |lambda_r|), else None; cached on the spectrum. Float comparison:
+    it chooses which correct enclosure of G is computed, it decides nothing (the prover and the
+    checker evaluate the same spectrum, so they choose alike)."""
+    hit = sp.__dict__.get("_fast_form", 0)
+    if hit != 0:
+        return hit
+    form = None
+    pairs = [m for m in getattr(sp, "modes", []) if m.weight == 2]
+    real = [abs(float(m.lam.real.mid())) for m in getattr(sp, "modes", []) if m.weight == 1]
+    if getattr(sp, "near_zero", None) is None and len(pairs) == 1 and real and \
+            abs(float(pairs[0].lam.imag.mid())) >= FAST_NUTATION_RATIO * min(real):
+        form = NutationForm(sp)
+    sp.__dict__["_fast_form"] = form
+    return form
 
 
 class NutationForm:
