@@ -286,6 +286,18 @@ MUTANTS = [
     ("face_min_without_ends", "rigor_gyro/kinds/lyapunov/direct_face.py",
      "    low = ends[0].min(ends[1])\n", "    low = arb(\"inf\")\n",
      "the face's minimum over an interval without its ends (where no critical point lies inside)"),
+    # issue 40: the largest sublevel set near the gimbal lock (kinds/lyapunov/sublevel.py phi_lower; tests/test_sublevel_lock.py)
+    ("phi_lower_upper_end", "rigor_gyro/kinds/lyapunov/sublevel.py",
+     "    low = (c.mu * g.F(X) - q).lower()\n", "    low = (c.mu * g.F(X) - q).upper()\n",
+     "phi's bound over an x2 interval taken at its upper end"),
+    ("phi_lower_e_from_upper_end", "rigor_gyro/kinds/lyapunov/sublevel.py",
+     "        e_lo = e.lower() if e.is_finite() and certainly_positive(e.lower()) else arb(0)\n",
+     "        e_lo = e.upper() if e.is_finite() else arb(0)\n",
+     "the cancellation-free f3^2 / (2 S) bounded with e's upper end (f3^2 / S too small: phi's bound too high)"),
+    ("phi_lower_f_square_lower_end", "rigor_gyro/kinds/lyapunov/sublevel.py",
+     "        q = square_from_ends(g.f(X)).upper() / (2 * DB.lower() * (1 + e_lo))\n",
+     "        q = square_from_ends(g.f(X)).lower() / (2 * DB.lower() * (1 + e_lo))\n",
+     "f^2 at its lower end over the interval in phi's bound"),
     # the direct test over the mu interval (issue 13): best_mu_direct and its checker
     ("direct_bound_wrong_end", "rigor_gyro/kinds/lyapunov/model.py",
      "        end = mu.upper() if certainly_le(arb(0), slope) else mu.lower() if certainly_le(slope, 0) else None",

@@ -48,13 +48,14 @@ from ...core.roots import RootStatus, enclose_f_df, newton_root
 from .claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
 from .direct_face import face_margin
+from .sublevel import box_lower_bound
 from .equilibria import Equilibrium, classify as classify_equilibrium, pi_text
 from .trajectory_claims import check_initial_point, check_paving, check_region_exit
 from .trajectories import equilibrium_other_than_origin
 from .natural_domain import band_function, exact_range, natural_lower_bound, positivity_functions, with_range
 from .model import (DIRECT_DOMAIN, c_star_lower, c_star_upper, closed_form_constants, cylinder_lower_bound,
                     damping_margin, faces_minimiser_inside, mean_value_enclosure, psi_min_functions, slice_extent,
-                    slice_in_region, sublevel_lower_bound, symmetric_in_x2, vdot_polar)
+                    slice_in_region, symmetric_in_x2, vdot_polar)
 
 __all__ = ["check"]
 
@@ -769,7 +770,7 @@ def _check_sublevel(g, xs: arb, w: dict, details: dict, q: dict, verified: set, 
     if not tiles_by_bisection(Box.of(DIRECT_DOMAIN), boxes):
         return False, "the stored (x2, t) boxes do not tile the domain"
     n_lo = fmpq_of(n_lo_t)
-    for b, low in zip(boxes, _box_lower_ends(lambda: symmetric_in_x2(g, sublevel_lower_bound(g)), boxes, cert_prec)):
+    for b, low in zip(boxes, _box_lower_ends(lambda: symmetric_in_x2(g, box_lower_bound(g)), boxes, cert_prec)):
         key = float(low)                # +inf: no point of {Vdot >= 0} above the box
         if not (key == float("inf") or (low.is_finite() and low >= n_lo)):
             return False, f"on the box {b.to_json()} the lower bound of V over {{Vdot >= 0}} is below {details['vdot_level_lower']}"

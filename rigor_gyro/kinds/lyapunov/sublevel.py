@@ -36,13 +36,13 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from ...core.balls import certainly_le, certainly_positive, decimal_bounds, enclosure_text, exact_fraction
+from ...core.balls import certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds, enclosure_text, exact_fraction
 from ...core.boxes import Box
 from ...core.subdivision import lower_bound_on_box
-from .model import DIRECT_DOMAIN, Gimbal, sublevel_lower_bound, symmetric_in_x2, v_polar, vdot_polar
+from .model import DIRECT_DOMAIN, GIMBAL_LOCK_COS, Gimbal, square_from_ends, sublevel_lower_bound, symmetric_in_x2, v_polar, vdot_polar
 from .search import grid_then_compass
 
-__all__ = ["Sublevel", "largest_sublevel", "GAP", "GAP_FACES_BIND", "BOX_BUDGET"]
+__all__ = ["Sublevel", "largest_sublevel", "box_lower_bound", "phi_lower", "GAP", "GAP_FACES_BIND", "BOX_BUDGET"]
 
 #: the relative gap below the point's value the lower bound aims at, and the box budget it may use (a search
 #: setting: with the budget spent the lower bound is still certified, only further below)
@@ -158,6 +158,55 @@ def _origin_counterexample(g: Gimbal, n: int = 64) -> tuple[Fraction, arb] | Non
     return None
 
 
+def phi_lower(g: Gimbal, X: arb) -> arb | None:
+    """A lower bound of phi(x2) = mu F - f3^2 / (2 S) over the ball X (so of V over {x2 in X}: V = phi +
+    S/2 (x3 + f3/S)^2 + 1/2 (mu x3 + h x1)^2 >= phi where S > 0), or None where S > 0 is not certain on X.
+
+    The form without cancellation: with S = f2 + mu (f1 - mu), f2 = H^2 cos^2 x2 / (D B0) and f3 = H cos x2 f /
+    (D B0), f3^2 / S = f^2 / (D B0 (1 + e)), e = mu (f1 - mu) D B0 / (H^2 cos^2 x2): cos x2 cancels (near the
+    gimbal lock it spans a wide ball, and f3^2 / S evaluated as it stands is wild). Where mu (f1 - mu) > 0
+    certainly, S > 0 and e >= e_lo = its lower end over X (cos^2 from the ball's ends, never below 0), so
+    f3^2 / (2 S) <= f^2 / (2 D B0 (1 + e_lo)); elsewhere the plain form with S certainly > 0."""
+    c = g.c
+    DB = g.D(X) * c.B0
+    m = c.mu * (g.f1(X) - c.mu)
+    if certainly_positive(m) and certainly_positive(DB):
+        e = m.lower() * DB.lower() / (c.H ** 2 * square_from_ends(X.cos()).upper())
+        e_lo = e.lower() if e.is_finite() and certainly_positive(e.lower()) else arb(0)
+        q = square_from_ends(g.f(X)).upper() / (2 * DB.lower() * (1 + e_lo))
+    else:
+        S = c.H ** 2 * square_from_ends(X.cos()) / DB + m
+        if not (S.is_finite() and certainly_positive(S)):
+            return None
+        q = square_from_ends(g.f3(X)) / (2 * S)
+    low = (c.mu * g.F(X) - q).lower()
+    return low if low.is_finite() else None
+
+
+def box_lower_bound(g: Gimbal):
+    """The box function of :func:`largest_sublevel` (and of its checker): a ball whose lower end is <= V over
+    the part of N above the (u, s) box: the polar half-line bound of
+    :func:`~rigor_gyro.kinds.lyapunov.model.sublevel_lower_bound`, or where it is below 0 (or -inf) and
+    :func:`phi_lower` is larger, that bound (a point ball; V >= phi(x2) holds at every point above the box,
+    in N or not). Only where cos x2 may be below GIMBAL_LOCK_COS on the box (the gimbal lock, as in
+    :func:`~rigor_gyro.kinds.lyapunov.model.v_polar`): there the polar form's A, B and gamma span wide balls on
+    boxes the budget can afford, and phi does not depend on t; away from it the boxes, their order and every
+    certificate are those of the polar bound alone."""
+    polar, xs = sublevel_lower_bound(g), g.c.x2_star
+
+    def f(box: dict) -> arb:
+        v = polar(box)
+        lo = v.lower()
+        X = xs * box["u"]
+        if lo.is_finite() and certainly_positive(lo) or certainly_gt(X.cos().lower(), GIMBAL_LOCK_COS):
+            return v
+        p = phi_lower(g, X)
+        if p is not None and (not lo.is_finite() or certainly_lt(lo, p)):
+            return p
+        return v
+    return f
+
+
 def _what_blows_up(g: Gimbal, leaves: list, lb) -> str:
     """Why the lower bound of V over N is -inf: on the first leaf where it is, which enclosure is not
     usable (gamma, V's coefficient of r^2, not certainly > 0; alpha or beta, or |B|, unbounded)."""
@@ -212,7 +261,7 @@ def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
         if found is not None and found[1].is_finite():
             out.point, n_up = found[0], found[1].upper()
             out.n_upper = decimal_bounds(n_up, 12)[1]
-    lb = symmetric_in_x2(g, sublevel_lower_bound(g))
+    lb = symmetric_in_x2(g, box_lower_bound(g))
     whole = Box.of(DIRECT_DOMAIN)
     # aim at the point's value (or, without a point, at the faces' minimum: N then only has to stay above)
     top = _q(Fraction(out.n_upper)) if out.n_upper is not None else face.lower()
