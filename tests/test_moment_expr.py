@@ -442,6 +442,20 @@ def test_a_saturating_law_gets_its_maximum_M_at_0():
                 assert _inside(Q, q(x) if x != 0 else mp.mpf(100))
 
 
+def test_the_saturating_laws_equilibria_are_confirmed_by_the_checker():
+    """tanh of a wide ball from its ends (Arb's own gave +-3.8e4 on [-5.3, 5.3]): interval Newton decides the
+    pieces of [-pi, pi] at the prover's and at the checker's precision alike."""
+    with working_precision(64):
+        t = expression_law({"f": "a*c*tanh(x2/c)", "c": "0.3"}).f(arb(1), arb(0, "1.6"))
+        assert abs(t) <= arb("0.3")
+    text = (MOMENTS_DIR / "agafonov2013_saturating.toml").read_text().replace(
+        "[moment]", '[claims]\nonly = ["equilibria"]\n\n[moment]')
+    cert = json.loads(json.dumps(prove_scene(parse_scene(text)).to_json()))
+    assert cert["verdict"] == "proved"
+    rep = check_certificate(cert)
+    assert rep.ok, [r for r in rep.results if not r.ok]
+
+
 def test_random_expression_laws_are_enclosed():
     """A few random odd polynomial-trigonometric laws: f and f' at random balls contain mpmath's values."""
     rng = random.Random(7)

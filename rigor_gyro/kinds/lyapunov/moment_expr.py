@@ -79,13 +79,26 @@ def _sign(v: arb) -> arb:
     return _nan()
 
 
+def _monotone(fn):
+    """An increasing function of a ball from its exact ends (Arb's tanh of a wide ball is far wider than
+    [-1, 1]: tanh([-5.3, 5.3]) came back as +-3.8e4)."""
+    def g(v: arb) -> arb:
+        if not v.is_finite():
+            return _nan()
+        if v.rad().is_zero():
+            return fn(v)
+        return fn(arb(v.lower())).union(fn(arb(v.upper())))
+    return g
+
+
+_tanh, _atan = _monotone(arb.tanh), _monotone(arb.atan)
 _ARB = {"sin": arb.sin, "cos": arb.cos, "tan": arb.tan, "exp": arb.exp, "log": arb.log, "sqrt": arb.sqrt,
-        "tanh": arb.tanh, "atan": arb.atan, "abs": abs, "sign": _sign}
+        "tanh": _tanh, "atan": _atan, "abs": abs, "sign": _sign}
 
 #: f'(v) of each function, for Dual numbers (v a ball)
 _DERIV = {"sin": arb.cos, "cos": lambda v: -v.sin(), "tan": lambda v: 1 + arb_power(v.tan(), 2), "exp": arb.exp,
           "log": lambda v: 1 / v if v > 0 else _nan(), "sqrt": lambda v: 1 / (2 * v.sqrt()) if v > 0 else _nan(),
-          "tanh": lambda v: 1 - arb_power(v.tanh(), 2), "atan": lambda v: 1 / (1 + arb_power(v, 2)), "abs": _sign,
+          "tanh": lambda v: 1 - arb_power(_tanh(v), 2), "atan": lambda v: 1 / (1 + arb_power(v, 2)), "abs": _sign,
           "sign": lambda v: arb(0) if (v > 0 or v < 0) else _nan()}
 
 
@@ -94,8 +107,8 @@ def _series_tanh(s):
     k T_k = sum_{j=1..k} j S_j ([k = j] - (T^2)_{k-j}); tight on wide balls, where 1 - 2/(exp(2S) + 1) is not."""
     n = s.prec
     S = series_coefficients(s, n)
-    T = [S[0].tanh()]
-    T2 = [T[0] * T[0]]
+    T = [_tanh(S[0])]
+    T2 = [arb_power(T[0], 2)]
     for k in range(1, n):
         acc = arb(0)
         for j in range(1, k + 1):
