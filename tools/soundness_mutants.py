@@ -1211,6 +1211,9 @@ MUTANTS = [
      "            acc += j * S[j] * ((1 if k == j else 0) - T2[k - j])\n",
      "            acc += j * S[j] * ((1 if k == j else 0) + T2[k - j])\n",
      "tanh's series by the recurrence of T' = (1 + T^2) S' (tan's, not tanh's)"),
+    ("moment_monotone_midpoint_only", "rigor_gyro/kinds/lyapunov/moment_expr.py",
+     "        return fn(arb(v.lower())).union(fn(arb(v.upper())))\n", "        return fn(arb(v.mid()))\n",
+     "tanh and atan of a ball taken at its midpoint (not the range over the ball)"),
     # relay extremes (issue 41): the nutation form of the pole-free G (fast-nutation root searches)
     ("nutation_form_qi_term_dropped", "rigor_gyro/kinds/periodic_orbit/nutation_form.py",
      "sU[j] + self.four_qi * ImE[j]", "sU[j] + 0 * ImE[j]",
