@@ -104,6 +104,8 @@ class NutationForm:
             R2.append(r2)
             U.append(r2 + 2 * e.real)
         U[0] += one
+        if n <= 3:
+            return self._short(center, n, U, ImE, R2)
         # s = -p0e_0 theta / 2 - sum_r c_r (E_r - 1) / (E_r + 1), E_r = exp(lam_r theta), real series
         s = [-self.half_p0 * center, -self.half_p0] + [arb(0)] * (n - 2) if n > 1 else [-self.half_p0 * center]
         with series_length(n) if n > ctx.cap else nullcontext():     # (python-flint cuts at ctx.cap)
@@ -118,6 +120,29 @@ class NutationForm:
                     s[j] -= c_r * y[j]
             sU = arb_series(s, prec=n) * arb_series(U, prec=n)
             out = [sU[j] + self.four_qi * ImE[j] - self.two_qr * R2[j] for j in range(n)]
+        out[0] += self.two_qr
+        return out
+
+
+    def _short(self, center: arb, n: int, U: list[arb], ImE: list[arb], R2: list[arb]) -> list[arb]:
+        """coeffs for n <= 3 without series: with E_r = exp(lam_r c) and y = (E_r - 1)/(E_r + 1)
+        (= tanh(lam_r theta / 2)), y' = 2 lam_r E_r/(E_r + 1)^2, y''/2 = lam_r^2 E_r (1 - E_r)/(E_r + 1)^3
+        (from y' = (lam_r / 2)(1 - y^2)); then the product s U term by term."""
+        s = [-self.half_p0 * center, -self.half_p0, arb(0)][:n]
+        for lam_r, c_r in self.real:
+            E = (lam_r * center).exp()
+            p = E + 1
+            s[0] -= c_r * (E - 1) / p
+            if n > 1:
+                s[1] -= c_r * 2 * lam_r * E / (p * p)
+            if n > 2:
+                s[2] -= c_r * lam_r * lam_r * E * (1 - E) / (p * p * p)
+        out = []
+        for j in range(n):
+            sU = s[0] * U[j]
+            for i in range(1, j + 1):
+                sU += s[i] * U[j - i]
+            out.append(sU + self.four_qi * ImE[j] - self.two_qr * R2[j])
         out[0] += self.two_qr
         return out
 
