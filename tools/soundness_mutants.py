@@ -1216,6 +1216,9 @@ MUTANTS = [
     ("nutation_form_real_mode_sign", "rigor_gyro/kinds/periodic_orbit/nutation_form.py",
      "                    s[j] -= c_r * y[j]", "                    s[j] += c_r * y[j]",
      "the real modes' tanh terms added to g's slow part with the wrong sign"),
+    ("nutation_form_short_slope_halved", "rigor_gyro/kinds/periodic_orbit/nutation_form.py",
+     "                s[1] -= c_r * 2 * lam_r * E / (p * p)", "                s[1] -= c_r * lam_r * E / (p * p)",
+     "the closed-form first derivative of a real mode's tanh term without its factor 2"),
 ]
 
 
