@@ -114,3 +114,59 @@ def test_a_one_state_plant_on_the_command_line_exits_0(tmp_path):
     r = subprocess.run([sys.executable, "-m", "rigor_gyro", "prove", str(f), "-o", str(tmp_path)],
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
+
+
+# ---------------------------------------------------------------- 4. entries beyond the double range
+
+@pytest.mark.parametrize("M,e", [
+    ([["-1e400", "0"], ["1", "-1"]], ["1e400", "0"]),
+    ([["-1e-400", "0"], ["1", "-1"]], ["1", "0"]),
+    ([["-(1e400)^8", "0"], ["1", "-1"]], ["1", "0"]),
+    ([["0", "1", "0"], ["0", "0", "1"], ["-6e-400", "-11e-400", "-6e-400"]], ["0", "0", "6e-400"]),
+], ids=["1e400", "1e-400", "1e25600", "all_tiny"])
+def test_entries_beyond_the_double_range_do_not_crash(M, e):
+    """Float conversions overflowed (int(inf)) or underflowed (1/0.0) in the tail point, the start of the
+    search and the balancing: the choices are now exact rationals; the plant proves or stays inconclusive."""
+    c = ["0", "1"] if len(M) == 2 else ["1", "0", "0"]
+    cert = _cert_at(_scene(M, e, c, S="-1", h="1/10" if len(M) == 2 else "0"), 64)
+    assert {c["status"] for c in cert["claims"]} <= {"proved", "inconclusive"}
+    rep = check_certificate(cert)
+    assert rep.ok, [r for r in rep.results if not r.ok]
+
+
+def _cert_at(scene, maxprec):
+    return json.loads(json.dumps(prove_scene(scene, maxprec=maxprec).to_json()))
+
+
+def test_balancing_beyond_the_double_range_is_the_identity():
+    from rigor_gyro.kinds.periodic_orbit.dispatch import validate
+    from rigor_gyro.kinds.periodic_orbit.plant_orbit import balancing
+    m = validate(_scene([["-1e400", "1e-400"], ["1e400", "-1"]], ["1", "0"], ["0", "1"], S="-1"))
+    assert balancing(m) == [0, 0]
+
+
+# ---------------------------------------------------------------- 5. an integrator the relay does not excite
+
+U0 = dict(M=[["0", "0", "0", "0"], ["0", "0", "1", "0"], ["0", "0", "0", "1"], ["0", "-6", "-11", "-6"]],
+          e=["0", "0", "0", "1"], c=["1", "1", "0", "0"], S="-1")
+
+
+def test_an_uncontrollable_integrator_is_checked_and_its_minus_one_multiplier_stops_escalation():
+    """r0 = N_c(0)/p'(0) = 0 exactly: the checker takes it from the model (its eigenvectors gave a ball around
+    0 and the tail bound failed); the state x1 is never reached (x0_1 = 0 exactly). Every orbit has the
+    multiplier -1 exactly: stable is inconclusive at once (128 bits), never refuted."""
+    cert = _cert(_scene(**U0))
+    st = {c["id"]: c for c in cert["claims"]}
+    assert st["half_period"]["status"] == "proved" and st["multipliers"]["status"] == "proved"
+    assert st["stable"]["status"] == "inconclusive" and "exactly -1" in st["stable"]["reason"]
+    assert cert["precision_bits"] <= 128
+    rep = check_certificate(cert)
+    assert rep.ok, [r for r in rep.results if not r.ok]
+
+
+def test_an_excited_integrator_has_no_neutral_multiplier():
+    from rigor_gyro.kinds.periodic_orbit.dispatch import validate
+    from rigor_gyro.kinds.periodic_orbit.plant_orbit import neutral_multiplier
+    assert neutral_multiplier(validate(_scene(**U0)))
+    assert not neutral_multiplier(validate(_scene(**{**U0, "e": ["1", "0", "0", "1"]})))
+    assert not neutral_multiplier(validate(_scene([["0", "1"], ["0", "-1"]], ["0", "1"], ["1", "0"], S="-1")))

@@ -8,7 +8,9 @@ exponential. This checker takes another road to the same numbers, at twice the c
   eigenvalues and right eigenvectors valid for M itself; R^-1 by Arb's solver), the exact zero eigenvalue
   of an integrator set to 0 (the model decides it exactly, and exactly one eigenvalue ball contains 0);
   then g(theta) = -S sum_k Re(rho_k tanh(lambda_k theta/2)/lambda_k) - h with rho_k = (c R)_k (R^-1 e)_k over
-  all n eigenvalues (no pairing; the pieces are re-decided on g K, K = prod over the non-real eigenvalues of
+  all n eigenvalues (the zero eigenvalue's rho_0 taken exactly from the model, r0 = N_c(0)/p'(0), after checking
+  that the eigenvectors' ball contains it: an uncontrollable or unobservable integrator has r0 = 0, the slope
+  of g at infinity exactly 0) (no pairing; the pieces are re-decided on g K, K = prod over the non-real eigenvalues of
   1 + E_k > 0, whose terms have no poles), y(t) = c . x(t) likewise, and exp(M theta) =
   R diag(e^(lambda theta)) R^-1 for the Jacobian;
 * (0, theta_min] root-free by the exact near-0 bound (rational arithmetic, :func:`.plant_orbit.near_zero_bound`)
@@ -63,7 +65,10 @@ class Diagonal:
         self.n = n
         A = acb_mat(matrix_ball(model.M))
         lam, R = A.eig(right=True, algorithm="rump")
-        L = R.inv()
+        try:
+            L = R.inv()
+        except ZeroDivisionError:
+            raise ValueError("the eigenvector matrix is not certainly invertible at this precision") from None
         lam = list(lam)
         if model.zero_eigenvalue:
             zeros = [k for k, z in enumerate(lam) if z.contains(0)]
@@ -78,6 +83,13 @@ class Diagonal:
         self.Le = [sum((L[k, j] * ball(model.e[j]) for j in range(n)), acb(0)) for k in range(n)]
         self.cR = [sum((ball(model.c[i]) * R[i, k] for i in range(n)), acb(0)) for k in range(n)]
         self.rho = [self.cR[k] * self.Le[k] for k in range(n)]
+        if model.zero_eigenvalue:       # the integrator's residue exactly, from the model: r0 = N_c(0) / p'(0)
+            k0 = next(k for k, z in enumerate(lam) if z.is_zero())
+            Nc = model.numerator_c
+            r0 = ball((Nc[0] if Nc.degree() >= 0 else fmpq(0)) / model.charpoly.derivative()[0])
+            if not self.rho[k0].contains(r0):
+                raise ValueError("the eigenvectors' residue at 0 misses the exact N_c(0)/p'(0)")
+            self.rho[k0] = acb(r0)
 
     def phi(self, k: int, s):
         """tanh(lam_k s / 2) / lam_k (s / 2 for the zero eigenvalue), s a series or a ball."""
@@ -129,9 +141,12 @@ class Diagonal:
         return (z * s).exp() if certainly_negative(z.real) else (-z * s).exp()
 
     def x0(self, theta: arb) -> list[arb]:
+        """x0(theta) = -S R phi(diag lam) L e; a component whose exact numerator N_i is the zero polynomial (a
+        state the relay never reaches: uncontrollable) is exactly 0."""
         t = acb(theta)
         w = [self.phi(k, t) * self.Le[k] for k in range(self.n)]
-        return [-self.S * sum((self.R[i, k] * w[k] for k in range(self.n)), acb(0)).real for i in range(self.n)]
+        return [arb(0) if self.model.numerators[i].degree() < 0 else
+                -self.S * sum((self.R[i, k] * w[k] for k in range(self.n)), acb(0)).real for i in range(self.n)]
 
     def output(self, theta: arb) -> ExpSum:
         """y(t) = c . x(t) on the half-period: S sum_k rho_k (2 e^(lam t)/(1 + e^(lam theta)) - 1)/lam_k,

@@ -33,7 +33,7 @@ from fractions import Fraction
 from flint import acb, acb_mat, arb, fmpq
 
 from ...core.balls import (ball, certainly_lt, certainly_negative, certainly_positive,
-                           current_precision, interval, working_precision)
+                           current_precision, exact_fraction, interval, working_precision)
 from ...core.outcome import Status
 from ...core.roots import RootStatus, newton_root
 from ...core.subdivision import certify_positive
@@ -105,20 +105,47 @@ def exact_offset(model: PlantModel) -> fmpq | None:
     return -model.h - model.S * Nc0 / p0
 
 
+def approx(x: arb) -> Fraction:
+    """A rational near the ball's midpoint, for choices only (never a decision): the nearest double when the
+    midpoint is within the double range (as the choices were made in floats), else the exact midpoint (an
+    entry like 1e400 or 1e-400 overflows or underflows a double: no float conversion, no crash)."""
+    m = x.mid()
+    if m.is_zero() or not m.is_finite():
+        return Fraction(0)
+    v = float(m)
+    if math.isfinite(v) and abs(v) >= 2.0 ** -1000:
+        return Fraction(v)
+    return exact_fraction(m)
+
+
 def tail_point(sp: PlantSpectrum, model: PlantModel) -> Fraction | None:
-    """An exact dyadic T with g of one strict sign on [T, oo) (a geometric ladder), or None."""
+    """An exact dyadic T with g of one strict sign on [T, oo) (a geometric ladder from the balls' midpoints,
+    chosen in doubles, or in exact rationals (:func:`approx`) when a double overflows or underflows; the
+    ladder goes on by doubling up to its cap when 600 steps of 9/8 do not reach it), or None."""
     sgn = tail_sign(sp, model)
     if sgn == 0:
         return None
-    rates = [float(abs(m.lam.real).mid()) for m in sp.modes]
-    fastest = max([float(abs(m.lam).mid()) for m in sp.modes] + [1.0])
-    a, b = float(sp.a.mid()), float(sp.b.mid())
-    s0 = max(abs(b / a) if a else 0.0, 1.0 / (int(fastest) + 1))
-    cap = 100 * TAIL_CAP_FACTOR * (1.0 / min(rates) if rates else 1.0) + 2 * s0
-    start = _dyadic_up(Fraction(s0))
-    for k in range(600):
-        Tq = _dyadic_up(start * Fraction(9, 8) ** k)
-        if float(Tq) > cap:
+    try:            # in doubles (the choices of every plant within the double range)
+        rates = [float(abs(m.lam.real).mid()) for m in sp.modes]
+        fastest = max([float(abs(m.lam).mid()) for m in sp.modes] + [1.0])
+        a, b = float(sp.a.mid()), float(sp.b.mid())
+        s0 = max(abs(b / a) if a else 0.0, 1.0 / (int(fastest) + 1))
+        cap = 100 * TAIL_CAP_FACTOR * (1.0 / min(rates) if rates else 1.0) + 2 * s0
+        if not (math.isfinite(cap) and s0 > 0):
+            raise OverflowError
+        s0, cap = Fraction(s0), Fraction(cap)
+    except (OverflowError, ZeroDivisionError, ValueError):       # beyond it: exact rationals
+        rates = [approx(abs(m.lam.real)) for m in sp.modes]
+        fastest = max([approx(abs(m.lam)) for m in sp.modes] + [Fraction(1)])
+        a, b = approx(sp.a), approx(sp.b)
+        s0 = max(abs(b / a) if a else Fraction(0), Fraction(1, int(fastest) + 1))
+        cap = 100 * TAIL_CAP_FACTOR * (1 / min(rates) if rates and min(rates) else Fraction(1)) + 2 * s0
+    start = _dyadic_up(s0)
+    ladder = [_dyadic_up(start * Fraction(9, 8) ** k) for k in range(600)]
+    while ladder[-1] <= cap and len(ladder) < 600 + 4000:     # widely spread time scales: go on by doubling
+        ladder.append(2 * ladder[-1])
+    for Tq in ladder:
+        if Tq > cap:
             return None
         lo, hi = tail_bound(sp, ball(fmpq(Tq.numerator, Tq.denominator)))
         if (sgn > 0 and certainly_positive(lo.lower())) or (sgn < 0 and certainly_negative(hi.upper())):
@@ -317,6 +344,8 @@ def analyse(model: PlantModel, phase: Phases | None = None) -> PlantAnalysis:
                           "certain sign or the slowest mode is too slow; set option T_max to search a finite range")
         return an
     fastest = max([float(abs(m.lam).mid()) for m in sp.modes] + [1.0])
+    if not math.isfinite(fastest):          # beyond the double range: the exact midpoints
+        fastest = max(approx(abs(m.lam)) for m in sp.modes)
     start = Fraction(1, 2 ** max(1, math.ceil(math.log2(int(fastest) + 1))))
     while not 4 * start < an.T_search:
         start /= 2

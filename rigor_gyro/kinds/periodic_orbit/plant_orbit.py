@@ -52,6 +52,7 @@ from .plant_statements import AMPLITUDE_REL, TAYLOR_ORDER
 
 __all__ = ["PlantMode", "PlantSpectrum", "g_coeffs", "x0_at", "orbit_output", "tail_bound", "near_zero_bound",
            "near_zero_order", "jacobian", "liouville_product", "matrix_ball", "amplitude", "section_index",
+           "neutral_multiplier",
            "leading_coefficient"]
 
 
@@ -241,7 +242,15 @@ def _factorial(k: int) -> int:
 
 def balancing(model: PlantModel, sweeps: int = 20) -> list[int]:
     """Exponents k_i of a diagonal similarity D = diag(2^k_i) that reduces |D^-1 M D|_inf (Osborne's
-    balancing, powers of two; floats choose, nothing is assumed of the choice: any D gives a valid bound)."""
+    balancing, powers of two; floats choose, nothing is assumed of the choice: any D gives a valid bound).
+    Entries or scalings beyond the double range (an overflow, a NaN): no balancing (D = I, also valid)."""
+    try:
+        return _balancing(model, sweeps)
+    except (OverflowError, ValueError, ZeroDivisionError):
+        return [0] * model.n
+
+
+def _balancing(model: PlantModel, sweeps: int) -> list[int]:
     n = model.n
     A = [[abs(float(model.M[i, j])) for j in range(n)] for i in range(n)]
     k = [0] * n
@@ -328,6 +337,18 @@ def liouville_product(sp: PlantSpectrum, theta: arb, x0: list[arb]) -> arb:
     cf0 = sum((sp.c[i] * (Mx[i] + sp.e[i] * sp.S) for i in range(n)), arb(0))
     cf1 = sum((sp.c[i] * (-Mx[i] + sp.e[i] * sp.S) for i in range(n)), arb(0))
     return (-1) ** (n - 1) * (tr * theta).exp() * cf0 / cf1
+
+
+def neutral_multiplier(model: PlantModel) -> bool:
+    """True when every symmetric orbit has the multiplier -1 exactly (decided in exact rationals): M has the
+    zero eigenvalue and N_c(0) = 0, i.e. the zero mode is uncontrollable (w M = 0, w e = 0) or unobservable
+    (M v = 0, c v = 0), since r_0 = N_c(0)/p'(0) = (c v)(w e)/(w v). Then w . x is conserved by the flow and
+    w f1 = 0 (w x0 = -S phi(0) w e = 0), so w P = -w for the half-period map P of :func:`jacobian` (the
+    symmetry flips the sign): -1 is an eigenvalue of P, whose image lies in the section (c P = 0), hence
+    a multiplier; likewise P v = -v in the unobservable case. A modulus exactly 1: no precision decides
+    "every modulus < 1" (nor > 1 from it)."""
+    Nc = model.numerator_c
+    return model.zero_eigenvalue and (Nc.degree() < 0 or Nc[0] == 0)
 
 
 def section_index(model: PlantModel) -> int:

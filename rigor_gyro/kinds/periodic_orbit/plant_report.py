@@ -12,13 +12,15 @@ from __future__ import annotations
 
 from typing import Any
 
+from flint import arb, fmpq
+
 from ...core.balls import (ball, certainly_gt, certainly_le, current_precision, decimal_bounds, decimal_bounds_apart,
                            exact_fraction, working_precision)
 from ...core.outcome import Claim, Status
 from ...core.stored import exact_text
 from .. import Attempt, Phases
 from .plant_df import describing_function
-from .plant_orbit import amplitude
+from .plant_orbit import amplitude, neutral_multiplier
 from .plant_statements import GUARD_BITS, PLANT_CLAIMS
 from .texts import complex_text as _fmt_c, interval_text as _fmt, modulus_text as _fmt1, stored_bounds as _bounds
 
@@ -33,6 +35,11 @@ def select_orbit(genuine: list) -> tuple[Any, str]:
     if genuine:
         return genuine[0], "the shortest genuine orbit (none is certified stable)"
     return None, "no genuine orbit"
+
+
+def _qb(x) -> arb:
+    """The ball of an exact rational (no magnitude limit: a dyadic search bound may be below 1e-300)."""
+    return arb(fmpq(x.numerator, x.denominator))
 
 
 def _q(x) -> str:
@@ -54,7 +61,7 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
                 c.precision_cannot_help = why
         return Attempt(claims, quantities, notes=notes, widths_met=False, stalled=an.stalled)
     sp = an.sp
-    T = ball(an.T_search)
+    T = _qb(an.T_search)
     rng = (f"(0, {_fmt(T, 8)}]" + (" and beyond it by the tail bound, i.e. all of (0, oo)" if an.covers_all
                                    else " (option T_max; roots beyond it not searched)"))
     genuine = [v for v in an.roots if v.kind == "genuine"]
@@ -66,8 +73,8 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
               if not an.covers_all else "")
     no_orbit = None
     if exhaustive and not genuine:
-        no_orbit = {"searched": "(0, oo)", "tail_point": _bounds(ball(an.T_tail)),
-                    "theta_min": _bounds(ball(an.theta_min)),
+        no_orbit = {"searched": "(0, oo)", "tail_point": _bounds(_qb(an.T_tail)),
+                    "theta_min": _bounds(_qb(an.theta_min)),
                     "roots": [{"theta": _bounds(v.theta), "spurious_because": v.reason,
                                "witness_t": _bounds(v.witness_t) if v.witness_t is not None else None}
                               for v in spurious]}
@@ -79,7 +86,7 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
               + "; ".join(f"theta = {_fmt(v.theta, 10)}: {v.reason}" for v in undecided[:3]))
     else:
         hp = (Status.PROVED, f"{len(an.roots)} roots of g on {rng}, each simple and alone in its piece "
-              f"({an.pieces} pieces by interval Newton; (0, {_fmt(ball(an.theta_min), 4)}] root-free near 0: exact "
+              f"({an.pieces} pieces by interval Newton; (0, {_fmt(_qb(an.theta_min), 4)}] root-free near 0: exact "
               f"series bound or the sign of g's leading Taylor coefficient); {len(genuine)} genuine ({', '.join(_fmt(v.theta, 10) for v in genuine)}), "
               f"{len(spurious)} spurious with certified witnesses")
     if "half_period" in wanted:
@@ -153,17 +160,24 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
         elif complete and genuine and all(v.stable is False for v in genuine):
             text = ("every genuine orbit has a multiplier of modulus certainly > 1: "
                     + "; ".join(f"theta = {_fmt(v.theta, 10)}: max |.| = {_fmt1(v.moduli[0], 10)}" for v in genuine))
-            unstable = {"searched": "(0, oo)", "tail_point": _bounds(ball(an.T_tail)) if an.T_tail is not None else None,
+            unstable = {"searched": "(0, oo)", "tail_point": _bounds(_qb(an.T_tail)) if an.T_tail is not None else None,
                         "orbits": [{"theta": _bounds(v.theta),
                                     "modulus_above_1": _bounds(next(m for m in v.moduli if certainly_gt(m, 1)))}
                                    for v in genuine]}
             st = (Status.REFUTED, text, unstable) if exhaustive else (Status.INCONCLUSIVE, text + beyond)
         elif none_exists:
             st = (Status.REFUTED, "no genuine orbit exists (see orbit_genuine), so no stable self-oscillation", no_orbit)
+        elif genuine and neutral_multiplier(model):
+            st = (Status.INCONCLUSIVE, "every symmetric orbit of this plant has the multiplier -1 exactly (the zero "
+                  "eigenvalue of M is uncontrollable or unobservable: N_c(0) = 0 exactly, a combination w . x is "
+                  "conserved by the flow and mirrored by the symmetry), a modulus exactly 1 that no precision "
+                  "decides: no orbit can be certified stable (asymptotically), and this is not a refutation")
         else:
             st = (Status.INCONCLUSIVE, "stability of the genuine orbits not decided at this precision"
                   if genuine else "no genuine orbit certified yet" + beyond)
         claims.append(_claim("stable", *st))
+        if genuine and neutral_multiplier(model) and claims[-1].status is Status.INCONCLUSIVE:
+            claims[-1].precision_cannot_help = "a multiplier is exactly -1 (see the reason)"
     if complete and not an.covers_all:
         for c in claims:
             if c.status is Status.INCONCLUSIVE:
@@ -199,8 +213,8 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
         notes.append(line)
     eigs = ", ".join(_fmt_c(z, 8) for z in sp.eigenvalues())
     notes.insert(0, f"Plant of dimension {model.n}, eigenvalues {eigs}; searched range {rng}; theta_min = "
-                 f"{_fmt(ball(an.theta_min), 6)}; tail point "
-                 f"{_fmt(ball(an.T_tail), 8) if an.T_tail is not None else 'not certified'}; scene orbit: {why_main}.")
+                 f"{_fmt(_qb(an.theta_min), 6)}; tail point "
+                 f"{_fmt(_qb(an.T_tail), 8) if an.T_tail is not None else 'not certified'}; scene orbit: {why_main}.")
     extra["roots"] = rows
     if hp[0] is Status.PROVED:
         witnesses["half_period"] = _witness(an)
