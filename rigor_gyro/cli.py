@@ -107,10 +107,10 @@ def _parser() -> argparse.ArgumentParser:
                                        "its paving so far written"))
     pr.add_argument("scenes", nargs="*", metavar="SCENE", help="built-in scene name or path to a TOML file")
     pr.add_argument("--all", action="store_true", help="prove every built-in scene of the papers")
-    pr.add_argument("--group", choices=("paper", "demo", "margin", "stress", "plant", "all"), default=None,
+    pr.add_argument("--group", choices=("paper", "demo", "margin", "stress", "plant", "moment", "all"), default=None,
                     help="prove every built-in scene of a group (demo: planted refuted/inconclusive outcomes; "
                          "margin: tolerance boxes and the papers' general claims, pavings that take minutes; stress: the "
-                         "stiff and extreme catalog; plant: relay plants written as [plant] tables)")
+                         "stiff and extreme catalog; plant: relay plants written as [plant] tables; moment: moment laws written as [moment] tables)")
     pr.add_argument("--prec", type=int, default=DEFAULT_PREC,
                     help=f"starting precision in bits, {MIN_PREC}..{MAX_PREC} (default {DEFAULT_PREC}); for a scene "
                          "with tolerances, of its point proofs (the sub-boxes use the scene's box_prec)")
@@ -267,7 +267,7 @@ def _bad(message: str) -> int:
 
 def _cmd_list() -> int:
     from .scene import builtin_scenes, load_scene
-    for group in ("paper", "demo", "margin", "stress", "plant"):
+    for group in ("paper", "demo", "margin", "stress", "plant", "moment"):
         for name in builtin_scenes(group):
             s = load_scene(name)
             _say(f"{group:6s} {name:34s} {s.kind:18s} {s.source.splitlines()[0][:80] if s.source else ''}")

@@ -106,7 +106,7 @@ def _builtin_dir():
 #: papers' general claims over parameter boxes (pavings; ``prove --group margin``), the stiff and
 #: extreme catalog (``prove --group stress``; ``rigor-gyro bench --stress`` tabulates it), and users' own
 #: relay plants written as ``[plant]`` tables (``prove --group plant``)
-GROUPS = {"paper": "", "demo": "demos", "margin": "margins", "stress": "stress", "plant": "plants"}
+GROUPS = {"paper": "", "demo": "demos", "margin": "margins", "stress": "stress", "plant": "plants", "moment": "moments"}
 
 
 def builtin_scenes(group: str = "paper") -> dict[str, Any]:

@@ -305,3 +305,13 @@ def test_a_stopped_threshold_and_a_bare_log_scan_are_still_drawn_in_full():
     assert colours["status-a-inconclusive"] == STATUS_COLOURS["inconclusive"].lower()
     assert colours["status-b-refuted"] == STATUS_COLOURS["refuted"].lower()
     assert tick_label_overlaps(fig) == []
+
+
+def test_the_lyapunov_figures_draw_a_scene_s_own_moment_law():
+    # the float drawing model is built with the scene's [moment] table (without it: ParameterError)
+    from rigor_gyro.kinds.lyapunov.plots import build_figures
+    from rigor_gyro.scene import builtin_scenes
+    assert "agafonov2013_sine_cubic" in builtin_scenes("moment")
+    scene = load_scene("agafonov2013_sine_cubic")
+    figs = build_figures(scene, prove_scene(scene))
+    assert sorted(figs) == [f"agafonov2013_sine_cubic_{n}.png" for n in ("psi", "slices", "trajectories")]

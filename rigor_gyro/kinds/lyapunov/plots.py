@@ -60,7 +60,7 @@ def build_figures(scene, cert) -> dict:
 
     model = validate(scene)
     g = model.gimbal
-    fg = FloatGimbal(dict(scene.parameters))
+    fg = FloatGimbal(dict(scene.parameters), scene.model or None)
     q = cert.quantities
     figs = {}
     paving = (getattr(cert, "witnesses", None) or {}).get("attraction_paving")
@@ -163,7 +163,7 @@ def paving_figure(scene, cert, paving: dict):
 
     from .approx import FloatGimbal
 
-    fg = FloatGimbal(dict(scene.parameters))
+    fg = FloatGimbal(dict(scene.parameters), scene.model or None)
     q = cert.quantities
     c = float(q["natural_c_max_lower"].mid())
     w1, w3 = (float(Fraction(x)) for x in paving["half_width"])
