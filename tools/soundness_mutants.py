@@ -290,6 +290,13 @@ MUTANTS = [
     ("phi_lower_upper_end", "rigor_gyro/kinds/lyapunov/sublevel.py",
      "    low = (c.mu * g.F(X) - q).lower()\n", "    low = (c.mu * g.F(X) - q).upper()\n",
      "phi's bound over an x2 interval taken at its upper end"),
+    # issue 39: Agafonov's open points (kinds/lyapunov/paper_open.py; tests/test_paper_open_agafonov.py)
+    ("paper_rho1_without_c13", "rigor_gyro/kinds/lyapunov/paper_open.py",
+     "        return hypot_ball(c11, c13) / c10\n", "        return abs(c11) / c10\n",
+     "rho1 from Psi1's x1-term only (the radius with Psi1 > 0 on the disc overstated)"),
+    ("paper_best_mu_bound_lower_ends", "rigor_gyro/kinds/lyapunov/paper_open.py",
+     "        return R1.upper().min(R2.upper())\n", "        return R1.lower().min(R2.lower())\n",
+     "the bound of min(R1, R2) over a mu piece from the balls' lower ends"),
     # the direct test over the mu interval (issue 13): best_mu_direct and its checker
     ("direct_bound_wrong_end", "rigor_gyro/kinds/lyapunov/model.py",
      "        end = mu.upper() if certainly_le(arb(0), slope) else mu.lower() if certainly_le(slope, 0) else None",

@@ -289,6 +289,13 @@ def _fmpq(fr: Fraction) -> fmpq:
     return fmpq(fr.numerator, fr.denominator)
 
 
+def _relative_gap(upper: Fraction, lower: Fraction) -> arb:
+    """(upper - lower) / lower of two exact decimals, computed exactly and made a ball once (one rounding:
+    about 1 bit lost at any precision; the difference of the two balls lost log2(lower / (upper - lower)) bits,
+    23-26 for the gaps of 1e-7)."""
+    return _q(_fmpq((upper - lower) / lower))
+
+
 def _searched(x: fmpq | Fraction) -> Quantity:
     """A decimal chosen by a search (mu_best, R_max, R_direct, ...): exact, shown and stored as that number
     (radius 0), while the ball it carries contains it at the current precision."""
@@ -387,6 +394,9 @@ def _vdot_claim(ctx: _Ctx, R: arb, how: str, cid: str = "vdot_nonpositive") -> t
 
 
 # ------------------------------------------------------------------------------------ Vdot < 0 directly
+
+#: extra bits of the bisection for the x2 extent of the invariant estimate (see _invariant)
+EXTENT_EXTRA_BITS = 16
 
 #: relative distance of R_direct below, and of the counterexample's radius above, the searched infimum
 DIRECT_MARGINS = ("4e-7", "4e-6", "4e-5", "4e-4", "4e-3")
@@ -512,7 +522,7 @@ def _vdot_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
                                             "x3": ball_text(point[2])}
     up_text = d.up_text
     quantities["R_direct_upper"] = _searched(Fraction(up_text))
-    gap = (quantities["R_direct_upper"] - R_direct) / R_direct
+    gap = _relative_gap(Fraction(up_text), Fraction(R_text))
     quantities["R_direct_relative_gap"] = gap
     return _claim("vdot_direct", Status.PROVED,
                   f"A - R |B| > 0 certified at R_direct = {R_text} on {len(cert.leaves)} boxes of (x2, t) (centered "
@@ -802,20 +812,23 @@ def _invariant(ctx: _Ctx, R: arb, quantities: dict[str, arb]) -> Claim:
         ctx.witnesses["invariant_estimate"][f"extent_{axis}"] = {"cover": pieces_text(e.cover), "point": ball_text(p)}
     # along x2: the last x2 where the slice is non-empty, c_set = phi(x2), by bisection (phi(x2*) >= c* > c_set),
     # with phi > c_set certified on [hi, x2*] (then no slice beyond hi)
+    # (EXTENT_EXTRA_BITS above the working precision: phi = mu F - f3^2/(2S) cancels near 0, and at the working
+    # precision alone the bisection stopped 7-11 bits short of it)
     lo, hi = arb(0), xs
-    for _ in range(ctx.prec + 8):
-        mid = ((lo + hi) / 2).mid()
-        d = cl - g.phi(mid)
-        if certainly_positive(d):
-            lo = mid
-        elif certainly_lt(d, 0):
-            hi = mid
-        else:
-            break
-    beyond: list = []
-    r = certify_positive(lambda x: g.phi(x) - cl, hi, xs, max_pieces=ctx.m.max_pieces, record=beyond)
+    with working_precision(ctx.prec + EXTENT_EXTRA_BITS):
+        for _ in range(ctx.prec + EXTENT_EXTRA_BITS + 8):
+            mid = ((lo + hi) / 2).mid()
+            d = cl - g.phi(mid)
+            if certainly_positive(d):
+                lo = mid
+            elif certainly_lt(d, 0):
+                hi = mid
+            else:
+                break
+        beyond: list = []
+        r = certify_positive(lambda x: g.phi(x) - cl, hi, xs, max_pieces=ctx.m.max_pieces, record=beyond)
+        x2_lo = lo if slice_in_region(g, cl, R, lo) else ext["x2_axis"].lower()
     x2_up = hi if r.status is Status.PROVED else xs
-    x2_lo = lo if slice_in_region(g, cl, R, lo) else ext["x2_axis"].lower()
     tight["x2"] = x2_lo.union(x2_up.upper())
     ctx.witnesses["invariant_estimate"]["extent_x2"] = {"point": ball_text(lo), "beyond": pieces_text(beyond)
                                                         if r.status is Status.PROVED else []}
@@ -1030,9 +1043,10 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     # stored as its 15-digit decimal rounded up: a re-derivation on the same pieces at another precision
     # differs in the last bits of arb's radius arithmetic (30-bit radii on wide mu pieces; 1.4e-24 relative
     # seen), so the exact upper end of U would be a bound only this run can confirm
-    U = _q(_fmpq(Fraction(decimal_bounds(U, 15)[1])))
+    U_text = decimal_bounds(U, 15)[1]
+    U = _q(_fmpq(Fraction(U_text)))
     quantities["R_sup_upper_bound"] = U
-    gap = (U - _q(R_max)) / _q(R_max)
+    gap = _relative_gap(Fraction(U_text), Fraction(R_text))
     quantities["R_max_relative_gap"] = gap
     return _claim("best_mu", Status.PROVED,
                   f"mu_best = {mu_text} (chosen by a golden-section search over (16) on point estimates of R_sup, then fixed "
@@ -1102,10 +1116,11 @@ def _best_mu_direct(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
     R = _searched(Fraction(d.R_text))
     # stored as its 15-digit decimal rounded up (as best_mu's bound: a re-derivation at another precision
     # differs in arb's last radius bits)
-    U = _q(_fmpq(Fraction(decimal_bounds(U, 15)[1])))
+    U_text = decimal_bounds(U, 15)[1]
+    U = _q(_fmpq(Fraction(U_text)))
     if not certainly_le(R, U):      # R <= R_dsup(mu_direct) <= U: both certified, so this cannot happen
         raise AssertionError(f"best_mu_direct: certified R {d.R_text} above the certified bound {U}")
-    gap = (U - R) / R
+    gap = _relative_gap(Fraction(U_text), Fraction(d.R_text))
     quantities.update({"mu_direct": _searched(mu), "R_direct_max": R, "R_direct_sup_upper_bound": U,
                        "R_direct_max_relative_gap": gap})
     ctx.witnesses["best_mu_direct"] = {"mu": mu_text, "R": d.R_text, "boxes": [b.to_json() for b in d.cert.leaves],

@@ -23,6 +23,7 @@ from ...core.outcome import AuditRow, AuditStatus, Status
 from ...core.subdivision import enclose_max
 from .model import Dual, Gimbal, certify_vdot_nonpositive
 from .moments import MOMENTS
+from .paper_open import best_formula_mu_row, invariance_row, label_rows, rho1_row
 
 __all__ = ["audit", "formula_table", "PAPER_KEYS", "PAPER_SCHEMA", "vdot_formula_audit"]
 
@@ -167,6 +168,13 @@ def audit(ctx, quantities: dict[str, arb]) -> tuple[list[AuditRow], list[dict[st
             rows.append(_row("R = R1", f"R = R1 = {printed}", "R = min(R1, R2) (17)", quantities["R"], st, note))
     if "R" in paper:
         rows += _region_rows(ctx, str(paper["R"]))
+        Rq = Fraction(str(paper["R"]))
+        rows.append(invariance_row(g, arb(fmpq(Rq.numerator, Rq.denominator)), ctx.xs, str(paper["R"])))
+    if "R1" in quantities:
+        rows.append(rho1_row(g, ctx.xs, quantities["R1"], str(paper["R1"]) if "R1" in paper else None, ctx.m.max_pieces))
+    if all(k in quantities for k in ("m", "M", "mu_min", "mu_max")):
+        rows.append(best_formula_mu_row(g, quantities["m"], quantities["M"], quantities["mu_min"], quantities["mu_max"]))
+    rows += label_rows()
     rows += linear_section_rows(g, ctx.xs, ctx.m.max_pieces)
     if "A0" in paper:
         # a silent correction (issue 39): the unit the example prints for A0
