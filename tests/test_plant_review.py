@@ -170,3 +170,58 @@ def test_an_excited_integrator_has_no_neutral_multiplier():
     assert neutral_multiplier(validate(_scene(**U0)))
     assert not neutral_multiplier(validate(_scene(**{**U0, "e": ["1", "0", "0", "1"]})))
     assert not neutral_multiplier(validate(_scene([["0", "1"], ["0", "-1"]], ["0", "1"], ["1", "0"], S="-1")))
+
+
+# ---------------------------------------------------------------- 6. margins of a plant's own parameters
+
+def test_a_plant_parameter_has_a_threshold_for_orbit_genuine(tmp_path):
+    """K a pole location in 1/((s+1)(s+2)(s+K)), h = 0.1: the paper's table of claims independent of
+    Roitenberg's parameters (K among them) no longer applies to a [plant] scene."""
+    from rigor_gyro.margins.threshold import find_threshold
+    sc = _scene([["-1", "1", "0"], ["0", "-2", "1"], ["0", "0", "-K"]], ["0", "0", "1"], ["1", "0", "0"], S="-1",
+                h="1/10", params={"K": "3"})
+    th = find_threshold(sc, "K", lo="3", hi="1000", claim="orbit_genuine", width="1e-2")
+    assert th.certified and th.proved_at < 5 < th.refuted_at, th.lines()
+
+
+# ---------------------------------------------------------------- 7. messages
+
+def _refusal(scene):
+    from rigor_gyro.core.errors import ParameterError
+    from rigor_gyro.kinds.periodic_orbit.dispatch import validate
+    with pytest.raises(ParameterError) as e:
+        validate(scene)
+    return str(e.value)
+
+
+def test_an_empty_plant_table_is_named(tmp_path):
+    f = tmp_path / "empty.toml"
+    f.write_text('name = "e"\nkind = "periodic_orbit"\nsource = "x"\n[parameters]\n[plant]\n')
+    r = subprocess.run([sys.executable, "-m", "rigor_gyro", "prove", str(f), "-o", str(tmp_path)],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "the [plant] table is empty: give M, e and c" in r.stderr, r.stderr
+    msg = _refusal(parse_scene('name = "e"\nkind = "periodic_orbit"\n[parameters]\n[plant]\n'))
+    assert "missing parameter" in msg and "[plant] table with M, e and c" in msg
+
+
+def test_a_plant_without_feedback_or_with_g_identically_minus_h_says_what_holds():
+    assert "G(s) = c (sI - M)^-1 e = 0 identically" in _refusal(
+        _scene([["-1", "0"], ["0", "-2"]], ["1", "0"], ["0", "1"], S="-1"))
+    odd = dict(M=[["0", "1"], ["1", "-0"]], e=["0", "1"], c=["1", "0"], S="-1")     # G = 1/(s^2 - 1)
+    assert "every theta > 0: a continuum" in _refusal(_scene(**odd, h="0"))
+    assert "has no root: no symmetric orbit" in _refusal(_scene(**odd, h="1/10"))
+
+
+def test_an_option_is_called_an_option():
+    msg = _refusal(_scene([["-1"]], ["1"], ["1"], extra='[options]\ntheta_width = "abc"'))
+    assert msg.startswith("option 'theta_width'"), msg
+
+
+def test_no_orbit_refutes_stable_only_for_the_orbits_searched():
+    """No genuine orbit (the relay's amplitude below the hysteresis): stable is refuted for symmetric orbits
+    with two switchings per period, and says that other self-oscillations are not excluded."""
+    cert = _cert(_scene([["-1", "1", "0"], ["0", "-2", "1"], ["0", "0", "-50"]], ["0", "0", "1"], ["1", "0", "0"],
+                        S="-1", h="1/10"))
+    st = {c["id"]: c for c in cert["claims"]}
+    assert st["stable"]["status"] == "refuted", st["stable"]
+    assert "not excluded" in st["stable"]["reason"] and "self-oscillation" in st["stable"]["reason"]

@@ -221,7 +221,9 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
     else:
         module.validate(scene)
     claims = list(module.CLAIMS) if scene.claims_only is None else [c for c in module.CLAIMS if c in scene.claims_only]
-    independent = getattr(module, "CLAIMS_INDEPENDENT_OF", {})
+    # the kind's table names its paper's parameters; a scene writing its own model ([plant], [system], [moment])
+    # depends on a parameter wherever its entries use it
+    independent = {} if getattr(scene, "model", None) else getattr(module, "CLAIMS_INDEPENDENT_OF", {})
     if claim is None:           # only a scene of one claim says which; otherwise ask (a default could be
         if len(claims) != 1:    # a claim that never changes, such as a constant or a root count)
             depends = [c for c in claims if c not in independent.get(param, ())]

@@ -23,7 +23,9 @@ and refuses the models it does not handle, with a message naming what fails:
 * no eigenvalue on the imaginary axis other than a simple 0 (p(i w) = 0 for a real w != 0 is decided by
   the gcd of the real and imaginary parts of p(i w)): there the half-period function has real poles;
 * a simple zero eigenvalue (a pure integrator) is handled;
-* not every even Markov parameter c M^(2j) e vanishes (otherwise g = -h identically).
+* G(s) = c (sI - M)^-1 e not identically 0 (no feedback loop otherwise), and not every even Markov parameter
+  c M^(2j) e vanishes (otherwise g = -h identically: every theta a root when h = 0, none when h > 0; the message
+  says which).
 
 Precision: none (exact). Fails when: an entry is malformed (not a string, unknown name, division by zero),
 the shapes disagree, a parameter is unused, an option is unknown, or a condition above fails:
@@ -104,6 +106,16 @@ def _vector(table: dict, key: str, n: int | None, names, used) -> list:
     if n is not None and len(v) != n:
         raise ParameterError(f"[plant] {key}: has {len(v)} entries, M is {n}x{n}")
     return [_entry(x, f"{key}[{i + 1}]", names, used) for i, x in enumerate(v)]
+
+
+def _option(text: str, name: str, label: str, **bounds) -> Exact:
+    """:func:`~rigor_gyro.core.exact.option_number`, its unreadable-number messages naming an option (they
+    say "parameter")."""
+    try:
+        return option_number(text, label, **bounds)
+    except ParameterError as e:
+        msg, prefix = str(e), f"parameter {label!r}: "
+        raise ParameterError(f"option {name!r}: " + msg[len(prefix):] if msg.startswith(prefix) else msg) from None
 
 
 def markov(M: fmpq_mat, e: list, c: list, count: int) -> list[fmpq]:
@@ -208,9 +220,9 @@ def validate_plant(scene) -> PlantModel:
     if unused:
         raise ParameterError(f"parameter {unused[0]!r}: not used by any entry of [plant] (a misspelt name?)")
     opts = parse_options(scene.options, PLANT_OPTIONS, "periodic_orbit ([plant])")
-    T_max = None if opts["T_max"] == "auto" else option_number(opts["T_max"], "T_max (or \"auto\")", above="0",
-                                                                 at_most="1e6")
-    tw = option_number(opts["theta_width"], "theta_width", above="0", at_most="1")
+    T_max = None if opts["T_max"] == "auto" else _option(opts["T_max"], "T_max", "T_max (or \"auto\")", above="0",
+                                                          at_most="1e6")
+    tw = _option(opts["theta_width"], "theta_width", "theta_width", above="0", at_most="1")
     if scene.paper:
         raise ParameterError("[paper]: the audit of printed numbers belongs to the paper's parameterisation; a "
                              "[plant] scene has none")
@@ -227,7 +239,14 @@ def validate_plant(scene) -> PlantModel:
     Ns = numerators(M, e, p)
     Nc = sum((c[i] * Ns[i] for i in range(n)), fmpq_poly([]))
     m = markov(M, e, c, 2 * n)
+    if all(x == 0 for x in m):
+        raise ParameterError("[plant] c, e: G(s) = c (sI - M)^-1 e = 0 identically (every Markov parameter c M^k e "
+                             "vanishes): the relay's output never reaches its input c . x, there is no feedback loop")
     if all(m[2 * j] == 0 for j in range(n)):
-        raise ParameterError("[plant] c, e: every even Markov parameter c M^(2j) e vanishes, so the half-period "
-                             "condition c . x(0) = h has no isolated roots (g = -h identically)")
+        what = ("so c . x0(theta) = 0 = h holds for every theta > 0: a continuum of symmetric solutions, no isolated "
+                "root to certify" if h == 0 else
+                f"so the condition c . x0(theta) = h = {h} has no root: no symmetric orbit with two switchings per "
+                "period exists (this path isolates roots of g and does not treat g = -h as a model)")
+        raise ParameterError("[plant] c, e: every even Markov parameter c M^(2j) e vanishes (G(s) has only even "
+                             "powers of 1/s), so c . x0(theta) = 0 for every theta and g = -h identically, " + what)
     return PlantModel(n, M, e, c, S, h, table, exact, T_max, tw, p, Ns, Nc, zero)

@@ -158,7 +158,8 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
                   + (f"; unstable: {', '.join(_fmt(v.theta, 8) for v in genuine if v.stable is False)}"
                      if any(v.stable is False for v in genuine) else ""))
         elif complete and genuine and all(v.stable is False for v in genuine):
-            text = ("every genuine orbit has a multiplier of modulus certainly > 1: "
+            text = ("every genuine orbit (symmetric, two switchings per period: the only orbits searched) has a "
+                    "multiplier of modulus certainly > 1: "
                     + "; ".join(f"theta = {_fmt(v.theta, 10)}: max |.| = {_fmt1(v.moduli[0], 10)}" for v in genuine))
             unstable = {"searched": "(0, oo)", "tail_point": _bounds(_qb(an.T_tail)) if an.T_tail is not None else None,
                         "orbits": [{"theta": _bounds(v.theta),
@@ -166,7 +167,9 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
                                    for v in genuine]}
             st = (Status.REFUTED, text, unstable) if exhaustive else (Status.INCONCLUSIVE, text + beyond)
         elif none_exists:
-            st = (Status.REFUTED, "no genuine orbit exists (see orbit_genuine), so no stable self-oscillation", no_orbit)
+            st = (Status.REFUTED, "no genuine orbit exists (see orbit_genuine), so no stable symmetric orbit with two "
+                  "switchings per period (the only orbits searched; other self-oscillations, asymmetric or with more "
+                  "switchings, are not excluded)", no_orbit)
         elif genuine and neutral_multiplier(model):
             st = (Status.INCONCLUSIVE, "every symmetric orbit of this plant has the multiplier -1 exactly (the zero "
                   "eigenvalue of M is uncontrollable or unobservable: N_c(0) = 0 exactly, a combination w . x is "
