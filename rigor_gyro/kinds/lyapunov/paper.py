@@ -276,7 +276,8 @@ def _region_rows(ctx, printed_R: str) -> list[AuditRow]:
             verdict.status, AuditStatus.UNDECIDED)
         note = ("confirmed only as 'Vdot <= 0 there': Vdot <= 0 on it certified (" + verdict.reason.split(": ", 1)[-1][:160]
                 + "); the paper's claim is an attraction region, which needs the region positively invariant as well: "
-                "the paper does not show it (see invariant_estimate and the invariance rows)") \
+                "the paper does not show it, and it fails: a certified trajectory leaves the region (row '(17) positively "
+                "invariant'; see invariant_estimate for the sets that are)") \
             if status is AuditStatus.CONFIRMED else verdict.reason
         rows.append(_row(label, f"|x2| <= x2*, x1^2 + x3^2 < R, R = {printed_R}",
                          reading + (": Vdot <= 0 there" if status is AuditStatus.CONFIRMED else ""), radius, status, note))
