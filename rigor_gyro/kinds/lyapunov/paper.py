@@ -170,11 +170,14 @@ def audit(ctx, quantities: dict[str, arb]) -> tuple[list[AuditRow], list[dict[st
         rows += _region_rows(ctx, str(paper["R"]))
         Rq = Fraction(str(paper["R"]))
         rows.append(invariance_row(g, arb(fmpq(Rq.numerator, Rq.denominator)), ctx.xs, str(paper["R"])))
-    if "R1" in quantities:
-        rows.append(rho1_row(g, ctx.xs, quantities["R1"], str(paper["R1"]) if "R1" in paper else None, ctx.m.max_pieces))
-    if all(k in quantities for k in ("m", "M", "mu_min", "mu_max")):
+    # the paper's own statements (rows only for a scene that transcribes the paper: its [paper] table; a box of
+    # a tolerance scene has no single mu to vary)
+    if "R1" in paper and "R1" in quantities:
+        rows.append(rho1_row(g, ctx.xs, quantities["R1"], str(paper["R1"]), ctx.m.max_pieces))
+    if "mu_min" in paper and all(k in quantities for k in ("m", "M", "mu_min", "mu_max")):
         rows.append(best_formula_mu_row(g, quantities["m"], quantities["M"], quantities["mu_min"], quantities["mu_max"]))
-    rows += label_rows()
+    if paper:
+        rows += label_rows()
     rows += linear_section_rows(g, ctx.xs, ctx.m.max_pieces)
     if "A0" in paper:
         # a silent correction (issue 39): the unit the example prints for A0
