@@ -33,8 +33,9 @@ def _kind_of(module: str) -> str | None:
 
 
 def _is_float_side(module: str) -> bool:
-    """A kind's approx/plots/campaign module, or the benchmarks package (it times the float paths)."""
-    return module.rsplit(".", 1)[-1] in FLOAT_SIDE or module == "rigor_gyro.bench" \
+    """A kind's approx/plots/campaign module (or one named ``approx_*``, ...: a float twin split off one of
+    them), or the benchmarks package (it times the float paths)."""
+    return module.rsplit(".", 1)[-1].split("_")[0] in FLOAT_SIDE or module == "rigor_gyro.bench" \
         or module.startswith("rigor_gyro.bench.")
 
 
