@@ -181,7 +181,10 @@ def audit(ctx, quantities: dict[str, arb]) -> tuple[list[AuditRow], list[dict[st
             pass
     if paper:
         rows += label_rows()
-    rows += linear_section_rows(g, ctx.xs, ctx.m.max_pieces)
+    if g.law.name in MOMENTS:
+        # section 2's first-approximation statements are about the paper's laws (a sin x2 and its linearisation
+        # a x2); a scene's own [moment] law is not the paper's model, and its report does not audit them
+        rows += linear_section_rows(g, ctx.xs, ctx.m.max_pieces)
     if "A0" in paper:
         # a silent correction (issue 39): the unit the example prints for A0
         rows.append(_row("unit of A0", f"A0 = {paper['A0']} g cm s", f"A0 = {paper['A0']} g cm s^2", None,
