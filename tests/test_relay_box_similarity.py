@@ -179,8 +179,8 @@ def _moduli_samples(P, box: dict, n: int, seed: int = 5):
 def test_gershgorin_decides_a_box_rump_does_not_and_holds_samples(monkeypatch):
     """B +-0.4 %, n +-0.2 %, sigma +-0.15 % at once (the similar box of a six-parameter box): stable by the disc bound
     where the isolation of the four multipliers fails; the certified largest modulus and theta* hold samples."""
-    import rigor_gyro.kinds.periodic_orbit.normed_orbit as NO
-    monkeypatch.setattr(NO, "decide_by_cells", lambda *a, **k: None)
+    import rigor_gyro.kinds.periodic_orbit.continuation as C
+    monkeypatch.setattr(C, "decide_by_cells", lambda *a, **k: None)
     m = _model()
     P = m.params
     with working_precision(128):
@@ -217,8 +217,8 @@ def test_lower_end_only_from_an_isolated_disc():
 def test_stable_not_claimed_where_the_disc_bound_reaches_one(monkeypatch):
     """B +-0.75 % alone without the cell fallback: neither Rump's method nor the discs decide (bound > 1), so
     the orbit is not called stable over the box."""
-    import rigor_gyro.kinds.periodic_orbit.normed_orbit as NO
-    monkeypatch.setattr(NO, "decide_by_cells", lambda *a, **k: None)
+    import rigor_gyro.kinds.periodic_orbit.continuation as C
+    monkeypatch.setattr(C, "decide_by_cells", lambda *a, **k: None)
     P = _model().params
     with working_precision(128):
         box = {"B": interval(ball(_q(_frac(P.B) * F(397, 400))), ball(_q(_frac(P.B) * F(403, 400))))}

@@ -324,10 +324,13 @@ def _with_value(j: Jet, enclosure: arb) -> Jet:
 
 
 def continue_orbit(centre: RelayParams, box: dict[str, arb], dirs: list[str], guesses: list[acb],
-                   theta0: arb, genuine: bool = True, stability: bool = True) -> OrbitOverBox:
+                   theta0: arb, genuine: bool = True, stability: bool = True, *, decide=None) -> OrbitOverBox:
     """The orbit through the centre's root near ``theta0`` over the box (module docstring). ``box``:
     {name: ball containing the interval} for the names in ``dirs`` (the parameters the box varies);
-    ``guesses``: approximate roots of the centre's cubic (real ones, then the complex one with Im > 0)."""
+    ``guesses``: approximate roots of the centre's cubic (real ones, then the complex one with Im > 0).
+    ``decide(models, out, th_c, th_n, genuine, stability)``: the genuineness and stability step (default
+    :func:`_decide`; :mod:`.normed_orbit` passes one that falls back on a norm bound of the spectral radius)."""
+    decide = decide or _decide
     out = OrbitOverBox(theta_c=theta0)
     try:
         models = _Models(centre, box, dirs, guesses)
@@ -349,10 +352,10 @@ def continue_orbit(centre: RelayParams, box: dict[str, arb], dirs: list[str], gu
         return out
     out.theta, out.theta_gradient, th_c, th_n = res
     out.theta_method = why
-    _decide(models, out, th_c, th_n, genuine, stability)
+    decide(models, out, th_c, th_n, genuine, stability)
     if (genuine or stability) and (not out.genuine or (stability and out.stable is not True)):
         steps = SimpleNamespace(OrbitOverBox=OrbitOverBox, SUBBOX_CELLS=SUBBOX_CELLS, models=_Models,
-                                centre_root=_centre_root, decide=_decide, point=_point, theta_over_box=_theta_over_box)
+                                centre_root=_centre_root, decide=decide, point=_point, theta_over_box=_theta_over_box)
         decide_by_cells(centre, box, dirs, guesses, out, genuine, stability, steps)
     return out
 

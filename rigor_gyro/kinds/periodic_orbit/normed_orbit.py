@@ -15,15 +15,12 @@ Precision: the current working precision. Fails when: as continuation (``problem
 """
 from __future__ import annotations
 
-from types import SimpleNamespace
-
 from flint import arb, arb_mat
 
 from ...core.balls import certainly_lt
 from ...core.jets import Jet, second_order_gradient
 from . import continuation as C
-from .cellwise import decide_by_cells
-from .flow import DegenerateSpectrum, RelayParams
+from .flow import RelayParams
 from .jacobian_box import centred_terms
 from .norm_stability import eigen_coordinate_family, largest_modulus_range
 
@@ -71,31 +68,4 @@ def continue_orbit_normed(centre: RelayParams, box: dict[str, arb], dirs: list[s
                           genuine: bool = True, stability: bool = True):
     """:func:`.continuation.continue_orbit` with step 3 as in the module docstring (same arguments, same result
     type :class:`.continuation.OrbitOverBox`)."""
-    out = C.OrbitOverBox(theta_c=theta0)
-    try:
-        models = C._Models(centre, box, dirs, guesses)
-    except DegenerateSpectrum as e:
-        out.problem = str(e)
-        return out
-    tc = C._centre_root(models, theta0)
-    if tc is None:
-        out.problem = f"the centre's root near {C._fmt(theta0)} was not verified by interval Newton"
-        return out
-    out.theta_c = tc
-    res, why = C._theta_over_box(models, tc)
-    for cells in C.SUBBOX_CELLS[:1] if len(dirs) > 2 else C.SUBBOX_CELLS:
-        if res is not None:
-            break
-        res, why = C._theta_over_box(models, tc, cells, lambda c, b: C._Models(c, b, dirs, guesses))
-    if res is None:
-        out.problem = why
-        return out
-    out.theta, out.theta_gradient, th_c, th_n = res
-    out.theta_method = why
-    normed_decide(models, out, th_c, th_n, genuine, stability)
-    if (genuine or stability) and (not out.genuine or (stability and out.stable is not True)):
-        steps = SimpleNamespace(OrbitOverBox=C.OrbitOverBox, SUBBOX_CELLS=C.SUBBOX_CELLS, models=C._Models,
-                                centre_root=C._centre_root, decide=normed_decide, point=C._point,
-                                theta_over_box=C._theta_over_box)
-        decide_by_cells(centre, box, dirs, guesses, out, genuine, stability, steps)
-    return out
+    return C.continue_orbit(centre, box, dirs, guesses, theta0, genuine, stability, decide=normed_decide)
