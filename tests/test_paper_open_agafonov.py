@@ -93,3 +93,22 @@ def test_region_17_exit_is_confirmed_by_solve_ivp(scene):
 def test_the_label_slips_are_rows():
     assert {r.id for r in label_rows()} == {"label (13)", "label (6)", "label Psi2"}
     assert all(r.status is AuditStatus.MISPRINT for r in label_rows())
+
+
+@pytest.mark.parametrize("change", [{"k": "0.2"}, {"x2_star": "1.3"}])
+def test_no_undecided_row_where_no_precision_could_decide_one(change):
+    """k = 0.2: c10 < 0 at x2 = 0 (no radius has Psi1 > 0, no rho1 row); x2* = 1.3: (16) empty (no best-mu row).
+    Undecided rows there escalated every claim of the scene to 4096 bits (minutes) for nothing."""
+    import re
+    from importlib.resources import files
+
+    from rigor_gyro.prover import prove_scene
+    from rigor_gyro.scene import parse_scene
+    text = (files("rigor_gyro") / "scenes" / "agafonov2013.toml").read_text(encoding="utf-8")
+    for k, v in change.items():
+        text = re.sub(rf'^{k} = ".*"', f'{k} = "{v}"', text, flags=re.M)
+    cert = prove_scene(parse_scene(text))
+    ids = {r.id: r.status for r in cert.paper}
+    assert AuditStatus.UNDECIDED not in ids.values(), ids
+    assert ("rho1 at mu" in ids) == ("k" not in change)
+    assert ("best mu of (13)-(14)" in ids) == ("x2_star" not in change)

@@ -173,10 +173,14 @@ def audit(ctx, quantities: dict[str, arb]) -> tuple[list[AuditRow], list[dict[st
     # the paper's own statements (rows only for a scene that transcribes the paper: its [paper] table; a box of
     # a tolerance scene has no single mu to vary)
     if "R1" in paper and "R1" in quantities:
-        rows.append(rho1_row(g, ctx.xs, quantities["R1"], str(paper["R1"]), ctx.m.max_pieces))
+        row = rho1_row(g, ctx.xs, quantities["R1"], str(paper["R1"]), ctx.m.max_pieces)
+        if row is not None:
+            rows.append(row)
     if "mu_min" in paper and all(k in quantities for k in ("m", "M", "mu_min", "mu_max")):
         try:
-            rows.append(best_formula_mu_row(g, quantities["m"], quantities["M"], quantities["mu_min"], quantities["mu_max"]))
+            row = best_formula_mu_row(g, quantities["m"], quantities["M"], quantities["mu_min"], quantities["mu_max"])
+            if row is not None:
+                rows.append(row)
         except NotImplementedError:     # a box's gimbal (a [paper] table on a tolerance scene): no mu to vary
             pass
     if paper:

@@ -44,7 +44,7 @@ def label_rows() -> list[AuditRow]:
     ]
 
 
-def rho1_row(g: Gimbal, xs: arb, R1: arb, printed: str | None, max_pieces: int) -> AuditRow:
+def rho1_row(g: Gimbal, xs: arb, R1: arb, printed: str | None, max_pieces: int) -> AuditRow | None:
     """rho1 = max over |x2| <= x2* of |(c11, c13)| / c10 (Psi1 = c10 + c11 x1 + c13 x3, see
     :meth:`Gimbal.psi_coefficients`) at the scene's mu: Psi1 > 0 on the whole disc cylinder of radius r iff
     r < 1/rho1. R1 (13) is a lower bound of 1/rho1 (Cauchy-Schwarz and the bounds of section 2); the row says
@@ -54,6 +54,11 @@ def rho1_row(g: Gimbal, xs: arb, R1: arb, printed: str | None, max_pieces: int) 
         if not certainly_positive(c10):
             return arb("inf")
         return hypot_ball(c11, c13) / c10
+    for x2 in (arb(0), arb(xs.lower())):        # exact points of the range
+        # c10 <= 0 at a point of the range: Psi1 fails at x1 = x3 = 0 there, no radius works and 1/rho1 does not
+        # exist (the claim psi_test reports it); no row, since no precision would decide one
+        if certainly_positive(-g.psi_coefficients(x2)[0][0]) or g.psi_coefficients(x2)[0][0].is_zero():
+            return None
     # rho1 is even in x2 (c10 even, c11 and c13 odd)
     e = enclose_max(rho, 0, xs, rel_tol="1e-9", max_pieces=max_pieces)
     r = e.ball
@@ -76,15 +81,19 @@ def _r12(g: Gimbal, m: arb, M: arb, mu: arb) -> tuple[arb, arb]:
     return k["R1"], k["R2"]
 
 
-def best_formula_mu_row(g: Gimbal, m: arb, M: arb, mu_lo: arb, mu_hi: arb, max_pieces: int = 400) -> AuditRow:
+def best_formula_mu_row(g: Gimbal, m: arb, M: arb, mu_lo: arb, mu_hi: arb, max_pieces: int = 400) -> AuditRow | None:
     """The mu of (16) that maximises R = min(R1, R2) of (13)-(14) ('this problem is not solved here'): a
     certified bracket of max over (16) of min(R1, R2) (a lower end at an exact mu where both are enclosed, an
     upper end by best-first bisection of (16) with R1, R2 over each mu piece), and the mu attaining the lower
-    end. R1 decreases and R2 increases through the optimum for the example, so it is where R1 = R2."""
+    end. R1 decreases and R2 increases through the optimum for the example, so it is where R1 = R2.
+    None (no row) when (16) is certainly empty: there is no mu to choose (the claim best_mu says so), and no
+    precision would decide a row about it."""
     lo, hi = exact_fraction(mu_lo.upper()), exact_fraction(mu_hi.lower())
     if not lo < hi:
+        if certainly_gt(mu_lo, mu_hi) or (mu_lo - mu_hi).is_zero():     # (16) is open: certainly empty
+            return None
         return AuditRow("best mu of (13)-(14)", "'the choice of mu ... is not solved here'", "max over (16) of "
-                        "min(R1, R2)", None, AuditStatus.UNDECIDED, "the mu interval (16) is empty")
+                        "min(R1, R2)", None, AuditStatus.UNDECIDED, "the ends of the mu interval (16) are not separated at this precision")
 
     def q(x: Fraction) -> arb:
         return arb(fmpq(x.numerator, x.denominator))
