@@ -170,6 +170,8 @@ def test_an_excited_integrator_has_no_neutral_multiplier():
     assert neutral_multiplier(validate(_scene(**U0)))
     assert not neutral_multiplier(validate(_scene(**{**U0, "e": ["1", "0", "0", "1"]})))
     assert not neutral_multiplier(validate(_scene([["0", "1"], ["0", "-1"]], ["0", "1"], ["1", "0"], S="-1")))
+    # G(s) = s/((s+1)(s+2)): N_c(0) = 0 without a zero eigenvalue
+    assert not neutral_multiplier(validate(_scene([["0", "1"], ["-2", "-3"]], ["0", "1"], ["0", "1"], S="-1")))
 
 
 # ---------------------------------------------------------------- 6. margins of a plant's own parameters
@@ -225,3 +227,55 @@ def test_no_orbit_refutes_stable_only_for_the_orbits_searched():
     st = {c["id"]: c for c in cert["claims"]}
     assert st["stable"]["status"] == "refuted", st["stable"]
     assert "not excluded" in st["stable"]["reason"] and "self-oscillation" in st["stable"]["reason"]
+
+
+# ---------------------------------------------------------------- 2. stiff plants: a multiplier exp(-2.65e8)
+
+def test_a_time_constant_ratio_of_1e9_proves_and_checks_in_seconds():
+    """T3 = 1e-9 s in the stiff example: the fast multiplier exp(-2.65e8) was formatted exactly (10^e with
+    1e8 digits: a hang); it prints from its exponent, beyond 10^-999999 as the bound [0, 1e-999999]."""
+    import time
+    text = open(PLANTS + "relay_stiff_1e6.toml").read().replace('T3 = "1e-6"', 'T3 = "1e-9"')
+    t = time.perf_counter()
+    cert = _cert(parse_scene(text))
+    assert time.perf_counter() - t < 20
+    assert cert["verdict"] == "proved"
+    q = cert["quantities"]["multiplier_modulus_2"]
+    assert (q["lo"], q["hi"]) == ("0", "1e-999999")
+    rep = check_certificate(cert)
+    assert rep.ok, [r for r in rep.results if not r.ok]
+    bad = copy.deepcopy(cert)
+    bad["quantities"]["multiplier_modulus_2"].update(lo="1e-999999", hi="1e-999998")
+    assert _items(_foreign(bad))["quantities"][0] is False
+
+
+@pytest.mark.parametrize("k", [300, 5000, 20000, 200000])
+def test_far_formatting_is_outward_and_agrees_with_the_exact_path(monkeypatch, k):
+    """With the far threshold lowered, the far path's bounds contain the exact endpoints (and their exact
+    rounding) and differ from it at most in the last digit."""
+    from fractions import Fraction
+    from flint import arb
+    import rigor_gyro.core.balls as balls
+    from rigor_gyro.core.balls import decimal_bounds, exact_endpoints, quantity, working_precision
+    with working_precision(128):
+        for x in (arb(-k).exp() * arb("1.234"), -arb(k).exp() / 7, arb(k).exp() * arb("3.5", "1e-20")):
+            exact = decimal_bounds(x, 12)
+            monkeypatch.setattr(balls, "FAR_EXPONENT", 100)
+            far = decimal_bounds(x, 12)
+            q = quantity(x)
+            monkeypatch.setattr(balls, "FAR_EXPONENT", 2 ** 20)
+            a, b = exact_endpoints(x)
+            assert Fraction(far[0]) <= a and b <= Fraction(far[1]), (exact, far)
+            assert Fraction(far[0]) <= Fraction(exact[0]) and Fraction(exact[1]) <= Fraction(far[1])
+            assert far[0][:10] == exact[0][:10] or abs(Fraction(far[0]) - Fraction(exact[0])) <= abs(a) / 10 ** 10
+            assert Fraction(q["lo"]) <= a and b <= Fraction(q["hi"])
+
+
+def test_beyond_the_stored_exponent_the_bounds_are_zero_and_a_power_of_ten():
+    from flint import arb
+    from rigor_gyro.core.balls import decimal_bounds, working_precision
+    with working_precision(128):
+        x = arb(-3 * 10 ** 6).exp()
+        assert decimal_bounds(x, 12) == ("0", "1e-999999")
+        assert decimal_bounds(-x, 12) == ("-1e-999999", "0")
+        assert decimal_bounds(1 / x, 12) == ("1e+999999", "+inf")

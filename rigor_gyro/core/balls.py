@@ -34,6 +34,7 @@ Example:
 from __future__ import annotations
 
 import contextlib
+import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Callable, Generic, Iterator, TypeVar
@@ -47,7 +48,7 @@ __all__ = [
     "DEFAULT_PREC", "DEFAULT_MAXPREC", "working_precision", "current_precision", "ball", "is_finite",
     "certainly_lt", "certainly_le", "certainly_gt", "certainly_ge", "certainly_positive",
     "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
-    "overlaps", "certainly_within", "interval", "exact_fraction", "exponent10", "decimal_bounds", "enclosure_text", "rational_text", "interval_text", "inward_interval_text",
+    "overlaps", "certainly_within", "interval", "exact_fraction", "exponent10", "decimal_bounds", "is_far", "enclosure_text", "rational_text", "interval_text", "inward_interval_text",
     "width_text", "about_text", "Quantity", "as_quantity", "quantity", "stored_hull",
     "rel_width_at_most", "sqrt_of_nonnegative", "exact_endpoints", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
 ]
@@ -382,20 +383,87 @@ def _endpoints(x: arb) -> tuple[Fraction | None, Fraction | None]:
     return (exact_fraction(lo) if lo.is_finite() else None), (exact_fraction(hi) if hi.is_finite() else None)
 
 
+#: the largest decimal exponent a certificate stores (core.stored reads exponents of up to 6 digits): a far
+#: value beyond it is printed as the bound 1e-999999 or 1e+999999 (or 0, or infinity) on its side
+STORED_EXPONENT = 999999
+#: binary exponents beyond +-2^20 (about 10^+-315653) are printed from the ball's own exponent
+#: (:func:`_far_round`): the exact rational path would need 10^e with e in the millions (minutes of work)
+FAR_EXPONENT = 2 ** 20
+
+
+def is_far(x: arb) -> bool:
+    """Whether a finite ball is printed from its own exponent (:data:`FAR_EXPONENT`): its exact endpoints
+    would have more than a million bits."""
+    return x.is_finite() and _far(x)
+
+
+def _far(x: arb) -> bool:
+    """Whether a finite ball's midpoint or radius has a binary exponent beyond +-FAR_EXPONENT (cheap: the
+    exponents only; exact zero is never far)."""
+    for v in (x.mid(), arb(x.rad())):
+        if not v.is_zero():
+            man, exp = v.man_exp()
+            e = int(exp) + int(man).bit_length()
+            if abs(e) > FAR_EXPONENT:
+                return True
+    return False
+
+
+def _far_round(v: arb, digits: int, mode: str) -> str:
+    """An exact nonzero ball value v (an endpoint, radius 0) far from 1 (:data:`FAR_EXPONENT`) to
+    ``digits`` significant digits, rounded 'down' or 'up' (rigorously: the digits of |v| / 10^e, e an
+    integer near log10 |v|, enclosed by Arb and rounded outward) or to 'nearest' (the enclosure's midpoint:
+    for a midpoint or a description, not a bound). Beyond 10^+-999999 (:data:`STORED_EXPONENT`) the bound on
+    the value's side: 0 or +-1e-999999 below, +-1e+999999 or infinity above. Work bounded by the digits and the
+    exponent's length."""
+    if v.is_zero():
+        return "0"
+    neg = certainly_negative(v)
+    bits = 64 + 4 * digits + 2 * abs(int(v.mid().man_exp()[1])).bit_length()
+    with working_precision(bits):
+        mag = abs(v)
+        e = math.floor(float((mag.log() / arb(10).log()).mid()))
+        y = mag * arb(10) ** (digits - 1 - e)           # |v| 10^(digits-1-e), about 10^(digits-1)
+        shrink = mode == "nearest" or (mode == "down") != neg      # the magnitude rounded to nearest or down
+        if mode == "nearest":
+            n = round(exact_fraction(y.mid()))
+        elif shrink:
+            n = math.floor(exact_fraction(y.lower()))
+        else:
+            n = math.ceil(exact_fraction(y.upper()))
+    exponent = len(str(n)) - 1 - (digits - 1 - e) if n else -STORED_EXPONENT - 1      # of n 10^(e + 1 - digits)
+    sign = "-" if neg else ""
+    if exponent < -STORED_EXPONENT:     # |v| < 10^-999999: 0 or 10^-999999 (a bound the stored format reads)
+        return "0" if shrink else f"{sign}1e-{STORED_EXPONENT}"
+    if exponent > STORED_EXPONENT:      # |v| > 10^999999: 10^999999 or infinity
+        return f"{sign}1e+{STORED_EXPONENT}" if shrink and mode != "nearest" else ("-inf" if neg else "+inf")
+    return _format_scaled(-n if neg else n, digits - 1 - e)
+
+
 def decimal_bounds(x: arb, digits: int | None = None) -> tuple[str, str]:
     """Decimal strings (lo, hi) with lo <= every point of x <= hi, rounded outward.
 
     ``digits`` significant digits (default: the ball's accuracy plus three). Infinite or NaN balls
-    give ("-inf", "+inf") / ("nan", "nan").
+    give ("-inf", "+inf") / ("nan", "nan"). A ball beyond 10^+-315653 (:data:`FAR_EXPONENT`) is rounded from
+    its endpoints rounded outward at the working precision (:func:`_far_round`), not from its exact ones.
     """
     if x.is_nan():
         return "nan", "nan"
     exact = getattr(x, "exact", None)
+    if exact is None and x.is_finite() and _far(x):
+        d = digits or _digits_for(x)
+        return tuple(_far_end(w, d, mode) for w, mode in ((x.lower(), "down"), (x.upper(), "up")))
     a, b = (exact, exact) if exact is not None else _endpoints(x)
     d = digits or (max(6, len(rational_text(exact))) if exact is not None else _digits_for(x))
     lo = _round_decimal(a, d, "down") if a is not None else "-inf"
     hi = _round_decimal(b, d, "up") if b is not None else "+inf"
     return lo, hi
+
+
+def _far_end(w: arb, digits: int, mode: str) -> str:
+    """An exact endpoint rounded to ``digits`` in ``mode``: exactly when its exponent is moderate, else
+    :func:`_far_round`."""
+    return _far_round(w, digits, mode) if _far(w) else _round_decimal(exact_fraction(w), digits, mode)
 
 
 def enclosure_text(x: arb, digits: int = 12) -> str:
@@ -415,7 +483,7 @@ def decimal_bounds_apart(x: arb, value: object, digits: int) -> tuple[str, str]:
     d, top = digits, max(digits, _digits_for(x))
     while True:
         lo, hi = decimal_bounds(x, d)
-        if not apart or d >= top:
+        if not apart or d >= top or _far(x) and not _far(v):     # far from a modest value: the digits show it
             return lo, hi
         if certainly_gt(x, v) and Fraction(lo) > exact_fraction(v) or certainly_lt(x, v) and Fraction(hi) < exact_fraction(v):
             return lo, hi
@@ -432,6 +500,8 @@ def quantity(x: arb, digits: int | None = None) -> dict[str, str]:
     if not x.is_finite():
         return {"lo": lo, "hi": hi, "mid": "nan" if x.is_nan() else "inf", "rad": "inf"}
     d = digits or _digits_for(x)
+    if _far(x):
+        return {"lo": lo, "hi": hi, "mid": _far_end(x.mid(), d, "nearest"), "rad": _far_end(arb(x.rad()), 3, "up")}
     a, b = exact_endpoints(x)
     mid = _round_decimal((a + b) / 2, d, "nearest")
     rad = _round_decimal((b - a) / 2, 3, "up")

@@ -37,11 +37,11 @@ from flint import acb, acb_mat, acb_series, arb, arb_mat, fmpq
 from ...check import CheckResult
 from ...core.balls import (ball, certainly_lt, certainly_negative, certainly_positive, interval,
                            series_coefficients, series_length)
-from ...core.stored import encloses, fmpq_of, interval as stored_interval, number
+from ...core.stored import fmpq_of, interval as stored_interval, number
 from ...core.subdivision import enclose_max
 from .check_verdicts import other_orbit_moduli, redecide
 from .flow import ExpSum, taylor_enclosure
-from .plant_check_rows import check_root_rows
+from .plant_check_rows import check_root_rows, encloses
 from .plant_df import describing_function
 from .plant_orbit import leading_coefficient, matrix_ball, near_zero_bound, near_zero_order, section_index
 from .plant_statements import AMPLITUDE_REL, TAYLOR_ORDER

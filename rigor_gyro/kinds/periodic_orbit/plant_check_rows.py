@@ -26,10 +26,23 @@ from __future__ import annotations
 
 from flint import arb
 
-from ...core.balls import certainly_gt, certainly_lt
-from ...core.stored import encloses, fmpq_of, interval as stored_interval
+from ...core.balls import certainly_gt, certainly_lt, is_far
+from ...core.stored import encloses as exact_encloses, fmpq_of, interval as stored_interval
 
-__all__ = ["check_root_rows"]
+__all__ = ["check_root_rows", "encloses"]
+
+
+def encloses(stored: tuple, x: arb) -> bool:
+    """:func:`~rigor_gyro.core.stored.encloses` (exact), except for a ball beyond 10^+-315653
+    (:func:`~rigor_gyro.core.balls.is_far`: a stiff plant's multiplier exp(-2.65e8)), whose exact endpoints
+    have hundreds of millions of bits: there the stored ends, as balls, certainly below / above the ball's
+    ends (sound; not confirmed when it cannot tell)."""
+    if not x.is_finite():
+        return False
+    if not is_far(x):
+        return exact_encloses(stored, x)
+    lo, hi = (arb(fmpq_of(q)) for q in stored)
+    return bool(lo <= x.lower() and x.upper() <= hi)
 
 
 def _match(stored: list, moduli: list) -> bool:
