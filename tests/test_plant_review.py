@@ -279,3 +279,26 @@ def test_beyond_the_stored_exponent_the_bounds_are_zero_and_a_power_of_ten():
         assert decimal_bounds(x, 12) == ("0", "1e-999999")
         assert decimal_bounds(-x, 12) == ("-1e-999999", "0")
         assert decimal_bounds(1 / x, 12) == ("1e+999999", "+inf")
+
+
+def test_a_far_multiplier_cut_by_its_stored_interval_is_refused():
+    """T3 = 2e-7: the fast multiplier is about 1.36e-575867, far (its exact ends have 1.9e6 bits) but within
+    the stored format: the checker compares it as a ball; a stored interval ending at a far ball's midpoint
+    (meeting the ball, not enclosing it) is refused."""
+    text = open(PLANTS + "relay_stiff_1e6.toml").read().replace('T3 = "1e-6"', 'T3 = "2e-7"')
+    cert = _cert(parse_scene(text))
+    rep = check_certificate(cert)
+    assert rep.ok, [r for r in rep.results if not r.ok]
+    q = cert["quantities"]["multiplier_modulus_2"]
+    assert q["hi"].endswith("e-575867")
+    from flint import arb
+    from rigor_gyro.core.balls import is_far, quantity, working_precision
+    from rigor_gyro.core.stored import interval
+    from rigor_gyro.kinds.periodic_orbit.plant_check_rows import encloses
+    with working_precision(128):
+        x = arb(-1400000).exp() * arb("1.25", "1e-30")
+        assert is_far(x)
+        st = quantity(x)
+        assert encloses(interval(st), x)
+        assert not encloses(interval({"lo": st["lo"], "hi": st["mid"]}), x)
+        assert not encloses(interval({"lo": st["mid"], "hi": st["hi"]}), x)
