@@ -112,3 +112,20 @@ def test_no_undecided_row_where_no_precision_could_decide_one(change):
     assert AuditStatus.UNDECIDED not in ids.values(), ids
     assert ("rho1 at mu" in ids) == ("k" not in change)
     assert ("best mu of (13)-(14)" in ids) == ("x2_star" not in change)
+
+
+def test_no_invariance_row_and_no_exit_claimed_where_the_trajectory_stays():
+    """H = 10, a = 1e4 (slow dynamics): the audit's trajectory from the edge of (17) does not leave within its steps:
+    no row (it escalated the scene to 4096 bits), and the region rows do not say a trajectory leaves."""
+    import re
+    from importlib.resources import files
+
+    from rigor_gyro.prover import prove_scene
+    from rigor_gyro.scene import parse_scene
+    text = (files("rigor_gyro") / "scenes" / "agafonov2013.toml").read_text(encoding="utf-8")
+    for k, v in {"H": "10", "a": "1e4", "mu": "0.01", "k": "0.1"}.items():
+        text = re.sub(rf'^{k} = ".*"', f'{k} = "{v}"', text, flags=re.M)
+    rows = {r.id: r for r in prove_scene(parse_scene(text)).paper}
+    assert "(17) positively invariant" not in rows
+    assert all("trajectory leaves" not in r.note for r in rows.values())
+    assert AuditStatus.UNDECIDED not in {r.status for r in rows.values()}

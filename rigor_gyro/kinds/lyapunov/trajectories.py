@@ -109,15 +109,15 @@ class Trajectory:
 
 
 def region_exit(g: Gimbal, R: arb, xs: arb, point=None, steps=None, order: int = FLOW_ORDER,
-                t_max: Fraction = EXIT_TIME) -> Trajectory:
+                t_max: Fraction = EXIT_TIME, max_steps: int = 100000) -> Trajectory:
     """Integrate from ``point`` (default :func:`region_exit_point`) until a step end lies certainly outside
     region (17) (or re-run ``steps``); ``reached`` only when the start is certainly inside the region and the last
-    step end certainly outside."""
+    step end certainly outside. At most ``max_steps`` steps (then not ``reached``, the reason says so)."""
     point = tuple(point) if point is not None else region_exit_point(R)
     box = exact_box(point)
     if not certainly_inside_region(box, R, xs):
         return Trajectory(point, order, Flow(order), False, "the start is not certainly inside region (17)")
-    fl = validated_flow(gimbal_field(g), box, t_max, order, steps=steps,
+    fl = validated_flow(gimbal_field(g), box, t_max, order, steps=steps, max_steps=max_steps,
                         stop=None if steps is not None else (lambda st: certainly_outside_region(st.end, R, xs)))
     ok = bool(fl.steps) and certainly_outside_region(fl.steps[-1].end, R, xs)
     why = "" if ok else (fl.reason or f"the enclosure stayed inside or on the boundary up to t = {float(fl.t):.6g}")
