@@ -463,15 +463,22 @@ def _extend(holds, start: arb, limit: arb, direction: int, max_pieces: int = 64)
     return x
 
 
-def _stability(models: _Models, out: OrbitOverBox, th_n: Jet, th_c: Jet, x0n, x0c) -> None:
-    """Step 3 of the module docstring: fills out.multipliers, moduli, max_modulus, stable."""
-    k = len(models.dirs)
+def centred_jacobian(models: _Models, th_n: Jet, th_c: Jet, x0n, x0c):
+    """The centred form of J(theta*(P), P) over the box: (J at the centre, [(dJ/dp_q over the box, dev_q)]),
+    and the jets it came from (nested Jn, centre Jcj, the deviations with theta's 0 appended)."""
     Jn = models.nested.jacobian(th_n, x0n)
     Jcj = models.centre.jacobian(th_c, x0c)
     Jc = arb_mat([[Jcj[i][j].v.real for j in range(4)] for i in range(4)])
     devs0 = models.devs + [arb(0)]
     grads = [[second_order_gradient(Jcj[i][j], Jn[i][j], devs0) for j in range(4)] for i in range(4)]
-    terms = [(arb_mat([[grads[i][j][q] for j in range(4)] for i in range(4)]), models.devs[q]) for q in range(k)]
+    terms = [(arb_mat([[grads[i][j][q] for j in range(4)] for i in range(4)]), models.devs[q])
+             for q in range(len(models.dirs))]
+    return Jc, terms, Jn, Jcj, devs0
+
+
+def _stability(models: _Models, out: OrbitOverBox, th_n: Jet, th_c: Jet, x0n, x0c) -> None:
+    """Step 3 of the module docstring: fills out.multipliers, moduli, max_modulus, stable."""
+    Jc, terms, Jn, Jcj, devs0 = centred_jacobian(models, th_n, th_c, x0n, x0c)
     candidates = []
     eig = eigen_coordinate_multipliers(None, None, (Jc, terms))
     if eig is not None:

@@ -15,10 +15,10 @@ Precision: the current working precision. Fails when: as continuation (``problem
 """
 from __future__ import annotations
 
-from flint import arb, arb_mat
+from flint import arb
 
 from ...core.balls import certainly_lt
-from ...core.jets import Jet, second_order_gradient
+from ...core.jets import Jet
 from . import continuation as C
 from .flow import RelayParams
 from .jacobian_box import centred_terms
@@ -29,15 +29,8 @@ __all__ = ["continue_orbit_normed", "normed_decide"]
 
 def _jacobian_families(models, out, th_n: Jet, th_c: Jet):
     """[(J(c), [(dJ_k, dev_k)])]: centred forms of J(theta*(P), P) over the box (see the module docstring)."""
-    x0n = models.nested.x0(th_n)
-    x0c = models.centre.x0(th_c)
-    k = len(models.dirs)
-    Jn = models.nested.jacobian(th_n, x0n)
-    Jcj = models.centre.jacobian(th_c, x0c)
-    Jc = arb_mat([[Jcj[i][j].v.real for j in range(4)] for i in range(4)])
-    devs0 = models.devs + [arb(0)]
-    grads = [[second_order_gradient(Jcj[i][j], Jn[i][j], devs0) for j in range(4)] for i in range(4)]
-    fams = [(Jc, [(arb_mat([[grads[i][j][q] for j in range(4)] for i in range(4)]), models.devs[q]) for q in range(k)])]
+    Jc, terms, *_ = C.centred_jacobian(models, th_n, th_c, models.nested.x0(th_n), models.centre.x0(th_c))
+    fams = [(Jc, terms)]
     parts = centred_terms(RelayParams(**models.bvals), out.theta)
     if parts is not None:
         fams.append(parts)
