@@ -130,6 +130,53 @@ class Executor:
             results = list(self._pool.map(_run_batch, [fn] * len(batches), batches))
         return [r for batch in results for r in batch]
 
+    @property
+    def parallel(self) -> bool:
+        """Whether tasks run elsewhere (a pool or a Dask cluster): :meth:`submit` then returns at once."""
+        return self._pool is not None or self._client is not None
+
+    def submit(self, fn: Callable, *args) -> Any:
+        """Start ``fn(*args)`` on a worker: a future (:meth:`wait_any` reports it done). In process, it runs
+        now and the future returned is already done."""
+        if self._client is not None:
+            return self._client.submit(fn, *args, pure=False)
+        if self._pool is not None:
+            return self._pool.submit(fn, *args)
+        from concurrent.futures import Future
+        f: Future = Future()
+        try:
+            f.set_result(fn(*args))
+        except Exception as e:          # noqa: BLE001 (handed to the caller by result())
+            f.set_exception(e)
+        return f
+
+    def share(self, value: Any) -> Any:
+        """``value`` as a task argument sent to each worker once: on Dask scattered to every worker (a task
+        then carries a reference); elsewhere ``value`` itself (a pool task pickles it, a few hundred bytes)."""
+        if self._client is not None:
+            return self._client.scatter([value], broadcast=True, hash=False)[0]
+        return value
+
+    def wait_any(self, futures: Sequence[Any], timeout: float | None = None) -> list[Any]:
+        """The futures among ``futures`` that are done, waiting until one is (or ``timeout`` seconds)."""
+        if not futures:
+            return []
+        if self._client is not None:
+            from dask.distributed import wait
+            try:
+                done, _ = wait(list(futures), timeout=timeout, return_when="FIRST_COMPLETED")
+            except TimeoutError:
+                return []
+            return list(done)
+        from concurrent.futures import FIRST_COMPLETED, wait as cf_wait
+        done, _ = cf_wait(list(futures), timeout=timeout, return_when=FIRST_COMPLETED)
+        return list(done)
+
+    @staticmethod
+    def result(future: Any) -> Any:
+        """A done future's result (its exception raised: a lost Dask worker's task is retried by Dask)."""
+        return future.result()
+
     def close(self) -> None:
         if self._pool is not None:
             self._pool.shutdown()

@@ -113,6 +113,20 @@ class Frontier:
             self._boxes += len(item[1].boxes)
         self._last = []
 
+    def pop_item(self) -> tuple:
+        """The best queued group with its key (for :meth:`put_back`), or None when nothing is queued."""
+        if not self._heap:
+            return None
+        item = heapq.heappop(self._heap)
+        self._boxes -= len(item[1].boxes)
+        return item
+
+    def put_back(self, items) -> None:
+        """Queue again groups taken by :meth:`pop_item`, unevaluated, with their keys (their places kept)."""
+        for item in items:
+            heapq.heappush(self._heap, item)
+            self._boxes += len(item[1].boxes)
+
     def groups(self) -> list[Group]:
         """The queued groups, best first (the order a partial paving stores them in)."""
         return [g for _, g in sorted(self._heap, key=lambda t: t[0])]

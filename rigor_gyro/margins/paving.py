@@ -34,7 +34,9 @@ verifies and :mod:`.resume` continues (``prove --resume``) to exactly the paving
 gives; with a checkpoint callback it is also written every so often while the run goes on.
 
 Determinism: the batches and what each evaluation says depend only on the boxes, not on the executor or
-the worker count; the paving is identical for every executor and worker count.
+the worker count; the paving is identical for every executor and worker count. On a pool or a Dask
+cluster the ``volume`` order runs as a streaming frontier (:mod:`.stream`: no barrier between batches,
+results committed in the same order, the same certificate).
 """
 from __future__ import annotations
 
@@ -422,6 +424,11 @@ def _pave(bs: BoxScene, executor, progress, time_limit, box_budget, state, check
     mj = json.dumps({k: fraction_text(q) for k, q in whole.midpoint().items()}, sort_keys=True)
     st = state if state is not None else start_state(bs)
     stopped, run, last = "", 0, time.monotonic()
+    if getattr(ex, "parallel", False) and st.frontier.priority == "volume" and len(st.frontier):
+        from .stream import stream_pave     # no barrier between levels; the same certificate (:mod:`.stream`)
+        stopped = stream_pave(bs, st, ex, (bs.scene.kind, pj, oj, mj, bs.prec), budget=budget, box_budget=box_budget,
+                              progress=progress, checkpoint=checkpoint, checkpoint_every=checkpoint_every,
+                              snapshot=lambda why: _snapshot(bs, st, why, time.perf_counter() - t0, ex.label))
     while len(st.frontier) and not stopped:
         batch = st.frontier.pop_batch()
         items = [(g, b) for g in batch for b in g.boxes]
