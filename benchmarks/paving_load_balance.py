@@ -1,6 +1,6 @@
 """Simulated load balance of the built-in pavings on N workers. Prints a table.
 
-    python benchmarks/paving_load_balance.py [--scenes NAME ...] [--workers 1,2,4,8,16] [--overhead-ms 0.3]
+    python benchmarks/paving_load_balance.py [--scenes NAME ...|--all] [--workers 1,2,4,8,16] [--overhead-ms 0.3]
 
 Each paving runs once in this process with every box evaluation timed (one `Executor.map` call is one
 level of the paving). The recorded costs are then scheduled as the process pool would run them: per
@@ -9,7 +9,13 @@ taken by the first free worker, plus a fixed cost per batch (`--overhead-ms`: pi
 trip), and a barrier at the end of each level (the next level's boxes are the children of this one's).
 Columns: the serial time (the sum of the costs), and per N the simulated speed-up serial / makespan, and
 the same without the barriers (every level's batches in one queue: what a best-first engine without
-levels could reach). The simulation decides nothing about a paving; it says where parallelism is lost.
+levels could reach), and the streaming frontier that a pool or Dask runs (rigor_gyro/margins/stream.py):
+a box's halves are ready as soon as its result is in (speculation), a free worker takes the next ready
+boxes in the queue's order, as many as make ~50 ms at the mean cost measured so far (at most 256, at
+most an even share of the ready boxes), plus the fixed cost per batch; the maps after the paving (point
+proofs, searches, ranges) keep their barriers. Speculative work that ``max_boxes`` throws away is not
+modelled (it only occurs where the cap is reached). The simulation decides nothing about a paving; it
+says where parallelism is lost.
 """
 from __future__ import annotations
 
@@ -19,9 +25,15 @@ import sys
 import time
 from pathlib import Path
 
+import json
+import math
+
+from rigor_gyro.core.boxes import Box
+from rigor_gyro.margins import paving
 from rigor_gyro.margins.executors import BATCHES_PER_WORKER, Executor
-from rigor_gyro.margins.paving import box_scene, pave
-from rigor_gyro.scene import load_scene
+from rigor_gyro.margins.paving import box_scene, has_tolerances, pave
+from rigor_gyro.margins.stream import MAX_BATCH, TARGET_SECONDS
+from rigor_gyro.scene import builtin_scenes, load_scene
 
 DEFAULT_SCENES = ["margin_rudenko_brackets_tolerance", "margin_agafonov_k_tolerance", "margin_agafonov_k_mu",
                   "margin_roitenberg_n_tolerance"]
@@ -33,6 +45,8 @@ class TimingExecutor(Executor):
     def __init__(self):
         super().__init__(1)
         self.levels: list[list[float]] = []
+        self.boxes: list[tuple] = []        # every box evaluation: (box JSON, claims, outcome, seconds)
+        self.after: list[list[float]] = []  # the maps after the paving (not box evaluations)
 
     def map(self, fn, tasks):
         costs, out = [], []
@@ -41,7 +55,45 @@ class TimingExecutor(Executor):
             out.append(fn(*t))
             costs.append(time.perf_counter() - t0)
         self.levels.append(costs)
+        if fn is paving.evaluate_task:
+            self.boxes += [(t[4], tuple(t[5]), o, c) for t, o, c in zip(tasks, out, costs)]
+        else:
+            self.after.append(costs)
         return out
+
+
+def stream_makespan(bs, boxes: list[tuple], after: list[list[float]], workers: int, overhead: float) -> float:
+    """The streaming frontier's simulated makespan (see the module docstring)."""
+    index = {(bj, cl): i for i, (bj, cl, _, _) in enumerate(boxes)}
+    children: list[list[int]] = [[] for _ in boxes]
+    for i, (bj, cl, out, _) in enumerate(boxes):
+        und = tuple(c for c in cl if out[c][0] == "undecided")
+        if und:
+            b = Box.from_json(json.loads(bj))
+            for h in b.split(bs.box, bs.frozen):
+                j = index.get((json.dumps(h.to_json()), und))
+                if j is not None:
+                    children[i].append(j)
+    ready = [0] if boxes else []        # heap of canonical indices
+    events: list = []                   # (finish time, worker, [indices])
+    free, t, spent, done = list(range(workers)), 0.0, 0.0, 0
+    while ready or events:
+        while free and ready:
+            mean = spent / done if done else None
+            per = TARGET_SECONDS / mean if mean else 1
+            size = int(max(1, min(per, MAX_BATCH, math.ceil(len(ready) / workers))))
+            take = [heapq.heappop(ready) for _ in range(min(size, len(ready)))]
+            alone = not events and len(take) == 1 and not ready      # run in the parent (stream.py)
+            heapq.heappush(events, (t + (0 if alone else overhead) + sum(boxes[i][3] for i in take), free.pop(), take))
+        t, w, take = heapq.heappop(events)
+        free.append(w)
+        for i in take:
+            spent, done = spent + boxes[i][3], done + 1
+            for j in children[i]:
+                heapq.heappush(ready, j)
+    for lv in after:                    # point proofs, searches, ranges: barriers as before
+        t += sum(lv) if len(lv) < workers else _makespan([b + overhead for b in _batches(lv, workers)], workers)
+    return t
 
 
 def _batches(costs: list[float], workers: int) -> list[float]:
@@ -78,11 +130,14 @@ def simulate(levels: list[list[float]], workers: int, overhead: float) -> tuple[
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scenes", nargs="+", default=DEFAULT_SCENES)
+    ap.add_argument("--all", action="store_true", help="every built-in scene with tolerances")
     ap.add_argument("--workers", default="1,2,4,8,16")
     ap.add_argument("--overhead-ms", type=float, default=0.3, help="fixed cost per batch (default 0.3 ms)")
     args = ap.parse_args(argv)
     ns = [int(n) for n in args.workers.split(",")]
-    print("| paving | boxes | levels | serial s | " + " | ".join(f"N={n} (no barrier)" for n in ns) + " |")
+    if args.all:
+        args.scenes = [n for n in builtin_scenes("all") if has_tolerances(load_scene(n))]
+    print("| paving | boxes | levels | serial s | " + " | ".join(f"N={n} barrier / none / stream" for n in ns) + " |")
     print("|---|---|---|---|" + "---|" * len(ns))
     for name in args.scenes:
         ex = TimingExecutor()
@@ -93,7 +148,8 @@ def main(argv: list[str] | None = None) -> int:
         cells = []
         for n in ns:
             with_b, without = simulate(ex.levels, n, args.overhead_ms / 1000)
-            cells.append(f"{serial / with_b:.2f} ({serial / without:.2f})")
+            streamed = stream_makespan(bs, ex.boxes, ex.after, n, args.overhead_ms / 1000) if n > 1 else serial
+            cells.append(f"{serial / with_b:.2f} / {serial / without:.2f} / **{serial / streamed:.2f}**")
         boxes = sum(len(lv) for lv in ex.levels)
         print(f"| {name} | {boxes} | {len(ex.levels)} | {serial:.2f} | " + " | ".join(cells) + " |")
         sys.stdout.flush()

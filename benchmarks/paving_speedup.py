@@ -1,90 +1,97 @@
-"""Speed-up of a paving with the worker count, for the process pool and for Dask. Prints a table.
+"""Real speed-up of the built-in pavings on 2 workers (process pool, Dask), paired with one process. Prints a
+Markdown table.
 
-    python benchmarks/paving_speedup.py [--repeat 2] [--scene eigen|lyap] [--executor pool|dask]
+    python benchmarks/paving_speedup.py [--all | --scenes NAME ...] [--executors pool,dask] [--repeat 1]
+                                        [--workers 2] [--skip NAME ...]
 
-Paves two scenes (the eigenfrequency example over eps x Omega2 and a Lyapunov box in k x mu) in process,
-on a pool of 1 and 2 workers and on a Dask LocalCluster of 1 and 2 workers, checks that every paving
-is identical to the in-process one, and reports the wall time (best of --repeat) and the speed-up
-against one worker of the same executor. Start-up of the pool / cluster is excluded (created once).
+Per scene: the paving in this process (one worker: the batched loop), then on a pool of ``--workers``
+processes (the streaming frontier, rigor_gyro/margins/stream.py) and on a Dask LocalCluster of as many
+worker processes, interleaved (1, N, N, 1, ... for ``--repeat`` pairs), each paving compared byte for byte
+with the in-process one (`identical`). Columns: wall seconds (median) per executor; the speed-up, the
+median of the paired ratios wall(1) / wall(N) (pairs run back to back, so load from other processes
+mostly cancels); the CPU ratio, user+system CPU of the parent and the pool's workers over the in-process
+run's (the work the pool adds: pickling, model builds per worker, speculative boxes); the load average
+over the run. The pool and the cluster are started outside the timing (a pool forks its workers lazily:
+that is inside). A paving is the whole ``pave`` call: box evaluations, point proofs, searches, ranges.
 """
 from __future__ import annotations
 
 import argparse
+import json
+import os
+import resource
+import statistics
+import sys
 import time
+from pathlib import Path
 
 from rigor_gyro.margins.executors import Executor
-from rigor_gyro.margins.paving import box_scene, pave
+from rigor_gyro.margins.paving import box_scene, has_tolerances, pave
 from rigor_gyro.margins.report import paving_json
-from rigor_gyro.scene import parse_scene
-
-SCENES = {
-    "eigenfrequencies eps x Omega2 (7167 boxes)": """
-name = "bench_eig"
-kind = "eigenfrequencies"
-source = "benchmark"
-[parameters]
-a = "15.08"
-b = "6.154"
-eps = "[0.1, 0.12]"
-Omega2 = "[0.6, 0.65]"
-[options]
-box_resolution = "1/64"
-""",
-    "lyapunov k x mu (resolution 1/8)": """
-name = "bench_lyap"
-kind = "lyapunov"
-source = "benchmark"
-[parameters]
-A = "2"
-C = "3.3"
-A1 = "2.2"
-B1 = "2.2"
-C1 = "2.8"
-A2 = "8.5"
-H = "1e4"
-k = "[0.05, 1]"
-a = "100"
-x2_star = "pi/6"
-mu = "[0.005, 0.05]"
-moment = "sine"
-[options]
-box_resolution = "1/8"
-""",
-}
+from rigor_gyro.scene import builtin_scenes, load_scene
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--repeat", type=int, default=2)
-    ap.add_argument("--scene", choices=("eigen", "lyap"), help="only the scene whose label starts so")
-    ap.add_argument("--executor", choices=("pool", "dask"), help="only this executor")
-    args = ap.parse_args()
-    print("| scene | executor | workers | wall s (best) | speed-up vs 1 worker | identical |")
-    print("|---|---|---|---|---|---|")
-    for label, text in SCENES.items():
-        if args.scene and not label.startswith(args.scene):
-            continue
-        bs = box_scene(parse_scene(text))
-        reference = paving_json(pave(bs, Executor(1)))
-        for kind, scheduler in (("pool", None), ("dask", "local")):
-            if args.executor and kind != args.executor:
-                continue
-            base = None
-            for workers in (1, 2):
-                ex = Executor(workers, scheduler) if (workers > 1 or scheduler) else Executor(1)
-                if kind == "pool" and workers == 1:
-                    ex = Executor(1)
-                best, same = float("inf"), True
-                for _ in range(args.repeat):
-                    t0 = time.perf_counter()
-                    data = paving_json(pave(bs, ex))
-                    best = min(best, time.perf_counter() - t0)
-                    same = same and data == reference
-                ex.close()
-                base = base or best
-                name = "in process" if kind == "pool" and workers == 1 else kind
-                print(f"| {label} | {name} | {workers} | {best:.2f} | {base / best:.2f}x | {same} |", flush=True)
+def _cpu() -> float:
+    me, kids = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return me.ru_utime + me.ru_stime + kids.ru_utime + kids.ru_stime
+
+
+def _run(bs, make) -> tuple[float, float, str]:
+    """(wall, CPU of this process and its finished children, paving JSON) of one paving on a fresh executor."""
+    ex = make()
+    if ex._client is not None:             # the cluster's workers up before the clock starts
+        ex._client.wait_for_workers(ex.workers)
+    c0, t0 = _cpu(), time.perf_counter()
+    data = json.dumps(paving_json(pave(bs, ex)), sort_keys=True)
+    wall = time.perf_counter() - t0
+    ex.close()                             # the pool's workers finish: their CPU is counted
+    return wall, _cpu() - c0, data
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scenes", nargs="+", default=["margin_rudenko_brackets_tolerance"])
+    ap.add_argument("--all", action="store_true", help="every built-in scene with tolerances")
+    ap.add_argument("--skip", nargs="*", default=[])
+    ap.add_argument("--executors", default="pool,dask")
+    ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--repeat", type=int, default=1, help="pairs per executor (default 1)")
+    args = ap.parse_args(argv)
+    names = [n for n in builtin_scenes("all") if has_tolerances(load_scene(n))] if args.all else args.scenes
+    names = [n for n in names if n not in args.skip]
+    kinds = args.executors.split(",")
+    n = args.workers
+    print(f"| paving | boxes | 1 process s | " + " | ".join(f"{k} N={n} s | speed-up | CPU ratio | identical"
+                                                            for k in kinds) + " | load |")
+    print("|---|---|---|" + "---|---|---|---|" * len(kinds) + "---|")
+    for name in names:
+        bs = box_scene(load_scene(name))
+        load0 = os.getloadavg()[0]
+        ones, cells, boxes = [], [], None
+        for k in kinds:
+            scheduler = "local" if k == "dask" else None
+            walls, ratios, cpus, same = [], [], [], True
+            for i in range(args.repeat):
+                order = (False, True) if i % 2 == 0 else (True, False)
+                got = {}
+                for parallel in order:
+                    got[parallel] = _run(bs, (lambda: Executor(n, scheduler)) if parallel else (lambda: Executor(1)))
+                (w1, c1, d1), (wn, cn, dn) = got[False], got[True]
+                ones.append(w1)
+                walls.append(wn)
+                ratios.append(w1 / wn)
+                cpus.append(cn / c1 if k == "pool" else float("nan"))
+                same = same and d1 == dn
+                boxes = json.loads(d1)["boxes_evaluated"]
+            cpu = statistics.median(cpus)
+            cells.append(f"{statistics.median(walls):.2f} | **{statistics.median(ratios):.2f}x** | "
+                         f"{'-' if cpu != cpu else f'{cpu:.2f}'} | {same}")
+        load = (load0 + os.getloadavg()[0]) / 2
+        print(f"| {name} | {boxes} | {statistics.median(ones):.2f} | " + " | ".join(cells) + f" | {load:.1f} |",
+              flush=True)
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+    raise SystemExit(main())

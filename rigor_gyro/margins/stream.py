@@ -133,7 +133,6 @@ def stream_pave(bs, st, ex, scene: tuple, *, budget, box_budget, progress, check
         return items
 
     def dispatch() -> None:
-        nonlocal cost
         while len(inflight) < 2 * ex.workers:
             avail = len(frontier) + sum(len(g.boxes) for _, g in islice(queue, taken, None)) + len(spec)
             per = TARGET_SECONDS / (cost / ncost) if ncost and cost > 0 else 1
@@ -148,21 +147,28 @@ def stream_pave(bs, st, ex, scene: tuple, *, budget, box_budget, progress, check
             if not items:
                 return
             payload = [(json.dumps(b.to_json()), list(c)) for b, c in items]
+            if not inflight and len(items) == 1 and avail <= 1:
+                # one box and nothing else to do (the whole box, a paving of one box): here, as ``map``
+                # does with fewer tasks than workers, not a round trip to a worker
+                record(items, evaluate_batch(scene, payload))
+                return
             inflight[ex.submit(evaluate_batch, shared, payload)] = items
 
-    def receive(timeout) -> None:
+    def record(items, outs) -> None:
         nonlocal cost, ncost
+        for (b, claims), (out, seconds) in zip(items, outs):
+            k = key_of(b, claims)
+            running.discard(k)
+            results[k] = out
+            cost, ncost = cost + seconds, ncost + 1
+            undecided = _wanted(bs, b, claims, out)
+            if undecided is not None and st.created + 2 <= bs.max_boxes:
+                spec.extend((h, undecided) for h in b.split(bs.box, bs.frozen))
+
+    def receive(timeout) -> None:
         for f in ex.wait_any(list(inflight), timeout):
             items = inflight.pop(f)
-            outs = ex.result(f)
-            for (b, claims), (out, seconds) in zip(items, outs):
-                k = key_of(b, claims)
-                running.discard(k)
-                results[k] = out
-                cost, ncost = cost + seconds, ncost + 1
-                undecided = _wanted(bs, b, claims, out)
-                if undecided is not None and st.created + 2 <= bs.max_boxes:
-                    spec.extend((h, undecided) for h in b.split(bs.box, bs.frozen))
+            record(items, ex.result(f))
 
     def ready(g) -> bool:
         return all(key_of(b, g.claims) in results for b in g.boxes)
@@ -172,7 +178,7 @@ def stream_pave(bs, st, ex, scene: tuple, *, budget, box_budget, progress, check
         while queue or len(frontier):
             dispatch()
             if not (queue and ready(queue[0][1])):
-                if not inflight:
+                if not inflight and not (queue and ready(queue[0][1])):
                     raise RuntimeError("streaming paving: the next group to commit was never dispatched")
                 left = budget.remaining()
                 receive(None if left is None else max(0.01, min(1.0, left)))
