@@ -178,3 +178,20 @@ def test_a_script_without_a_main_guard_runs_the_pool_and_the_local_cluster(tmp_p
     assert lines[0] == str([divmod(i, 3) for i in range(8)])
     assert lines[1] == ("dask (local)" if scheduler else "process pool (2 workers)")
     assert "Nanny failed" not in run.stderr and "Port 8787 is already in use" not in run.stderr
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_submit_and_wait_any_stream_every_result_once(workers):
+    import operator
+    with X.Executor(workers) as ex:
+        assert ex.parallel == (workers > 1) and ex.share((1, "a")) == (1, "a")
+        futures = {ex.submit(operator.mul, i, 3): i for i in range(6)}
+        seen = {}
+        while len(seen) < 6:
+            for f in ex.wait_any([f for f in futures if futures[f] not in seen]):
+                seen[futures[f]] = ex.result(f)
+        assert seen == {i: 3 * i for i in range(6)} and ex.wait_any([]) == []
+        bad = ex.submit(operator.truediv, 1, 0)
+        ex.wait_any([bad])
+        with pytest.raises(ZeroDivisionError):
+            ex.result(bad)

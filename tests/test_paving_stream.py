@@ -145,6 +145,18 @@ def test_a_real_pool_streams_the_same_certificate_and_budgeted_partial():
         assert _json(pave(_bs(LINE), pool, box_budget=3)) == _json(pave(_bs(LINE), box_budget=3))
 
 
-def test_a_worker_batch_times_each_box():
-    out = stream.evaluate_batch(("k", "{}", "{}", "{}", 64), [])
-    assert out == []
+def test_a_worker_batch_evaluates_each_box_in_order_and_times_it(plane_fast):
+    from rigor_gyro.core.boxes import Box
+    boxes = [Box.of({"eps": (0, 1), "Omega2": (0, 1)}), Box.of({"eps": (2, 3), "Omega2": (0, 1)})]
+    out = stream.evaluate_batch(("eigenfrequencies", "{}", "{}", "{}", 64),
+                                [(json.dumps(b.to_json()), ["bracket_4"]) for b in boxes])
+    assert [o for o, _ in out] == [{"bracket_4": ["undecided", "both"]}, {"bracket_4": ["proved", "holds"]}]
+    assert all(t >= 0 for _, t in out)
+
+
+def test_refine_streams_to_the_in_process_refinement(plane_fast):
+    coarse = _json(pave(_bs(plane_fast.replace('"1/32"', '"1/8"'))))
+    bs, state = resume_state(coarse, refine="1/32")
+    alone = _json(pave(bs, state=state))
+    bs, state = resume_state(coarse, refine="1/32")
+    assert _json(pave(bs, Shuffled(4, 7), state=state)) == alone

@@ -4,6 +4,10 @@ Tasks and results are plain strings and JSON-able data (exact rationals as text;
 pickled), and every executor returns the results in the order of the tasks, so a paving is
 byte-identical whatever the executor and the worker count.
 
+``map`` runs a list of tasks and returns when all are done (a barrier); ``submit``/``wait_any``/``result``
+stream them (the paving's frontier, :mod:`.stream`: results taken as they come), and ``share`` sends a
+value every task needs to each Dask worker once.
+
 Dask is an optional extra (``pip install 'rigor_gyro[dask]'``): ``--scheduler ADDRESS`` connects to an
 existing scheduler (``tcp://host:8786``), ``--scheduler local`` starts a ``LocalCluster`` of
 ``workers`` processes for the run.
