@@ -101,9 +101,13 @@ def _cover(model, rbox: Box, whole: Box, fixed: dict, wanted: list[str], depth: 
     vals = {k: getattr(model.params, k) for k in PARAMETER_NAMES}
     vals.update({k: q(v) for k, v in fixed.items()})
     vals.update({k: q(v) for k, v in mid.items()})
-    got = _continued(dataclasses.replace(model, params=RelayParams(**vals)), rbox, wanted)
+    got, reached = _continued(dataclasses.replace(model, params=RelayParams(**vals)), rbox, wanted, report=True)
     rest = [c for c in wanted if c not in got]
-    if not rest or depth == 0:
+    if not rest or depth == 0 or not reached:
+        # bisected only where theta*(P) was proved over this box for an orbit its centre proposed (the halves
+        # then refine the sign condition and the multipliers): where step 1 failed for every proposed orbit
+        # (roots crowding at fast nutation, dG/dtheta ~ 1e-6 at H ~ 9000) or none was proposed, halving cost
+        # three point analyses per undecided box and decided none of the measured ones
         return got
     left, right = rbox.split(whole)
     sub = _cover(model, left, whole, fixed, rest, depth - 1)
@@ -116,20 +120,23 @@ def _cover(model, rbox: Box, whole: Box, fixed: dict, wanted: list[str], depth: 
     return got
 
 
-def _continued(model, box: Box, wanted: list[str]) -> dict[str, tuple[str, str]]:
-    """The claims of ``wanted`` proved by continuing the centre's orbits over ``box`` (``model`` at its centre)."""
+def _continued(model, box: Box, wanted: list[str], report: bool = False):
+    """The claims of ``wanted`` proved by continuing the centre's orbits over ``box`` (``model`` at its centre).
+    With ``report``: (those claims, whether theta*(P) was proved over the box for some continued orbit)."""
     dirs = box_directions(box)
     balls = {k: box.ball(k) for k in dirs}
     iso = isolate_polynomial(nutation_cubic(model.params))
     if not (iso.verified and iso.squarefree):
-        return {}
+        return ({}, False) if report else {}
     guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
     out: dict[str, tuple[str, str]] = {}
     _, orbits = centre_orbits(model, want_stable="stable" in wanted)
     if "stable" not in wanted:
         orbits = orbits[:1]
+    reached = False
     for v in orbits:
         o = continue_orbit(model.params, balls, dirs, guesses, v.theta, stability="stable" in wanted)
+        reached = reached or o.theta is not None
         if not o.genuine:
             continue
         head = (f"for every parameter in the box, the orbit continued from the centre's theta* = {_fmt(v.theta, 12)}: "
@@ -142,4 +149,4 @@ def _continued(model, box: Box, wanted: list[str]) -> dict[str, tuple[str, str]]
                              f"(stability margin >= {(1 - o.max_modulus).lower().str(6, radius=False)}); "
                              + o.genuine_reason)
             break
-    return out
+    return (out, reached) if report else out

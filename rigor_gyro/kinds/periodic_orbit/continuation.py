@@ -55,6 +55,7 @@ from .jacobian_box import centred_terms, eigen_coordinate_multipliers
 from .parametric import RelayJets, nested_parameter_jets, nested_variable, parameter_jets
 from .cellwise import decide_by_cells
 from .subbox_union import band_root, gradient_union, split_counts
+from .theta_fold import slope_sign_change
 
 __all__ = ["OrbitOverBox", "continue_orbit", "MAX_PIECES"]
 
@@ -79,6 +80,7 @@ class OrbitOverBox:
     max_modulus: arb | None = None
     stable: bool | None = None                # True: every modulus < 1 for every P; None: not decided
     problem: str = ""
+    fold: str = ""                            # step 1 impossible: dG/dtheta(tc, P) = 0 for a member (theta_fold)
 
 
 def _fmt(x: arb, digits: int = 10) -> str:
@@ -343,6 +345,14 @@ def continue_orbit(centre: RelayParams, box: dict[str, arb], dirs: list[str], gu
         return out
     out.theta_c = tc
     res, why = _theta_over_box(models, tc)
+    if res is None and why.startswith("dG/dtheta"):
+        # no form can prove theta* unique where dG/dtheta(tc, .) certainly changes sign (:mod:`.theta_fold`)
+        tcp = arb(tc.mid())
+        fold = slope_sign_change(models.cvals, box, dirs, guesses, tcp,
+                                 models.centre.G(Jet.variable(acb(tcp), len(dirs), models.m)).d[len(dirs)].real)
+        if fold is not None:
+            out.problem, out.fold = why + "; " + fold.text, fold.text
+            return out
     for cells in SUBBOX_CELLS[:1] if len(dirs) > 2 else SUBBOX_CELLS:    # the nested jets cost ~ (k + 1)^2
         if res is not None:
             break
