@@ -1182,6 +1182,17 @@ MUTANTS = [
     ("normed_stable_possibly_below_1", "rigor_gyro/kinds/periodic_orbit/normed_orbit.py",
      "    if best is not None and certainly_lt(best, 1):", "    if best is not None and best.lower() < 1:",
      "stable over a box where the disc bound of the spectral radius only possibly stays below 1"),
+    # issue 37: the certified obstruction to the relay continuation's step 1 (theta_fold.py; group relay_box_fold)
+    ("fold_point_beyond_box", "rigor_gyro/kinds/periodic_orbit/theta_fold.py",
+     "arb(3) / 4, arb(15) / 16)", "arb(3) / 4, arb(17) / 16)",
+     "the slope's sign tested at points beyond the box: a sign change there proves nothing about its members"),
+    ("fold_same_sign_counted", "rigor_gyro/kinds/periodic_orbit/theta_fold.py",
+     "        if -s in seen:\n", "        if s in seen or -s in seen:\n",
+     "two slopes of the same sign taken as a sign change: step 1 skipped where it could succeed"),
+    ("fold_uncertain_sign_counted", "rigor_gyro/kinds/periodic_orbit/theta_fold.py",
+     "    return 1 if certainly_positive(x) else -1 if certainly_negative(x) else 0\n",
+     "    return 1 if x.mid() > 0 else -1\n",
+     "a slope's sign read off its midpoint: a sign change claimed where the ball holds 0"),
     # issue 42 part 1: [plant] models over tolerance boxes (kinds/periodic_orbit/plant_box.py; group plant_box)
     ("plant_box_balls_at_centre", "rigor_gyro/kinds/periodic_orbit/plant_box.py",
      "    env = {k: (box.ball(k) if k in box.names else", "    env = {k: (box.ball(k) if False else",
