@@ -109,6 +109,8 @@ def test_no_sign_change_on_a_decidable_box():
         c = models.centre.G(Jet.variable(acb(tc), 1, 2)).d[1].real
         assert slope_sign_change(models.cvals, box, ["B"], g, tc, c) is None
         assert slope_sign_change(models.cvals, box, ["B"], g, tc, -c) is not None   # a sign flip is seen
+        # a centre value of uncertain sign counts for nothing (its midpoint has the other sign)
+        assert slope_sign_change(models.cvals, box, ["B"], g, tc, arb(-c.mid(), 2 * abs(c).upper())) is None
 
 
 def _h_box(rel: F) -> Box:
