@@ -12,7 +12,9 @@ median of the paired ratios wall(1) / wall(N) (pairs run back to back, so load f
 mostly cancels); the CPU ratio, user+system CPU of the parent and the pool's workers over the in-process
 run's (the work the pool adds: pickling, model builds per worker, speculative boxes); the load average
 over the run. The pool and the cluster are started outside the timing (a pool forks its workers lazily:
-that is inside). A paving is the whole ``pave`` call: box evaluations, point proofs, searches, ranges.
+that is inside). A paving is the ``pave`` call: box evaluations, point proofs, the scene's searches; the
+quantities' ranges only with ``--ranges`` (as in paving_load_balance.py: they are a separate search, and
+take a minute on some one-box scenes).
 """
 from __future__ import annotations
 
@@ -28,7 +30,22 @@ from pathlib import Path
 from rigor_gyro.margins.executors import Executor
 from rigor_gyro.margins.paving import box_scene, has_tolerances, pave
 from rigor_gyro.margins.report import paving_json
-from rigor_gyro.scene import builtin_scenes, load_scene
+from rigor_gyro.scene import builtin_scenes, load_scene, parse_scene
+
+#: beside the built-in scenes: the eigenfrequency example over eps x Omega2 at 1/64 (about 7000 boxes of
+#: about 1 ms: the grain where the per-task cost of a pool or a scheduler shows)
+EXTRA = {"bench_eig_1ms": """
+name = "bench_eig_1ms"
+kind = "eigenfrequencies"
+source = "benchmark"
+[parameters]
+a = "15.08"
+b = "6.154"
+eps = "[0.1, 0.12]"
+Omega2 = "[0.6, 0.65]"
+[options]
+box_resolution = "1/64"
+"""}
 
 
 def _cpu() -> float:
@@ -55,6 +72,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--skip", nargs="*", default=[])
     ap.add_argument("--executors", default="pool,dask")
     ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--ranges", action="store_true", help="the quantities' ranges too")
     ap.add_argument("--repeat", type=int, default=1, help="pairs per executor (default 1)")
     args = ap.parse_args(argv)
     names = [n for n in builtin_scenes("all") if has_tolerances(load_scene(n))] if args.all else args.scenes
@@ -65,7 +83,9 @@ def main(argv: list[str] | None = None) -> int:
                                                             for k in kinds) + " | load |")
     print("|---|---|---|" + "---|---|---|---|" * len(kinds) + "---|")
     for name in names:
-        bs = box_scene(load_scene(name))
+        bs = box_scene(parse_scene(EXTRA[name]) if name in EXTRA else load_scene(name))
+        if not args.ranges:
+            bs.range_boxes = 0
         load0 = os.getloadavg()[0]
         ones, cells, boxes = [], [], None
         for k in kinds:

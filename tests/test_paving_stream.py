@@ -56,7 +56,7 @@ def plane_fast(half_plane):      # noqa: F811  (an exact, instant box rigour: a 
     return half_plane
 
 
-@pytest.mark.parametrize("seed,workers", [(0, 2), (1, 3), (2, 8)])
+@pytest.mark.parametrize("seed,workers", [(0, 2), pytest.param(1, 3, marks=pytest.mark.slow), (2, 8)])
 def test_results_in_any_order_give_the_in_process_certificate(plane_fast, seed, workers):
     ex = Shuffled(workers, seed)
     assert _json(pave(_bs(plane_fast), ex)) == _json(pave(_bs(plane_fast)))
@@ -71,7 +71,7 @@ def test_the_max_boxes_cap_counts_in_commit_order_despite_speculation(plane_fast
         assert _json(pave(_bs(text), Shuffled(4, seed))) == whole
 
 
-@pytest.mark.parametrize("budget", [1, 7, 40])
+@pytest.mark.parametrize("budget", [pytest.param(1, marks=pytest.mark.slow), 7, pytest.param(40, marks=pytest.mark.slow)])
 def test_a_box_budget_stops_where_the_batched_loop_stops_and_resumes_to_the_whole(plane_fast, budget):
     whole = _json(pave(_bs(plane_fast)))
     data, runs = _json(pave(_bs(plane_fast), Shuffled(3, budget), box_budget=budget)), 0
@@ -83,7 +83,8 @@ def test_a_box_budget_stops_where_the_batched_loop_stops_and_resumes_to_the_whol
     assert runs >= 2 and data == whole
 
 
-@pytest.mark.parametrize("error,why,at", [(KeyboardInterrupt, INTERRUPTED, 2), (BrokenProcessPool, "executor broke", 4)])
+@pytest.mark.parametrize("error,why,at", [pytest.param(KeyboardInterrupt, INTERRUPTED, 2, marks=pytest.mark.slow),
+                                          (BrokenProcessPool, "executor broke", 4)])
 def test_ctrl_c_or_a_broken_pool_mid_stream_leaves_a_partial_paving_that_resumes_to_the_whole(error, why, at):
     p = pave(_bs(LINE), Shuffled(3, at, fail_at=at, error=error), keep_on_interrupt=True)
     assert why in p.stopped and p.pending
@@ -92,7 +93,7 @@ def test_ctrl_c_or_a_broken_pool_mid_stream_leaves_a_partial_paving_that_resumes
     assert _resumed(data) == _json(pave(_bs(LINE)))
 
 
-@pytest.mark.parametrize("at", [3, 11])
+@pytest.mark.parametrize("at", [3, pytest.param(11, marks=pytest.mark.slow)])
 def test_ctrl_c_at_any_wait_resumes_to_the_whole(plane_fast, at):
     with pytest.raises(KeyboardInterrupt):                  # a library call is not swallowed
         pave(_bs(plane_fast), Shuffled(3, at, fail_at=at))
