@@ -140,6 +140,158 @@ def _parametric_roots(G, guesses: list[arb], dp: dict, leading: arb) -> list[arb
     return out
 
 
+#: the parameters in which the quartic Q(omega) (and each nu quadratic of (4)) is affine, the others fixed:
+#: every coefficient of P1, P2 has degree <= 1 in each of a, eps, and Omega2 multiplies P2 once (checked
+#: symbolically in tests/test_eig_box_cluster.py); so for a fixed omega and b its extremes over a box are
+#: at the corners of (a, eps, Omega2)
+AFFINE_IN = ("a", "eps", "Omega2")
+
+
+def _affine_corners(model, box: Box) -> list[Params]:
+    """Parameter balls at the corners of the box in :data:`AFFINE_IN` (exact), b as its ball over the box."""
+    pts: list[list[arb]] = [[]]
+    for k in REQUIRED:
+        if k in box.names and k in AFFINE_IN:
+            lo, hi = box.interval(k)
+            vals = [arb(fmpq(v.numerator, v.denominator)) for v in ((lo,) if hi == lo else (lo, hi))]
+        else:
+            vals = [box.ball(k) if k in box.names else arb(model.q(k))]
+        pts = [q + [v] for q in pts for v in vals]
+    return [Params(*q) for q in pts]
+
+
+#: the widenings tried for a root's proposal hull (shares of its width), narrowest first
+PADS = (fmpq(1, 64), fmpq(1, 8))
+
+
+def _one_sign(vals: list[arb]) -> int:
+    """+1 / -1 when every ball is certainly of that sign, else 0."""
+    if all(v > 0 for v in vals):
+        return 1
+    if all(v < 0 for v in vals):
+        return -1
+    return 0
+
+
+def _sign_change_roots(families: list, leading: arb, proposals: list[list[arb]],
+                       max_pieces: int = 64, ratio=None) -> list[arb] | None:
+    """Root balls by a sign change and monotonicity, where the family Newton test fails because the roots
+    move across their balls by more than their distance to a neighbour (the cluster omega_3, omega_4 at small
+    Omega2 and eps, where they go like sqrt(Omega2); omega_1 ~ Omega2 / (a b) near 0, whose ball from
+    Newton's inflation reached below 0).
+
+    ``families``: the family (x -> (value, derivative)) at each corner of :data:`AFFINE_IN` (b a ball): the
+    function is affine in those parameters at fixed omega, so a sign certain at every corner is certain on the
+    whole box. ``proposals``: the roots at a few exact points of the box (only proposals). For root j the
+    candidate [L, U] is the hull of the proposals' j-th roots widened by an eighth of its width (L kept
+    above half the least proposal when that is positive). It holds exactly one root of every member when
+    the values at the exact points L and U have certain opposite signs at every corner and the derivative
+    has one certain sign on each of up to ``max_pieces`` equal pieces of [L, U] at every corner (Taylor form
+    in omega): every member strictly monotone there; or F = Omega2 of (2) is (``ratio``, :func:`_monotone`). The balls must be certainly increasing; with as many as
+    the degree and the leading coefficient certainly nonzero they are all the roots, each simple. None when
+    a test is not certain (a proposal hull that misses an interior extreme fails the end test: never
+    unsound)."""
+    if not certainly_nonzero(leading) or not proposals or not families:
+        return None
+    n = len(proposals[0])
+    if any(len(r) != n for r in proposals):
+        return None
+    out = []
+    for j in range(n):
+        lo = min((r[j].mid() for r in proposals), key=float)       # floats pick; the tests below decide
+        hi = max((r[j].mid() for r in proposals), key=float)
+        got = None
+        for share in PADS:           # a narrow pad first: a wide one may reach a neighbour's turning point
+            pad = (hi - lo) * share + abs(hi) * arb(2) ** -40
+            L, U = arb((lo - pad).mid()), arb((hi + pad).mid())
+            if certainly_positive(lo) and not certainly_positive(L):
+                L = arb((lo / 2).mid())
+            if not certainly_lt(L, U):
+                continue
+            sl, su = _one_sign([f(L)[0] for f in families]), _one_sign([f(U)[0] for f in families])
+            if sl != 0 and su == -sl and _monotone(families, L, U, max_pieces, ratio):
+                got = L.union(U)
+                break
+        if got is None:
+            return None
+        out.append(got)
+    if any(not certainly_lt(out[i], out[i + 1]) for i in range(n - 1)):
+        return None
+    return out
+
+
+def _monotone(families: list, L: arb, U: arb, max_pieces: int, ratio=None) -> bool:
+    """Every member has at most one root in [L, U], on 1, 2, 4, ... equal pieces (exact ends) until decided or
+    ``max_pieces`` is passed: the derivative has one certain sign on every piece at every corner family
+    (strictly monotone), or, with ``ratio`` (x -> (h, N) over the box: Q = W h - g, N = g' h - g h'), h and N
+    each of one certain sign on all of [L, U]: then Q = h (W - F) with F = g/h strictly monotone, so Q has at
+    most one zero there for every Omega2 (this holds where Q itself is not monotone for every member: the
+    cluster omega_3, omega_4, whose turning point moves with Omega2 through the hull of a root)."""
+    k = 1
+    while k <= max_pieces:
+        ends = [arb((L + (U - L) * i / k).mid()) if 0 < i < k else (L if i == 0 else U) for i in range(k + 1)]
+        pieces = [ends[i].union(ends[i + 1]) for i in range(k)]
+        if _one_sign([f(y)[1] for y in pieces for f in families]) != 0:
+            return True
+        if ratio is not None:
+            hn = [ratio(y) for y in pieces]
+            if _one_sign([h for h, _ in hn]) != 0 and _one_sign([n for _, n in hn]) != 0:
+                return True
+        k *= 2
+    return False
+
+
+def _quartic_ratio(p: Params):
+    """x -> (h(x), N(x)) over the box, each in Taylor form about the ball's centre: Q(x) = W h(x) - g(x) with
+    g(x) = x P1(-x), h(x) = P2(-x) (so Omega2 = F(x) = g/h at a root), N = g' h - g h' (the numerator of F').
+    Neither depends on Omega2. N is quadratic in eps: it is built exactly at the three points em - d, em,
+    em + d (em, d the exact centre and radius of the eps ball) and enclosed as N(em) + t N_1 + t^2 N_2,
+    t in [-d, d] (the interpolation is exact for a quadratic; the eps dependence across N's coefficients,
+    which a direct evaluation loses, is kept)."""
+    a, b, e, _ = p
+    l = arb_poly([0, -1])                                   # lambda^2 = -x
+
+    def parts(e):
+        p1 = (l * (b - 1) + b) * (l * l * ((a - b) * (b - 1)) + l * (e * (a - 1) + b * (a - b)) + e * a)
+        h = (l * (b - 1) + 1) * (l * l * ((a - b) * (b - 1)) + l * (e * (a - 1) + a - b) + e)
+        g = arb_poly([0, 1]) * p1
+        return h, g.derivative() * h - g * h.derivative()
+    h, _ = parts(e)
+    em, d = arb(e.mid()), arb(e.rad())
+    _, Nm = parts(em)
+    if d.is_zero():
+        return lambda x: (_taylor_at(h, x), _taylor_at(Nm, x))
+    _, Nn = parts(em - d)
+    _, Np = parts(em + d)
+    N1 = (Np - Nn) * (1 / (2 * d))
+    N2 = (Np - 2 * Nm + Nn) * (1 / (2 * d * d))
+    t = arb(0, d)
+    t2 = (d * d).union(arb(0))
+
+    def ratio(x):
+        return _taylor_at(h, x), _taylor_at(Nm, x) + t * _taylor_at(N1, x) + t2 * _taylor_at(N2, x)
+    return ratio
+
+
+def _proposals(model, box: Box, poly_at) -> list[list[arb]]:
+    """The real roots of ``poly_at(point)`` at the box's corners and midpoint (exact points), for
+    :func:`_sign_change_roots`; points whose roots are not isolated are left out."""
+    pts: list[list[fmpq]] = [[]]
+    for k in REQUIRED:
+        if k in box.names:
+            lo, hi = box.interval(k)
+            vals = [fmpq(v.numerator, v.denominator) for v in ((lo,) if hi == lo else (lo, hi))]
+        else:
+            vals = [model.q(k)]
+        pts = [q + [v] for q in pts for v in vals]
+    out = []
+    for pt in pts + [_midpoint(model, box)]:
+        g = _guesses(poly_at(*pt))
+        if g is not None:
+            out.append(g)
+    return out
+
+
 def _quartic_family(p: Params):
     """Q(omega) = -omega P1(-omega) + Omega2 P2(-omega) over the box, as a family (value, derivative):
     P1 and P2 have ball coefficients (a, b, eps) and Omega2 multiplies P2 once, so the enclosure keeps
@@ -179,8 +331,25 @@ def _quartic_family(p: Params):
             if mv.is_finite():
                 value = value.intersection(mv) if value.overlaps(mv) else mv
         deriv = -(p1(lam) + lam * d1(lam)) - W * d2(lam)
+        if not x.rad().is_zero():
+            # Q' in Taylor form about the ball's exact centre (issue 37: near the cluster omega_3, omega_4 at
+            # small Omega2 and eps, Horner on a wide ball loses the cancellation and the derivative's
+            # enclosure meets 0 although every member's Q' is bounded away from 0 there)
+            dt = _taylor_at(dq1, lam) + W * _taylor_at(d2, lam)
+            if dt.is_finite():
+                deriv = deriv.intersection(-dt) if deriv.overlaps(-dt) else -dt
         return value, deriv
+    dq1 = (l * p1).derivative()
     return family, (b - 1) * (b - 1) * (a - b)
+
+
+def _taylor_at(poly: arb_poly, x: arb) -> arb:
+    """poly over the ball x by its Taylor expansion about x's exact centre: poly(c + t) expanded in t (ball
+    coefficients, exact composition) and evaluated at t in [-r, r]. Contains poly(x) for every point of x; much
+    narrower than Horner on x where poly's terms cancel."""
+    c = arb(x.mid())
+    shifted = poly(arb_poly([c, 1]))
+    return shifted(arb(0, x.rad()))
 
 
 def _nu_family(p: Params, which: str):
@@ -239,6 +408,10 @@ def box_roots(model, box: Box, omegas: bool = True, nus: bool = True) -> tuple[R
         ws = family_real_roots(fam, guesses, leading=leading)
         if ws is None:
             ws = _parametric_roots(G, guesses, dp, leading)
+        if ws is None or not all(certainly_positive(w) for w in ws):
+            corners = [_quartic_family(c)[0] for c in _affine_corners(model, box)]
+            ws = _sign_change_roots(corners, leading, _proposals(model, box, characteristic_quartic),
+                                    ratio=_quartic_ratio(p)) or ws
     if ws is not None and not all(certainly_positive(w) for w in ws):
         ws = None
     ns = None
