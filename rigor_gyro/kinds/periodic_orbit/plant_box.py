@@ -4,11 +4,13 @@ tolerance boxes).
 What: the entries of M, e, c, S and h are the scene's expressions in its named parameters; over a box they
 are evaluated in Arb balls containing their values for every member (:func:`plant_balls`). A
 :class:`PlantBoxSpectrum` is the :class:`.plant_orbit.PlantSpectrum` of the whole box: the characteristic
-polynomial's coefficients from the ball matrix (``arb_mat.charpoly``), each eigenvalue enclosed for every
-member by one interval Newton proof over the coefficient family (:mod:`rigor_gyro.core.family_roots`; the
-centre's exact roots only guide it), the numerators N_i by the Krylov formula of :func:`.plant_model.numerators`
-on the ball matrix, the residues N(lambda)/p'(lambda) on those balls. The point path's functions then run
-unchanged on it (every enclosure they compute contains the value for every member):
+polynomial's coefficients and the Krylov numerators' coefficients (the formula of :func:`.plant_model.numerators`)
+in centred (mean-value) form in the parameters (:mod:`.plant_centred`: forward-mode derivatives in balls through
+the entries' expressions and the Faddeev-LeVerrier recurrence), each intersected with the naive one from the
+ball matrix (``arb_mat.charpoly``); each eigenvalue enclosed for every member by one interval Newton proof over
+the coefficient family (:mod:`rigor_gyro.core.family_roots`; the centre's exact roots only guide it), the
+residues N(lambda)/p'(lambda) on those balls. The point path's functions then run unchanged on it (every
+enclosure they compute contains the value for every member):
 
 1. theta*(P): the centre's genuine root (the point analysis at the box's midpoint) is re-enclosed for every
    member by interval Newton on g over Theta x box: N = t_c - g(t_c; box) / g'(Theta; box) inside Theta
@@ -27,8 +29,10 @@ leaves the box undecided.
 Guarantee: ``proved`` means that for every parameter value in the box some genuine symmetric orbit exists
 (``orbit_genuine``), some genuine orbit has every multiplier modulus < 1 (``stable``). A box that these
 sufficient tests do not decide is ``undecided`` (never refuted). Precision: the caller's (the paving's
-``box_prec``). The forms are naive in the parameters (no centred forms yet): boxes of relative width about
-1e-5 .. 1e-4 on the Roitenberg plant. Fails when: an entry has no finite value over the box (a division by a
+``box_prec``). The polynomial data are centred in the parameters, the rest (g and its theta-root over the box,
+the Jacobian) naive in the eigenvalue and residue balls: on the Roitenberg plant all six parameters at +-1e-5
+relative are decided (at +-1e-6 before the centred coefficients, nothing), H alone at +-1e-4 for orbit_genuine
+(+-1e-5 for stable). Fails when: an entry has no finite value over the box (a division by a
 ball containing 0): ParameterError from :func:`validate_plant_box`.
 """
 from __future__ import annotations
@@ -44,6 +48,7 @@ from ...core.expressions import evaluate_exact, parse as parse_expression
 from ...core.family_roots import newton_family_root, newton_family_root_complex, polynomial_family
 from ...core.polyroots import isolate_polynomial
 from .flow import DegenerateSpectrum, taylor_enclosure
+from .plant_centred import centred_polynomial_data
 from .plant_claims import analyse, classify, plant_multipliers
 from .plant_model import PlantModel
 from .norm_stability import eigen_coordinate_family, largest_modulus_range
@@ -128,6 +133,10 @@ class PlantBoxSpectrum(PlantSpectrum):
         M, e, c, S, h = plant_balls(model, box)
         P = M.charpoly()
         p = [P[k] for k in range(n + 1)]
+        Mx, ex, cx, _, _ = _exprs(model)
+        cd = centred_polynomial_data((Mx, ex, cx), {k: v.rational for k, v in model.exact.items()}, box)
+        if cd is not None:          # the centred coefficients (each also the naive one's intersection)
+            p = [_meet(a, b) for a, b in zip(p, cd[0])]
         zero = model.zero_eigenvalue
         if zero and not structural_zero_eigenvalue(model):
             raise DegenerateSpectrum("a zero eigenvalue at the centre that is not structural (a zero row or column "
@@ -155,6 +164,9 @@ class PlantBoxSpectrum(PlantSpectrum):
             raise DegenerateSpectrum("the zero eigenvalue may not be simple on this box")
         Ns = _krylov_numerators(M, e, p)
         Nc = [sum((c[i] * Ns[i][k] for i in range(n)), arb(0)) for k in range(n)]
+        if cd is not None:
+            Ns = [[_meet(a, b) for a, b in zip(r, s)] for r, s in zip(Ns, cd[1])]
+            Nc = [_meet(a, b) for a, b in zip(Nc, cd[2])]
         dp = acb_poly([acb(k * p[k]) for k in range(1, n + 1)])
         Nsp = [acb_poly([acb(x) for x in N]) for N in Ns]
         Ncp = acb_poly([acb(x) for x in Nc])
@@ -175,6 +187,14 @@ class PlantBoxSpectrum(PlantSpectrum):
         else:
             self.r0c, self.r0x = arb(0), [arb(0)] * n
         self.M, self.e, self.c = M, e, c
+
+
+def _meet(a: arb, b: arb) -> arb:
+    """The intersection of two balls that both contain the value (the tighter one if they do not overlap,
+    which only rounding could make happen: both contain every member's value)."""
+    if a.overlaps(b):
+        return a.intersection(b)
+    return a if a.rad() < b.rad() else b
 
 
 def _theta_over_box(sp: PlantBoxSpectrum, tc_ball: arb) -> arb | None:
