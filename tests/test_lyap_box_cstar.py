@@ -175,16 +175,17 @@ def test_no_form_where_f_may_be_negative_or_the_law_is_not_odd(model):
 
 
 def test_c_star_lower_bound_where_the_cylinder_binds(model):
-    """With R in [0.004, 0.005] the cylinder near x2 = 0 binds (V's minimum on it about 15 at r = 0.004, below
+    """With R in [0.004, 0.005] the cylinder near x2 = 0 binds (V's minimum on it about 7 at r = 0.004, below
     phi(x2*) = 23.6): the certified lower end is below every sampled member's c* at r = 0.004 and 0.005
-    (mpmath, the approx module's search), and not far below (the quadratic in r taken at R's lower end)."""
+    (mpmath, the approx module's search), and not far below (the quadratic in r taken at R's lower end); the
+    upper end, V at a face point inside every disc (the minimiser is outside), is above them."""
     from rigor_gyro.kinds.lyapunov.approx import FloatGimbal, _c_star
     raw = _raw(model, F(1, 100))
     R = arb(fmpq(4, 1000)).union(arb(fmpq(5, 1000)))
     with working_precision(128):
         g = boxed_model(model, raw).gimbal
         lower, upper = BC.c_star_centred(g, raw, R)
-    assert upper is None or upper.is_finite()
+    assert upper is not None and upper.is_finite()     # the faces' minimiser (|m| ~ 0.0058) is outside the disc
     vals = []
     for p in _points(raw, 1, 13, corners=2):
         params = {k: f"{v.numerator}/{v.denominator}" for k, v in {**POINT, **p}.items()}
@@ -193,4 +194,5 @@ def test_c_star_lower_bound_where_the_cylinder_binds(model):
         for r in ("0.004", "0.005"):
             vals.append(_c_star(MpGimbal(params), FloatGimbal(params), mpmath.mpf(r))["c_star"])
     assert all(_le(lower.lower(), v, 1e-9) for v in vals)
+    assert all(_le(-upper.upper(), -v, 1e-9) for v in vals)       # V at t m, inside every disc
     assert float(lower.lower()) > float(min(vals)) - 3

@@ -21,7 +21,9 @@ is 47.6 + 160 - 88 - 79 with every R^2 term taken at both ends of R's ball). Her
   centred form on x2 pieces. Where it is certified above phi(x2*)'s lower bound on every piece, c*'s lower
   end is phi's; otherwise the smaller, by branch and bound;
 * c*'s upper end: phi(x2*)'s upper bound over the box where the faces' minimiser is inside every member's
-  disc (certainly |(m1, m3)| < R_lo on the box's balls): V at that point of the region's boundary.
+  disc (certainly |(m1, m3)| < R_lo on the box's balls): V at that point of the region's boundary; otherwise
+  V at t (m1, m3) with t = R_lo / max |(m1, m3)| < 1, a point of the face inside every disc, which is at most
+  (1 - t) mu F(x2*) + t phi(x2*) (V convex in (x1, x3)), each bounded above over the box.
 
 Guarantee: the ball returned contains c*(P) for every P in the box, R(P) in the ball ``R``, at the current
 precision. Fails when: a law that is not odd, x2* not certainly < pi/2, f >= 0 on [0, x2*] not certified, R
@@ -182,5 +184,22 @@ def c_star_centred(g: Gimbal, raw: dict[str, tuple], R: arb) -> tuple[arb, arb |
     if not lower.is_finite():
         return None
     m1, m3 = gb.phi_minimiser(xs)
-    upper = arb(phi_hi.upper()) if certainly_lt(m1 ** 2 + m3 ** 2, Rlo ** 2) else None
-    return arb(lower.lower()), upper
+    if certainly_lt(m1 ** 2 + m3 ** 2, Rlo ** 2):
+        return arb(lower.lower()), arb(phi_hi.upper())
+    # the face point t (m1, m3), t = R_lo / max |(m1, m3)| < 1 exact, is inside every member's disc, and V is
+    # convex in (x1, x3): V(t m) <= (1 - t) V(0) + t V(m) = (1 - t) mu F(x2*) + t phi(x2*)
+    norm = (m1 ** 2 + m3 ** 2).sqrt()
+    if not (norm.is_finite() and certainly_positive(norm)):
+        return arb(lower.lower()), None
+    t = arb((Rlo / arb(norm.upper())).lower())
+    if not (certainly_positive(t) and certainly_lt(t, arb(1))):
+        return arb(lower.lower()), None
+    muF_hi = -cb.lower(_neg_mu_F, positivity=False)(xs)
+    upper = (1 - t) * arb(muF_hi.upper()) + t * arb(phi_hi.upper())
+    return arb(lower.lower()), (arb(upper.upper()) if upper.is_finite() else None)
+
+
+def _neg_mu_F(gm: Gimbal, w, X: arb, dual: bool):
+    """-mu F = -mu H G / B0 (V at the face's point x1 = x3 = 0)."""
+    parts = _parts(gm, X)
+    return None if parts is None else -parts[0] / gm.c.B0
