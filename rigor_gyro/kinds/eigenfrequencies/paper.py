@@ -25,6 +25,7 @@ from ...core.polyroots import isolate_polynomial
 from .paper_hz import READ_FORMULAS, derived_row, exact_chain, hz_chain, input_box
 from .paper_scale import consistent_eps, consistent_eps_row
 from .paper_text import text_rows
+from .paper_steps import step_rows
 from .model import (APPROX_TEXT, BRACKETS, EDIT_FORMULAS, NotReal, Params, approximation, bracket,
                     characteristic_quartic)
 
@@ -390,6 +391,7 @@ def audit(model, p: Params, omegas: list[arb]) -> list[AuditRow]:
     rows.append(_label_12_row())
     rows.extend(_fourteen_rows(model))
     rows.extend(text_rows(a, b, e, W, general))
+    rows.extend(step_rows(a, b, e, W, omegas))
     return rows
 
 

@@ -1,0 +1,129 @@
+"""Rudenko (1976): rows for the derivation's steps (issue 39): (5) for every parameter (exact identities), the
+step of (6) (its sides against F on [0, nu1], the factor from (3) and (5)) and the statements in words after
+(14). Cross-checked in mpmath; no row of the audit is undecided with no value."""
+from __future__ import annotations
+
+import random
+
+import mpmath
+from flint import arb, fmpq, fmpq_poly
+
+from rigor_gyro.core.balls import working_precision
+from rigor_gyro.core.outcome import AuditStatus
+from rigor_gyro.core.polyroots import isolate_polynomial
+from rigor_gyro.kinds.eigenfrequencies.model import characteristic_quartic
+from rigor_gyro.kinds.eigenfrequencies.paper_steps import five_identities, positive_on, step_rows
+
+A, B, E, W = fmpq(1508, 100), fmpq(6154, 1000), fmpq(1076, 10000), fmpq(629, 1000)
+
+
+def _rows(a=A, b=B, e=E, w=W):
+    with working_precision(128):
+        om = sorted(isolate_polynomial(characteristic_quartic(a, b, e, w)).real, key=lambda x: float(x.mid()))
+        return {r.id: r for r in step_rows(a, b, e, w, om)}
+
+
+def _mp(x):
+    return mpmath.mpf(int(x.p)) / int(x.q)
+
+
+def _nus(a, b, e):
+    c2 = (a - b) * (b - 1)
+    n14 = sorted(mpmath.polyroots([c2, -(e * (a - 1) + a - b), e], extraprec=100))
+    n26 = sorted(mpmath.polyroots([c2, -(e * (a - 1) + b * (a - b)), e * a], extraprec=100))
+    return n14[0], n26[0], n14[1], n26[1]
+
+
+def test_five_holds_for_every_parameter_identities_and_mpmath_samples():
+    assert all(five_identities().values())
+    assert _rows()["(5) for every parameter"].status is AuditStatus.CONFIRMED
+    rnd = random.Random(3)
+    mpmath.mp.dps = 40
+    for _ in range(200):
+        b = 1 + mpmath.mpf(10) ** rnd.uniform(-3, 2)
+        a = b + mpmath.mpf(10) ** rnd.uniform(-3, 2)
+        e = mpmath.mpf(10) ** rnd.uniform(-4, 2)
+        nu1, nu2, nu4, nu6 = _nus(a, b, e)
+        n4m = (1 + e) / (b - 1)
+        n6m = (b * b + e) / (b * (b - 1))
+        assert e / (a - b + e * (a - 1)) < nu1 < e / (a - b)
+        assert e * a / (b * (a - b) + e * (a - 1)) < nu2 < e * a / (b * (a - b))
+        assert n4m < nu4 < n4m + e * e * (a - 1) / ((a - b) * (a - b + e * (a - 1))) * (1 + mpmath.mpf(10) ** -30)
+        assert n6m < nu6 < n6m + e * e * a * (a - 1) / (b * (a - b) * ((a - b) * b + e * (a - 1))) * (1 + mpmath.mpf(10) ** -30)
+
+
+def test_six_rows_at_the_example_and_mpmath():
+    rows = _rows()
+    assert rows["(6) left side >= F on [0, nu1]"].status is AuditStatus.CONFIRMED
+    assert rows["(6) F >= right side on [0, nu1] (printed)"].status is AuditStatus.CONFIRMED
+    assert rows["(6) F >= right side on [0, nu1] (as read)"].status is AuditStatus.CONFIRMED
+    step = rows["(6) step: the right side's factor from (3) and (5)"]
+    assert step.status is AuditStatus.REFUTED and "34.09" in step.note and "38.000" in step.note
+    mpmath.mp.dps = 30
+    a, b, e = _mp(A), _mp(B), _mp(E)
+    nu1, nu2, nu4, nu6 = _nus(a, b, e)
+    nu3, nu5 = 1 / (b - 1), b / (b - 1)
+    F = lambda w: w * (w - nu2) * (w - nu5) * (w - nu6) / ((w - nu1) * (w - nu3) * (w - nu4))  # noqa: E731
+    lhs = lambda w: w * e * a * b / ((b - 1) * (a - b) * w * w - (e * (a - 1) + a - b) * w + e)  # noqa: E731
+    lam = (b * (b - 1) + e) / (b * (b - 1))
+    rhs = lambda w: w * (w - e * a / (b * (a - b) + e * (a - 1))) / (w - e / (a - b)) * lam * b * b  # noqa: E731
+    for i in range(1, 100):
+        w = nu1 * i / 100
+        assert lhs(w) >= F(w) >= rhs(w)
+    assert nu5 * nu6 / (nu3 * nu4) < lam * b * b
+
+
+def test_positive_on_decides_both_ways():
+    x = fmpq_poly([0, 1])
+    st, _, _ = positive_on((x - fmpq(1, 3)) ** 2 + fmpq(1, 100), arb(0), arb(1))
+    assert st == "positive"
+    st, pt, _ = positive_on((x - fmpq(1, 3)) ** 2 - fmpq(1, 100), arb(0), arb(1))
+    assert st == "negative" and abs(float(pt.mid()) - 1 / 3) < 0.1
+    st, _, _ = positive_on((x - fmpq(1, 3)) ** 2, arb(0), arb(1), max_pieces=64)     # touches 0: never positive
+    assert st != "positive"
+
+
+def test_fourteen_rows_and_the_sensitivities_against_mpmath():
+    rows = _rows()
+    for rid in ("(14) infinitely stiff gimbal", "(14) lambda_1, lambda_2 nearly independent of K3",
+                "(14) lambda_3, lambda_4 independent of A1 and K2 at small eps"):
+        assert rows[rid].status is AuditStatus.CONFIRMED, rid
+    # the K2 sensitivity of lambda_1 by a finite difference of mpmath roots: d ln lambda/d ln K2 = eps/2 d ln w/d eps
+    mpmath.mp.dps = 40
+
+    def w1(e):
+        a, b, w = _mp(A), _mp(B), _mp(W)
+        c2 = (a - b) * (b - 1)
+        # P1(l) = (l(b-1) + b)(c2 l^2 + (e(a-1) + b(a-b)) l + e a), P2(l) = (l(b-1) + 1)(c2 l^2 + (e(a-1) + a-b) l + e)
+        p1 = [(b - 1) * c2, (b - 1) * (e * (a - 1) + b * (a - b)) + b * c2, (b - 1) * e * a + b * (e * (a - 1) + b * (a - b)), b * e * a]
+        p2 = [(b - 1) * c2, (b - 1) * (e * (a - 1) + a - b) + c2, (b - 1) * e + (e * (a - 1) + a - b), e]
+        # Q(x) = l p1(l) + w p2(l), l = -x: polynomial in l, then roots in x = -l
+        coeffs = [p1[0], p1[1] + w * p2[0], p1[2] + w * p2[1], p1[3] + w * p2[2], w * p2[3]]
+        return sorted(-r.real for r in mpmath.polyroots(coeffs, extraprec=100))
+    e0, h = _mp(E), mpmath.mpf(10) ** -12
+    for j, w in enumerate(w1(e0)):
+        w_plus = w1(e0 + h)[j]
+        fd = e0 / 2 * (mpmath.log(w_plus) - mpmath.log(w)) / h
+        txt = rows["(14) lambda_3, lambda_4 independent of A1 and K2 at small eps"].note
+        part = txt.split("d ln lambda_j / d ln K2 = ")[1].split(" for j")[0]
+        lo, hi = (float(x) for x in part.split("], [")[j].strip("[]").split(", "))
+        assert lo - 1e-6 <= float(fd) <= hi + 1e-6
+
+
+def test_no_undecided_row_without_a_value_in_the_audit():
+    from rigor_gyro import load_scene, prove_scene
+    rows = prove_scene(load_scene("rudenko1976")).to_json()["paper"]
+    ids = {r["id"] for r in rows}
+    assert "(5) for every parameter" in ids and "(6) step: the right side's factor from (3) and (5)" in ids
+    for r in rows:
+        assert not (r["status"] == "undecided" and r["lo"] == ""), r["id"]
+
+
+def test_local_quartic_matches_slack_forms():
+    from rigor_gyro.kinds.eigenfrequencies.model import Params
+    from rigor_gyro.kinds.eigenfrequencies.paper_steps import _quartic_value
+    from rigor_gyro.kinds.eigenfrequencies.slack_forms import quartic_value
+    p = Params(arb(A), arb(B), arb(E), arb(W))
+    for x in (fmpq(1, 7), fmpq(3, 2), fmpq(-2, 3)):
+        assert _quartic_value(arb(x), p).overlaps(quartic_value(arb(x), p))
+        assert abs(float((_quartic_value(arb(x), p) - quartic_value(arb(x), p)).mid())) < 1e-25
