@@ -169,8 +169,10 @@ def test_hz_values_are_judged_at_the_paper_s_own_scale_interval():
     r9 = rows["(9) lambda_3+ (Hz)"]                                       # 546: nu4^- and b (nu5 - nu4^-)
     assert r9["class"] == "propagated" and "nu4^-" in r9["class_reading"]
     assert "at the printed eps = 0.1076: [546.3596, 546.4181] Hz (a correct rounding)" in r9["note"]
-    for rid in ("(8) lambda_2+ (Hz)", "(10) lambda_4+ (Hz)", "(13) lambda_2~ (Hz)"):
-        assert rows[rid]["class"] == "unexplained", rid                  # 130.4, 950.8, 128
+    for rid in ("(8) lambda_2+ (Hz)", "(13) lambda_2~ (Hz)"):
+        assert rows[rid]["class"] == "unexplained", rid                  # 130.4, 128
+    r10 = rows["(10) lambda_4+ (Hz)"]                                     # 950.8: eps for eps^2, as (9) prints it
+    assert r10["class"] == "propagated" and "eps for eps^2" in r10["class_reading"]
     assert rows["'exact' values share one Hz scale"]["class"] == "assertion-refuted"
 
 

@@ -127,3 +127,36 @@ def test_local_quartic_matches_slack_forms():
     for x in (fmpq(1, 7), fmpq(3, 2), fmpq(-2, 3)):
         assert _quartic_value(arb(x), p).overlaps(quartic_value(arb(x), p))
         assert abs(float((_quartic_value(arb(x), p) - quartic_value(arb(x), p)).mid())) < 1e-25
+
+
+def _paper_rows():
+    from rigor_gyro import load_scene, prove_scene
+    return {r["id"]: r for r in prove_scene(load_scene("rudenko1976")).to_json()["paper"]}
+
+
+def test_950_8_is_the_eps1_reading_of_10_and_mpmath():
+    r = _paper_rows()["(10) lambda_4+ (Hz)"]
+    assert r["class"] == "propagated" and "eps for eps^2" in r["note"]
+    mpmath.mp.dps = 30
+    a, b, e, w = _mp(A), _mp(B), _mp(E), _mp(W)
+
+    def f(k):
+        r3 = (e / (b * (b - 1)) + e ** k * a * (a - 1) / (b * (a - b) * ((a - b) * b + e * (a - 1))) + w) / 2
+        return b / (b - 1) + r3 + mpmath.sqrt(r3 * r3 + w)
+    s_lo = mpmath.mpf("617.7423")
+    assert abs(s_lo * mpmath.sqrt(f(1)) - mpmath.mpf("950.8")) < mpmath.mpf("0.05")        # eps: rounds to 950.8
+    assert abs(s_lo * mpmath.sqrt(f(2)) - mpmath.mpf("950.8")) > mpmath.mpf("0.5")         # eps^2: far from it
+
+
+def test_the_omega2_prints_share_one_scale_and_say_what_was_tried():
+    rows = _paper_rows()
+    for rid in ("(8) lambda_2+ (Hz)", "(13) lambda_2~ (Hz)"):
+        assert rows[rid]["class"] == "unexplained"
+        assert "tried: the formula as printed" in rows[rid]["note"] and "one common Hz scale" in rows[rid]["note"]
+    mpmath.mp.dps = 30
+    a, b, e, w = _mp(A), _mp(B), _mp(E), _mp(W)
+    w8 = (e * a * (b - 1) + w * (1 + e) * (a - b)) / ((a - b) * (b - 1) * (b + w * (1 + e)))
+    w13 = (e * (b - 1) * a + w * (a - b)) / ((a - b) * (b - 1) * (b + w))
+    lo = max((mpmath.mpf("130.35")) / mpmath.sqrt(w8), mpmath.mpf("127.5") / mpmath.sqrt(w13))
+    hi = min((mpmath.mpf("130.45")) / mpmath.sqrt(w8), mpmath.mpf("128.5") / mpmath.sqrt(w13))
+    assert 606 < lo < hi < 606.5

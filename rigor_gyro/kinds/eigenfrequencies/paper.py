@@ -22,7 +22,7 @@ from ...core.balls import (ball, certainly_gt, certainly_le, certainly_lt, certa
                            decimal_bounds)
 from ...core.outcome import AuditRow, AuditStatus
 from ...core.polyroots import isolate_polynomial
-from .paper_hz import READ_FORMULAS, derived_row, exact_chain, hz_chain, input_box
+from .paper_hz import TRIED, WINDOW_READINGS, READ_FORMULAS, derived_row, exact_chain, hz_chain, input_box, shared_scale_note
 from .paper_scale import consistent_eps, consistent_eps_row
 from .paper_text import text_rows
 from .paper_steps import step_rows
@@ -376,15 +376,19 @@ def audit(model, p: Params, omegas: list[arb]) -> list[AuditRow]:
                               (br.lo_reading if kind == "lower" else br.hi_reading) or "as printed",
                               *((None, None) if scale is not None else (hull, inner)))
             _attach_chain(row, scale, rf or pf, box, f"{br.eq} {kind} bound{' as read' if rf else ''}", eps_text)
+            if (kind, j) in WINDOW_READINGS:      # the edit search first: its edits are the reading's evidence
+                row = _with_edits(row, (kind, j), br.eq, x, p, s, hull, inner)
             if scale is not None and row.status is not AuditStatus.AGREES:
                 derived_row(row, (kind, j), x, box, scale, eps_text, p, Params(p.a, p.b, arb(scale.eps), p.W))
-            rows.append(_with_edits(row, (kind, j), br.eq, x, p, s, hull, inner))
+            rows.append(row if (kind, j) in WINDOW_READINGS else _with_edits(row, (kind, j), br.eq, x, p, s, hull, inner))
     for j, x in enumerate(paper.get("hz_approx", []), start=1):
         eq = "(12)" if j == 1 else "(13)"
         row = _number_row(f"{eq} lambda_{j}~ (Hz)", x, s, _value(lambda q, j=j: approximation(j, q), p), None,
                           APPROX_TEXT[j], "as printed", *((None, None) if scale is not None else (hull, inner)))
         _attach_chain(row, scale, lambda q, j=j: approximation(j, q), box, f"{eq} approximation of omega_{j}", eps_text)
         rows.append(_with_edits(row, ("approx", j), eq, x, p, s, hull, inner))
+    if scale is not None:
+        _unexplained_notes(rows, p, scale)
     bound = paper.get("error_bound")
     if bound is not None:
         rows.extend(_five_percent_rows(bound, p, omegas, paper))
@@ -393,6 +397,25 @@ def audit(model, p: Params, omegas: list[arb]) -> list[AuditRow]:
     rows.extend(text_rows(a, b, e, W, general))
     rows.extend(step_rows(a, b, e, W, omegas))
     return rows
+
+
+def _unexplained_notes(rows: list[AuditRow], p: Params, scale) -> None:
+    """Every Hz row that no chain explains says what was tried (:data:`.paper_hz.TRIED`); where both omega_2
+    prints are unexplained, whether one Hz scale reproduces both (:func:`.paper_hz.shared_scale_note`)."""
+    def unexplained(r: AuditRow) -> bool:
+        return (isinstance(r.propagated, Chain) and r.value is not None and r.value.is_finite()
+                and classify_against_chain(r.printed, r.value, r.propagated).cls == "unexplained")
+    hz = [r for r in rows if r.id.endswith("(Hz)") and unexplained(r)]
+    for r in hz:
+        r.note += "; " + TRIED
+    by_id = {r.id: r for r in hz}
+    pair = [("(8) lambda_2+ (Hz)", _value(BRACKETS[2].hi_read or BRACKETS[2].hi, p)),
+            ("(13) lambda_2~ (Hz)", _value(lambda q: approximation(2, q), p))]
+    if all(rid in by_id and w is not None for rid, w in pair):
+        note = shared_scale_note([(by_id[rid].printed, w) for rid, w in pair], scale)
+        if note is not None:
+            for rid, _ in pair:
+                by_id[rid].note += "; " + note
 
 
 #: where the audit of the general claim looks for a counterexample: Omega2 = 10^-k with the scene's a, b, eps

@@ -31,7 +31,8 @@ from ...core.paper_chain import Chain
 from .model import NotReal, Params
 from .paper_scale import ScaleReading, fit_scales
 
-__all__ = ["input_box", "hz_chain", "exact_chain", "RUDENKO_SLACK", "READ_FORMULAS", "DERIVED_READINGS", "derived_row"]
+__all__ = ["input_box", "hz_chain", "exact_chain", "RUDENKO_SLACK", "READ_FORMULAS", "DERIVED_READINGS", "WINDOW_READINGS",
+           "derived_row"]
 
 #: the author's own rounding beyond the chain, in units of the print's last digit: the prints that agree
 #: with the exact value (39.5, 43.4, 514, 922, 923.5) are correct roundings; the arithmetic rows reproduced
@@ -137,6 +138,24 @@ def _upper_9_nu4m(p: Params):
     return (1 + e) / (b - 1) + b * (1 - e / (b - 1)) / (b + (W * (b - 1) * b).sqrt())
 
 
+def _upper_10_eps1(p: Params):
+    """(10)'s upper bound with eps (not eps^2) in R3's correction term eps^2 a (a-1)/(b (a-b)((a-b) b + eps (a-1))):
+    the exponent the paper prints in (9)'s upper bound for the same correction of nu4^+."""
+    a, b, e, W = p
+    r3 = (e / (b * (b - 1)) + e * a * (a - 1) / (b * (a - b) * ((a - b) * b + e * (a - 1))) + W) / 2
+    return b / (b - 1) + r3 + (r3 * r3 + W).sqrt()
+
+
+#: readings accepted when the print lies in the reading's chain window (the chain over the printed inputs times
+#: the scale hull; the class then says ``propagated``), where the point test at the scale hull straddles a
+#: rounding boundary: their evidence is the paper's own print of the same term elsewhere
+WINDOW_READINGS: dict[tuple[str, int], tuple[str, object]] = {
+    ("upper", 4): ("(10)'s upper bound with eps for eps^2 in R3's correction term eps^2 a (a-1)/(b (a-b)((a-b) b + "
+                   "eps (a-1))): the exponent the paper prints for the same correction of nu4^+ in (9)'s upper "
+                   "bound (one of the two single edits of (10) that reproduce the print)", _upper_10_eps1),
+}
+
+
 #: readings of a printed bound found from the derivation's intermediate forms (the branch factor kept, the
 #: rest of F a constant; the factors of the other bounds), each stated in its row only where an Arb
 #: enclosure of it times the paper's scale is a correct rounding of the print; they are readings of the
@@ -159,6 +178,8 @@ def derived_row(row, key: tuple[str, int], printed: str, box: Box, scale: ScaleR
     Returns whether it did. Precision: the working precision; the decision is audit_printed's."""
     from ...core.audit import audit_printed
     from ...core.outcome import AuditStatus
+    if key in WINDOW_READINGS:
+        return _window_row(row, key, printed, box, scale, eps_text)
     if key not in DERIVED_READINGS:
         return False
     text, f = DERIVED_READINGS[key]
@@ -183,3 +204,49 @@ def derived_row(row, key: tuple[str, int], printed: str, box: Box, scale: ScaleR
                  "a reading of the paper's arithmetic found from the derivation's intermediate forms, not the bound "
                  "the claims prove")
     return True
+
+
+def _window_row(row, key, printed: str, box: Box, scale: ScaleReading, eps_text: str) -> bool:
+    """A :data:`WINDOW_READINGS` reading becomes the row's chain when the print lies in its window at slack 0
+    (:func:`rigor_gyro.core.chain_classify.decide` says ``propagated``) and not in the window of the chain the
+    row already has (the model's reading): the reading explains the print where the model's does not."""
+    from ...core.chain_classify import decide
+    text, f = WINDOW_READINGS[key]
+    ch = hz_chain(f, box, scale, f"the reading: {text},", eps_text)
+    if ch is None or decide(printed.strip(), ch)[0] != "propagated":
+        return False
+    old = row.propagated if isinstance(row.propagated, Chain) else None
+    if old is not None and decide(printed.strip(), old)[0] in ("propagated", "last-digit"):
+        return False
+    row.propagated = ch
+    row.note += (f"; {printed} Hz lies in the chain of {text}: {_fmt(ch.value)} Hz over the printed inputs times the Hz "
+                 f"scale {_fmt(scale.outer())} (a correct rounding for part of it, not certainly for all: the "
+                 "reading's evidence is the paper's own print of that term in (9)); a reading of the paper's "
+                 "arithmetic, not the bound the claims prove")
+    return True
+
+
+#: what was tried on the Hz prints that no chain reproduces (issue 39), for their rows' notes
+TRIED = ("tried: the formula as printed and as read, with every single edit and every pair of single edits (two "
+         "edits: none reproduces 130.4; for 128 only three implausible pairs, e.g. 'a divides' with 'a - b -> a + "
+         "b'), the derivation's intermediate forms, the chain at eps = 0.1076 and 0.1073 over the printed inputs "
+         "within their rounding, one- and two-digit edits, transpositions and decimal shifts of one or two of a, b, "
+         "eps, Omega^2 (explored in floats: coincidences for the 3-digit 128 alone, none natural), and unit slips "
+         "(2 pi, rad/s, omega without its square root: factors of 2.5 and more, far from the ~2 % gaps)")
+
+
+def shared_scale_note(prints: list[tuple[str, arb]], scale: ScaleReading) -> str | None:
+    """Whether the prints (each with a ball containing the value it should be the Hz of, in omega) are
+    certainly correct roundings at one common Hz scale, and that scale against the paper's: a note (None when
+    no common scale is certain). The intersection is certified with :func:`.paper_scale.fit_scales`."""
+    got = fit_scales([x for x, _ in prints], [w for _, w in prints])
+    if got is None:
+        return None
+    lo, hi = got
+    if not certainly_lt(lo, hi):
+        return None
+    rel = (lo.union(hi) / scale.outer() - 1) * 100
+    return (f"the prints {', '.join(x for x, _ in prints)} are correct roundings at one common Hz scale, "
+            f"{_fmt(lo.union(hi))} (certified), {_fmt(rel, 3)} % from the scale {_fmt(scale.outer())} of the 'exact' "
+            "values: both omega_2 prints look computed with another Hz factor (or another omega_2 than the formulas "
+            "give) by the same ~2 %; no reading of it found")
