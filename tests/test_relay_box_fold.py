@@ -119,7 +119,8 @@ def _h_box(rel: F) -> Box:
 
 def test_the_similar_box_is_bisected_only_where_theta_was_proved(monkeypatch):
     """A cover whose undivided similar box certified no theta* stops there (then the original box is tried);
-    one that certified theta* but decided nothing bisects (SIMILAR_DEPTH levels)."""
+    one that certified theta* but decided nothing bisects until its budget is spent."""
+    from rigor_gyro.kinds.periodic_orbit import similar_cover
     m = _model()
     calls = []
 
@@ -138,8 +139,9 @@ def test_the_similar_box_is_bisected_only_where_theta_was_proved(monkeypatch):
         assert [list(c) for c in calls] == [["B"], ["H"]]
         calls.clear()
         monkeypatch.setattr(box_orbit, "continue_orbit", fake(True))
+        monkeypatch.setattr(similar_cover.cover, "__defaults__", (4,))
         assert box_orbit.continued_outcomes(m, _h_box(F(1, 100)), ["stable"]) == {}
-        # the similar box, its left half, that half's left half (no leaf decides: the right ones are not tried),
+        # the similar box, its left half, that half's left half (then the budget cannot pay for two more halves),
         # then the original box
         assert [list(c) for c in calls] == [["B"], ["B"], ["B"], ["H"]]
 

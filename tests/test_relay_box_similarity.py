@@ -207,6 +207,17 @@ def test_all_six_at_a_fifth_percent_stable_and_half_percent_genuine():
         assert out["orbit_genuine"][0] == "proved" and "similar box" in out["orbit_genuine"][1]
 
 
+@pytest.mark.slow
+def test_all_six_at_half_a_percent_stable_on_pieces_of_the_similar_box():
+    """The six parameters at +-0.5 % at once: stable on 16 pieces of the similar box (B' halved three times, then
+    sigma'), about a minute of CPU."""
+    m = _model()
+    with working_precision(128):
+        out = evaluate_box(m, _box(m.params, F(1, 200)), ["stable", "orbit_genuine"])
+    assert out["stable"][0] == "proved" and "pieces of a bisection" in out["stable"][1]
+    assert out["orbit_genuine"][0] == "proved"
+
+
 def test_lower_end_only_from_an_isolated_disc():
     # eigenvalues 0, 0 (nilpotent) although |K_11| - R_1 = 1 > 0: the discs overlap, so no lower end from them
     K = acb_mat([[acb(3), acb(2)], [acb("-4.5"), acb(-3)]])

@@ -23,6 +23,7 @@ from ...core.polyroots import isolate_polynomial
 from .claims import analyse
 from .normed_orbit import continue_orbit_normed as continue_orbit
 from .flow import PARAMETER_NAMES, RelayParams, nutation_cubic
+from .similar_cover import cover
 from .similarity import conjugacy_holds, similar_box, similar_point
 from .parametric import PHYSICAL
 
@@ -60,7 +61,8 @@ def centre_orbits(model, want_stable: bool):
 def continued_outcomes(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str]]:
     """{claim: ("proved", reason)} for the claims among orbit_genuine and stable that the continuation
     proves on the box (module docstring); the others are left out. A box that varies A, H or tau is first
-    decided on its similar box of (B, sigma, n) (:mod:`.similarity`), bisected up to SIMILAR_DEPTH times."""
+    decided on its similar box of (B, sigma, n) (:mod:`.similarity`), bisected adaptively
+    (:mod:`.similar_cover`)."""
     wanted = [c for c in ("orbit_genuine", "stable") if c in claims]
     if not wanted or getattr(model, "orbit", None) is not None:
         # a tracked orbit (option orbit) is the root of g certified NEAREST the option for every member: the
@@ -72,7 +74,7 @@ def continued_outcomes(model, box: Box, claims: list[str]) -> dict[str, tuple[st
         rbox, fixed = red
         if not conjugacy_holds(model.params, similar_point(model.params, fixed)):
             raise AssertionError("the relay model is no longer similar across equal (a, b, s): a bug")
-        got = _cover(model, rbox, rbox, fixed, wanted, SIMILAR_DEPTH)
+        got = _cover(model, rbox, fixed, wanted)
         lead = ("decided on the similar box " + ", ".join(f"{k}' in [{_frac(lo)}, {_frac(hi)}]" for k, lo, hi in rbox.edges)
                 + f" at {', '.join(f'{k} = {_frac(v)}' for k, v in fixed.items())} (every member has the invariants "
                 "H^2 tau^2/(A B), n tau/A, sigma/tau of a member of it: the same orbits up to time tau/tau' and a "
@@ -85,58 +87,51 @@ def continued_outcomes(model, box: Box, claims: list[str]) -> dict[str, tuple[st
     return out
 
 
-#: bisections of a similar box (:func:`_cover`): at most 2^SIMILAR_DEPTH leaves per claim
-SIMILAR_DEPTH = 2
-
-
 def _frac(q) -> str:
     return str(q.numerator) if q.denominator == 1 else f"{q.numerator}/{q.denominator}"
 
 
-def _cover(model, rbox: Box, whole: Box, fixed: dict, wanted: list[str], depth: int) -> dict[str, tuple[str, str]]:
-    """The claims proved on every leaf of a bisection of the similar box ``rbox`` (each leaf continued from its
-    own centre's orbit; both claims assert existence per member, so leaves may follow different orbits)."""
-    mid = rbox.midpoint()
+def _cover(model, rbox: Box, fixed: dict, wanted: list[str]) -> dict[str, tuple[str, str]]:
+    """The claims proved on every piece of an adaptive bisection of the similar box ``rbox``
+    (:func:`.similar_cover.cover`; each piece continued from its own centre's orbit: both claims assert existence
+    per member, so pieces may follow different orbits)."""
     q = lambda x: fmpq(x.numerator, x.denominator)
-    vals = {k: getattr(model.params, k) for k in PARAMETER_NAMES}
-    vals.update({k: q(v) for k, v in fixed.items()})
-    vals.update({k: q(v) for k, v in mid.items()})
-    got, reached = _continued(dataclasses.replace(model, params=RelayParams(**vals)), rbox, wanted, report=True)
-    rest = [c for c in wanted if c not in got]
-    if not rest or depth == 0 or not reached:
-        # bisected only where theta*(P) was proved over this box for an orbit its centre proposed (the halves
-        # then refine the sign condition and the multipliers): where step 1 failed for every proposed orbit
-        # (roots crowding at fast nutation, dG/dtheta ~ 1e-6 at H ~ 9000) or none was proposed, halving cost
-        # three point analyses per undecided box and decided none of the measured ones
-        return got
-    left, right = rbox.split(whole)
-    sub = _cover(model, left, whole, fixed, rest, depth - 1)
-    rest2 = [c for c in rest if c in sub]
-    if rest2:
-        sub2 = _cover(model, right, whole, fixed, rest2, depth - 1)
-        for c in rest2:
-            if c in sub2:
-                got[c] = ("proved", f"on both halves of a bisection, e.g. {sub[c][1]}")
-    return got
+    base = {k: getattr(model.params, k) for k in PARAMETER_NAMES}
+    base.update({k: q(v) for k, v in fixed.items()})
+
+    def evaluate(piece: Box, need: list[str]):
+        vals = dict(base)
+        vals.update({k: q(v) for k, v in piece.midpoint().items()})
+        return _continued(dataclasses.replace(model, params=RelayParams(**vals)), piece, need, report=True)
+
+    got, spent = cover(rbox, wanted, evaluate)
+    out = {}
+    for c, (n, why) in got.items():
+        out[c] = ("proved", why[1] if n == 1 else f"on each of {n} pieces of a bisection of it ({spent} continuations), "
+                  f"e.g. on the first: {why[1]}")
+    return out
 
 
 def _continued(model, box: Box, wanted: list[str], report: bool = False):
     """The claims of ``wanted`` proved by continuing the centre's orbits over ``box`` (``model`` at its centre).
-    With ``report``: (those claims, whether theta*(P) was proved over the box for some continued orbit)."""
+    With ``report``: (those claims, whether theta*(P) was proved over the box for some continued orbit, the motion
+    of that theta* along each direction: |dtheta*/dP_k| over the box times the half-width, or None)."""
     dirs = box_directions(box)
     balls = {k: box.ball(k) for k in dirs}
     iso = isolate_polynomial(nutation_cubic(model.params))
     if not (iso.verified and iso.squarefree):
-        return ({}, False) if report else {}
+        return ({}, False, None) if report else {}
     guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
     out: dict[str, tuple[str, str]] = {}
     _, orbits = centre_orbits(model, want_stable="stable" in wanted)
     if "stable" not in wanted:
         orbits = orbits[:1]
-    reached = False
+    reached, weights = False, None
     for v in orbits:
         o = continue_orbit(model.params, balls, dirs, guesses, v.theta, stability="stable" in wanted)
-        reached = reached or o.theta is not None
+        if o.theta is not None and not reached:
+            reached = True
+            weights = {k: float(abs(g).upper()) * float(balls[k].rad()) for k, g in zip(dirs, o.theta_gradient)}
         if not o.genuine:
             continue
         head = (f"for every parameter in the box, the orbit continued from the centre's theta* = {_fmt(v.theta, 12)}: "
@@ -149,4 +144,4 @@ def _continued(model, box: Box, wanted: list[str], report: bool = False):
                              f"(stability margin >= {(1 - o.max_modulus).lower().str(6, radius=False)}); "
                              + o.genuine_reason)
             break
-    return (out, reached) if report else out
+    return (out, reached, weights) if report else out

@@ -56,13 +56,17 @@ classified and hold across the fold.
 
 A box that varies A, H or tau is first decided on its similar box of (B, sigma, n) at the midpoint's A, H, tau
 (:mod:`.similarity`: the orbit's existence, genuineness and multipliers depend only on H^2 tau^2/(A B),
-n tau/A and sigma/tau; checked by an exact conjugacy), bisected up to twice (:func:`.box_orbit._cover`), and
+n tau/A and sigma/tau; checked by an exact conjugacy), bisected adaptively along the direction theta* moves
+most while theta* is proved on the piece (:mod:`.similar_cover`, at most 40 continuations), and
 ``stable`` also by a Gershgorin bound of the spectral radius where Rump's method does not isolate the
 multipliers (:mod:`.norm_stability`, :mod:`.normed_orbit`). Measured at 128 bits, all six at once (evaluate_box,
 one box, 2026-12-06, helper H5): ``orbit_genuine`` +-0.5 % proved in 10.8 s (was undecided; +-0.25 % before),
 ``stable`` +-0.2 % in 21.5 s and +-0.15 % in 10.8 s (was +-0.1 %); ``stable`` +-0.25 % undecided (54 s), +-0.5 %
 undecided (103 s even with 64 leaves of the similar box): the centred Jacobian over a box is still far wider
-than J moves (theta*'s gradient over B' +-0.75 % encloses [-0.95, 0.95] where it is 0.4).
+than J moves (theta*'s gradient over B' +-0.75 % encloses [-0.95, 0.95] where it is 0.4). With the adaptive
+cover (2026-12-06, helper H5, user CPU on a loaded machine): ``stable`` and ``orbit_genuine`` at +-0.5 % both
+proved in one evaluate_box, 59 s (the similar box B' +-3 %, sigma' +-1 %, n' +-1 %: 16 pieces, B' halved three
+times then sigma', 31 continuations).
 
 A ``[plant]`` model (:class:`.plant_model.PlantModel`) is decided over a box by :mod:`.plant_box` (naive ball
 forms of its matrices over the box: ``orbit_genuine`` and ``stable`` over boxes of relative width ~1e-6 in A and
