@@ -58,7 +58,7 @@ def test_one_piece_that_reaches_nothing_drops_the_claim():
 
 
 def test_the_budget_bounds_the_evaluations_and_pending_pieces_prove_nothing():
-    for budget in (1, 2, 3, 7, 14):
+    for budget in range(1, 15):
         log = []
         got, spent = cover(BOX, ["stable"], _evaluator({"stable": F(1, 8)}, log=log), budget=budget)
         assert spent == len(log) <= budget and got == {}
