@@ -15,7 +15,9 @@ enclosure they compute contains the value for every member):
 1. theta*(P): the centre's genuine root (the point analysis at the box's midpoint) is re-enclosed for every
    member by interval Newton on g over Theta x box: N = t_c - g(t_c; box) / g'(Theta; box) inside Theta
    proves that every member has exactly one root of g in Theta (member by member: the mean value theorem);
-   g' over Theta x box by a Taylor form about Theta's midpoint (:func:`.flow.taylor_enclosure`).
+   g(t_c; box) in centred form in the parameters (:func:`g_parametric`: the implicit-function derivatives of
+   the eigenvalues and residues), g' over Theta x box by a Taylor form about Theta's midpoint
+   (:func:`.flow.taylor_enclosure`).
 2. orbit_genuine: :func:`.plant_claims.classify` on the box spectrum and Theta: c . x(t) + h > 0 on
    (0, theta*(P)) for every member (its enclosures hold every theta in Theta and every member).
 3. stable: :func:`.plant_claims.plant_multipliers` on the box spectrum: Rump's method on the ball Jacobian
@@ -29,10 +31,10 @@ leaves the box undecided.
 Guarantee: ``proved`` means that for every parameter value in the box some genuine symmetric orbit exists
 (``orbit_genuine``), some genuine orbit has every multiplier modulus < 1 (``stable``). A box that these
 sufficient tests do not decide is ``undecided`` (never refuted). Precision: the caller's (the paving's
-``box_prec``). The polynomial data are centred in the parameters, the rest (g and its theta-root over the box,
+``box_prec``). The polynomial data and g(t_c) are centred in the parameters, the rest (g', the sign condition,
 the Jacobian) naive in the eigenvalue and residue balls: on the Roitenberg plant all six parameters at +-1e-5
-relative are decided (at +-1e-6 before the centred coefficients, nothing), H alone at +-1e-4 for orbit_genuine
-(+-1e-5 for stable). Fails when: an entry has no finite value over the box (a division by a
+relative are decided (naive: nothing at +-1e-6), all six at +-1e-4 for orbit_genuine, H alone at +-1e-4
+(naive: +-1e-6); theta*'s ball over H +-1e-6 is 2.1e-7 wide (naive 5.6e-5). Fails when: an entry has no finite value over the box (a division by a
 ball containing 0): ParameterError from :func:`validate_plant_box`.
 """
 from __future__ import annotations
@@ -48,11 +50,11 @@ from ...core.expressions import evaluate_exact, parse as parse_expression
 from ...core.family_roots import newton_family_root, newton_family_root_complex, polynomial_family
 from ...core.polyroots import isolate_polynomial
 from .flow import DegenerateSpectrum, taylor_enclosure
-from .plant_centred import centred_polynomial_data
+from .plant_centred import centred_polynomial_data, centred_scalar
 from .plant_claims import analyse, classify, plant_multipliers
 from .plant_model import PlantModel
 from .norm_stability import eigen_coordinate_family, largest_modulus_range
-from .plant_orbit import PlantMode, PlantSpectrum, g_coeffs, jacobian, section_index
+from .plant_orbit import PlantMode, PlantSpectrum, _E, g_coeffs, jacobian, section_index
 from .plant_statements import TAYLOR_ORDER
 
 __all__ = ["PLANT_BOX_CLAIMS", "PlantBoxSpectrum", "plant_balls", "validate_plant_box", "evaluate_plant_box"]
@@ -133,8 +135,14 @@ class PlantBoxSpectrum(PlantSpectrum):
         M, e, c, S, h = plant_balls(model, box)
         P = M.charpoly()
         p = [P[k] for k in range(n + 1)]
-        Mx, ex, cx, _, _ = _exprs(model)
-        cd = centred_polynomial_data((Mx, ex, cx), {k: v.rational for k, v in model.exact.items()}, box)
+        Mx, ex, cx, Sx, hx = _exprs(model)
+        exact = {k: v.rational for k, v in model.exact.items()}
+        self.grads: dict | None = {}
+        cd = centred_polynomial_data((Mx, ex, cx), exact, box, self.grads)
+        self.box = box
+        self.scalars = (centred_scalar(Sx, exact, box), centred_scalar(hx, exact, box))
+        if cd is None or any(x is None for x in self.scalars):
+            self.grads = None
         if cd is not None:          # the centred coefficients (each also the naive one's intersection)
             p = [_meet(a, b) for a, b in zip(p, cd[0])]
         zero = model.zero_eigenvalue
@@ -187,6 +195,69 @@ class PlantBoxSpectrum(PlantSpectrum):
         else:
             self.r0c, self.r0x = arb(0), [arb(0)] * n
         self.M, self.e, self.c = M, e, c
+        self.p, self.Nc = p, Nc
+
+
+def _horner(coeffs, z: acb) -> acb:
+    out = acb(0)
+    for c in reversed(coeffs):
+        out = out * z + c
+    return out
+
+
+def _derivative(coeffs) -> list:
+    return [k * coeffs[k] for k in range(1, len(coeffs))]
+
+
+def g_parametric(sp: PlantBoxSpectrum, t: arb) -> arb | None:
+    """g(t; P) at an exact t for every member of the box, in centred form in the parameters:
+    g(t; P0) + sum_j dg/dP_j(box) (P_j - P0_j), P0 the box's exact midpoint (its own spectrum), intersected with
+    the naive g(t; box). g = -Re(t r0c S/2 + h + sum_m w sigma S rc_m Th_m / lambda_m), Th = (1 - E)/(1 + E) =
+    tanh(sigma lambda t/2); the derivatives over the box by the implicit function theorem on each simple
+    eigenvalue (d lambda = -(d_j p)(lambda)/p'(lambda), the family Newton proof's uniqueness makes lambda(P) the
+    continuous branch in its ball), d rc from rc = Nc(lambda)/p'(lambda), d r0c from Nc_0/p_1, dTh/d lambda =
+    (sigma t/2)(1 - Th^2), d S and d h from the entries' expressions (:mod:`.plant_centred`). None when a part is
+    not enclosed (the caller keeps the naive g)."""
+    if sp.grads is None or not sp.grads:
+        return None
+    box = sp.box
+    mid = box.midpoint()
+    try:
+        centre = PlantBoxSpectrum(sp.model, Box(tuple((k, mid[k], mid[k]) for k in box.names)))
+    except DegenerateSpectrum:
+        return None
+    g0 = g_coeffs(centre, t, 1, pole_free=False)[0]
+    naive = g_coeffs(sp, t, 1, pole_free=False)[0]
+    (Sv, Sg), (_, hg) = sp.scalars
+    p, Nc = sp.p, sp.Nc
+    dp, dNc = _derivative(p), _derivative(Nc)
+    ddp = _derivative(dp)
+    zero = sp.model.zero_eigenvalue
+    tt = acb(t)
+    out = g0
+    for j, (gp, gN) in sp.grads.items():
+        tot = acb(hg[j])
+        if zero:
+            r0c_j = (gN[0] - sp.r0c * gp[1]) / p[1]
+            tot += t / 2 * (r0c_j * Sv + sp.r0c * Sg[j])
+        gdp = _derivative(gp)
+        for m in sp.modes:
+            lam = m.lam
+            d1 = _horner(dp, lam)
+            lam_j = -_horner(gp, lam) / d1
+            rc_j = (_horner(gN, lam) + _horner(dNc, lam) * lam_j) / d1 - m.rc * (_horner(gdp, lam) + _horner(ddp, lam) * lam_j) / d1
+            E = _E(m, tt)
+            Th = (1 - E) / (1 + E)
+            dTh = m.sigma * tt / 2 * (1 - Th * Th)
+            tot += m.weight * m.sigma * (Sg[j] * m.rc * Th / lam + Sv * rc_j * Th / lam
+                                         + Sv * m.rc * lam_j * (dTh / lam - Th / (lam * lam)))
+        dg = -tot.real
+        if not dg.is_finite():
+            return None
+        out = out + dg * (box.ball(j) - arb(fmpq(mid[j].numerator, mid[j].denominator)))
+    if not out.is_finite():
+        return None
+    return _meet(naive, out) if naive.is_finite() else out
 
 
 def _meet(a: arb, b: arb) -> arb:
@@ -209,7 +280,8 @@ def _theta_over_box(sp: PlantBoxSpectrum, tc_ball: arb) -> arb | None:
         d = taylor_enclosure(lambda ctr, k: g_coeffs(sp, ctr, k, pole_free=False), Theta, TAYLOR_ORDER, (1,))[0]
         if not certainly_nonzero(d):
             return None
-        N = tc - g_coeffs(sp, tc, 1, pole_free=False)[0] / d
+        gc = g_parametric(sp, tc) if isinstance(sp, PlantBoxSpectrum) else None
+        N = tc - (gc if gc is not None else g_coeffs(sp, tc, 1, pole_free=False)[0]) / d
         if not N.is_finite():
             return None
         if certainly_lt(Theta.lower(), N.lower()) and certainly_lt(N.upper(), Theta.upper()):

@@ -28,7 +28,7 @@ from flint import arb, fmpq
 from ...core.boxes import Box
 from ...core.dual_balls import Dual, constant, gradient_finite, variable
 
-__all__ = ["centred_polynomial_data", "faddeev_leverrier"]
+__all__ = ["centred_polynomial_data", "centred_scalar", "faddeev_leverrier"]
 
 
 def _exact(q: Fraction) -> arb:
@@ -73,11 +73,12 @@ def _data(exprs, env: dict, number) -> tuple[list, list[list], list]:
     return p, Ns, Nc
 
 
-def centred_polynomial_data(exprs, exact: dict[str, Fraction], box: Box):
+def centred_polynomial_data(exprs, exact: dict[str, Fraction], box: Box, grads: dict | None = None):
     """(p, Ns, Nc) as balls: p[k] the coefficients of det(z I - M), Ns[i][k] those of N_i(z) = (adj(z I - M) e)_i,
     Nc[k] those of c . N(z), each containing its value for every member of the box (module docstring); ``exprs``
     = (M, e, c) parsed expressions, ``exact`` every parameter's exact value (the box's edges override). None
-    when not enclosed."""
+    when not enclosed. ``grads`` (a dict): filled with P_j -> (the p_k's, the Nc_k's partial derivatives in
+    P_j over the box), for the parametric form of g in :mod:`.plant_box`."""
     wide = [k for k, lo, hi in box.edges if hi > lo]
     number = lambda q: constant(_exact(q))                   # noqa: E731
     env_box = {k: constant(_exact(v)) for k, v in exact.items()}
@@ -109,4 +110,23 @@ def centred_polynomial_data(exprs, exact: dict[str, Fraction], box: Box):
     flat = p + [x for r in Ns for x in r] + Nc
     if any(x is None or not x.is_finite() for x in flat):
         return None
+    if grads is not None:         # dp_k/dP_j and d(c . N)_k/dP_j over the box, for each varying P_j
+        for j in wide:
+            grads[j] = ([D.grad.get(j, arb(0)) for D in over[0]], [D.grad.get(j, arb(0)) for D in over[2]])
     return p, Ns, Nc
+
+
+def centred_scalar(expr, exact: dict[str, Fraction], box: Box) -> tuple[arb, dict[str, arb]] | None:
+    """(value over the box, {P_j: d/dP_j over the box}) of one entry's expression (S or h), by the same Dual
+    evaluation; None when not enclosed."""
+    number = lambda q: constant(_exact(q))                   # noqa: E731
+    env = {k: constant(_exact(v)) for k, v in exact.items()}
+    for k, lo, hi in box.edges:
+        env[k] = variable(k, box.ball(k)) if hi > lo else constant(_exact(lo))
+    try:
+        D = expr.evaluate(env, number=number)
+    except (ArithmeticError, TypeError, AttributeError, KeyError, ValueError):
+        return None
+    if not gradient_finite(D):
+        return None
+    return D.value, {k: D.grad.get(k, arb(0)) for k, lo, hi in box.edges if hi > lo}
