@@ -1202,6 +1202,16 @@ MUTANTS = [
      "    return 1 if certainly_positive(x) else -1 if certainly_negative(x) else 0\n",
      "    return 1 if x.mid() > 0 else -1\n",
      "a slope's sign read off its midpoint: a sign change claimed where the ball holds 0"),
+    # issue 37: the adaptive cover of a relay box's similar box (similar_cover.py; group relay_box_fold)
+    ("cover_failed_piece_keeps_claim", "rigor_gyro/kinds/periodic_orbit/similar_cover.py",
+     "            alive = [c for c in alive if c not in rest]\n", "            pass\n",
+     "a claim still proved by the cover after a piece of it failed and was not halved"),
+    ("cover_right_half_dropped", "rigor_gyro/kinds/periodic_orbit/similar_cover.py",
+     "        stack.append((right, rest))\n", "        pass\n",
+     "a halved piece's right half never decided: the proved pieces do not cover the box"),
+    ("cover_budget_pending_kept", "rigor_gyro/kinds/periodic_orbit/similar_cover.py",
+     "            alive = [c for c in alive if c not in need]\n", "            pass\n",
+     "pieces left undecided when the budget ran out still count as proved"),
     # issue 42 part 1: [plant] models over tolerance boxes (kinds/periodic_orbit/plant_box.py; group plant_box)
     ("plant_box_balls_at_centre", "rigor_gyro/kinds/periodic_orbit/plant_box.py",
      "    env = {k: (box.ball(k) if k in box.names else", "    env = {k: (box.ball(k) if False else",
@@ -1221,6 +1231,9 @@ MUTANTS = [
     ("plant_box_centred_term_dropped", "rigor_gyro/kinds/periodic_orbit/plant_centred.py",
      "                v = v + g * dev[k]", "                v = v",
      "the [plant] box's centred coefficients taken at the box's midpoint (their derivative terms dropped)"),
+    ("plant_box_g_eigenvalue_derivative_dropped", "rigor_gyro/kinds/periodic_orbit/plant_box.py",
+     "+ Sv * m.rc * lam_j * (dTh / lam - Th / (lam * lam)))", "+ 0)",
+     "the [plant] box's centred g without the eigenvalues' own dependence on the parameters"),
     # issue 42 part 2: moment laws written in the scene (kinds/lyapunov/moment_expr.py, moment_table.py,
     # core/expressions.py parity; tests/test_moment_expr.py)
     ("moment_parity_mixed_sum_odd", "rigor_gyro/core/expressions.py",
