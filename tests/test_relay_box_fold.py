@@ -139,7 +139,7 @@ def test_the_similar_box_is_bisected_only_where_theta_was_proved(monkeypatch):
         assert [list(c) for c in calls] == [["B"], ["H"]]
         calls.clear()
         monkeypatch.setattr(box_orbit, "continue_orbit", fake(True))
-        monkeypatch.setattr(similar_cover.cover, "__defaults__", (4,))
+        monkeypatch.setattr(similar_cover.cover, "__defaults__", (4, 5))
         assert box_orbit.continued_outcomes(m, _h_box(F(1, 100)), ["stable"]) == {}
         # the similar box, its left half, that half's left half (then the budget cannot pay for two more halves),
         # then the original box

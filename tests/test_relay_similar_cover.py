@@ -70,3 +70,11 @@ def test_halves_are_exact():
     left, right = halves(BOX, "sigma")
     assert left.interval("sigma") == (F(3), F(4)) and right.interval("sigma") == (F(4), F(5))
     assert left.interval("B") == right.interval("B") == (F(1), F(2))
+
+
+def test_no_piece_deeper_than_max_depth():
+    log = []
+    got, spent = cover(BOX, ["stable"], _evaluator({"stable": F(1, 8)}, log=log), max_depth=2)
+    assert got == {} and max(F(1) / (p.interval("B")[1] - p.interval("B")[0]) for p, _ in log) == 4
+    got, _ = cover(BOX, ["stable"], _evaluator({"stable": F(1, 8)}), max_depth=3)
+    assert got["stable"][0] == 8

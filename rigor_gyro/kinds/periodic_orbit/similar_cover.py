@@ -10,7 +10,7 @@ gradient times the half-width) needs one.
 What: :func:`cover` keeps a stack of pieces, each with the claims still to be proved on it. A piece is decided by
 ``evaluate`` (the continuation from the piece's own centre); the claims it proves are done there, the others go to
 its two halves along the heaviest direction (``weights``), while the piece proved theta*(P) (``reached``: halving
-can then sharpen steps 2 and 3) and the budget of evaluations lasts. A claim that a piece neither proves nor may
+can then sharpen steps 2 and 3), the budget of evaluations lasts and the piece is at most MAX_DEPTH halvings deep. A claim that a piece neither proves nor may
 pass to its halves is not proved by the cover, and no further piece works on it.
 
 Guarantee: a claim is returned only when every piece of a partition of the box (the leaves of the bisection tree,
@@ -25,10 +25,13 @@ from typing import Callable
 
 from ...core.boxes import Box
 
-__all__ = ["cover", "COVER_BUDGET", "halves"]
+__all__ = ["cover", "COVER_BUDGET", "MAX_DEPTH", "halves"]
 
-#: evaluations a cover may spend (the six parameters at +-0.5 %: 31, 16 leaves along B' at about 1 s each)
+#: evaluations a cover may spend (the six parameters at +-0.5 %: 31, 16 pieces at about 1 s each)
 COVER_BUDGET = 40
+#: halvings of one piece at most (the six parameters at +-0.5 %: 4): bounds the cost of a piece that never
+#: decides, e.g. one holding a stability threshold, to 1 + 2 MAX_DEPTH evaluations along its chain
+MAX_DEPTH = 5
 
 
 def halves(box: Box, name: str) -> tuple[Box, Box]:
@@ -52,17 +55,17 @@ def _heaviest(box: Box, weights: dict[str, float] | None) -> str:
     return max(wide, key=lambda e: (e[2] - e[1]) / max(abs(e[1]), abs(e[2]), Fraction(1, 10**30)))[0]
 
 
-def cover(box: Box, claims: list[str], evaluate: Callable, budget: int = COVER_BUDGET):
+def cover(box: Box, claims: list[str], evaluate: Callable, budget: int = COVER_BUDGET, max_depth: int = MAX_DEPTH):
     """({claim: (pieces, first piece's reason)} proved on every piece of a partition of ``box``, evaluations spent).
 
     ``evaluate(piece, claims) -> (proved {claim: reason}, reached, weights {edge: float} or None)``."""
     alive = list(claims)
     first: dict[str, str] = {}
     pieces = {c: 0 for c in claims}
-    stack = [(box, list(claims))]
+    stack = [(box, list(claims), 0)]
     spent = 0
     while stack:
-        piece, need = stack.pop()
+        piece, need, depth = stack.pop()
         need = [c for c in need if c in alive]
         if not need:
             continue
@@ -78,10 +81,10 @@ def cover(box: Box, claims: list[str], evaluate: Callable, budget: int = COVER_B
         rest = [c for c in need if c not in got]
         if not rest:
             continue
-        if not reached or spent + 2 > budget or not any(hi > lo for _, lo, hi in piece.edges):
+        if not reached or spent + 2 > budget or depth >= max_depth or not any(hi > lo for _, lo, hi in piece.edges):
             alive = [c for c in alive if c not in rest]
             continue
         left, right = halves(piece, _heaviest(piece, weights))
-        stack.append((right, rest))
-        stack.append((left, rest))
+        stack.append((right, rest, depth + 1))
+        stack.append((left, rest, depth + 1))
     return {c: (pieces[c], first[c]) for c in alive if c in first}, spent
