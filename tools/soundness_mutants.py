@@ -1234,6 +1234,9 @@ MUTANTS = [
     ("plant_box_g_eigenvalue_derivative_dropped", "rigor_gyro/kinds/periodic_orbit/plant_box.py",
      "+ Sv * m.rc * lam_j * (dTh / lam - Th / (lam * lam)))", "+ 0)",
      "the [plant] box's centred g without the eigenvalues' own dependence on the parameters"),
+    ("plant_box_g_eigenvalue_derivative_dropped", "rigor_gyro/kinds/periodic_orbit/plant_box.py",
+     "+ Sv * m.rc * lam_j * (dTh / lam - Th / (lam * lam)))", "+ 0)",
+     "the [plant] box's centred g without the eigenvalues' own dependence on the parameters"),
     # issue 42 part 2: moment laws written in the scene (kinds/lyapunov/moment_expr.py, moment_table.py,
     # core/expressions.py parity; tests/test_moment_expr.py)
     ("moment_parity_mixed_sum_odd", "rigor_gyro/core/expressions.py",
