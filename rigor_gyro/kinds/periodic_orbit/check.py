@@ -11,7 +11,9 @@ stored outcome of that search, at twice the certificate's precision:
   it, or one Newton image misses it, or the envelope bound: G = A + B cos + C sin of the nutation
   phase with slowly varying A, B, C and |A| > hypot(B, C)), each "unique" piece exactly one (a Newton image inside the
   current box, by its own short Newton loop; a piece merged at ``splits`` is two unique halves whose
-  roots coincide: unique on the hull of both enclosures); beyond T, when the whole of (0, oo) is
+  roots coincide: unique on the hull of both enclosures); a "phase_empty" / "phase_unique" piece (a
+  fast nutation's half-period) none / exactly one, by the checker's own leaves (:mod:`.phase_pieces`:
+  G of one sign, or G' of one sign for the whole piece, on each leaf); beyond T, when the whole of (0, oo) is
   claimed, the tail bound a T + b - B(T) > 0;
 * per root, its classification: a spurious root's witness (beta(t) < 0 at the stored t, or
   beta'(0) < 0), a genuine root's beta'(0) > 0, beta' > 0 on [0, d1], beta' < 0 on
@@ -40,6 +42,7 @@ from .check_verdicts import other_orbit_moduli, redecide
 from .flow import (DegenerateSpectrum, Spectrum, g_coeffs, half_period_jacobian, moment_zero_orders, pole_free_coeffs,
                    orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure, x0_at)
 from .paper import orbit_quantities
+from .phase_pieces import phase_count, root_bracket
 from .plant_check import check as plant_check
 from .plant_model import PlantModel
 
@@ -102,6 +105,21 @@ def _newton(G: _G, X: arb) -> tuple[str, arb | None]:
             return "unique", n
         x = x.intersection(n)
     return "unknown", None
+
+
+def _phase_unique(G: _G, lo: arb, hi: arb) -> tuple[bool, arb | None]:
+    """A phase_unique piece: exactly one root by :func:`.phase_pieces.phase_count` (the checker's own
+    leaves), enclosed by its own certified sign change (:func:`.phase_pieces.root_bracket`) and
+    refined by interval Newton when that lands (the classification needs a narrow theta)."""
+    if not phase_count(G.coeffs, lo, hi, 1)[0]:
+        return False, None
+    s_lo = _strict_sign(G.coeffs(lo, 1)[0])
+    br = root_bracket(G.coeffs, lo, hi, s_lo)
+    if br is None:
+        return False, None
+    e = interval(*br)
+    st, n = _newton(G, e)
+    return True, (n if st == "unique" else e)
 
 
 def _strict_sign(x: arb) -> int:
@@ -350,6 +368,13 @@ def check(model, data: dict) -> list[CheckResult]:
             elif pc["kind"] == "empty":
                 st, e = _newton(G, interval(lo, hi))
                 pieces_ok = pieces_ok and st == "empty"
+            elif pc["kind"] == "phase_empty":
+                pieces_ok = pieces_ok and phase_count(G.coeffs, lo, hi, 0)[0]
+            elif pc["kind"] == "phase_unique":
+                ok, e = _phase_unique(G, lo, hi)
+                pieces_ok = pieces_ok and ok
+                if ok:
+                    roots.append(e)
             elif pc["kind"] == "unique":
                 if pc.get("splits"):
                     ok, e = _merged_unique(G, lo, hi, [_pt(s) for s in pc["splits"]])

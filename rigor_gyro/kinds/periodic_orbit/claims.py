@@ -69,6 +69,7 @@ from .tracked_claims import choose, tracked_claims, tracked_extra
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table, orbit_quantities
 from .multipliers import decide_multipliers
 from .nutation_form import fast_form
+from .phase_walk import PHASE_REASON, phase_walk
 from .flow import (AMPLITUDE_PARAMETERS, PARAMETER_NAMES, DegenerateSpectrum, RelayParams, Spectrum, envelope_margin, g_coeffs, pole_free_coeffs,
                    moment_zero_orders, orbit_expsums, tail_bound, taylor5_leading_coefficient, taylor_enclosure,
                    x0_at)
@@ -763,6 +764,25 @@ def _isolate(f, lo: arb, hi: arb, *, coeffs=None, max_depth: int = 48,
     return iso
 
 
+def _phase_isolate(sp: Spectrum, coeffs, lo: arb, hi: arb) -> Isolation | None:
+    """A fast nutation's root search by half-periods (:func:`.phase_walk.phase_walk`: one piece per
+    nutation half-period, decided by :mod:`.phase_pieces`; its uncertain stretches by :func:`_isolate`),
+    or None when the spectrum is not a fast nutation or a stretch stayed undecided (the caller then runs
+    :func:`_isolate` over the whole range, which stops fast and resumes at a higher precision)."""
+    omega = getattr(coeffs, "omega", None)
+    if omega is None or getattr(sp, "near_zero", None) is not None:
+        return None
+    f = _g_series_function(sp, coeffs)
+    root_free = envelope_test(sp)
+
+    def fallback(a: arb, b: arb) -> list[RootPiece]:
+        return _isolate(f, a, b, coeffs=coeffs, root_free=root_free).pieces
+    pieces = phase_walk(coeffs, lo, hi, float(omega.mid()), fallback, root_free, envelope_reason=ENVELOPE_REASON)
+    if not pieces or any(p.status is RootStatus.UNKNOWN for p in pieces) or not certainly_le(hi, pieces[-1].hi):
+        return None
+    return Isolation(pieces)
+
+
 def analyse(model: RelayModel, spectrum=None, phase: Phases | None = None) -> Analysis:
     """Isolate and classify every root at the current precision. ``spectrum``: a callable returning
     the :class:`Spectrum` to use (default: ``Spectrum(model.params)``; the box version passes one whose
@@ -811,14 +831,17 @@ def analyse(model: RelayModel, spectrum=None, phase: Phases | None = None) -> An
             pieces = []                                     # keep its pieces, refine each root here
             f = _g_series_function(sp, coeffs)
             for pc in cached[0]:
-                if pc.status is RootStatus.UNIQUE and not pc.parts:
+                if pc.status is RootStatus.UNIQUE and not pc.parts and not pc.reason.startswith(PHASE_REASON):
                     again = newton_root(f, pc.lo, pc.hi)
                     pc = again if again.status is RootStatus.UNIQUE else pc
                 pieces.append(pc)
             iso = Isolation(pieces)
         else:
-            iso = _isolate(_g_series_function(sp, coeffs), an.theta_min, an.T_search, coeffs=coeffs, resume=cached,
-                           root_free=envelope_test(sp), signed_split=getattr(sp, "near_zero", None) is not None)
+            # (an earlier attempt's partial search is not resumed here: the walk restarts at theta_min)
+            iso = _phase_isolate(sp, coeffs, an.theta_min, an.T_search)
+            if iso is None:
+                iso = _isolate(_g_series_function(sp, coeffs), an.theta_min, an.T_search, coeffs=coeffs, resume=cached,
+                               root_free=envelope_test(sp), signed_split=getattr(sp, "near_zero", None) is not None)
         if spectrum is None:
             model.decided[key] = iso.resume if iso.resume is not None else \
                 ((list(iso.pieces), None) if not iso.unknown else None)
@@ -1067,7 +1090,9 @@ def _witnesses(an: Analysis) -> dict[str, Any]:
     pieces = []
     for pc in an.piece_list:
         item = {"lo": _q(pc.lo.lower()), "hi": _q(pc.hi.upper()), "kind": pc.status.value}
-        if pc.reason.startswith("monotone"):
+        if pc.reason.startswith(PHASE_REASON):
+            item["kind"] = "phase_" + pc.status.value
+        elif pc.reason.startswith("monotone"):
             item["by"] = "monotone"
         elif pc.reason == ENVELOPE_REASON:
             item["by"] = "envelope"
