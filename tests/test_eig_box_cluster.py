@@ -87,3 +87,43 @@ def test_ratio_encloses_F_numerator():
                 sub = {a: sympy.Rational(A), b: sympy.Rational(BB), e: sympy.Rational(ev), x: sympy.Rational(xv)}
                 nv, hv = sympy.Rational(N.subs(sub)), sympy.Rational(h.subs(sub))
                 assert float(nb.lower()) <= float(nv) <= float(nb.upper())
+
+
+def _setup(e0=Fr("0.5"), W0=Fr(1, 1000)):
+    box = _gbox(e0, W0)
+    m = _model(box)
+    p = B._balls(m, box)
+    fams = [B._quartic_family(c)[0] for c in B._affine_corners(m, box)]
+    return p, fams, B._proposals(m, box, B.characteristic_quartic)
+
+
+def test_sign_change_refuses_a_hull_beside_the_roots():
+    """Root 1's proposals moved above its true range (still monotone there): both ends have one sign, None."""
+    with working_precision(128):
+        p, fams, props = _setup()
+        moved = [[r[0] + arb("0.001")] + list(r[1:]) for r in props]
+        assert B._sign_change_roots(fams, B._quartic_family(p)[1], moved, ratio=B._quartic_ratio(p)) is None
+
+
+def test_sign_change_refuses_the_midpoint_alone():
+    """Proposals from the midpoint only: a hull far narrower than the roots' range; the corners disagree in
+    sign at its ends, so no ball (an uncertain sign never counts)."""
+    with working_precision(128):
+        p, fams, props = _setup()
+        mid_only = [props[-1]]
+        assert B._sign_change_roots(fams, B._quartic_family(p)[1], mid_only, ratio=B._quartic_ratio(p)) is None
+
+
+def test_sign_change_needs_every_corner():
+    """Proposals from one corner and the midpoint: a hull that misses the other corners' roots; the sign test
+    at every corner refuses it (a test at one corner would accept it)."""
+    with working_precision(128):
+        p, fams, props = _setup()
+        part = [props[0], props[-1]]
+        assert B._sign_change_roots(fams, B._quartic_family(p)[1], part, ratio=B._quartic_ratio(p)) is None
+
+
+def test_one_sign_only_when_certain_everywhere():
+    assert B._one_sign([arb(1), arb(2)]) == 1 and B._one_sign([arb(-1), arb(-2)]) == -1
+    assert B._one_sign([arb(1), arb(0, 1)]) == 0 and B._one_sign([arb(-1), arb(0, 1)]) == 0
+    assert B._one_sign([arb(1), arb(-1)]) == 0

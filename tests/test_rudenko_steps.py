@@ -160,3 +160,18 @@ def test_the_omega2_prints_share_one_scale_and_say_what_was_tried():
     lo = max((mpmath.mpf("130.35")) / mpmath.sqrt(w8), mpmath.mpf("127.5") / mpmath.sqrt(w13))
     hi = min((mpmath.mpf("130.45")) / mpmath.sqrt(w8), mpmath.mpf("128.5") / mpmath.sqrt(w13))
     assert 606 < lo < hi < 606.5
+
+
+def test_window_reading_needs_the_print_in_its_chain():
+    from types import SimpleNamespace
+    from rigor_gyro import load_scene
+    from rigor_gyro.kinds.eigenfrequencies.claims import validate
+    from rigor_gyro.kinds.eigenfrequencies.paper_hz import _window_row, input_box
+    from rigor_gyro.kinds.eigenfrequencies.paper_scale import consistent_eps
+    model = validate(load_scene("rudenko1976"))
+    with working_precision(128):
+        sc = consistent_eps(A, B, W, "0.1076", ["41.4", "121.5", "521.5", "935.7"])
+        box = input_box(model)
+        for printed, ok in (("950.8", True), ("951.9", False), ("949.9", False)):
+            row = SimpleNamespace(propagated=None, note="")
+            assert _window_row(row, ("upper", 4), printed, box, sc, "0.1076") is ok, printed
