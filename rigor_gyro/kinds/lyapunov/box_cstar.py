@@ -26,8 +26,8 @@ is 47.6 + 160 - 88 - 79 with every R^2 term taken at both ends of R's ball). Her
   (1 - t) mu F(x2*) + t phi(x2*) (V convex in (x1, x3)), each bounded above over the box.
 
 Guarantee: the ball returned contains c*(P) for every P in the box, R(P) in the ball ``R``, at the current
-precision. Fails when: a law that is not odd, x2* not certainly < pi/2, f >= 0 on [0, x2*] not certified, R
-not certainly > 0, or an enclosure not finite: None (the caller keeps its naive ball).
+precision. Fails when: a law that is not odd, x2* not certainly < pi/2, f >= 0 on [0, x2*] or S(x2*) > 0 not
+certified, R not certainly > 0, or an enclosure not finite: None (the caller keeps its naive ball).
 """
 from __future__ import annotations
 
@@ -158,14 +158,16 @@ def c_star_centred(g: Gimbal, raw: dict[str, tuple], R: arb) -> tuple[arb, arb |
     whole = parameter_balls(b, xs)
     if not certainly_positive(g.law.f_over_x(whole.a, arb(0).union(xs))):
         return None                     # f >= 0 on [0, x2*] not certified: the weight of G's derivatives
+    from .box_forms import ParamGimbal
+    gb = ParamGimbal(g, whole)
+    if not certainly_positive(gb.S(xs)):
+        return None                     # S > 0: phi is V's minimum over the face, V convex in (x1, x3) there
     cb = CentredBox(g, raw, arb(0))
     phi_lo = cb.lower(_phi, positivity=False)(xs)
     phi_hi = -cb.lower(_neg_phi, positivity=False)(xs)
     if not (phi_lo.is_finite() and phi_hi.is_finite()):
         return None
     Rlo, Rhi = arb(R.lower()), arb(R.upper())
-    from .box_forms import ParamGimbal
-    gb = ParamGimbal(g, whole)
 
     def cyl(X: arb) -> arb:
         K = _K(gb, X)
