@@ -14,8 +14,13 @@ a box's halves are ready as soon as its result is in (speculation), a free worke
 boxes in the queue's order, as many as make ~50 ms at the mean cost measured so far (at most 256, at
 most an even share of the ready boxes), plus the fixed cost per batch; the maps after the paving (point
 proofs, searches, ranges) keep their barriers. Speculative work that ``max_boxes`` throws away is not
-modelled (it only occurs where the cap is reached). The simulation decides nothing about a paving; it
-says where parallelism is lost.
+modelled (it only occurs where the cap is reached). With ``--replay``, a last column per N replays the
+paving through the real engine (rigor_gyro/margins/stream.py, unchanged) on a virtual-time executor: each
+box's outcome and cost are the recorded ones, a batch runs on the worker free first, plus the fixed cost
+per batch; it checks that the replayed paving is the recorded one and gives serial / virtual makespan.
+Box costs are CPU seconds of this process (``time.process_time``: little moved by other processes on a
+shared machine; ``--wall`` for wall seconds). The simulation decides nothing about a paving; it says
+where parallelism is lost.
 """
 from __future__ import annotations
 
@@ -48,12 +53,14 @@ class TimingExecutor(Executor):
         self.boxes: list[tuple] = []        # every box evaluation: (box JSON, claims, outcome, seconds)
         self.after: list[list[float]] = []  # the maps after the paving (not box evaluations)
 
+    clock = staticmethod(time.process_time)
+
     def map(self, fn, tasks):
         costs, out = [], []
         for t in tasks:
-            t0 = time.perf_counter()
+            t0 = self.clock()
             out.append(fn(*t))
-            costs.append(time.perf_counter() - t0)
+            costs.append(self.clock() - t0)
         self.levels.append(costs)
         if fn is paving.evaluate_task:
             self.boxes += [(t[4], tuple(t[5]), o, c) for t, o, c in zip(tasks, out, costs)]
@@ -127,17 +134,96 @@ def simulate(levels: list[list[float]], workers: int, overhead: float) -> tuple[
     return barrier, _makespan(queue, workers)
 
 
+class VirtualPool(Executor):
+    """A parallel executor in virtual time for :func:`replay`: a submitted batch runs at once (recorded
+    outcomes), on the worker free first, for its recorded cost plus ``overhead``; ``wait_any`` advances
+    the clock to the first finish. Work the caller does between calls (a box run in the parent) advances
+    the clock too."""
+
+    def __init__(self, workers: int, overhead: float, counter: list):
+        super().__init__(1)
+        self.workers, self.overhead, self.counter = workers, overhead, counter
+        self.now, self.free, self.finish, self.seen = 0.0, [0.0] * workers, {}, 0.0
+
+    @property
+    def parallel(self):
+        return True
+
+    def _parent(self):
+        self.now += self.counter[0] - self.seen
+        self.seen = self.counter[0]
+
+    def submit(self, fn, *args):
+        from concurrent.futures import Future
+        self._parent()
+        f = Future()
+        f.set_result(fn(*args))
+        cost = self.counter[0] - self.seen
+        self.seen = self.counter[0]
+        w = min(range(self.workers), key=lambda i: self.free[i])
+        self.free[w] = max(self.now, self.free[w]) + cost + self.overhead
+        self.finish[f] = self.free[w]
+        return f
+
+    def wait_any(self, futures, timeout=None):
+        self._parent()
+        first = min(self.finish[f] for f in futures)
+        self.now = max(self.now, first)
+        return [f for f in futures if self.finish[f] <= self.now]
+
+
+def replay(bs, boxes: list[tuple], after: list[list[float]], workers: int, overhead: float) -> tuple[float, bool]:
+    """(virtual makespan of the real streaming engine on ``workers``, whether its leaves are the recorded
+    ones); the maps after the paving as in :func:`simulate` (barriers)."""
+    import copy
+    from rigor_gyro.margins import stream
+    from rigor_gyro.margins.report import paving_json
+    table = {(bj, tuple(cl)): (out, c) for bj, cl, out, c in boxes}
+    counter = [0.0]
+
+    def recorded(kind, pj, oj, mj, box_json, claims, prec):
+        out, c = table[(box_json, tuple(claims))]
+        counter[0] += c
+        return out
+
+    class Clock:                           # the engine's clock for the box costs it measures
+        perf_counter = staticmethod(lambda: counter[0])
+        monotonic = staticmethod(time.monotonic)
+
+    real_eval, real_time = paving.evaluate_task, stream.time
+    paving.evaluate_task, stream.time = recorded, Clock
+    try:
+        b2 = copy.copy(bs)
+        b2.max_points, b2.search_points, b2.monte_carlo = 0, 0, 0
+        ex = VirtualPool(workers, overhead, counter)
+        got = paving_json(pave(b2, ex))
+        ex._parent()
+        span = ex.now
+        paving.evaluate_task = recorded
+        want = paving_json(pave(b2))
+    finally:
+        paving.evaluate_task, stream.time = real_eval, real_time
+    for lv in after:
+        span += sum(lv) if len(lv) < workers else _makespan([b + overhead for b in _batches(lv, workers)], workers)
+    return span, got["claims"] == want["claims"]
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scenes", nargs="+", default=DEFAULT_SCENES)
     ap.add_argument("--all", action="store_true", help="every built-in scene with tolerances")
     ap.add_argument("--workers", default="1,2,4,8,16")
     ap.add_argument("--overhead-ms", type=float, default=0.3, help="fixed cost per batch (default 0.3 ms)")
+    ap.add_argument("--replay", action="store_true", help="replay through the real engine in virtual time")
+    ap.add_argument("--wall", action="store_true", help="box costs in wall seconds (default: CPU seconds)")
     args = ap.parse_args(argv)
+    if args.wall:
+        TimingExecutor.clock = staticmethod(time.perf_counter)
     ns = [int(n) for n in args.workers.split(",")]
     if args.all:
         args.scenes = [n for n in builtin_scenes("all") if has_tolerances(load_scene(n))]
-    print("| paving | boxes | levels | serial s | " + " | ".join(f"N={n} barrier / none / stream" for n in ns) + " |")
+    what = "barrier / none / stream" + (" / replay" if args.replay else "")
+    print("| paving | boxes | levels | serial s | " + " | ".join(f"N={n} {what}" for n in ns) + " |")
     print("|---|---|---|---|" + "---|" * len(ns))
     for name in args.scenes:
         ex = TimingExecutor()
@@ -149,7 +235,11 @@ def main(argv: list[str] | None = None) -> int:
         for n in ns:
             with_b, without = simulate(ex.levels, n, args.overhead_ms / 1000)
             streamed = stream_makespan(bs, ex.boxes, ex.after, n, args.overhead_ms / 1000) if n > 1 else serial
-            cells.append(f"{serial / with_b:.2f} / {serial / without:.2f} / **{serial / streamed:.2f}**")
+            cell = f"{serial / with_b:.2f} / {serial / without:.2f} / **{serial / streamed:.2f}**"
+            if args.replay:
+                span, same = replay(bs, ex.boxes, ex.after, n, args.overhead_ms / 1000) if n > 1 else (serial, True)
+                cell += f" / **{serial / span:.2f}**" + ("" if same else " (leaves differ!)")
+            cells.append(cell)
         boxes = sum(len(lv) for lv in ex.levels)
         print(f"| {name} | {boxes} | {len(ex.levels)} | {serial:.2f} | " + " | ".join(cells) + " |")
         sys.stdout.flush()

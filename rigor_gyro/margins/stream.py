@@ -127,6 +127,8 @@ def stream_pave(bs, st, ex, scene: tuple, *, budget, box_budget, progress, check
             for b in g.boxes:
                 k = key_of(b, g.claims)
                 if k not in results and k not in running:
+                    if len(items) == limit:
+                        return items            # a group's boxes may go to two workers
                     items.append((b, g.claims))
                     running.add(k)
             taken += 1
