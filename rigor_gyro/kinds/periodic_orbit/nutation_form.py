@@ -104,7 +104,7 @@ class NutationForm:
             R2.append(r2)
             U.append(r2 + 2 * e.real)
         U[0] += one
-        if n <= 3:
+        if n <= 4:
             return self._short(center, n, U, ImE, R2)
         # s = -p0e_0 theta / 2 - sum_r c_r (E_r - 1) / (E_r + 1), E_r = exp(lam_r theta), real series
         s = [-self.half_p0 * center, -self.half_p0] + [arb(0)] * (n - 2) if n > 1 else [-self.half_p0 * center]
@@ -125,18 +125,23 @@ class NutationForm:
 
 
     def _short(self, center: arb, n: int, U: list[arb], ImE: list[arb], R2: list[arb]) -> list[arb]:
-        """coeffs for n <= 3 without series: with E_r = exp(lam_r c) and y = (E_r - 1)/(E_r + 1)
+        """coeffs for n <= 4 without series: with E_r = exp(lam_r c) and y = (E_r - 1)/(E_r + 1)
         (= tanh(lam_r theta / 2)), y' = 2 lam_r E_r/(E_r + 1)^2, y''/2 = lam_r^2 E_r (1 - E_r)/(E_r + 1)^3
-        (from y' = (lam_r / 2)(1 - y^2)); then the product s U term by term."""
-        s = [-self.half_p0 * center, -self.half_p0, arb(0)][:n]
+        (from y' = (lam_r / 2)(1 - y^2)), y'''/6 = -lam_r (y'^2 - lam_r y^2 y') / 6; then the product s U
+        term by term."""
+        s = [-self.half_p0 * center, -self.half_p0, arb(0), arb(0)][:n]
         for lam_r, c_r in self.real:
             E = (lam_r * center).exp()
             p = E + 1
-            s[0] -= c_r * (E - 1) / p
+            y = (E - 1) / p
+            s[0] -= c_r * y
             if n > 1:
-                s[1] -= c_r * 2 * lam_r * E / (p * p)
+                y1 = 2 * lam_r * E / (p * p)
+                s[1] -= c_r * y1
             if n > 2:
                 s[2] -= c_r * lam_r * lam_r * E * (1 - E) / (p * p * p)
+            if n > 3:           # y''' = -lam_r (y'^2 + y y''), y'' = -lam_r y y': the coefficient y'''/6
+                s[3] -= c_r * (-lam_r * (y1 * y1 - lam_r * y * y * y1)) / 6
         out = []
         for j in range(n):
             sU = s[0] * U[j]

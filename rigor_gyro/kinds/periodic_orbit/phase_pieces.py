@@ -152,6 +152,14 @@ def root_bracket(coeffs, lo: arb, hi: arb, s_lo: int, rel_bits: int | None = Non
     rel = arb(2) ** (-(rel_bits if rel_bits is not None else prec // 2))
     a, b = lo, hi
     x = arb(((a + b) / 2).mid())
+    try:        # start: the root of A + R cos on a half-period from turning point to turning point
+        g1, g2 = float(coeffs(lo, 1)[0].mid()), float(coeffs(hi, 1)[0].mid())
+        frac = math.acos(max(-1.0, min(1.0, -(g1 + g2) / (g1 - g2)))) / math.pi
+        xs = arb((lo + (hi - lo) * arb(frac)).mid())
+        if certainly_lt(a, xs) and certainly_lt(xs, b):
+            x = xs
+    except (ValueError, OverflowError, ZeroDivisionError):
+        pass
     for _ in range(40):
         c = coeffs(x, 2)
         if not (c[0].is_finite() and c[1].is_finite()) or _sign(c[1]) == 0:
