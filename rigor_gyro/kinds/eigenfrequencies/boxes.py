@@ -9,7 +9,14 @@ proof for all members at once (the midpoint's exact roots are only the starting 
 the model's formulas evaluated on the balls. At Newton's exact points the quartic's and the quadratics'
 values are also enclosed in a centred (mean-value) form in the parameters, second order in the box
 width, intersected with the direct enclosure. Where that one Newton step fails (a wide box), each root is
-verified around its linear predictor (:func:`rigor_gyro.core.implicit_roots.parametric_newton`).
+verified around its linear predictor (:func:`rigor_gyro.core.implicit_roots.parametric_newton`). Where both
+fail or leave a root ball reaching 0 (small Omega2: omega_3, omega_4 move like sqrt(Omega2) across a
+turning point of Q, omega_1 like Omega2/(a b) down to 0), each root is bracketed by a sign change
+(:func:`_sign_change_roots`): Q is affine in (a, eps, Omega2), so its sign at an exact omega is certain on
+the box when it is at the corners, and Q = h (Omega2 - F) with F = Omega2 of (2) strictly monotone on the
+bracket (its numerator's sign certain, quadratic in eps and interpolated exactly) gives at most one root.
+The roots cannot be separated by box-wide balls where their ranges overlap (eps -> 0 with a wide eps edge:
+omega_1 ~ nu1 and omega_2 ~ nu2 both scale with eps); such boxes stay undecided and the paving splits them.
 
 Where the direct evaluation leaves a claim undecided, the claim is read as its sign conditions (gaps:
 omega_j - lower_j and upper_j - omega_j for a bracket, nu_{k+1} - nu_k for the ordering, the branch and
