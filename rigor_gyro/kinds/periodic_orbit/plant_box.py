@@ -54,7 +54,7 @@ from .plant_centred import centred_polynomial_data, centred_scalar
 from .plant_claims import analyse, classify, plant_multipliers
 from .plant_model import PlantModel
 from .norm_stability import eigen_coordinate_family, largest_modulus_range
-from .plant_orbit import PlantMode, PlantSpectrum, _E, g_coeffs, jacobian, section_index
+from .plant_orbit import PlantMode, PlantSpectrum, g_coeffs, jacobian, section_index
 from .plant_statements import TAYLOR_ORDER
 
 __all__ = ["PLANT_BOX_CLAIMS", "PlantBoxSpectrum", "plant_balls", "validate_plant_box", "evaluate_plant_box"]
@@ -246,7 +246,7 @@ def g_parametric(sp: PlantBoxSpectrum, t: arb) -> arb | None:
             d1 = _horner(dp, lam)
             lam_j = -_horner(gp, lam) / d1
             rc_j = (_horner(gN, lam) + _horner(dNc, lam) * lam_j) / d1 - m.rc * (_horner(gdp, lam) + _horner(ddp, lam) * lam_j) / d1
-            E = _E(m, tt)
+            E = (m.lam * tt).exp() if m.sigma < 0 else (-m.lam * tt).exp()     # |E| < 1: plant_orbit's E
             Th = (1 - E) / (1 + E)
             dTh = m.sigma * tt / 2 * (1 - Th * Th)
             tot += m.weight * m.sigma * (Sg[j] * m.rc * Th / lam + Sv * rc_j * Th / lam
