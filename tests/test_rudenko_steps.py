@@ -175,3 +175,30 @@ def test_window_reading_needs_the_print_in_its_chain():
         for printed, ok in (("950.8", True), ("951.9", False), ("949.9", False)):
             row = SimpleNamespace(propagated=None, note="")
             assert _window_row(row, ("upper", 4), printed, box, sc, "0.1076") is ok, printed
+
+
+PAPER_TABLE = """
+[paper]
+hz_lower = ["39.5", "119.5", "513.4", "923.5"]
+hz_approx = ["40.6", "128", "514", "922"]
+hz_upper = ["43.4", "130.4", "546", "950.8"]
+hz_exact = ["41.4", "121.5", "521.5", "935.7"]
+error_bound = "0.05"
+"""
+
+
+def test_no_row_escalates_without_hz_scale_or_at_a_small_omega2(tmp_path):
+    """An undecided audit row without a value makes the prover raise the precision to 4096 bits: without
+    hz_scale there is no Hz row, and (11) at an Omega^2 where its discriminant is >= 0 is still decided."""
+    from rigor_gyro import load_scene, prove_scene
+    for name, extra in (("nohz", 'Omega2 = "0.629"'), ("smallw", 'Omega2 = "0.00001"\nhz_scale = "617.75"')):
+        f = tmp_path / f"{name}.toml"
+        f.write_text(f'name = "{name}"\nkind = "eigenfrequencies"\nsource = "t"\n\n[parameters]\na = "15.08"\n'
+                     f'b = "6.154"\neps = "0.1076"\n{extra}\n' + PAPER_TABLE)
+        data = prove_scene(load_scene(str(f))).to_json()
+        assert data["precision_bits"] <= 128 and max(data["precisions_tried"]) <= 128, name
+        rows = data["paper"]
+        assert not [r["id"] for r in rows if r["status"] == "undecided" and r["lo"] == ""], name
+        if name == "smallw":
+            r11 = next(r for r in rows if r["id"] == "(11) as printed")
+            assert r11["status"] == "misprint" and ">= 0: real solutions, but not (12)" in r11["note"]

@@ -314,8 +314,8 @@ def audit(model, p: Params, omegas: list[arb]) -> list[AuditRow]:
     s = ball(model.hz_scale.fmpq()) if model.hz_scale is not None else None
     exact = paper.get("hz_exact")
     if s is None:
-        rows.append(AuditRow("Hz values", "", "", None, AuditStatus.UNDECIDED,
-                             "no hz_scale in the scene: printed Hz values not audited"))
+        # no Hz row: without hz_scale nothing decides them (an undecided row without a value would make the
+        # prover raise the precision to its limit, which cannot help)
         return rows
     hull, inner, scale = None, None, None
     from decimal import Decimal

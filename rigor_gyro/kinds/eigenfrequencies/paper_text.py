@@ -5,7 +5,8 @@ the eps range of the nu order (exact thresholds), and the abstract's "the estima
 Guarantee: (11)'s discriminant is an exact rational; the reading's solution is checked equal to (12) in
 exact rationals at the example; K' > 0 on [0, nu1] is decided by interval bisection of the numerator
 of K' (a cubic in omega with the exact nu's as balls), refuted only by a certified point where K' < 0.
-Failure mode: a bisection that does not decide within its budget gives ``undecided``.
+Failure mode: a bisection that does not decide within its budget gives no row (an undecided row without a
+value would make the prover raise the precision to its limit).
 """
 from __future__ import annotations
 
@@ -24,19 +25,25 @@ def _fmt(x: arb) -> str:
     return f"[{lo}, {hi}]"
 
 
-def _eq11_row(a: fmpq, b: fmpq, e: fmpq, W: fmpq) -> AuditRow:
+def _eq11_row(a: fmpq, b: fmpq, e: fmpq, W: fmpq) -> AuditRow | None:
     """(11) printed Omega^2 = -omega eps a b (omega - nu1+)(a - b)^-1: a quadratic in omega; read
-    Omega^2 = -omega eps a b [(omega - nu1+)(a - b)]^-1, whose solution is (12)."""
+    Omega^2 = -omega eps a b [(omega - nu1+)(a - b)]^-1, whose solution is (12). A misprint whatever the sign of
+    the printed quadratic's discriminant (exact): the reading is what (12) solves; at a small Omega^2 the print
+    has real solutions, but not (12). None only if the exact check of (12) failed (it cannot: (12) solves the
+    reading identically), never an undecided row (exact rationals: no precision changes them)."""
     nu1p = e / (a - b)
     k = e * a * b / (a - b)
     disc = (k * nu1p) ** 2 - 4 * k * W             # k w^2 - k nu1+ w + W = 0
     w12 = e * W / (W * (a - b) + e * a * b)
     read_ok = W == -w12 * e * a * b / ((w12 - nu1p) * (a - b))
-    status = AuditStatus.MISPRINT if disc < 0 and read_ok else AuditStatus.UNDECIDED
+    if not read_ok:
+        return None
+    status = AuditStatus.MISPRINT
     return AuditRow("(11) as printed", "Omega^2 = -omega eps a b (omega - nu1+) (a - b)^-1",
                     "Omega^2 = -omega eps a b [(omega - nu1+) (a - b)]^-1", None, status,
                     f"as printed, a quadratic in omega with discriminant {float(disc):.6g} "
-                    f"({'< 0: no real solution' if disc < 0 else '>= 0'}; exact rational at the example); the "
+                    f"({'< 0: no real solution' if disc < 0 else '>= 0: real solutions, but not (12)'}; exact rational "
+                    "at the example); the "
                     "reading (the factor (omega - nu1+) in the denominator) is solved exactly by (12), omega = "
                     f"eps W/(W (a-b) + eps a b): {'checked' if read_ok else 'NOT reproduced'} in exact rationals "
                     "at the example; (11)-(12) then approximate omega_1 (see the row '(12) label')")
@@ -48,14 +55,13 @@ def _omega2_row() -> AuditRow:
                     "(7)-(10) and (12)-(13) reproduce the printed Hz values (rows above)")
 
 
-def _k_monotone_row(a: fmpq, b: fmpq, e: fmpq, max_pieces: int = 4096) -> AuditRow:
+def _k_monotone_row(a: fmpq, b: fmpq, e: fmpq, max_pieces: int = 4096) -> AuditRow | None:
     """K(omega) = (omega - nu5)(omega - nu6)/((omega - nu3)(omega - nu4)) increasing on [0, nu1], the
     property (3) uses (K(0) <= K <= K(nu1)): sign of N'D - N D' by bisection."""
     q14, q26 = nu_quadratics(a, b, e)
     r14, r26 = isolate_polynomial(q14), isolate_polynomial(q26)
     if len(r14.real) != 2 or len(r26.real) != 2:
-        return AuditRow("(3) K monotone on [0, nu1]", "K(omega) is monotone on [0, nu1]", "K' > 0 there", None,
-                        AuditStatus.UNDECIDED, "the quadratics (4) do not have two real roots each")
+        return None         # cannot happen (row '(5) for every parameter'); never an undecided row
     nu1, nu4 = sorted(r14.real, key=lambda x: float(x.mid()))
     nu2, nu6 = sorted(r26.real, key=lambda x: float(x.mid()))
     nu3, nu5 = arb(1 / (b - 1)), arb(b / (b - 1))
@@ -79,7 +85,7 @@ def _k_monotone_row(a: fmpq, b: fmpq, e: fmpq, max_pieces: int = 4096) -> AuditR
     if bad is not None:
         st, note = AuditStatus.REFUTED, f"K' < 0 at omega = {_fmt(bad)} (certified)"
     elif todo:
-        st, note = AuditStatus.UNDECIDED, f"not decided within {max_pieces} pieces"
+        return None         # a budget, not a fact: no row (an undecided row would escalate the precision)
     else:
         st, note = AuditStatus.CONFIRMED, (f"K is increasing on [0, nu1], nu1 = {_fmt(nu1)}: N'D - ND' > 0 on "
                                            f"{pieces} pieces (certified), so K(0) <= K(omega) <= K(nu1) as (3) uses")
