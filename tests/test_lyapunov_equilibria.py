@@ -343,3 +343,130 @@ def test_classify_decides_on_certain_signs_of_the_real_parts(matrix, want):
                                      (Fraction(-3, 4), "-3 pi/4"), (3, "3 pi"), (-2, "-2 pi")])
 def test_pi_text_writes_r_pi_as_the_report_does(r, text):
     assert E.pi_text(Fraction(r)) == text
+
+
+# ------------------------------------------------------------------ Routh-Hurwitz (issue 41: the gimbal extremes)
+
+def _poly_from_roots(r, pair=None):
+    """(a1, a2, a3) of (l - r0)(l - r1)(l - r2) for three real roots ``r``, or of (l - r0)(l - re - i im)(l - re + i
+    im) for one real root r = (r0,) and ``pair`` = (re, im); exact Fractions."""
+    if pair is None:
+        r0, r1, r2 = (Fraction(x) for x in r)
+        return -(r0 + r1 + r2), r0 * r1 + r0 * r2 + r1 * r2, -r0 * r1 * r2
+    r0, (re, im) = Fraction(r[0]), (Fraction(pair[0]), Fraction(pair[1]))
+    n = re * re + im * im
+    return -(r0 + 2 * re), 2 * r0 * re + n, -r0 * n
+
+
+@pytest.mark.parametrize("roots, pair, want", [
+    ((-1, -2, -3), None, "asymptotically stable"),
+    ((Fraction(-1, 10 ** 30), -2, -3), None, "asymptotically stable"),                # a tiny stable root
+    ((Fraction(1, 10 ** 30), -2, -3), None, "unstable"),                              # a3 < 0
+    ((-1,), (Fraction(-1, 100), 1000), "asymptotically stable"),
+    ((-1,), (Fraction(1, 100), 1000), "unstable"),                                   # a1, a3 > 0, a1 a2 - a3 < 0
+    ((-1,), (0, 2), "undecided"),                                                    # a centre: a1 a2 = a3 exactly
+    ((0, -2, -3), None, "undecided"),                                                # a zero root: a3 = 0
+    ((5, 6, -1), None, "unstable"),                                                  # a1 < 0
+    ((-5, -6, 1), None, "unstable"),                                                 # a3 < 0 only
+], ids=["stable", "tiny stable", "tiny positive", "stable spiral", "spiral out", "centre", "zero", "trace > 0",
+        "one positive"])
+def test_routh_hurwitz_decides_as_the_roots_do(roots, pair, want):
+    """Exact coefficients from known roots: the verdict is the sign of the largest real part, and 'undecided'
+    only where a real part is 0 exactly."""
+    with working_precision(64):
+        a = _poly_from_roots(roots, pair)
+        got = E.routh_hurwitz(*(arb(fmpq(x.numerator, x.denominator)) for x in a))
+    assert got == want, (roots, pair, a)
+
+
+def test_routh_hurwitz_on_balls_decides_only_certain_signs():
+    with working_precision(64):
+        # a1 a2 - a3 = 1 +- 2: not separated from 0; a3 +- 2 around 1: not separated
+        assert E.routh_hurwitz(arb(1), arb(2), arb(1) + arb(0, 2)) == "undecided"
+        assert E.routh_hurwitz(arb(1), arb(2) + arb(0, 3), arb(1)) == "undecided"
+        assert E.routh_hurwitz(arb(1), arb(2), arb("inf")) == "undecided"
+        assert E.routh_hurwitz(arb(1), arb(2), arb("nan")) == "undecided"
+        assert E.routh_hurwitz(arb(-1) + arb(0, "0.5"), arb(2) + arb(0, 10), arb(0, 10)) == "unstable"
+
+
+def test_the_characteristic_coefficients_are_flints_on_exact_matrices():
+    """Against fmpq_mat.charpoly on random exact matrices (and zeros kept)."""
+    import random
+    from flint import fmpq_mat
+    rng = random.Random(41)
+    with working_precision(64):
+        for _ in range(25):
+            M = [[fmpq(rng.randint(-99, 99), rng.choice((1, 2, 4, 8))) if rng.random() < 0.7 else fmpq(0) for _ in range(3)]
+                 for _ in range(3)]
+            want = fmpq_mat(M).charpoly().coeffs()[::-1][1:]          # a1, a2, a3
+            got = E.characteristic_coefficients([[arb(x) for x in row] for row in M])
+            for g_, w in zip(got, want):
+                assert g_.is_exact() and g_ == arb(w)           # dyadic entries: every product exact
+
+
+EXTREMES = {"H = 1e300": {"H": "1e300"}, "a = 1e-300": {"a": "1e-300"}}
+
+
+@pytest.mark.parametrize("which", list(EXTREMES))
+def test_the_gimbal_extremes_are_classified_at_64_bits(which):
+    """H = 1e300 and a = 1e-300 (the eigenvalues separate only at 1024-2048 bits): every equilibrium decided at
+    64 bits, those off cos x2 = 0 asymptotically stable by Routh-Hurwitz, whose coefficients contain the closed
+    forms at x1 = 0, x2 = j pi (D = A0, cos^2 = 1): a1 = k/A0, a2 = H^2/(A0 B0), a3 = a H/(A0 B0), computed in
+    mpmath; all of them > 0 with a1 a2 > a3 there, so stable is the truth."""
+    params = _params("paper (no root of h)") | EXTREMES[which]
+    g = _gimbal(params)
+    with working_precision(64):
+        eq = E.equilibria(g)
+    assert eq.complete and [p.stability for p in eq.points].count("undecided") == 0
+    with mpmath.workdps(30):
+        mg = MpGimbal(params)
+        a1, a2, a3 = mg.k / mg.A0, mg.H ** 2 / (mg.A0 * mg.B0), mg.a * mg.H / (mg.A0 * mg.B0)
+        assert a1 > 0 and a3 > 0 and a1 * a2 > a3
+        for p in eq.points:
+            if p.case == COS_CASE:
+                assert p.hurwitz is None and p.stability == "unstable"
+                continue
+            assert p.stability == "asymptotically stable" and p.hurwitz is not None
+            for ball, ref in zip(p.hurwitz, (a1, a2, a3)):
+                assert contains_mp(ball, ref), (ball, ref)
+
+
+def _extreme_rows(params):
+    from rigor_gyro.kinds.lyapunov.claims import _Ctx, _equilibria_claim
+    model = validate(dataclasses.replace(load_scene("agafonov2013"), parameters=params))
+    with working_precision(64):
+        ctx = _Ctx(model, 64)
+        claim = _equilibria_claim(ctx, None, None)
+    return model.gimbal, ctx.witnesses["equilibria"]["pieces"], claim
+
+
+def test_the_checker_re_decides_a_routh_hurwitz_stability_and_rejects_tampered_rows():
+    from rigor_gyro.kinds.lyapunov import check as lc
+    g, pieces, claim = _extreme_rows(_params("paper (no root of h)") | {"H": "1e300"})
+    rows = claim.details["equilibria"]
+    assert claim.status.value == "proved" and "Routh-Hurwitz" in claim.reason
+    assert sum("routh_hurwitz" in r for r in rows) == 3
+    with working_precision(128):
+        ok, msg = lc._check_equilibria(g, pieces, rows)
+        assert ok, msg
+        i = next(i for i, r in enumerate(rows) if "routh_hurwitz" in r)
+        for key, text in (("a3", "[-1.8747657e+300, -1.8747656e+300]"), ("a1", "0.5"), ("a2", "junk")):
+            bad = [dict(r) for r in rows]
+            bad[i] = dict(bad[i], routh_hurwitz=dict(bad[i]["routh_hurwitz"], **{key: text}))
+            ok, msg = lc._check_equilibria(g, pieces, bad)
+            assert not ok and "Routh-Hurwitz coefficient " + key in msg, (key, msg)
+        # the stored stability must follow from the checker's coefficients (not only from classify's)
+        real = lc.classify_equilibrium
+
+        def planted(g_, e):
+            real(g_, e)
+            if e.hurwitz is not None:
+                e.stability = "unstable"
+        bad = [dict(r) for r in rows]
+        bad[i] = dict(bad[i], stability="unstable")
+        lc.classify_equilibrium = planted
+        try:
+            ok, msg = lc._check_equilibria(g, pieces, bad)
+        finally:
+            lc.classify_equilibrium = real
+        assert not ok and "do not decide 'unstable'" in msg, msg

@@ -30,6 +30,9 @@ in the precision), and checks
   [-pi, pi] and are each decided (Newton); the equilibria are re-derived from them, each at its stated
   point (x2 by its exact text or its decimal interval, x1 by its decimal interval), with its case and
   its stability re-decided (the membership in the estimate and the eigenvalues' text are not re-checked);
+  a stability the prover decided by Routh-Hurwitz (the row's ``routh_hurwitz``) is re-decided from the
+  checker's own characteristic polynomial (Leibniz's sum, not the prover's cofactors), whose coefficients must
+  meet the stored ones;
 * a refuted claim's counterexample (a point where grad V . f > 0 or V <= 0, a violated inequality);
 * every stored quantity contains the checker's recomputed enclosure (bounds: the certified side).
 """
@@ -41,7 +44,7 @@ from flint import arb
 
 from ...check import CheckResult
 from ...core.balls import certainly_gt, certainly_le, certainly_lt, certainly_positive, exact_endpoints, working_precision
-from ...core.stored import encloses, fmpq_of, interval as stored_interval, number
+from ...core.stored import encloses, fmpq_of, interval as stored_interval, meets as stored_meets, number
 from ...core.boxes import Box, tiles_by_bisection
 from ...core.exact import Exact
 from ...core.roots import RootStatus, enclose_f_df, newton_root
@@ -49,7 +52,7 @@ from .claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
 from .direct_face import face_margin
 from .sublevel import box_lower_bound
-from .equilibria import Equilibrium, classify as classify_equilibrium, pi_text
+from .equilibria import Equilibrium, classify as classify_equilibrium, jacobian as equilibrium_jacobian, pi_text
 from .trajectory_claims import check_initial_point, check_paving, check_region_exit
 from .trajectories import equilibrium_other_than_origin
 from .natural_domain import band_function, exact_range, natural_lower_bound, positivity_functions, with_range
@@ -959,7 +962,56 @@ def _check_equilibria(g, pieces: dict, rows: list) -> tuple[bool, str]:
             return False, f"equilibrium at x2 = {r.get('x2')}: re-derived {e.case}, {e.stability}"
         if not (_stated_at(r.get("x2"), e.x2, e.exact) and _stated_at(r.get("x1"), e.x1)):
             return False, f"equilibrium at x2 = {r.get('x2')}, x1 = {r.get('x1')}: not where it is re-derived"
+        if r.get("routh_hurwitz") is not None:
+            ok, why = _hurwitz_confirms(equilibrium_jacobian(g, e.x1, e.x2, arb(0)), r["routh_hurwitz"], r["stability"])
+            if not ok:
+                return False, f"equilibrium at x2 = {r.get('x2')}: {why}"
     return True, f"{len(points)} equilibria re-derived from the stored pieces, at their stated points, stability re-decided"
+
+
+#: the six permutations of (0, 1, 2) with their signs (Leibniz's determinant)
+_PERMUTATIONS = (((0, 1, 2), 1), ((1, 2, 0), 1), ((2, 0, 1), 1), ((0, 2, 1), -1), ((2, 1, 0), -1), ((1, 0, 2), -1))
+
+
+def _hurwitz_confirms(J, stored: dict, stability: str) -> tuple[bool, str]:
+    """A Routh-Hurwitz stability re-decided: det(lambda I - J) = lambda^3 + a1 lambda^2 + a2 lambda + a3 with
+    a1 = -trace J, a2 = the principal 2 x 2 minors, a3 = -det J by Leibniz's sum over the six permutations
+    (written apart from the prover's cofactors); each must meet the stored decimal interval, and the Hurwitz
+    determinants D1 = a1, D2 = a1 a2 - a3, D3 = a3 D2 must give the stated stability: all certainly > 0
+    (asymptotically stable), or a1 < 0, a3 < 0 or (a1, a3 > 0 and D2 < 0) certainly (unstable: a root with
+    real part > 0, see :func:`rigor_gyro.kinds.lyapunov.equilibria.routh_hurwitz`)."""
+    a1 = -(J[0][0] + J[1][1] + J[2][2])
+    a2 = sum((J[i][i] * J[j][j] - J[i][j] * J[j][i] for i, j in ((0, 1), (0, 2), (1, 2))), arb(0))
+    det = arb(0)
+    for perm, sign in _PERMUTATIONS:
+        term = J[0][perm[0]] * J[1][perm[1]] * J[2][perm[2]]
+        det = det + term if sign > 0 else det - term
+    a3 = -det
+    for name, v in (("a1", a1), ("a2", a2), ("a3", a3)):
+        text = stored.get(name)
+        if not _meets(text, v):
+            return False, f"Routh-Hurwitz coefficient {name} = {text!r} does not meet the re-computed {v.str(10)}"
+    d2 = a1 * a2 - a3
+    if stability == "asymptotically stable":
+        ok = certainly_positive(a1) and certainly_positive(d2) and certainly_positive(a3 * d2)
+    elif stability == "unstable":
+        ok = (certainly_lt(a1, 0) or certainly_lt(a3, 0)
+              or certainly_positive(a1) and certainly_positive(a3) and certainly_lt(d2, 0))
+    else:
+        ok = False
+    return ok, ("" if ok else f"the Routh-Hurwitz coefficients re-computed do not decide {stability!r}")
+
+
+def _meets(text, x: arb) -> bool:
+    """A stored decimal or ``[lo, hi]`` interval that shares a point with the finite ball x (exact ends)."""
+    if not isinstance(text, str):
+        return False
+    try:
+        iv = stored_interval(text[1:-1].split(", ")) if text.startswith("[") and text.endswith("]") else \
+            (number(text), number(text))
+    except ValueError:
+        return False
+    return stored_meets(iv, x)
 
 
 def _stated_at(text, x: arb, exact: str = "") -> bool:

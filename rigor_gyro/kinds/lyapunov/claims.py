@@ -325,8 +325,14 @@ class _Ctx:
     def tol(self, value: arb) -> arb:
         """The width a maximum is enclosed to: rel_width of it, and over a box (a gimbal with an extrema
         cache) also 4 radii of the value at a point, which the box's own width gives and no subdivision of
-        x2 removes (the point prover's tolerance is unchanged)."""
-        t = abs(value) * _q(self.m.rel_width) / 4 + arb(2) ** (-self.prec)
+        x2 removes (the point prover's tolerance is unchanged). The floor 2^-prec (for a value 0) is relative,
+        2^-prec |value|, where 0 < |value| < 1 certainly: an absolute floor kept a = 1e-300's m and M from their
+        relative width until 2^-prec < 1e-315 (2048 bits; issue 41)."""
+        mag = abs(value)
+        floor = arb(2) ** (-self.prec)
+        if certainly_lt(mag, 1) and certainly_positive(mag):
+            floor = floor * mag.lower()
+        t = mag * _q(self.m.rel_width) / 4 + floor
         if getattr(self.g, "extrema_cache", None) is not None:
             t = t + 4 * value.rad()
         return t
@@ -661,6 +667,14 @@ def _natural_sublevel(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
 
 # ------------------------------------------------------------------------------------ equilibria
 
+def _hurwitz_row(coeffs) -> dict:
+    """The Routh-Hurwitz coefficients of an equilibrium's row (enclosures as text; rigor-gyro check recomputes
+    them from the Jacobian and re-decides the stability)."""
+    a1, a2, a3 = coeffs
+    return {"polynomial": "lambda^3 + a1 lambda^2 + a2 lambda + a3 = det(lambda I - J)", "a1": _fmt(a1, 8),
+            "a2": _fmt(a2, 8), "a3": _fmt(a3, 8), "a1 a2 - a3": _fmt(a1 * a2 - a3, 8)}
+
+
 def _equilibria_claim(ctx: _Ctx, inv: Claim | None, R: arb | None) -> Claim:
     g, xs = ctx.g, ctx.xs
     E = equilibria(g)
@@ -681,8 +695,10 @@ def _equilibria_claim(ctx: _Ctx, inv: Claim | None, R: arb | None) -> Claim:
                 where = "undecided"
         x2 = e.exact or _fmt(e.x2, 10)
         rows.append({"x1": _fmt(e.x1, 12), "x2": x2, "case": e.case, "stability": e.stability, "estimate": where,
-                     "eigenvalues": [f"{_fmt(z.real, 8)} + {_fmt(z.imag, 8)} i" for z in e.eigenvalues]})
-        texts.append(f"({_fmt(e.x1, 8)}, {x2}, 0) [{e.case}]: {e.stability}, {where}")
+                     "eigenvalues": [f"{_fmt(z.real, 8)} + {_fmt(z.imag, 8)} i" for z in e.eigenvalues],
+                     **({"routh_hurwitz": _hurwitz_row(e.hurwitz)} if e.hurwitz is not None else {})})
+        by = " (Routh-Hurwitz: the eigenvalues not separated at this precision)" if e.hurwitz is not None else ""
+        texts.append(f"({_fmt(e.x1, 8)}, {x2}, 0) [{e.case}]: {e.stability}{by}, {where}")
     undecided = [r for r in rows if r["stability"] == "undecided" or r["estimate"] == "undecided"]
     if not E.complete or undecided:
         return _claim("equilibria", Status.INCONCLUSIVE,

@@ -15,7 +15,10 @@ piece holds exactly one root); any other root must lie
 certainly inside or certainly outside |x2| <= pi. The linearisation's Jacobian is computed by
 forward-mode differentiation of (2) (dual numbers over balls) and its eigenvalues by Arb
 (``acb_mat.eig``): *asymptotically stable* when every real part is certainly < 0, *unstable* when one is
-certainly > 0, otherwise *undecided* (a real part not separated from 0 at this precision). At cos x2 = 0
+certainly > 0, otherwise *undecided* (a real part not separated from 0 at this precision). Where Arb's eigenvalues
+leave the stability undecided, the Routh-Hurwitz test on the characteristic polynomial decides it when it can
+(:func:`routh_hurwitz`: its coefficients are sums of principal minors, which keep the Jacobian's exact zeros, so
+they stay narrow where the eigenvalues separate only at thousands of bits: H = 1e300, a = 1e-300). At cos x2 = 0
 the eigenvalues are in closed form (:func:`classify_at_cos_zero`): -k/(A0 - C0) and +-sqrt(J32), so a pair
 with real part exactly 0 (J32 < 0, e.g. C0 < -H k/a for the sine law) is decided *not hyperbolic* exactly,
 where Arb's eigenvalues of the matrix would escalate forever.
@@ -37,7 +40,7 @@ from ...core.roots import RootStatus, isolate_roots
 from .model import Dual, Gimbal
 
 __all__ = ["Equilibrium", "Equilibria", "equilibria", "classify", "classify_at_cos_zero", "NOT_HYPERBOLIC", "RANGE_PAD",
-           "jacobian", "pi_text"]
+           "characteristic_coefficients", "jacobian", "pi_text", "routh_hurwitz"]
 
 #: the search range is [-(pi + RANGE_PAD), pi + RANGE_PAD]
 RANGE_PAD = Fraction(1, 64)
@@ -51,6 +54,9 @@ class Equilibrium:
     exact: str = ""                   # the exact x2 when known ("0", "pi", "pi/2", ...)
     eigenvalues: list = field(default_factory=list)
     stability: str = "undecided"      # "asymptotically stable" | "unstable" | NOT_HYPERBOLIC | "undecided"
+    #: when the Routh-Hurwitz test decided the stability (Arb's eigenvalues did not): (a1, a2, a3) of
+    #: det(lambda I - J) = lambda^3 + a1 lambda^2 + a2 lambda + a3; None otherwise
+    hurwitz: tuple | None = None
 
 
 @dataclass
@@ -106,9 +112,46 @@ def classify_at_cos_zero(g: Gimbal, e: Equilibrium) -> None:
         e.stability = "undecided"
 
 
+def characteristic_coefficients(J) -> tuple[arb, arb, arb]:
+    """(a1, a2, a3) with det(lambda I - J) = lambda^3 + a1 lambda^2 + a2 lambda + a3, for a 3 x 3 matrix of balls.
+
+    Guarantee: each ball contains the coefficient for every real matrix in the balls of J (a1 = -trace, a2 = the
+    sum of the principal 2 x 2 minors, a3 = -det by cofactors along the first row). Exact zeros of J stay exact
+    in the products (arb_mat.charpoly's elimination mixes them with the large entries: at H = 1e300 it returns
+    a3 = [+/- 1e579] where this gives a3 to 18 digits). Precision: the current one."""
+    a1 = -(J[0][0] + J[1][1] + J[2][2])
+    a2 = ((J[0][0] * J[1][1] - J[0][1] * J[1][0]) + (J[0][0] * J[2][2] - J[0][2] * J[2][0])
+          + (J[1][1] * J[2][2] - J[1][2] * J[2][1]))
+    det = (J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0])
+           + J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]))
+    return a1, a2, -det
+
+
+def routh_hurwitz(a1: arb, a2: arb, a3: arb) -> str:
+    """The stability of the roots of lambda^3 + a1 lambda^2 + a2 lambda + a3 (real coefficients in balls).
+
+    Guarantee (Routh-Hurwitz for a monic cubic): "asymptotically stable" (every root has real part < 0) when
+    a1 > 0, a3 > 0 and a1 a2 - a3 > 0 certainly; "unstable" (a root with real part > 0) when a1 < 0 (the roots
+    sum to -a1 > 0), or a3 < 0 (the polynomial is a3 < 0 at 0 and +inf at +inf: a positive real root), or a1 > 0,
+    a3 > 0 and a1 a2 - a3 < 0 (Routh's first column 1, a1, (a1 a2 - a3)/a1, a3 changes sign twice: two roots in
+    the right half-plane), each certainly; "undecided" otherwise (a sign not separated from 0, e.g. a centre
+    with a1 a2 = a3 exactly, a zero root with a3 = 0, or a ball that is not finite). Precision: the current one."""
+    if not all(v.is_finite() for v in (a1, a2, a3)):
+        return "undecided"
+    hurwitz2 = a1 * a2 - a3
+    if certainly_positive(a1) and certainly_positive(a3) and certainly_positive(hurwitz2):
+        return "asymptotically stable"
+    if certainly_negative(a1) or certainly_negative(a3) or \
+            certainly_positive(a1) and certainly_positive(a3) and certainly_negative(hurwitz2):
+        return "unstable"
+    return "undecided"
+
+
 def classify(g: Gimbal, e: Equilibrium) -> None:
     """Set ``e.eigenvalues`` and ``e.stability`` from the linearisation at ``e`` (in closed form at
-    cos x2 = 0, :func:`classify_at_cos_zero`; by Arb's eigenvalues of the Jacobian elsewhere)."""
+    cos x2 = 0, :func:`classify_at_cos_zero`; by Arb's eigenvalues of the Jacobian elsewhere, and where they
+    leave it undecided by :func:`routh_hurwitz` on :func:`characteristic_coefficients`, which sets
+    ``e.hurwitz``; ``e.eigenvalues`` is then what Arb returned, or empty where it could not isolate them)."""
     if e.case == "cos x2 = 0" and e.exact in ("pi/2", "-pi/2"):
         classify_at_cos_zero(g, e)
         return
@@ -116,10 +159,10 @@ def classify(g: Gimbal, e: Equilibrium) -> None:
     try:
         ev = acb_mat(J).eig(algorithm="rump")
     except ValueError:
-        e.stability = "undecided"
-        return
-    e.eigenvalues = list(ev)
-    if not all(z.is_finite() for z in ev):
+        ev = None
+    if ev is not None:
+        e.eigenvalues = list(ev)
+    if ev is None or not all(z.is_finite() for z in ev):
         e.stability = "undecided"
     elif all(certainly_negative(z.real) for z in ev):
         e.stability = "asymptotically stable"
@@ -127,6 +170,13 @@ def classify(g: Gimbal, e: Equilibrium) -> None:
         e.stability = "unstable"
     else:
         e.stability = "undecided"
+    if e.stability == "undecided":
+        coeffs = characteristic_coefficients(J)
+        verdict = routh_hurwitz(*coeffs)
+        if verdict != "undecided":
+            e.stability, e.hurwitz = verdict, coeffs
+            if ev is not None and not all(z.is_finite() for z in ev):
+                e.eigenvalues = []
 
 
 def _pieces_text(iso) -> list[dict]:

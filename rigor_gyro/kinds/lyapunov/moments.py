@@ -25,7 +25,7 @@ from fractions import Fraction
 
 from flint import acb, arb
 
-from ...core.balls import current_precision
+from ...core.balls import certainly_lt, current_precision
 
 __all__ = ["MOMENTS", "MomentLaw", "SineMoment", "LinearMoment", "log1m_ratio", "log1m_tail", "moment_law"]
 
@@ -148,11 +148,15 @@ class LinearMoment(MomentLaw):
     def G(self, a, A0, C0, x):
         if x.is_zero():
             return arb(0)
-        A0c, C0c, ac = acb(A0), acb(C0), acb(a)
+        # a factored out where |a| < 1: the quadrature's absolute tolerance (2^-prec) swamped a = 1e-300 (G a ball
+        # around 0, q = f^2/(2 D G) NaN); |a| >= 1 keeps a inside (the same enclosure as before, bit for bit)
+        small = certainly_lt(abs(a), 1)
+        A0c, C0c, ac = acb(A0), acb(C0), acb(1 if small else a)
 
         def integrand(t, analytic):
             return ac * t * t.cos() / (A0c - C0c * t.sin() ** 2)
-        return acb.integral(integrand, 0, acb(x)).real
+        integral = acb.integral(integrand, 0, acb(x)).real
+        return a * integral if small else integral
 
 
 #: moment name (as written in a scene) -> law

@@ -17,7 +17,7 @@ from fractions import Fraction
 from flint import arb, fmpq
 
 from ...core.audit import NUMBER, TEXT, audit_printed
-from ...core.balls import certainly_gt, certainly_nonzero, decimal_bounds
+from ...core.balls import certainly_gt, certainly_lt, certainly_nonzero, certainly_positive, decimal_bounds
 from ...core.formula_edits import search_single_edits
 from ...core.outcome import AuditRow, AuditStatus, Status
 from ...core.subdivision import enclose_max
@@ -266,8 +266,12 @@ def linear_section_rows(g: Gimbal, xs: arb, max_pieces: int) -> list[AuditRow]:
                         "nonzero entries: " + ", ".join(cross))))
     # 'in the linear setting (18) coincides with (6), since p = M = A0 m = a': M for f = a x2 in (2)
     lin = Gimbal(g.A0, g.B0, g.C0, g.H, g.k, g.a, g.mu, g.x2_star, MOMENTS["linear"])
-    M_lin = enclose_max(lin.q, 0, xs, abs_tol=arb(2) ** -40, max_pieces=max_pieces).ball
     lin_a = lin.c.a
+    # to 2^-40, relative to a where 0 < |a| < 1 (an absolute 2^-40 could not tell M from a = 1e-300 at all)
+    tol = arb(2) ** -40
+    if certainly_lt(abs(lin_a), 1) and certainly_positive(abs(lin_a)):
+        tol = tol * abs(lin_a).lower()
+    M_lin = enclose_max(lin.q, 0, xs, abs_tol=tol, max_pieces=max_pieces).ball
     st = (AuditStatus.REFUTED if certainly_gt(M_lin, lin_a) or certainly_gt(lin_a, M_lin) else AuditStatus.UNDECIDED)
     rows.append(_row("linear setting: p = M = A0 m = a", "(18) coincides with (6), since p = M = A0 m = a",
                      "M = max q over |x2| <= x2* for f = a x2 in system (2)", M_lin, st,
