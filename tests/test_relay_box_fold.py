@@ -16,7 +16,7 @@ from rigor_gyro.core.polyroots import isolate_polynomial
 from rigor_gyro.kinds.periodic_orbit import box_orbit, validate
 from rigor_gyro.kinds.periodic_orbit import continuation as C
 from rigor_gyro.kinds.periodic_orbit.flow import PARAMETER_NAMES, nutation_cubic
-from rigor_gyro.kinds.periodic_orbit.theta_fold import _points, slope_sign_change
+from rigor_gyro.kinds.periodic_orbit.theta_fold import _points, slope_ratio, slope_sign_change
 from rigor_gyro.scene import load_scene
 
 mp = pytest.importorskip("mpmath")
@@ -124,10 +124,10 @@ def test_the_similar_box_is_bisected_only_where_theta_was_proved(monkeypatch):
     m = _model()
     calls = []
 
-    def fake(reached):
+    def fake(reached, ratio=None):
         def continue_orbit(centre, balls, dirs, guesses, theta0, **kw):
             calls.append(dict(balls))
-            o = C.OrbitOverBox(theta_c=theta0)
+            o = C.OrbitOverBox(theta_c=theta0, slope_ratio=ratio)
             if reached:
                 o.theta = theta0
             return o
@@ -144,6 +144,11 @@ def test_the_similar_box_is_bisected_only_where_theta_was_proved(monkeypatch):
         # the similar box, its left half, that half's left half (then the budget cannot pay for two more halves),
         # then the original box
         assert [list(c) for c in calls] == [["B"], ["B"], ["B"], ["H"]]
+        for ratio, n in ((box_orbit.MIN_SLOPE_RATIO / 2, 1), (box_orbit.MIN_SLOPE_RATIO, 3)):
+            calls.clear()       # step 1 failed: halved only where the slope ratio leaves hope
+            monkeypatch.setattr(box_orbit, "continue_orbit", fake(False, ratio))
+            assert box_orbit.continued_outcomes(m, _h_box(F(1, 100)), ["stable"]) == {}
+            assert [list(c) for c in calls] == [["B"]] * n + [["H"]]
 
 
 @pytest.mark.parametrize("rel", [F(1, 2), F(1, 1000), F(1, 10**12)])
@@ -160,3 +165,16 @@ def test_every_test_point_is_a_member_of_the_box(rel):
         for label, vals in pts:
             for k, (lo, hi) in iv.items():
                 assert vals[k] >= _q(lo) and vals[k] <= _q(hi), (label, k)
+
+
+def test_slope_ratio_hopeless_where_roots_crowd_and_not_at_the_printed_point():
+    with working_precision(128):
+        P, box, g, models, tc = _fast_box()
+        fast = slope_ratio(models, tc)
+        Q = _model().params
+        B = F(133, 1000)
+        sim = {"B": interval(ball(_q(B / F(26, 25) ** 2)), ball(_q(B / F(24, 25) ** 2)))}   # H = 100 +-4 %'s
+        gq = _guesses(Q)
+        mq = C._Models(Q, sim, ["B"], gq)
+        slow = slope_ratio(mq, C._centre_root(mq, arb("0.138133574136")))
+    assert fast < 1e-6 < box_orbit.MIN_SLOPE_RATIO < 0.01 < slow < 1

@@ -55,7 +55,7 @@ from .jacobian_box import centred_terms, eigen_coordinate_multipliers
 from .parametric import RelayJets, nested_parameter_jets, nested_variable, parameter_jets
 from .cellwise import decide_by_cells
 from .subbox_union import band_root, gradient_union, split_counts
-from .theta_fold import slope_sign_change
+from .theta_fold import slope_ratio, slope_sign_change
 
 __all__ = ["OrbitOverBox", "continue_orbit", "MAX_PIECES"]
 
@@ -81,6 +81,7 @@ class OrbitOverBox:
     stable: bool | None = None                # True: every modulus < 1 for every P; None: not decided
     problem: str = ""
     fold: str = ""                            # step 1 impossible: dG/dtheta(tc, P) = 0 for a member (theta_fold)
+    slope_ratio: float | None = None          # where step 1 failed: theta_fold.slope_ratio (planning only)
 
 
 def _fmt(x: arb, digits: int = 10) -> str:
@@ -352,6 +353,7 @@ def continue_orbit(centre: RelayParams, box: dict[str, arb], dirs: list[str], gu
                                  models.centre.G(Jet.variable(acb(tcp), len(dirs), models.m)).d[len(dirs)].real)
         if fold is not None:
             out.problem, out.fold = why + "; " + fold.text, fold.text
+            out.slope_ratio = slope_ratio(models, tc)
             return out
     for cells in SUBBOX_CELLS[:1] if len(dirs) > 2 else SUBBOX_CELLS:    # the nested jets cost ~ (k + 1)^2
         if res is not None:
@@ -359,6 +361,7 @@ def continue_orbit(centre: RelayParams, box: dict[str, arb], dirs: list[str], gu
         res, why = _theta_over_box(models, tc, cells, lambda c, b: _Models(c, b, dirs, guesses))
     if res is None:
         out.problem = why
+        out.slope_ratio = slope_ratio(models, tc)
         return out
     out.theta, out.theta_gradient, th_c, th_n = res
     out.theta_method = why

@@ -9,8 +9,9 @@ gradient times the half-width) needs one.
 
 What: :func:`cover` keeps a stack of pieces, each with the claims still to be proved on it. A piece is decided by
 ``evaluate`` (the continuation from the piece's own centre); the claims it proves are done there, the others go to
-its two halves along the heaviest direction (``weights``), while the piece proved theta*(P) (``reached``: halving
-can then sharpen steps 2 and 3), the budget of evaluations lasts and the piece is at most MAX_DEPTH halvings deep. A claim that a piece neither proves nor may
+its two halves along the heaviest direction (``weights``), while halves may decide more (``reached``: the piece
+proved theta*(P), so that halving sharpens steps 2 and 3, or its step 1 failed but not hopelessly, see
+:func:`.theta_fold.slope_ratio`), the budget of evaluations lasts and the piece is at most MAX_DEPTH halvings deep. A claim that a piece neither proves nor may
 pass to its halves is not proved by the cover, and no further piece works on it.
 
 Guarantee: a claim is returned only when every piece of a partition of the box (the leaves of the bisection tree,

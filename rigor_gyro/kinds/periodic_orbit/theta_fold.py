@@ -22,6 +22,11 @@ Guarantee: a returned :class:`SignChange` names two members at which G_theta(tc,
 (point evaluations in balls); None says nothing (no sign change found, or an evaluation not certain).
 Precision: the current working precision. Fails when: never raises (a degenerate spectrum at a point is
 skipped).
+
+:func:`slope_ratio` is a planning figure, not a proof step: |G_theta(tc, c)| over the radius of G_theta's enclosure
+on {tc} x box. Halving the box shrinks that radius by 2 to 4 per halving, so a ratio far below 1 (1e-9 at
+H = 9325 +-3.5 %, where g's roots crowd; 0.037 at H = 100 +-4 %, whose halves decide) says whether pieces of the
+box can prove theta*(P) at all (:mod:`.similar_cover` halves only pieces where they can).
 """
 from __future__ import annotations
 
@@ -30,11 +35,11 @@ from dataclasses import dataclass
 from flint import acb, arb
 
 from ...core.balls import certainly_negative, certainly_positive
-from ...core.jets import Jet
+from ...core.jets import Jet, second_order_gradient
 from .flow import DegenerateSpectrum
-from .parametric import RelayJets
+from .parametric import RelayJets, nested_variable
 
-__all__ = ["SignChange", "slope_sign_change", "FRACTIONS"]
+__all__ = ["SignChange", "slope_sign_change", "slope_ratio", "FRACTIONS"]
 
 #: how far towards the ball's end the test points lie (members of the box, module docstring): G_theta(tc, .)
 #: oscillates in the parameters where the nutation is fast (H = 9325: six sign changes over H +-3.5 %)
@@ -99,3 +104,22 @@ def slope_sign_change(cvals: dict[str, arb], box: dict[str, arb], dirs: list[str
                               f"{first[0]} and {d.str(3)} at the point {label} of the box: it vanishes for some member")
         seen.setdefault(s, (label, vals, d))
     return None
+
+
+def slope_ratio(models, tc: arb) -> float | None:
+    """|G_theta(tc, c)| / radius of G_theta over {tc} x box (the second-order form of ``models``, a
+    :class:`.continuation._Models`), or None when not finite (module docstring: a planning figure)."""
+    k = len(models.dirs)
+    m = models.m
+    tcp = arb(tc.mid())
+    try:
+        Gc = models.centre.G(Jet.variable(acb(tcp), k, m))
+        Gn = models.nested.G(nested_variable(tcp, k, m))
+        g = second_order_gradient(Gc, Gn, models.devs + [arb(0)])[k]
+    except (ValueError, ZeroDivisionError):
+        return None
+    c = Gc.d[k].real
+    if not (g.is_finite() and c.is_finite()):
+        return None
+    r = float(g.rad())
+    return float("inf") if r == 0 else abs(float(c.mid())) / r
