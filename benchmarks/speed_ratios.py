@@ -2,6 +2,7 @@
 
     python benchmarks/speed_ratios.py [--repeat 3]            everything below
     python benchmarks/speed_ratios.py --goals [--repeat 7]    only issue 41's goals (0. below), a minute or two
+    python benchmarks/speed_ratios.py --goals --extremes      only the gimbal extremes (0. (b))
     python benchmarks/speed_ratios.py --goals --before DIR [--after DIR2]
         the same, each run paired with a run of the source tree DIR (``git archive <commit>`` unpacked
         there), interleaved: before/after (after: the installed tree, or DIR2)
@@ -57,6 +58,9 @@ THREE = ("rudenko1976", "roitenberg1947", "agafonov2013")
 #: issue 41's gimbal extremes: agafonov2013 with one parameter replaced
 EXTREMES = (("H", "1e300"), ("a", "1e-300"))
 HERE = pathlib.Path(__file__).resolve()
+#: the subprocesses' working folder: not the repository (``python -m`` puts the working folder first on the path,
+#: so run from a checkout every "tree" would import the checkout's rigor_gyro)
+NEUTRAL = tempfile.gettempdir()
 
 
 def float_script(full: bool = False, scenes=PAPER) -> None:
@@ -106,7 +110,7 @@ def _run(cmd, env, timeout=None):
     """(wall s, user CPU s, completed process) of one run of ``cmd``."""
     r0 = resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime
     t = time.perf_counter()
-    p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout)
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=timeout, cwd=NEUTRAL)
     wall = time.perf_counter() - t
     return wall, resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime - r0, p
 
@@ -115,7 +119,7 @@ def _paired(cmds, repeat):
     """Median (wall, user CPU) of each (cmd, env), the commands interleaved run by run, after one warm-up
     run each (it fills the bytecode cache; not counted). A failing run raises."""
     for cmd, env in cmds:
-        subprocess.run(cmd, check=True, capture_output=True, env=env)
+        subprocess.run(cmd, check=True, capture_output=True, env=env, cwd=NEUTRAL)
     ts = [([], []) for _ in cmds]
     for _ in range(repeat):
         for (cmd, env), (w, u) in zip(cmds, ts):
@@ -145,10 +149,17 @@ def extreme_scene(folder: str, param: str, value: str) -> str:
     return path
 
 
-def goals(repeat: int, before: str | None, after: str | None = None) -> None:
+def goals(repeat: int, before: str | None, after: str | None = None, extremes_only: bool = False) -> None:
     """Issue 41's goal rows (0. in the module's docstring)."""
     cache, out = tempfile.mkdtemp(), tempfile.mkdtemp()
     trees = [("after", after)] + ([("before", before)] if before else [])
+    if not extremes_only:
+        _cold_goal(trees, cache, out, repeat)
+    _extremes(trees, cache, out)
+
+
+def _cold_goal(trees, cache, out, repeat) -> None:
+    """Goal (a): the cold three-paper prove against the float script, paired and interleaved."""
     cmds, names = [], []
     for label, tree in trees:
         env = _env(tree, os.path.join(cache, label))
@@ -169,6 +180,10 @@ def goals(repeat: int, before: str | None, after: str | None = None) -> None:
     for name, (w, u) in zip(names, res):
         print(f"| {name} | {w:.2f} | {u:.2f} | {w / t_fl:.2f}x | {w / t_full:.2f}x |")
     print("\nGoal: the certified run <= 0.6x the float script's wall and <= 0.35 s user CPU.\n")
+
+
+def _extremes(trees, cache, out) -> None:
+    """Goal (b): the gimbal extremes, one run each per tree (wall and user CPU of the process)."""
     print("| extreme scene | tree | wall s | user CPU s | verdict | bits tried | claims (status) |")
     print("|---|---|---|---|---|---|---|")
     for param, value in EXTREMES:
@@ -209,6 +224,7 @@ def main() -> None:
                     "of an older commit unpacked there), paired and interleaved with the current one")
     ap.add_argument("--after", metavar="DIR", help="with --goals: run the source tree DIR as 'after' instead of the "
                     "installed one (two `git archive`s compared, whatever the work tree holds)")
+    ap.add_argument("--extremes", action="store_true", help="with --goals: only the gimbal extremes (goal (b))")
     ap.add_argument("--float-script", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--full", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--scenes", default=",".join(PAPER), help=argparse.SUPPRESS)
@@ -216,7 +232,7 @@ def main() -> None:
     if args.float_script:
         float_script(args.full, args.scenes.split(","))
         return
-    goals(args.repeat, args.before, args.after)
+    goals(args.repeat, args.before, args.after, args.extremes)
     if args.goals:
         return
     print()
