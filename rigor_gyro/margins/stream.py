@@ -80,7 +80,7 @@ def stream_pave(bs, st, ex, scene: tuple, *, budget, box_budget, progress, check
     for a checkpoint."""
     from . import paving
     frontier = st.frontier
-    shared = ex.share(scene)
+    shared: list = []               # the scene as sent to the workers (once, at the first submit)
     queue: deque = deque()          # (key, group) taken from the frontier, not committed, in the queue's order
     taken = 0                       # queue[:taken] have every box dispatched or known
     results: dict = {}              # (edges, claims) -> outcome
@@ -154,7 +154,9 @@ def stream_pave(bs, st, ex, scene: tuple, *, budget, box_budget, progress, check
                 # does with fewer tasks than workers, not a round trip to a worker
                 record(items, evaluate_batch(scene, payload))
                 return
-            inflight[ex.submit(evaluate_batch, shared, payload)] = items
+            if not shared:
+                shared.append(ex.share(scene))
+            inflight[ex.submit(evaluate_batch, shared[0], payload)] = items
 
     def record(items, outs) -> None:
         nonlocal cost, ncost
