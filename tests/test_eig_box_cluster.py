@@ -7,6 +7,7 @@ import sys
 from fractions import Fraction as Fr
 from pathlib import Path
 
+import mpmath
 import pytest
 import sympy
 from flint import arb
@@ -126,3 +127,17 @@ def test_one_sign_only_when_certain_everywhere():
     assert B._one_sign([arb(1), arb(2)]) == 1 and B._one_sign([arb(-1), arb(-2)]) == -1
     assert B._one_sign([arb(1), arb(0, 1)]) == 0 and B._one_sign([arb(-1), arb(0, 1)]) == 0
     assert B._one_sign([arb(1), arb(-1)]) == 0
+
+
+def test_taylor_at_contains_the_polynomial_on_the_ball():
+    """_taylor_at(poly, x) contains poly(t) at sampled exact points t of x (mpmath at 40 digits)."""
+    from flint import arb_poly
+    poly = arb_poly([arb(3), arb(-7), arb(2), arb(5), arb(-1)])
+    x = arb("1.2", "0.3")
+    with working_precision(128):
+        enc = B._taylor_at(poly, x)
+    mpmath.mp.dps = 40
+    for i in range(21):
+        t = mpmath.mpf("0.9") + mpmath.mpf("0.6") * i / 20
+        v = 3 - 7 * t + 2 * t ** 2 + 5 * t ** 3 - t ** 4
+        assert mpmath.mpf(enc.lower().str(40, radius=False)) <= v <= mpmath.mpf(enc.upper().str(40, radius=False))

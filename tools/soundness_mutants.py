@@ -893,6 +893,9 @@ MUTANTS = [
     ("eig_ratio_quadratic_term_dropped", "rigor_gyro/kinds/eigenfrequencies/boxes.py",
      "_taylor_at(Nm, x) + t * _taylor_at(N1, x) + t2 * _taylor_at(N2, x)", "_taylor_at(Nm, x) + t * _taylor_at(N1, x)",
      "F's numerator over the eps interval without its quadratic term in eps"),
+    ("eig_taylor_radius_dropped", "rigor_gyro/kinds/eigenfrequencies/boxes.py",
+     "    return shifted(arb(0, x.rad()))", "    return shifted(arb(0))",
+     "a polynomial over a ball by its Taylor form at the centre only (the ball's radius dropped)"),
     # Rudenko's derivation steps and the (10) eps reading (issue 39; paper_steps.py, paper_hz.py; group rudenko_steps)
     ("steps_positive_on_not_negative", "rigor_gyro/kinds/eigenfrequencies/paper_steps.py",
      "        if certainly_positive(ev(l.union(h))):", "        if not certainly_negative(ev(l.union(h))):",
