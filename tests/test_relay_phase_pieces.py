@@ -111,3 +111,68 @@ def test_uncertain_end_signs_decide_nothing():
         # G(0) = 0 exactly: the end sign is uncertain
         assert PP.phase_count(co, arb(0), arb(HALF), 1) == (False, 0)
         assert PP.phase_count(co, arb(0), arb(HALF), 0) == (False, 0)
+
+
+def test_three_roots_are_not_one():
+    # from above the maximum's level to below: three crossings, opposite end signs
+    with working_precision(128):
+        co = synthetic(0.3, 1)
+        lo, hi = 0.1 * HALF, 2.9 * HALF
+        assert roots_mp(0.3, 1, lo, hi) == 3
+        assert not PP.phase_count(co, arb(lo), arb(hi), 1)[0]
+        assert not PP.phase_count(co, arb(lo), arb(hi), 0)[0]
+
+
+# ------------------------------------------------------------------------------ the checker
+
+@pytest.fixture(scope="module")
+def fast():
+    """H = 1e5 (a fast nutation) searched on (0, 0.002]: 15 roots in phase_unique pieces (0.3 s)."""
+    from .forgery import certificate
+    return certificate("roitenberg1947", H="100000", options={"T_max": "0.002"})
+
+
+def _hp(data):
+    return data["witnesses"]["half_period"]
+
+
+@pytest.mark.slow
+def test_the_checker_confirms_phase_pieces(fast):
+    from .forgery import items
+    kinds = {p["kind"] for p in _hp(fast)["pieces"]}
+    assert "phase_unique" in kinds
+    assert items(fast)["half_period"] is True
+
+
+def test_two_roots_stored_as_one_phase_empty_piece_are_rejected(fast):
+    import copy
+    from .forgery import items
+    bad = copy.deepcopy(fast)
+    w = _hp(bad)
+    pcs = w["pieces"]
+    i = next(k for k in range(len(pcs) - 1) if pcs[k]["kind"] == pcs[k + 1]["kind"] == "phase_unique")
+    r = sum(p["kind"].endswith("unique") for p in pcs[:i])      # roots before the pair
+    pcs[i: i + 2] = [{"lo": pcs[i]["lo"], "hi": pcs[i + 1]["hi"], "kind": "phase_empty"}]
+    del w["roots"][r: r + 2]
+    assert items(bad)["half_period"] is False
+
+
+def test_a_phase_unique_piece_relabelled_empty_is_rejected(fast):
+    import copy
+    from .forgery import items
+    bad = copy.deepcopy(fast)
+    w = _hp(bad)
+    i = next(k for k, p in enumerate(w["pieces"]) if p["kind"] == "phase_unique")
+    w["pieces"][i]["kind"] = "phase_empty"
+    r = sum(p["kind"].endswith("unique") for p in w["pieces"][:i])
+    del w["roots"][r]
+    assert items(bad)["half_period"] is False
+
+
+def test_an_unknown_piece_kind_is_rejected(fast):
+    """What an older checker does with a phase piece: an unknown kind fails the witness."""
+    import copy
+    from .forgery import items
+    bad = copy.deepcopy(fast)
+    _hp(bad)["pieces"][0]["kind"] = "phase_other"
+    assert items(bad)["half_period"] is False

@@ -1258,9 +1258,6 @@ MUTANTS = [
     ("plant_box_g_eigenvalue_derivative_dropped", "rigor_gyro/kinds/periodic_orbit/plant_box.py",
      "+ Sv * m.rc * lam_j * (dTh / lam - Th / (lam * lam)))", "+ 0)",
      "the [plant] box's centred g without the eigenvalues' own dependence on the parameters"),
-    ("plant_box_g_eigenvalue_derivative_dropped", "rigor_gyro/kinds/periodic_orbit/plant_box.py",
-     "+ Sv * m.rc * lam_j * (dTh / lam - Th / (lam * lam)))", "+ 0)",
-     "the [plant] box's centred g without the eigenvalues' own dependence on the parameters"),
     # issue 42 part 2: moment laws written in the scene (kinds/lyapunov/moment_expr.py, moment_table.py,
     # core/expressions.py parity; tests/test_moment_expr.py)
     ("moment_parity_mixed_sum_odd", "rigor_gyro/core/expressions.py",
@@ -1329,8 +1326,27 @@ MUTANTS = [
      "                    s[j] -= c_r * y[j]", "                    s[j] += c_r * y[j]",
      "the real modes' tanh terms added to g's slow part with the wrong sign"),
     ("nutation_form_short_slope_halved", "rigor_gyro/kinds/periodic_orbit/nutation_form.py",
-     "                s[1] -= c_r * 2 * lam_r * E / (p * p)", "                s[1] -= c_r * lam_r * E / (p * p)",
+     "                y1 = 2 * lam_r * E / (p * p)", "                y1 = lam_r * E / (p * p)",
      "the closed-form first derivative of a real mode's tanh term without its factor 2"),
+    # relay extremes (issue 41): phase pieces, a fast nutation's half-periods (phase_pieces.py; group relay_phase)
+    ("phase_sigma_never_fixed", "rigor_gyro/kinds/periodic_orbit/phase_pieces.py",
+     '                sigma = 1 if k == "M+" else -1\n', "                pass\n",
+     "a root-free claim's monotone leaves of both directions accepted: two crossings counted as none"),
+    ("phase_end_signs_unchecked", "rigor_gyro/kinds/periodic_orbit/phase_pieces.py",
+     "(s_lo != s_hi) != (claim == 1)", "False",
+     "the claimed count not matched against the end signs of G (one root claimed where there is none)"),
+    ("phase_remainder_dropped", "rigor_gyro/kinds/periodic_orbit/phase_pieces.py",
+     "    d1 = cm[1] + 2 * cm[2] * t + 3 * c[3] * t2\n", "    d1 = cm[1] + 2 * cm[2] * t\n",
+     "G' over a leaf from its Taylor polynomial without the Lagrange remainder"),
+    ("phase_end_form_wrong_side", "rigor_gyro/kinds/periodic_orbit/phase_pieces.py",
+     "(b, interval(-w.upper(), arb(0)))", "(b, interval(arb(0), w.upper()))",
+     "the Taylor form at a leaf's right end evaluated beyond the leaf"),
+    ("phase_monotone_wrong_end", "rigor_gyro/kinds/periodic_orbit/phase_pieces.py",
+     "        end = a if d2 == s else b\n", "        end = b if d2 == s else a\n",
+     "G' signed at the end where it is largest taken for the whole leaf"),
+    ("check_phase_empty_unchecked", "rigor_gyro/kinds/periodic_orbit/check.py",
+     "pieces_ok = pieces_ok and phase_count(G.coeffs, lo, hi, 0)[0]", "pieces_ok = pieces_ok and True",
+     "the checker takes a phase_empty piece without re-deciding it"),
 ]
 
 

@@ -372,7 +372,7 @@ def check(model, data: dict) -> list[CheckResult]:
                 pieces_ok = pieces_ok and phase_count(G.coeffs, lo, hi, 0)[0]
             elif pc["kind"] == "phase_unique":
                 ok, e = _phase_unique(G, lo, hi)
-                pieces_ok = pieces_ok and ok
+                pieces_ok = ok and pieces_ok
                 if ok:
                     roots.append(e)
             elif pc["kind"] == "unique":

@@ -144,12 +144,13 @@ def phase_count(coeffs, lo: arb, hi: arb, claim: int, *, max_depth: int = MAX_DE
 
 def root_bracket(coeffs, lo: arb, hi: arb, s_lo: int, rel_bits: int | None = None) -> tuple[arb, arb] | None:
     """(a, b), lo <= a < b <= hi exact points with G(a) of sign s_lo and G(b) of sign -s_lo certified
-    (or a = lo, b = hi: the caller's certified end signs), b - a <= |a| 2^-rel_bits (default half the
-    precision) when reachable: a sign change, so a root in [a, b]. Newton's method on point values
+    (or a = lo, b = hi: the caller's certified end signs), b - a <= |a| 2^-rel_bits (default the
+    precision less 16 bits: the classification needs a narrow theta) when reachable: a sign change,
+    so a root in [a, b]. Newton's method on point values
     proposes (nothing assumed of it); sign bisection when it does not land. None if a sign is
     uncertain before the width is reached and no bracket narrower than [lo, hi] was certified."""
     prec = current_precision()
-    rel = arb(2) ** (-(rel_bits if rel_bits is not None else prec // 2))
+    rel = arb(2) ** (-(rel_bits if rel_bits is not None else prec - 16))
     a, b = lo, hi
     x = arb(((a + b) / 2).mid())
     try:        # start: the root of A + R cos on a half-period from turning point to turning point
