@@ -79,7 +79,7 @@ def main(argv: list[str] | None = None) -> int:
     names = [n for n in names if n not in args.skip]
     kinds = args.executors.split(",")
     n = args.workers
-    print(f"| paving | boxes | 1 process s | " + " | ".join(f"{k} N={n} s | speed-up | CPU ratio | identical"
+    print("| paving | boxes | 1 process s | " + " | ".join(f"{k} N={n} s | speed-up | CPU ratio | identical"
                                                             for k in kinds) + " | load |")
     print("|---|---|---|" + "---|---|---|---|" * len(kinds) + "---|")
     for name in names:

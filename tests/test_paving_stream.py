@@ -149,7 +149,7 @@ def test_a_real_pool_streams_the_same_certificate_and_budgeted_partial():
 def test_a_worker_batch_evaluates_each_box_in_order_and_times_it(plane_fast):
     from rigor_gyro.core.boxes import Box
     boxes = [Box.of({"eps": (0, 1), "Omega2": (0, 1)}), Box.of({"eps": (2, 3), "Omega2": (0, 1)})]
-    out = stream.evaluate_batch(("eigenfrequencies", "{}", "{}", "{}", 64),
+    out = stream.evaluate_batch((_half_plane, "eigenfrequencies", "{}", "{}", "{}", 64),
                                 [(json.dumps(b.to_json()), ["bracket_4"]) for b in boxes])
     assert [o for o, _ in out] == [{"bracket_4": ["undecided", "both"]}, {"bracket_4": ["proved", "holds"]}]
     assert all(t >= 0 for _, t in out)

@@ -48,6 +48,7 @@ import time
 from concurrent.futures import BrokenExecutor
 from dataclasses import dataclass, field
 from fractions import Fraction
+from types import SimpleNamespace
 from typing import Any
 
 from ..core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, working_precision
@@ -426,7 +427,10 @@ def _pave(bs: BoxScene, executor, progress, time_limit, box_budget, state, check
     stopped, run, last = "", 0, time.monotonic()
     if getattr(ex, "parallel", False) and st.frontier.priority == "volume" and len(st.frontier):
         from .stream import stream_pave     # no barrier between levels; the same certificate (:mod:`.stream`)
-        stopped = stream_pave(bs, st, ex, (bs.scene.kind, pj, oj, mj, bs.prec), budget=budget, box_budget=box_budget,
+        hooks = SimpleNamespace(_commit=_commit, _deferred_interrupt=_deferred_interrupt, INTERRUPTED=INTERRUPTED,
+                                CHECKPOINT=CHECKPOINT, box_budget_reason=box_budget_reason)
+        stopped = stream_pave(bs, st, ex, (evaluate_task, bs.scene.kind, pj, oj, mj, bs.prec), hooks,
+                              budget=budget, box_budget=box_budget,
                               progress=progress, checkpoint=checkpoint, checkpoint_every=checkpoint_every,
                               snapshot=lambda why: _snapshot(bs, st, why, time.perf_counter() - t0, ex.label))
     while len(st.frontier) and not stopped:

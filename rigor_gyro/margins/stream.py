@@ -52,14 +52,14 @@ MAX_BATCH = 256
 
 
 def evaluate_batch(scene: tuple, items: list) -> list:
-    """In a worker: each (box JSON, claims) of ``items`` evaluated on the scene ``(kind, points JSON,
-    settings JSON, midpoint JSON, prec)``; [(outcome, seconds)] in order."""
-    from . import paving            # looked up at call time (a test may replace paving.evaluate_task)
-    kind, pj, oj, mj, prec = scene
+    """In a worker: each (box JSON, claims) of ``items`` evaluated on the scene ``(evaluate, kind, points
+    JSON, settings JSON, midpoint JSON, prec)`` by ``evaluate`` (:func:`.paving.evaluate_task`, a
+    module-level function: it travels by name); [(outcome, seconds)] in order."""
+    evaluate, kind, pj, oj, mj, prec = scene
     out = []
     for box_json, claims in items:
         t0 = time.perf_counter()
-        res = paving.evaluate_task(kind, pj, oj, mj, box_json, tuple(claims), prec)
+        res = evaluate(kind, pj, oj, mj, box_json, tuple(claims), prec)
         out.append((res, time.perf_counter() - t0))
     return out
 
@@ -73,12 +73,13 @@ def _wanted(bs, box, claims, out) -> tuple | None:
     return None if fine else undecided
 
 
-def stream_pave(bs, st, ex, scene: tuple, *, budget, box_budget, progress, checkpoint, checkpoint_every,
+def stream_pave(bs, st, ex, scene: tuple, paving, *, budget, box_budget, progress, checkpoint, checkpoint_every,
                 snapshot) -> str:
     """Run the paving state ``st`` to its end or a stop on the parallel executor ``ex`` (see the module
-    docstring); returns why it stopped ("" when it ran its course). ``snapshot(stopped)`` is the paving
-    for a checkpoint."""
-    from . import paving
+    docstring); returns why it stopped ("" when it ran its course). ``scene`` as :func:`evaluate_batch`
+    takes it; ``paving``: the paving's own pieces (``_commit``, ``_deferred_interrupt``, ``INTERRUPTED``,
+    ``CHECKPOINT``, ``box_budget_reason``; passed in, not imported: :mod:`.paving` imports this module);
+    ``snapshot(stopped)`` is the paving for a checkpoint."""
     frontier = st.frontier
     shared: list = []               # the scene as sent to the workers (once, at the first submit)
     queue: deque = deque()          # (key, group) taken from the frontier, not committed, in the queue's order
