@@ -19,7 +19,7 @@ import math
 
 from flint import arb
 
-from ...core.balls import certainly_lt, certainly_negative, certainly_positive, interval
+from ...core.balls import certainly_lt, interval
 from ...core.roots import RootPiece, RootStatus
 from .phase_pieces import phase_count, root_bracket
 
@@ -30,7 +30,11 @@ PHASE_REASON = "phase:"
 
 
 def _sign(x: arb) -> int:
-    return 1 if certainly_positive(x) else -1 if certainly_negative(x) else 0
+    """1 / -1 when x is certainly > 0 / < 0, else 0: :func:`~rigor_gyro.core.balls.compare`'s rule (a
+    finite ball, Arb's certain comparison) without its conversions (this runs ~10^5 times a search)."""
+    if not x.is_finite():
+        return 0
+    return 1 if x > 0 else -1 if x < 0 else 0
 
 
 def _next_critical(coeffs, u: arb, omega: float) -> arb | None:
