@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 from fractions import Fraction as F
+from types import SimpleNamespace
 
 import pytest
 from flint import acb, arb, fmpq
@@ -133,6 +134,8 @@ def test_the_similar_box_is_bisected_only_where_theta_was_proved(monkeypatch):
             return o
         return continue_orbit
 
+    orbit = SimpleNamespace(theta=arb("0.138133574136"), stable=True, kind="genuine")
+    monkeypatch.setattr(box_orbit, "centre_orbits", lambda model, want_stable: (None, [orbit]))   # no point analysis
     with working_precision(64):
         monkeypatch.setattr(box_orbit, "continue_orbit", fake(False))
         assert box_orbit.continued_outcomes(m, _h_box(F(1, 100)), ["stable"]) == {}

@@ -66,7 +66,11 @@ undecided (103 s even with 64 leaves of the similar box): the centred Jacobian o
 than J moves (theta*'s gradient over B' +-0.75 % encloses [-0.95, 0.95] where it is 0.4). With the adaptive
 cover (2026-12-06, helper H5, user CPU on a loaded machine): ``stable`` and ``orbit_genuine`` at +-0.5 % both
 proved in one evaluate_box, 59 s (the similar box B' +-3 %, sigma' +-1 %, n' +-1 %: 16 pieces, B' halved three
-times then sigma', 31 continuations).
+times then sigma', 31 continuations). One parameter, ``stable``, one evaluate_box (before -> after the adaptive
+cover, user CPU): H +-4 % proved 9.3 -> 9.5 s, H +-6 % undecided 7.4 s -> proved 15.7 s (H +-10 % undecided, 3.4 s:
+the slope ratio is hopeless), A +-6 % proved 25.6 -> 25.5 s, A +-10 % undecided 8.5 s -> proved 102 s; tau +-10 %
+undecided (0.6 s: theta* not proved on its similar box B' +-20 %, sigma' +-10 %, n' +-10 %, not halved). A box that varies only B, sigma, n has no similar box
+and is unchanged.
 
 A ``[plant]`` model (:class:`.plant_model.PlantModel`) is decided over a box by :mod:`.plant_box` (naive ball
 forms of its matrices over the box: ``orbit_genuine`` and ``stable`` over boxes of relative width ~1e-6 in A and
