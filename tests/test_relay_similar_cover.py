@@ -78,3 +78,10 @@ def test_no_piece_deeper_than_max_depth():
     assert got == {} and max(F(1) / (p.interval("B")[1] - p.interval("B")[0]) for p, _ in log) == 4
     got, _ = cover(BOX, ["stable"], _evaluator({"stable": F(1, 8)}), max_depth=3)
     assert got["stable"][0] == 8
+
+
+def test_a_cover_whose_first_pieces_prove_nothing_stops():
+    from rigor_gyro.kinds.periodic_orbit.similar_cover import FIRST_PROOF_BY
+    log = []
+    got, spent = cover(BOX, ["stable"], _evaluator({"stable": F(1, 256)}, log=log), max_depth=9)
+    assert got == {} and spent == len(log) == FIRST_PROOF_BY

@@ -11,7 +11,8 @@ What: :func:`cover` keeps a stack of pieces, each with the claims still to be pr
 ``evaluate`` (the continuation from the piece's own centre); the claims it proves are done there, the others go to
 its two halves along the heaviest direction (``weights``), while halves may decide more (``reached``: the piece
 proved theta*(P), so that halving sharpens steps 2 and 3, or its step 1 failed but not hopelessly, see
-:func:`.theta_fold.slope_ratio`), the budget of evaluations lasts and the piece is at most MAX_DEPTH halvings deep. A claim that a piece neither proves nor may
+:func:`.theta_fold.slope_ratio`), the budget of evaluations lasts and the piece is at most MAX_DEPTH halvings deep; a cover whose first
+FIRST_PROOF_BY pieces proved nothing stops. A claim that a piece neither proves nor may
 pass to its halves is not proved by the cover, and no further piece works on it.
 
 Guarantee: a claim is returned only when every piece of a partition of the box (the leaves of the bisection tree,
@@ -26,13 +27,16 @@ from typing import Callable
 
 from ...core.boxes import Box
 
-__all__ = ["cover", "COVER_BUDGET", "MAX_DEPTH", "halves"]
+__all__ = ["cover", "COVER_BUDGET", "MAX_DEPTH", "FIRST_PROOF_BY", "halves"]
 
 #: evaluations a cover may spend (the six parameters at +-0.5 %: 31, 16 pieces at about 1 s each)
 COVER_BUDGET = 40
 #: halvings of one piece at most (the six parameters at +-0.5 %: 4): bounds the cost of a piece that never
 #: decides, e.g. one holding a stability threshold, to 1 + 2 MAX_DEPTH evaluations along its chain
 MAX_DEPTH = 5
+#: a cover none of whose first FIRST_PROOF_BY pieces proved anything stops (the six parameters at +-0.5 % and A +-10 %
+#: proved their first piece at the 5th and the 4th evaluation): bounds the cost of a box that no piece decides
+FIRST_PROOF_BY = 8
 
 
 def halves(box: Box, name: str) -> tuple[Box, Box]:
@@ -73,6 +77,8 @@ def cover(box: Box, claims: list[str], evaluate: Callable, budget: int = COVER_B
         if spent >= budget:
             alive = [c for c in alive if c not in need]
             continue
+        if spent >= FIRST_PROOF_BY and not any(pieces.values()):
+            break
         spent += 1
         got, reached, weights = evaluate(piece, need)
         for c in need:
@@ -88,4 +94,6 @@ def cover(box: Box, claims: list[str], evaluate: Callable, budget: int = COVER_B
         left, right = halves(piece, _heaviest(piece, weights))
         stack.append((right, rest, depth + 1))
         stack.append((left, rest, depth + 1))
+    if stack:               # stopped early: pending pieces decided nothing
+        return {}, spent
     return {c: (pieces[c], first[c]) for c in alive if c in first}, spent
