@@ -100,8 +100,11 @@ def radius_formula(c: ParameterBalls, w, which: str):
         return (108 * A0 * (A0 - C0)).sqrt() * H * H * cs * cs * (k / A0 - mu) / D2.sqrt()
     Ds = A0 - C0 * s * s
     P = A0 - C0 - C0 * cs * cs
-    inner = 4 * mu * mu * H * H * P * P * Ds * Ds * s * s + (mu * k * B0 * C0 - (A0 - C0) * H * H) ** 2
-    return 2 * H * (mu * H * cs * cs - w) * Ds * Ds / (A0 * inner.sqrt())
+    # numerator and the square root both divided by H^2: H enters as w/H and in two small terms, so the
+    # derivative in H (2 w/H^2 > 0 dominant) has a certain sign over wide boxes
+    iH = 1 / H
+    inner = 4 * mu * mu * P * P * Ds * Ds * s * s * iH * iH + (mu * k * B0 * C0 * iH * iH - (A0 - C0)) ** 2
+    return 2 * (mu * cs * cs - w * iH) * Ds * Ds / (A0 * inner.sqrt())
 
 
 class CentredBox:
