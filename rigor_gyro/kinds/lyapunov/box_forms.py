@@ -90,6 +90,8 @@ def radius_formula(c: ParameterBalls, w, which: str):
     """R1 (13) or R2 (14) as a formula of the parameters (balls or Duals) and w = A0 m:
     R1 = sqrt(108 A0 (A0 - C0)) H^2 cos^2 x2* (k/A0 - mu) / sqrt(D2),
     R2 = 2 H (mu H cos^2 x2* - w) Ds^2 / (A0 sqrt(4 mu^2 H^2 P^2 Ds^2 sin^2 x2* + (mu k B0 C0 - (A0 - C0) H^2)^2)),
+    evaluated with numerator and root divided by H^2 (H enters as w/H and in two terms of relative size 1e-10
+    in the example, so its derivative has a certain sign over a +-5 % box),
     equal to sqrt(D1/D2), sqrt(E1/E2) of :func:`.model.closed_form_constants` where k/A0 - mu > 0 (resp.
     mu H cos^2 x2* - w > 0): the caller certifies that sign over the box."""
     A0, B0, C0, H, k, mu = c.A0, c.B0, c.C0, c.H, c.k, c.mu
