@@ -1257,7 +1257,7 @@ MUTANTS = [
      "            alive = [c for c in alive if c not in rest]\n", "            pass\n",
      "a claim still proved by the cover after a piece of it failed and was not halved"),
     ("cover_right_half_dropped", "rigor_gyro/kinds/periodic_orbit/similar_cover.py",
-     "        stack.append((right, rest))\n", "        pass\n",
+     "        stack.append((right, rest, depth + 1))\n", "        pass\n",
      "a halved piece's right half never decided: the proved pieces do not cover the box"),
     ("cover_budget_pending_kept", "rigor_gyro/kinds/periodic_orbit/similar_cover.py",
      "            alive = [c for c in alive if c not in need]\n", "            pass\n",
