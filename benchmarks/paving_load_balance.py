@@ -14,7 +14,8 @@ a box's halves are ready as soon as its result is in (speculation), a free worke
 boxes in the queue's order, as many as make ~50 ms at the mean cost measured so far (at most 256, at
 most an even share of the ready boxes), plus the fixed cost per batch; the maps after the paving (point
 proofs, searches, ranges) keep their barriers. Speculative work that ``max_boxes`` throws away is not
-modelled (it only occurs where the cap is reached). With ``--replay``, a last column per N replays the
+modelled (it only occurs where the cap is reached); nor are the halves of boxes in flight that the engine
+starts when a worker would idle (the replay has them, at the mean box cost where they were never needed). With ``--replay``, a last column per N replays the
 paving through the real engine (rigor_gyro/margins/stream.py, unchanged) on a virtual-time executor: each
 box's outcome and cost are the recorded ones, a batch runs on the worker free first, plus the fixed cost
 per batch; it checks that the replayed paving is the recorded one and gives serial / virtual makespan.
@@ -181,8 +182,12 @@ def replay(bs, boxes: list[tuple], after: list[list[float]], workers: int, overh
     table = {(bj, tuple(cl)): (out, c) for bj, cl, out, c in boxes}
     counter = [0.0]
 
+    mean = sum(c for *_, c in boxes) / max(1, len(boxes))
+
     def recorded(kind, pj, oj, mj, box_json, claims, prec):
-        out, c = table[(box_json, tuple(claims))]
+        # a speculative box the recorded paving never evaluated (its parent was decided): wasted work,
+        # costed at the mean box; its outcome is never committed
+        out, c = table.get((box_json, tuple(claims)), ({k: ["proved", "not recorded"] for k in claims}, mean))
         counter[0] += c
         return out
 

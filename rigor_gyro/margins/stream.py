@@ -11,7 +11,9 @@ other workers idle. Here, instead:
   to about :data:`TARGET_SECONDS` of work, never more than an even share of what is available): first
   the queued groups in the queue's order (taken from :class:`~.order.Frontier` ahead of their commit),
   then *speculative* boxes: the halves of a box whose result arrived but is not yet committed (it is
-  undecided and coarser than the resolution, so it will be split unless ``max_boxes`` forbids it).
+  undecided and coarser than the resolution, so it will be split unless ``max_boxes`` forbids it); and
+  when a worker would idle, the halves of a box still in flight, as if it stays undecided (the first
+  levels of a paving have fewer boxes than workers).
   The scene travels to each Dask worker once (``Executor.share``); a task carries only box edges.
 * **Commit.** Results are kept by (box, claims) and committed group by group strictly in the queue's
   order, each commit exactly :func:`.paving._commit` of that group, as the batched loop does. For the
@@ -89,6 +91,7 @@ def stream_pave(bs, st, ex, scene: tuple, paving, *, budget, box_budget, progres
     inflight: dict = {}             # future -> [(box, claims)]
     spec: deque = deque()           # speculative (box, claims)
     committed: set = set()          # (edges, claims) committed (a stale speculative entry is skipped)
+    presplit: set = set()           # (edges, claims) in flight whose halves were queued before the result
     cost, ncost = 0.0, 0
     run, vb_left, last = 0, 0, time.monotonic()
     stopped = ""
@@ -147,6 +150,8 @@ def stream_pave(bs, st, ex, scene: tuple, paving, *, budget, box_budget, progres
                 if k not in results and k not in running and k not in committed:
                     items.append((b, claims))
                     running.add(k)
+            if not items and box_budget is None and len(inflight) < ex.workers and presplit_one():
+                continue                        # an idle worker: a box in flight's halves, before its result
             if not items:
                 return
             payload = [(json.dumps(b.to_json()), list(c)) for b, c in items]
@@ -158,6 +163,20 @@ def stream_pave(bs, st, ex, scene: tuple, paving, *, budget, box_budget, progres
             if not shared:
                 shared.append(ex.share(scene))
             inflight[ex.submit(evaluate_batch, shared[0], payload)] = items
+
+    def presplit_one() -> bool:
+        """Queue as speculative the halves of the oldest box in flight not yet so split (with its claims,
+        as if it stays undecided on all): work for a worker that would idle; used only if it comes true."""
+        for items in inflight.values():
+            for b, claims in items:
+                k = key_of(b, claims)
+                if k in presplit or _wanted(bs, b, claims, {c: ("undecided",) for c in claims}) is None:
+                    continue
+                presplit.add(k)
+                if st.created + 2 <= bs.max_boxes:
+                    spec.extend((h, claims) for h in b.split(bs.box, bs.frozen))
+                    return True
+        return False
 
     def record(items, outs) -> None:
         nonlocal cost, ncost
