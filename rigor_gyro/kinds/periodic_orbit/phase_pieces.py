@@ -167,8 +167,8 @@ def root_bracket(coeffs, lo: arb, hi: arb, s_lo: int, rel_bits: int | None = Non
         pass
     for _ in range(40):
         c = coeffs(x, 2)
-        if not (c[0].is_finite() and c[1].is_finite()) or _sign(c[1]) == 0:
-            break
+        if not (c[0].is_finite() and c[1].is_finite()) or _sign(c[1]) == 0 or c[0].contains(0):
+            break               # (G(x) is noise: x is as near the root as this precision tells)
         xn = arb((x - c[0].mid() / c[1].mid()).mid())
         if not (certainly_lt(a, xn) and certainly_lt(xn, b)):      # stay inside: halve towards that end
             xn = arb(((x + (a if certainly_lt(xn, x) else b)) / 2).mid())
@@ -177,6 +177,9 @@ def root_bracket(coeffs, lo: arb, hi: arb, s_lo: int, rel_bits: int | None = Non
         if done:
             break
     d = abs(x) * rel / 4
+    c = coeffs(x, 2)
+    if c[0].is_finite() and _sign(c[1]) != 0:       # start past G's noise at x: 4 rad(G) / |G'|
+        d = arb(max(d, 4 * arb(c[0].rad()) / abs(c[1])).mid())
     for _ in range(16):         # certify a bracket around the proposal, widened past G's noise
         p, q = arb((x - d).mid()), arb((x + d).mid())
         if certainly_lt(a, p) and certainly_lt(q, b) and _sign(coeffs(p, 1)[0]) == s_lo \
