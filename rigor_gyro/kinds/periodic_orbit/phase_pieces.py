@@ -161,6 +161,10 @@ def root_bracket(coeffs, lo: arb, hi: arb, s_lo: int, rel_bits: int | None = Non
         g1, g2 = float(coeffs(lo, 1)[0].mid()), float(coeffs(hi, 1)[0].mid())
         frac = math.acos(max(-1.0, min(1.0, -(g1 + g2) / (g1 - g2)))) / math.pi
         xs = arb((lo + (hi - lo) * arb(frac)).mid())
+        if not (0.01 < frac < 0.99):    # next to a near-tangent end e: the root of G's quadratic model at e
+            e, dirn = (lo, 1) if frac <= 0.01 else (hi, -1)
+            ce = coeffs(e, 3)
+            xs = arb((e + dirn * arb(math.sqrt(abs(float(ce[0].mid())) / abs(float(ce[2].mid()))))).mid())
         if certainly_lt(a, xs) and certainly_lt(xs, b):
             x = xs
     except (ValueError, OverflowError, ZeroDivisionError):
