@@ -28,7 +28,7 @@ def _proved():
 
 
 def _refuted():
-    """bracket (8) fails on every sub-box; seven point proofs, each refuted."""
+    """bracket (8) fails on every sub-box; its point proofs (one since the small-Omega2 roots are enclosed by sign changes), each refuted."""
     return _paving(RUDENKO_BOX.replace('"[0.1, 0.12]"', '"0.1076"').replace('"0.625 +- 0.025"', '"[0.001, 0.005]"')
                    .replace('only = [', 'only = ["bracket_2"] #'))
 
@@ -74,6 +74,20 @@ def test_a_paving_with_an_edge_never_split_is_confirmed():
     assert any(ln.startswith("Not split: S (the box claims do not depend on it") for ln in _report_lines(data))
 
 
+def test_the_checker_rebuilds_the_tree_without_splitting_a_frozen_edge():
+    """Two levels of H-only bisection with S frozen tile the box for the checker; the same leaves are not a
+    tree of Box.split's rule when S may be split (after one H split, S is the relatively widest edge), so
+    a checker that forgets the frozen edges rejects every such paving deeper than one split."""
+    from fractions import Fraction as F
+    from rigor_gyro.core.boxes import Box
+    from rigor_gyro.margins.check import _tiles
+    whole = Box.of({"H": (F(100), F(200)), "S": (F(7, 50), F(4, 25))})
+    leaves = [Box.of({"H": (F(100 + 25 * i), F(125 + 25 * i)), "S": (F(7, 50), F(4, 25))}) for i in range(4)]
+    assert _tiles(whole, leaves, ("S",))
+    assert not _tiles(whole, leaves)                     # the rule without the frozen edge splits S second
+    assert not _tiles(whole, leaves[:3], ("S",))         # a leaf missing
+
+
 def _claim(data, i=0):
     return data["claims"][i]
 
@@ -115,7 +129,7 @@ ALTERATIONS = {
                         [("bracket_2", "volume fractions or sub-box counts")]),
     "a decimal volume fraction": (_mixed, lambda d: _claim(d)["volume_fraction_decimal"].update(proved="1"),
                                   [("bracket_2", "volume fractions or sub-box counts")]),
-    "a point's status": (_refuted, lambda d: _claim(d)["points"][2].update(status="inconclusive"),
+    "a point's status": (_refuted, lambda d: _claim(d)["points"][-1].update(status="inconclusive"),
                          [("bracket_2", "stored inconclusive, re-proved refuted")]),
     "a point moved": (_undecided, lambda d: _claim(d)["points"][0]["point"].update(eps="11/100"),
                       [("nu_bounds", "not the midpoints")]),
@@ -136,7 +150,7 @@ ALTERATIONS = {
                                                 [("point_parameters", "not the scene's values")]),
     "a point proof's reason forged": (_refuted, lambda d: _claim(d)["points"][0].update(
         reason="f(t) <= 0 at the point t = 3 (a forged counterexample)"), [("bracket_2", "stored reason or precision")]),
-    "a point proof's precision": (_refuted, lambda d: _claim(d)["points"][1].update(precision_bits=16),
+    "a point proof's precision": (_refuted, lambda d: _claim(d)["points"][-1].update(precision_bits=16),
                                   [("bracket_2", "stored reason or precision")]),
     "the proved sub-boxes' reason forged": (_proved, lambda d: _claim(d)["reasons"].update(proved="holds by symmetry"),
                                             [("bracket_1", "stored reasons are not")]),
