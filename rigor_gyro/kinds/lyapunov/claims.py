@@ -78,6 +78,7 @@ from .model import (DIRECT_DOMAIN, Gimbal, c_star_lower, c_star_upper, certify_p
                     mean_value_enclosure, rational_points_inside, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar)
 from .moments import MOMENTS
 from .moment_scene import KNOWN as KNOWN_MOMENTS, scene_moment_law
+from .moment_expr import QuadratureBudgetSpent, quadrature_budget
 from .paper import PAPER_SCHEMA, audit as audit_paper
 
 __all__ = ["CLAIMS", "OPT_IN_CLAIMS", "ALL_CLAIMS", "PARAMETERS", "LyapunovModel", "validate", "attempt", "gimbal_from_parameters", "maximum_M"]
@@ -1166,132 +1167,160 @@ def maximum_M(model: LyapunovModel, prec: int):
 
 
 def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
-    """Evaluate the requested claims at the current precision (set by the prover)."""
+    """Evaluate the requested claims at the current precision (set by the prover). An expression law's
+    quadratures share one budget per attempt (:func:`.moment_expr.quadrature_budget`): when it is spent, the
+    claims not yet decided are inconclusive, naming it (never refuted, never a crash)."""
     ctx = _Ctx(model, prec)
+    with quadrature_budget(ctx.g.law):
+        return _attempt(ctx, model, wanted)
+
+
+def _attempt(ctx: "_Ctx", model: LyapunovModel, wanted: list[str]) -> Attempt:
     claims: list[Claim] = []
     quantities: dict[str, arb] = {}
     widths_met = True
     notes: list[str] = []
     phase = Phases()
-    need_constants = any(c in wanted for c in ("constants", "damping_condition", "best_mu", "best_mu_direct")) or model.R_option is None
-    if need_constants:
-        with phase("constants (m, M by subdivision)"):
+    try:
+        need_constants = any(c in wanted for c in ("constants", "damping_condition", "best_mu", "best_mu_direct")) or model.R_option is None
+        if need_constants:
+            with phase("constants (m, M by subdivision)"):
+                k = ctx.constants()
+            for name in ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R"):
+                quantities[name] = k[name]
+            widths_met = all(rel_width_at_most(k[n], model.rel_width) for n in ("m", "M", "p", "R1", "R2"))
+        if need_constants:
+            ctx.witnesses["constants"] = {n: {"cover": pieces_text(e.cover), "point": ball_text(e.argpoint)}
+                                          for n, e in (("m", ctx.m_max()), ("M", ctx.M_max()))}
+        if "constants" in wanted:
             k = ctx.constants()
-        for name in ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R"):
-            quantities[name] = k[name]
-        widths_met = all(rel_width_at_most(k[n], model.rel_width) for n in ("m", "M", "p", "R1", "R2"))
-    if need_constants:
-        ctx.witnesses["constants"] = {n: {"cover": pieces_text(e.cover), "point": ball_text(e.argpoint)}
-                                      for n, e in (("m", ctx.m_max()), ("M", ctx.M_max()))}
-    if "constants" in wanted:
-        k = ctx.constants()
-        finite = all(v.is_finite() for v in k.values())
-        conv = ctx.m_max().converged and ctx.M_max().converged
-        note = ""
-        if certainly_lt(k["R2_base"], 0):
-            note = "; note: mu H cos^2 x2* < A0 m, so (15) fails and R2 (14) (which squares that difference) is meaningless"
-        claims.append(_claim(
-            "constants", Status.PROVED if finite and conv else Status.INCONCLUSIVE,
-            (f"m = {_fmt(k['m'])} ({ctx.m_max().pieces} pieces), M = {_fmt(k['M'])} ({ctx.M_max().pieces} pieces), "
-             f"p = {_fmt(k['p'])}, k_min = {_fmt(k['k_min'])}, mu in ({_fmt(k['mu_min'])}, {_fmt(k['mu_max'])}), "
-             f"R1 = {_fmt(k['R1'])}, R2 = {_fmt(k['R2'])}" + note) if finite and conv else
-            "the maxima m, M did not converge to the requested width: raise --maxprec or the max_pieces option",
-            decides=None if finite and conv else (k["m"] if not ctx.m_max().converged else k["M"]),
-            m_pieces=ctx.m_max().pieces, M_pieces=ctx.M_max().pieces))
-    if "damping_condition" in wanted:
-        k = ctx.constants()
-        c = ctx.g.c
-        parts = [("k > p A0/H (18)", c.k, k["k_min"]), ("mu > p/H", c.mu, k["mu_min"]), ("mu < k/A0", k["mu_max"], c.mu)]
-        holds = [certainly_gt(x, y) for _, x, y in parts]
-        fails = [certainly_le(x, y) for _, x, y in parts]
-        desc = "; ".join(f"{t}: {_fmt(x)} vs {_fmt(y)}" for t, x, y in parts)
-        ce, decides = None, None
-        if all(holds):
-            st, why = Status.PROVED, "certified: " + desc
-        elif any(fails):
-            bad = [t for (t, _, _), f in zip(parts, fails) if f]
-            st, why = Status.REFUTED, f"fails ({', '.join(bad)}): " + desc
-            ce = {"violated": [{"inequality": t, "left": _fmt(x, 20), "right": _fmt(y, 20)}
-                               for (t, x, y), f in zip(parts, fails) if f]}
-        else:
-            st, why = Status.INCONCLUSIVE, "not separated at this precision: " + desc
-            decides = next(x - y for (_, x, y), h in zip(parts, holds) if not h)
-        # the margin in k to the nearest threshold of every condition (k_min of (18), mu A0 of (16))
-        margin, binding, each = damping_margin(ctx.g, k["k_min"])
-        quantities["damping_margin"] = margin
-        claims.append(_claim("damping_condition", st, why + f"; design margin in k = min(k/k_min, k/(mu A0)) - 1 = "
-                             f"{_fmt(margin, 6)}, binding: {binding}", ce, decides, binding=binding,
-                             margins={n: _fmt(v, 6) for n, v in each.items()}))
-    R, how = (None, "")
-    if any(c in wanted for c in ("vdot_nonpositive", "psi_test", "invariant_estimate")):
-        R, how = ctx.R_used()
-        quantities["R_used"] = R
-    vclaim = None
-    if "vdot_nonpositive" in wanted or "invariant_estimate" in wanted:
-        with phase("vdot_nonpositive"):
-            vclaim, vinfo = _vdot_claim(ctx, R, how)
-        if vclaim.status is Status.PROVED:
-            ctx.witnesses["vdot_nonpositive"] = {"R": ball_text(R), **vinfo["record"]}
-        if "vdot_nonpositive" in wanted:
-            claims.append(vclaim)
-    if "psi_test" in wanted:
-        with phase("psi_test"):
-            pclaim_psi, pinfo = _vdot_claim(ctx, R, how, "psi_test")
-        if pclaim_psi.status is Status.PROVED:
-            ctx.witnesses["psi_test"] = {"R": ball_text(R), **pinfo["record"]}
-        claims.append(pclaim_psi)
-    if "vdot_direct" in wanted:
-        with phase("vdot_direct"):
-            claims.append(_vdot_direct(ctx, quantities))
-    pclaim = None
-    if "v_positive" in wanted or "invariant_estimate" in wanted:
-        with phase("v_positive"):
-            pclaim = _v_positive_claim(ctx)
-        if "v_positive" in wanted:
-            claims.append(pclaim)
-    if "invariant_estimate" in wanted:
-        if vclaim.status is Status.PROVED and pclaim.status is Status.PROVED:
-            with phase("invariant_estimate"):
-                claims.append(_invariant(ctx, R, quantities))
-        else:
-            dep = vclaim if vclaim.status is not Status.PROVED else pclaim
-            claims.append(_claim("invariant_estimate", Status.INCONCLUSIVE,
-                                 "rests on vdot_nonpositive and v_positive, which are not both proved",
-                                 decides=dep.decides if dep.status is Status.INCONCLUSIVE else None))
-            if dep.status is Status.REFUTED:
-                claims[-1].precision_cannot_help = f"it rests on {dep.id}, which is refuted"
-    if "largest_sublevel" in wanted:
-        with phase("largest_sublevel"):
-            claims.append(_largest_sublevel(ctx, quantities))
-    # opt-in (about 2 s and 1e4 boxes on the example): only when claims_only names it (OPT_IN_CLAIMS)
-    if "natural_sublevel" in wanted:
-        with phase("natural_sublevel"):
-            claims.append(_natural_sublevel(ctx, quantities))
-    if "region_not_invariant" in wanted:
-        with phase("region_not_invariant"):
-            Rr = R if R is not None else ctx.R_used()[0]
-            claims.append(region_not_invariant_claim(ctx.g, Rr, ctx.xs, quantities.get("c_star"), ctx.witnesses))
-    if "initial_point" in wanted:
-        with phase("initial_point"):
-            nat = getattr(ctx, "natural", None)
-            level, reach = (nat[0], None if nat[1] is None else arb(nat[1])) if nat else (None, None)
-            claims.append(initial_point_claim(ctx.g, model.initial_point, model.initial_time, level, reach,
-                                              ctx.witnesses))
-    if "attraction_paving" in wanted:
-        with phase("attraction_paving"):
-            nat = getattr(ctx, "natural", None)
-            level, reach = (nat[0], None if nat[1] is None else arb(nat[1])) if nat else (None, None)
-            claims.append(paving_claim(ctx.g, level, reach, *model.paving, ctx.witnesses))
-    if "equilibria" in wanted:
-        with phase("equilibria"):
-            inv = next((c for c in claims if c.id == "invariant_estimate" and c.status is Status.PROVED), None)
-            claims.append(_equilibria_claim(ctx, inv, R))
-    if "best_mu" in wanted:
-        with phase("best_mu"):
-            claims.append(_best_mu(ctx, quantities))
-    if "best_mu_direct" in wanted:
-        with phase("best_mu_direct"):
-            claims.append(_best_mu_direct(ctx, quantities))
+            finite = all(v.is_finite() for v in k.values())
+            conv = ctx.m_max().converged and ctx.M_max().converged
+            note = ""
+            if certainly_lt(k["R2_base"], 0):
+                note = "; note: mu H cos^2 x2* < A0 m, so (15) fails and R2 (14) (which squares that difference) is meaningless"
+            claims.append(_claim(
+                "constants", Status.PROVED if finite and conv else Status.INCONCLUSIVE,
+                (f"m = {_fmt(k['m'])} ({ctx.m_max().pieces} pieces), M = {_fmt(k['M'])} ({ctx.M_max().pieces} pieces), "
+                 f"p = {_fmt(k['p'])}, k_min = {_fmt(k['k_min'])}, mu in ({_fmt(k['mu_min'])}, {_fmt(k['mu_max'])}), "
+                 f"R1 = {_fmt(k['R1'])}, R2 = {_fmt(k['R2'])}" + note) if finite and conv else
+                "the maxima m, M did not converge to the requested width: raise --maxprec or the max_pieces option",
+                decides=None if finite and conv else (k["m"] if not ctx.m_max().converged else k["M"]),
+                m_pieces=ctx.m_max().pieces, M_pieces=ctx.M_max().pieces))
+        if "damping_condition" in wanted:
+            k = ctx.constants()
+            c = ctx.g.c
+            parts = [("k > p A0/H (18)", c.k, k["k_min"]), ("mu > p/H", c.mu, k["mu_min"]), ("mu < k/A0", k["mu_max"], c.mu)]
+            holds = [certainly_gt(x, y) for _, x, y in parts]
+            fails = [certainly_le(x, y) for _, x, y in parts]
+            desc = "; ".join(f"{t}: {_fmt(x)} vs {_fmt(y)}" for t, x, y in parts)
+            ce, decides = None, None
+            if all(holds):
+                st, why = Status.PROVED, "certified: " + desc
+            elif any(fails):
+                bad = [t for (t, _, _), f in zip(parts, fails) if f]
+                st, why = Status.REFUTED, f"fails ({', '.join(bad)}): " + desc
+                ce = {"violated": [{"inequality": t, "left": _fmt(x, 20), "right": _fmt(y, 20)}
+                                   for (t, x, y), f in zip(parts, fails) if f]}
+            else:
+                st, why = Status.INCONCLUSIVE, "not separated at this precision: " + desc
+                decides = next(x - y for (_, x, y), h in zip(parts, holds) if not h)
+            # the margin in k to the nearest threshold of every condition (k_min of (18), mu A0 of (16))
+            margin, binding, each = damping_margin(ctx.g, k["k_min"])
+            quantities["damping_margin"] = margin
+            claims.append(_claim("damping_condition", st, why + f"; design margin in k = min(k/k_min, k/(mu A0)) - 1 = "
+                                 f"{_fmt(margin, 6)}, binding: {binding}", ce, decides, binding=binding,
+                                 margins={n: _fmt(v, 6) for n, v in each.items()}))
+        R, how = (None, "")
+        if any(c in wanted for c in ("vdot_nonpositive", "psi_test", "invariant_estimate")):
+            R, how = ctx.R_used()
+            quantities["R_used"] = R
+        vclaim = None
+        if "vdot_nonpositive" in wanted or "invariant_estimate" in wanted:
+            with phase("vdot_nonpositive"):
+                vclaim, vinfo = _vdot_claim(ctx, R, how)
+            if vclaim.status is Status.PROVED:
+                ctx.witnesses["vdot_nonpositive"] = {"R": ball_text(R), **vinfo["record"]}
+            if "vdot_nonpositive" in wanted:
+                claims.append(vclaim)
+        if "psi_test" in wanted:
+            with phase("psi_test"):
+                pclaim_psi, pinfo = _vdot_claim(ctx, R, how, "psi_test")
+            if pclaim_psi.status is Status.PROVED:
+                ctx.witnesses["psi_test"] = {"R": ball_text(R), **pinfo["record"]}
+            claims.append(pclaim_psi)
+        if "vdot_direct" in wanted:
+            with phase("vdot_direct"):
+                claims.append(_vdot_direct(ctx, quantities))
+        pclaim = None
+        if "v_positive" in wanted or "invariant_estimate" in wanted:
+            with phase("v_positive"):
+                pclaim = _v_positive_claim(ctx)
+            if "v_positive" in wanted:
+                claims.append(pclaim)
+        if "invariant_estimate" in wanted:
+            if vclaim.status is Status.PROVED and pclaim.status is Status.PROVED:
+                with phase("invariant_estimate"):
+                    claims.append(_invariant(ctx, R, quantities))
+            else:
+                dep = vclaim if vclaim.status is not Status.PROVED else pclaim
+                claims.append(_claim("invariant_estimate", Status.INCONCLUSIVE,
+                                     "rests on vdot_nonpositive and v_positive, which are not both proved",
+                                     decides=dep.decides if dep.status is Status.INCONCLUSIVE else None))
+                if dep.status is Status.REFUTED:
+                    claims[-1].precision_cannot_help = f"it rests on {dep.id}, which is refuted"
+        if "largest_sublevel" in wanted:
+            with phase("largest_sublevel"):
+                claims.append(_largest_sublevel(ctx, quantities))
+        # opt-in (about 2 s and 1e4 boxes on the example): only when claims_only names it (OPT_IN_CLAIMS)
+        if "natural_sublevel" in wanted:
+            with phase("natural_sublevel"):
+                claims.append(_natural_sublevel(ctx, quantities))
+        if "region_not_invariant" in wanted:
+            with phase("region_not_invariant"):
+                Rr = R if R is not None else ctx.R_used()[0]
+                claims.append(region_not_invariant_claim(ctx.g, Rr, ctx.xs, quantities.get("c_star"), ctx.witnesses))
+        if "initial_point" in wanted:
+            with phase("initial_point"):
+                nat = getattr(ctx, "natural", None)
+                level, reach = (nat[0], None if nat[1] is None else arb(nat[1])) if nat else (None, None)
+                claims.append(initial_point_claim(ctx.g, model.initial_point, model.initial_time, level, reach,
+                                                  ctx.witnesses))
+        if "attraction_paving" in wanted:
+            with phase("attraction_paving"):
+                nat = getattr(ctx, "natural", None)
+                level, reach = (nat[0], None if nat[1] is None else arb(nat[1])) if nat else (None, None)
+                claims.append(paving_claim(ctx.g, level, reach, *model.paving, ctx.witnesses))
+        if "equilibria" in wanted:
+            with phase("equilibria"):
+                inv = next((c for c in claims if c.id == "invariant_estimate" and c.status is Status.PROVED), None)
+                claims.append(_equilibria_claim(ctx, inv, R))
+        if "best_mu" in wanted:
+            with phase("best_mu"):
+                claims.append(_best_mu(ctx, quantities))
+        if "best_mu_direct" in wanted:
+            with phase("best_mu_direct"):
+                claims.append(_best_mu_direct(ctx, quantities))
+    except QuadratureBudgetSpent as e:
+        # a budget never decides: the claim being decided and those not reached are undecided, naming it
+        # (more precision cannot help: it only makes each quadrature dearer)
+        done_ids = {c.id for c in claims}
+        for cid in wanted:
+            if cid not in done_ids and cid in CLAIMS:
+                c = _claim(cid, Status.INCONCLUSIVE, f"undecided: {e}; a law with a closed-form G (moment = \"table\", "
+                           "or a built-in law) or a shorter x2* avoids the quadrature")
+                c.precision_cannot_help = "the quadrature budget of the [moment] law was spent"
+                claims.append(c)
+        notes.append(str(e))
+        with phase("paper audit"):
+            try:
+                paper, formulas, audit_notes = audit_paper(ctx, quantities)
+            except QuadratureBudgetSpent:
+                paper, formulas, audit_notes = [], [], []
+        notes += audit_notes
+        return Attempt(claims, quantities, paper, formulas, notes, widths_met=False, width_quantities=(), stalled=True,
+                       extra={"moment": {"name": ctx.g.law.name, "formula": ctx.g.law.formula}},
+                       witnesses=ctx.witnesses, phase_seconds=phase.seconds)
     with phase("paper audit"):
         paper, formulas, audit_notes = audit_paper(ctx, quantities)
     notes += audit_notes

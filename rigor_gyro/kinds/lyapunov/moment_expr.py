@@ -50,12 +50,19 @@ from ...core.expressions import UNARY_FUNCTIONS, Expr, compile_expr, derivative,
 from .model import Dual
 from .moments import MomentLaw
 
-__all__ = ["ExpressionMoment", "OddExpressionMoment", "expression_law", "exact_value", "arb_power", "taylor_q", "f_over_x_form", "Q_ORDER",
+__all__ = ["ExpressionMoment", "QuadratureBudgetSpent", "quadrature_budget", "EVAL_LIMIT", "QUADRATURE_BUDGET", "OddExpressionMoment", "expression_law", "exact_value", "arb_power", "taylor_q", "f_over_x_form", "Q_ORDER",
            "Q_NEAR", "FINITE", "RESERVED",
            "TAYLOR_ORDER", "MAX_PARAMETERS"]
 
 #: names a [moment] table may not give its own parameters
 RESERVED = frozenset({"x2", "a", "f", "pi", "e", "x2_points", "interpolant"}) | UNARY_FUNCTIONS | {"sign"}
+#: per acb.integral call: at most EVAL_LIMIT + EVAL_LIMIT_PER_BIT * prec integrand evaluations (Arb's own
+#: default, 1000 prec + prec^2, let one call near a branch point run for seconds at 64 bits)
+EVAL_LIMIT = 10_000
+EVAL_LIMIT_PER_BIT = 100
+#: per attempt of the lyapunov kind (one precision): the integrand evaluations of all G quadratures, each
+#: weighted by max(1, prec // 64)
+QUADRATURE_BUDGET = 5_000_000
 #: the order n of f(x)/x's Taylor form (the remainder coefficient c_n over hull(0, x))
 TAYLOR_ORDER = 4
 MAX_PARAMETERS = 32
@@ -414,11 +421,23 @@ Q_NEAR = Fraction(1, 4)
 
 # ------------------------------------------------------------------------------------ the law
 
+class QuadratureBudgetSpent(Exception):
+    """Raised by :meth:`ExpressionMoment.G` when the open quadrature budget is spent (never a verdict: the
+    lyapunov kind's attempt leaves the claims it was deciding undecided, naming the budget)."""
+
+
 class ExpressionMoment(MomentLaw):
     """f(x2) given as an expression (module docstring). Not odd by declaration: only
-    :class:`OddExpressionMoment` (built when the formula is certified odd) declares ``odd``."""
+    :class:`OddExpressionMoment` (built when the formula is certified odd) declares ``odd``.
+
+    ``budget``: None (no budget: the paving's boxes, direct use) or a one-element list [remaining weighted
+    integrand evaluations], opened by the kind's attempt (:func:`quadrature_budget`); G raises
+    :class:`QuadratureBudgetSpent` once it is spent. Each acb.integral call is capped at EVAL_LIMIT +
+    EVAL_LIMIT_PER_BIT prec integrand evaluations (Arb's eval_limit; a capped call returns a wider, possibly
+    non-finite, ball: undecided upstream, never a wrong enclosure)."""
 
     G_on_balls = False
+    budget: list | None = None
 
     def __init__(self, f: Expr, params: dict[str, Fraction]):
         self.expr = f
@@ -539,25 +558,62 @@ class ExpressionMoment(MomentLaw):
         return hit
 
     def _G(self, a, A0, C0, x):
+        budget = self.budget
+        if budget is not None and budget[0] <= 0:
+            raise QuadratureBudgetSpent(
+                f"the quadrature budget of the [moment] law {self.expr.text!r} was spent (G = int_0^x2 cos f / D by "
+                f"acb.integral: {QUADRATURE_BUDGET} integrand evaluations per attempt, weighted by precision/64, "
+                f"at most {EVAL_LIMIT} + {EVAL_LIMIT_PER_BIT} prec a call); f may be slow to integrate or leave its "
+                "domain on [0, x2*] (a pole, a branch point)")
         A0c, C0c, ac = acb(A0), acb(C0), acb(a)
         p = current_precision()
+        count = [0]
         b = self._balls.get(p) or {k: arb(_q(v)) for k, v in self.params.items()}
         consts = {k: acb(v) for k, v in b.items()}
         codes = {flag: self._code("f", flag) for flag in (False, True)}
         env = {**consts, "a": ac}
 
         def integrand(t, analytic):
+            count[0] += 1
             env["x2"] = t
             fv = codes[bool(analytic)](env)
             s = t.sin()
             return t.cos() * fv / (A0c - C0c * s * s)
-        return acb.integral(integrand, 0, acb(x)).real
+        try:
+            return acb.integral(integrand, 0, acb(x), eval_limit=EVAL_LIMIT + EVAL_LIMIT_PER_BIT * p).real
+        finally:
+            if budget is not None:
+                budget[0] -= count[0] * max(1, p // 64)
 
 
 class OddExpressionMoment(ExpressionMoment):
     """An expression law whose formula is certified odd (:func:`rigor_gyro.core.expressions.parity`)."""
 
     odd = True
+
+
+class quadrature_budget:
+    """Context manager: opens a budget of ``QUADRATURE_BUDGET`` weighted integrand evaluations on ``law`` (an
+    :class:`ExpressionMoment`; other laws are left alone) and closes it on exit (budget None again)."""
+
+    def __init__(self, law, amount: int | None = None):
+        self.law = law if isinstance(law, ExpressionMoment) else None
+        self.amount = QUADRATURE_BUDGET if amount is None else amount
+
+    def __enter__(self):
+        if self.law is not None:
+            self.law.budget = [self.amount]
+        return self
+
+    def spent(self) -> int:
+        """Weighted evaluations used so far (0 without an expression law)."""
+        return 0 if self.law is None or self.law.budget is None else self.amount - self.law.budget[0]
+
+    def __exit__(self, *exc):
+        if self.law is not None:
+            self.used = self.spent()
+            self.law.budget = None
+        return False
 
 
 def expression_law(table: Mapping[str, object]) -> ExpressionMoment:
