@@ -683,7 +683,7 @@ def _equilibria_claim(ctx: _Ctx, inv: Claim | None, R: arb | None) -> Claim:
     c_set = _q(_fmpq(Fraction(inv.details["c_set"]))) if inv is not None and "c_set" in inv.details else None
     rows, texts = [], []
     for e in E.points:
-        where = "not asked (invariant_estimate not proved)"
+        where = "in {V < c_set} or not: not decided (invariant_estimate not proved)"
         if c_set is not None and R is not None:
             if certainly_lt(xs, abs(e.x2)):
                 where = "outside the estimate (|x2| > x2*)"
@@ -698,7 +698,10 @@ def _equilibria_claim(ctx: _Ctx, inv: Claim | None, R: arb | None) -> Claim:
         rows.append({"x1": _fmt(e.x1, 12), "x2": x2, "case": e.case, "stability": e.stability, "estimate": where,
                      "eigenvalues": [f"{_fmt(z.real, 8)} + {_fmt(z.imag, 8)} i" for z in e.eigenvalues],
                      **({"routh_hurwitz": _hurwitz_row(e.hurwitz)} if e.hurwitz is not None else {})})
-        by = " (Routh-Hurwitz: the eigenvalues not separated at this precision)" if e.hurwitz is not None else ""
+        # a Routh-Hurwitz row lists no eigenvalues (acb_mat.eig did not separate them): the statement's
+        # "each with the eigenvalues" is met by its characteristic polynomial's coefficients instead
+        by = (" (by Routh-Hurwitz from the coefficients of det(lambda I - J), row routh_hurwitz: the eigenvalues "
+              "were not separated at this precision, so none are listed)") if e.hurwitz is not None else ""
         texts.append(f"({_fmt(e.x1, 8)}, {x2}, 0) [{e.case}]: {e.stability}{by}, {where}")
     undecided = [r for r in rows if r["stability"] == "undecided" or r["estimate"] == "undecided"]
     if not E.complete or undecided:
