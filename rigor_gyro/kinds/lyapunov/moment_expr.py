@@ -35,7 +35,10 @@ for x away from 0 intersected with f(x)/x directly. G(x) = int_0^x cos(s) f(s) /
 
 Guarantee: every method returns a ball containing the exact value for every argument in its balls, at the
 current precision (set by the caller). Fails when: an argument leaves f's domain (log of a ball reaching 0,
-a pole of tan): the result is a non-finite ball (undecided upstream), never a wrong enclosure.
+a pole of tan): the result is a non-finite ball (undecided upstream), never a wrong enclosure. Budget: one
+acb.integral call stops after EVAL_LIMIT + EVAL_LIMIT_PER_BIT prec integrand evaluations (a wider ball), and
+inside the kind's attempt all of G's quadratures share QUADRATURE_BUDGET (:func:`quadrature_budget`): once it is
+spent G raises :class:`QuadratureBudgetSpent` and the attempt's undecided claims are inconclusive, naming it.
 """
 from __future__ import annotations
 
