@@ -68,7 +68,8 @@ def leaf_kind(coeffs, u: arb, v: arb, sigma: int) -> str | None:
         return "E"
     m = arb(X.mid())
     cm = coeffs(m, 3)
-    h = (v - u).upper() / 2
+    # t = X - m covers [u - m, v - m] whatever the rounding of X's midpoint (m need not be (u + v)/2)
+    h = arb(max(abs(u - m).upper(), abs(v - m).upper()))
     t = interval(-h, h)
     t2 = interval(arb(0), (h * h).upper())
     d1 = cm[1] + 2 * cm[2] * t + 3 * c[3] * t2
