@@ -13,7 +13,7 @@ from tests.forgery import failures, reseal
 SCENE = """
 name = "cx_test"
 kind = "eigenfrequencies"
-source = "test: bracket (7) fails on part of this box (eps > 1), the 16 first undecided midpoints hold"
+source = "test: bracket (7) fails on part of this box (eps > 1); the midpoints of the undecided leaves hold"
 [parameters]
 a = "15.08"
 b = "6.154"
@@ -35,11 +35,13 @@ def searched():
 
 def test_the_search_refutes_where_the_midpoints_did_not_and_the_checker_confirms(searched):
     c = searched["claims"][0]
-    assert not any(b["status"] == "refuted" for b in c["boxes"])
-    assert not any(p["status"] == "refuted" for p in c["points"])          # the 16 midpoints all hold
+    # the midpoints of the undecided leaves all hold (since the small-Omega2 roots are enclosed, some leaves
+    # are refuted whole, each with its refuted midpoint: those are not the search's)
+    at_undecided = [p for p in c["points"] if p["box_outcome"] == "undecided"]
+    assert at_undecided and all(p["status"] == "proved" for p in at_undecided)
     cs = c["counterexample_search"]
     assert cs["refuted"] >= 1 and c["status"] == "refuted" and searched["verdict"] == "refuted"
-    assert all(p["leaf_status"] == "undecided" for p in cs["proofs"])
+    assert all(p["leaf_status"] == "undecided" for p in cs["proofs"])       # found where nothing refuted
     assert c["monte_carlo"]["samples"] == 200 and c["monte_carlo"]["consistent"] is True
     assert failures(searched) == []
     md = render_paving(searched)
@@ -49,7 +51,8 @@ def test_the_search_refutes_where_the_midpoints_did_not_and_the_checker_confirms
 def test_without_the_options_nothing_is_searched_and_the_settings_are_as_before():
     data = paving_json(pave(box_scene(parse_scene(SCENE))))
     c = data["claims"][0]
-    assert "counterexample_search" not in c and "monte_carlo" not in c and c["status"] == "inconclusive"
+    assert "counterexample_search" not in c and "monte_carlo" not in c
+    assert all(p["status"] == "proved" for p in c["points"] if p["box_outcome"] == "undecided")
     assert not any(k.startswith(("search", "monte")) for k in data["settings"])
 
 
