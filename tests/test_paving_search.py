@@ -13,16 +13,16 @@ from tests.forgery import failures, reseal
 SCENE = """
 name = "cx_test"
 kind = "eigenfrequencies"
-source = "test: bracket (7) fails on part of this box (eps > 1); the midpoints of the undecided leaves hold"
+source = "test: bracket (7) fails on part of this box (eps > 1), no sub-box is refuted whole and the 16 midpoints hold"
 [parameters]
 a = "15.08"
 b = "6.154"
-eps = "[0.1, 2]"
+eps = "[0.1, 1.3]"
 Omega2 = "[0.5, 2.2]"
 [claims]
 only = ["bracket_1"]
 [options]
-box_resolution = "1/8"
+box_resolution = "1/4"
 range_boxes = "0"
 """
 
@@ -35,13 +35,11 @@ def searched():
 
 def test_the_search_refutes_where_the_midpoints_did_not_and_the_checker_confirms(searched):
     c = searched["claims"][0]
-    # the midpoints of the undecided leaves all hold (since the small-Omega2 roots are enclosed, some leaves
-    # are refuted whole, each with its refuted midpoint: those are not the search's)
-    at_undecided = [p for p in c["points"] if p["box_outcome"] == "undecided"]
-    assert at_undecided and all(p["status"] == "proved" for p in at_undecided)
+    assert not any(b["status"] == "refuted" for b in c["boxes"])           # no sub-box refuted whole
+    assert not any(p["status"] == "refuted" for p in c["points"])          # the 16 midpoints all hold
     cs = c["counterexample_search"]
     assert cs["refuted"] >= 1 and c["status"] == "refuted" and searched["verdict"] == "refuted"
-    assert all(p["leaf_status"] == "undecided" for p in cs["proofs"])       # found where nothing refuted
+    assert all(p["leaf_status"] == "undecided" for p in cs["proofs"])
     assert c["monte_carlo"]["samples"] == 200 and c["monte_carlo"]["consistent"] is True
     assert failures(searched) == []
     md = render_paving(searched)
@@ -51,8 +49,7 @@ def test_the_search_refutes_where_the_midpoints_did_not_and_the_checker_confirms
 def test_without_the_options_nothing_is_searched_and_the_settings_are_as_before():
     data = paving_json(pave(box_scene(parse_scene(SCENE))))
     c = data["claims"][0]
-    assert "counterexample_search" not in c and "monte_carlo" not in c
-    assert all(p["status"] == "proved" for p in c["points"] if p["box_outcome"] == "undecided")
+    assert "counterexample_search" not in c and "monte_carlo" not in c and c["status"] == "inconclusive"
     assert not any(k.startswith(("search", "monte")) for k in data["settings"])
 
 
