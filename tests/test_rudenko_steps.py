@@ -119,14 +119,9 @@ def test_no_undecided_row_without_a_value_in_the_audit():
         assert not (r["status"] == "undecided" and r["lo"] == ""), r["id"]
 
 
-def test_local_quartic_matches_slack_forms():
-    from rigor_gyro.kinds.eigenfrequencies.model import Params
-    from rigor_gyro.kinds.eigenfrequencies.paper_steps import _quartic_value
-    from rigor_gyro.kinds.eigenfrequencies.slack_forms import quartic_value
-    p = Params(arb(A), arb(B), arb(E), arb(W))
-    for x in (fmpq(1, 7), fmpq(3, 2), fmpq(-2, 3)):
-        assert _quartic_value(arb(x), p).overlaps(quartic_value(arb(x), p))
-        assert abs(float((_quartic_value(arb(x), p) - quartic_value(arb(x), p)).mid())) < 1e-25
+def test_the_audit_and_the_box_forms_share_one_quartic():
+    from rigor_gyro.kinds.eigenfrequencies import model, paper_steps, slack_forms
+    assert paper_steps.quartic_value is slack_forms.quartic_value is model.quartic_value
 
 
 def _paper_rows():

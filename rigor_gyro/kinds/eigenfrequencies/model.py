@@ -30,7 +30,7 @@ from flint import arb, fmpq, fmpq_poly
 
 from ...core.balls import certainly_lt, decimal_bounds
 
-__all__ = ["characteristic_quartic", "nu_quadratics", "nu_identities", "nus_exactly_equal", "r2_denominator", "NotReal", "Params", "nu_bounds", "Bracket", "BRACKETS",
+__all__ = ["characteristic_quartic", "quartic_value", "nu_quadratics", "nu_identities", "nus_exactly_equal", "r2_denominator", "NotReal", "Params", "nu_bounds", "Bracket", "BRACKETS",
            "bracket", "approximation", "APPROX_TEXT"]
 
 
@@ -124,6 +124,17 @@ class Params(NamedTuple):
     b: arb
     eps: arb
     W: arb
+
+
+def quartic_value(x, p: Params):
+    """Q(x) = l P1(l) + Omega2 P2(l), l = -x (model (1)-(2)), with generic arithmetic (balls, Duals, jets):
+    the one formula the box forms, the second-order forms and the paper audit's sensitivities share."""
+    a, b, e, W = p
+    l = -x
+    c2 = (a - b) * (b - 1)
+    p1 = (l * (b - 1) + b) * ((c2 * l + (e * (a - 1) + b * (a - b))) * l + e * a)
+    p2 = (l * (b - 1) + 1) * ((c2 * l + (e * (a - 1) + a - b)) * l + e)
+    return l * p1 + W * p2
 
 
 def nu_bounds(p: Params) -> dict[int, tuple[arb, arb]]:

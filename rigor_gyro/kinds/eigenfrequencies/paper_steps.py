@@ -23,7 +23,7 @@ from flint import arb, fmpq, fmpq_mpoly_ctx, fmpq_poly
 from ...core.balls import certainly_gt, certainly_lt, certainly_negative, certainly_positive, decimal_bounds
 from ...core.dual_balls import Dual, constant, variable
 from ...core.outcome import AuditRow, AuditStatus
-from .model import Params
+from .model import Params, quartic_value
 
 __all__ = ["step_rows", "five_identities", "positive_on"]
 
@@ -190,22 +190,10 @@ def _six_rows(a: fmpq, b: fmpq, e: fmpq, nu: dict) -> list[AuditRow]:
 
 # ----------------------------------------------------------------------------- the statements in words after (14)
 
-def _quartic_value(x, p: Params):
-    """Q(x) = l P1(l) + Omega2 P2(l), l = -x (model (1)-(2)), generic arithmetic (Duals): the same formula as
-    :func:`.slack_forms.quartic_value` (a test checks they agree), written here because slack_forms imports the
-    claims, which import this audit."""
-    a, b, e, W = p
-    l = -x
-    c2 = (a - b) * (b - 1)
-    p1 = (l * (b - 1) + b) * ((c2 * l + (e * (a - 1) + b * (a - b))) * l + e * a)
-    p2 = (l * (b - 1) + 1) * ((c2 * l + (e * (a - 1) + a - b)) * l + e)
-    return l * p1 + W * p2
-
-
 def _elasticities(a: fmpq, b: fmpq, e: fmpq, W: fmpq, w: arb) -> dict:
     """d ln omega / d p at the certified root w (implicit function theorem in balls: -Q_p / (Q_w w))."""
     ps = Params(variable("a", arb(a)), variable("b", arb(b)), variable("eps", arb(e)), variable("W", arb(W)))
-    D = _quartic_value(Dual(w, {ROOT: arb(1)}), ps)
+    D = quartic_value(Dual(w, {ROOT: arb(1)}), ps)
     gw = D.grad.get(ROOT)
     return {k: -D.grad.get(k, arb(0)) / (gw * w) for k in ("a", "b", "eps", "W")}
 

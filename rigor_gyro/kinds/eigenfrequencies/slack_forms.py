@@ -27,19 +27,9 @@ from ...core.boxes import Box
 from ...core.dual_balls import Dual, constant
 from ...core.implicit_roots import implicit_root
 from .claims import REQUIRED
-from .model import Params, bracket, nu_bounds
+from .model import Params, bracket, nu_bounds, quartic_value
 
 __all__ = ["Roots", "quartic_value", "nu_value", "GapSet"]
-
-
-def quartic_value(x, p: Params):
-    """Q(x) = l P1(l) + Omega2 P2(l), l = -x (model (1)-(2)), with generic arithmetic."""
-    a, b, e, W = p
-    l = -x
-    c2 = (a - b) * (b - 1)
-    p1 = (l * (b - 1) + b) * ((c2 * l + (e * (a - 1) + b * (a - b))) * l + e * a)
-    p2 = (l * (b - 1) + 1) * ((c2 * l + (e * (a - 1) + a - b)) * l + e)
-    return l * p1 + W * p2
 
 
 def nu_value(which: str, x, p: Params):
