@@ -1178,6 +1178,12 @@ def attempt(model: LyapunovModel, wanted: list[str], prec: int) -> Attempt:
         return _attempt(ctx, model, wanted)
 
 
+def _natural_level(ctx) -> tuple:
+    """(the natural sublevel's level, its reach as a ball) when natural_sublevel ran, else (None, None)."""
+    nat = getattr(ctx, "natural", None)
+    return (nat[0], None if nat[1] is None else arb(nat[1])) if nat else (None, None)
+
+
 def _attempt(ctx: "_Ctx", model: LyapunovModel, wanted: list[str]) -> Attempt:
     claims: list[Claim] = []
     quantities: dict[str, arb] = {}
@@ -1285,14 +1291,12 @@ def _attempt(ctx: "_Ctx", model: LyapunovModel, wanted: list[str]) -> Attempt:
                 claims.append(region_not_invariant_claim(ctx.g, Rr, ctx.xs, quantities.get("c_star"), ctx.witnesses))
         if "initial_point" in wanted:
             with phase("initial_point"):
-                nat = getattr(ctx, "natural", None)
-                level, reach = (nat[0], None if nat[1] is None else arb(nat[1])) if nat else (None, None)
+                level, reach = _natural_level(ctx)
                 claims.append(initial_point_claim(ctx.g, model.initial_point, model.initial_time, level, reach,
                                                   ctx.witnesses))
         if "attraction_paving" in wanted:
             with phase("attraction_paving"):
-                nat = getattr(ctx, "natural", None)
-                level, reach = (nat[0], None if nat[1] is None else arb(nat[1])) if nat else (None, None)
+                level, reach = _natural_level(ctx)
                 claims.append(paving_claim(ctx.g, level, reach, *model.paving, ctx.witnesses))
         if "equilibria" in wanted:
             with phase("equilibria"):
