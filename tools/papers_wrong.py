@@ -30,6 +30,12 @@ def _cell(text: str, n: int = 160) -> str:
     return text if len(text) <= n else text[:n - 3] + "..."
 
 
+def _edited(row: dict) -> str:
+    """' (with FORMULA edited: EDIT)' for a row an edit of its printed formula reproduces, else ''."""
+    hits = (row.get("formula_edits") or {}).get("reproducing") or []
+    return f" (with {row['formula_edits']['formula']} edited: {_cell(hits[0], 50)})" if hits else ""
+
+
 def section(proofs: Path = ROOT / "proofs") -> str:
     out = [BEGIN, "", "## What the papers got wrong", "",
            "Generated from the audit rows of the committed certificates by `python tools/papers_wrong.py --write` "
@@ -68,7 +74,9 @@ def section(proofs: Path = ROOT / "proofs") -> str:
             out += [f"| {_cell(r['id'], 50)} | {_cell(r['printed'], 30)} | {r['class']} | {_cell(r['class_reading'])} |"
                     for r in edits]
             out.append("")
-        fe = [r for r in rows if r.get("formula_edits")]
+        # a print that an edit of its formula reproduces and that rounds that chain is the paper's own
+        # computation: listed once, with the propagated rows below (the edit named there)
+        fe = [r for r in rows if r.get("formula_edits") and r["class"] not in ("propagated", "last-digit")]
         if fe:
             out += ["Printed numbers that neither the formula nor its reading gives, against the single edits of "
                     "the printed formula (core.formula_edits, each evaluated in balls):", ""]
@@ -84,7 +92,7 @@ def section(proofs: Path = ROOT / "proofs") -> str:
         if prop:
             out += [f"{len(prop)} printed numbers are the paper's own computation, not misprints: each is a correct "
                     "rounding of the value recomputed from the paper's inputs (" + "; ".join(
-                        f"{_cell(r['id'], 40)} {_cell(r['printed'], 20)}" for r in prop[:8])
+                        f"{_cell(r['id'], 40)} {_cell(r['printed'], 20)}" + _edited(r) for r in prop[:8])
                     + (", ..." if len(prop) > 8 else "") + "); the report gives the inputs each needs.", ""]
         parts = [f"{counts[k]} {what}" for k, what in (("last-digit", "numbers one unit off in the last digit (rounding)"),
                                                        ("unexplained", "numbers that no edit of their digits explains (listed in the report)"))
