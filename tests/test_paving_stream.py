@@ -165,3 +165,17 @@ def test_refine_streams_to_the_in_process_refinement(plane_fast):
     alone = _json(pave(bs, state=state))
     bs, state = resume_state(coarse, refine="1/32")
     assert _json(pave(bs, Shuffled(4, 7), state=state)) == alone
+
+
+@pytest.mark.parametrize("scheduler", [None, "tcp://scheduler:8786"])
+def test_a_dask_executor_gets_batches_of_its_own_target_seconds(plane_fast, scheduler, monkeypatch):
+    # the pool's target 0 (one box a batch) and Dask's large, or the other way round: each executor's batches
+    # follow its own target (Dask's round trip through the scheduler costs more: larger batches)
+    big, zero = (("DASK_TARGET_SECONDS", "TARGET_SECONDS") if scheduler is None else
+                 ("TARGET_SECONDS", "DASK_TARGET_SECONDS"))
+    monkeypatch.setattr(stream, big, 10.0)
+    monkeypatch.setattr(stream, zero, 0)
+    ex = Shuffled(2, 0)
+    ex.scheduler = scheduler
+    assert _json(pave(_bs(plane_fast), ex)) == _json(pave(_bs(plane_fast)))
+    assert max(ex.submitted) == 1 and len(ex.submitted) > 10

@@ -8,7 +8,7 @@ halves queued). On N workers that is a barrier per batch: the last, slowest boxe
 other workers idle. Here, instead:
 
 * **Dispatch.** Workers are kept busy with small batches of boxes (sized from the measured cost of a box
-  to about :data:`TARGET_SECONDS` of work, never more than an even share of what is available): first
+  to about :data:`TARGET_SECONDS` of work on a pool, :data:`DASK_TARGET_SECONDS` on Dask, never more than an even share of what is available): first
   the queued groups in the queue's order (taken from :class:`~.order.Frontier` ahead of their commit),
   then *speculative* boxes: the halves of a box whose result arrived but is not yet committed (it is
   undecided and coarser than the resolution, so it will be split unless ``max_boxes`` forbids it); and
@@ -45,10 +45,15 @@ from concurrent.futures import BrokenExecutor
 
 from .order import BATCH
 
-__all__ = ["stream_pave", "evaluate_batch", "TARGET_SECONDS", "MAX_BATCH"]
+__all__ = ["stream_pave", "evaluate_batch", "TARGET_SECONDS", "DASK_TARGET_SECONDS", "MAX_BATCH"]
 
-#: the work a dispatched batch aims at (the per-task cost of a pool or a Dask scheduler is 0.1-2 ms)
+#: the work a dispatched batch aims at on a process pool (its per-task cost is 0.1-2 ms)
 TARGET_SECONDS = 0.05
+#: on Dask: a task's round trip through the scheduler costs more, and on a machine with as many cores as
+#: workers the scheduler competes with them (measured idle on 2 cores, margin_rudenko_all_tolerance, 2047
+#: boxes of ~9 ms: 0.05 s batches 13.1 s, 0.2 s 11.0 s, 0.5 s 10.7 s, one process 18.5 s; the pool 10.0 s
+#: at 0.05 and 9.8 s at 0.2)
+DASK_TARGET_SECONDS = 0.25
 #: boxes in one dispatched batch at most
 MAX_BATCH = 256
 
@@ -93,6 +98,7 @@ def stream_pave(bs, st, ex, scene: tuple, paving, *, budget, box_budget, progres
     committed: set = set()          # (edges, claims) committed (a stale speculative entry is skipped)
     presplit: set = set()           # (edges, claims) in flight whose halves were queued before the result
     cost, ncost = 0.0, 0
+    target = DASK_TARGET_SECONDS if getattr(ex, "scheduler", None) is not None else TARGET_SECONDS
     run, vb_left, last = 0, 0, time.monotonic()
     stopped = ""
 
@@ -141,7 +147,7 @@ def stream_pave(bs, st, ex, scene: tuple, paving, *, budget, box_budget, progres
     def dispatch() -> None:
         while len(inflight) < 2 * ex.workers:
             avail = len(frontier) + sum(len(g.boxes) for _, g in islice(queue, taken, None)) + len(spec)
-            per = TARGET_SECONDS / (cost / ncost) if ncost and cost > 0 else 1
+            per = target / (cost / ncost) if ncost and cost > 0 else 1
             size = int(max(1, min(per, MAX_BATCH, -(-avail // ex.workers))))
             items = canonical_items(size)
             while len(items) < size and spec and box_budget is None:
