@@ -8,7 +8,10 @@ P, on the branch through the centre's root, genuine for every P. Quantities:
 
 * ``theta_star`` (s): its half-period, with dtheta*/dP_k over the box (implicit function, -g_P / g_theta);
 * ``period`` (s): 2 theta*, gradient twice theta*'s (the point certificate's ``period`` is 2 theta* in s too);
-* ``max_modulus``: the largest multiplier modulus for every P (no gradient);
+* ``max_modulus``: the largest multiplier modulus for every P (no gradient): from the continuation over the box,
+  or, where that gives none and the box varies A, H or tau, from pieces of its similar box
+  (:mod:`.similar_modulus`: the multipliers depend on the three similarity invariants only; each piece's orbit
+  shown to be this theta*(P));
 * ``stability_margin``: 1 - max_modulus, the margin of claim ``stable`` (> 0 where it holds).
 
 Guarantee: each returned value ball contains the quantity for every parameter in the box; a quantity not
@@ -25,9 +28,10 @@ from ...core.box_values import BoxValue, QuantitySpec
 from ...core.boxes import Box
 from ...core.polyroots import isolate_polynomial
 from .box_orbit import box_directions, centre_orbits
-from .continuation import continue_orbit
+from .continuation import at_most_one_root, continue_orbit
 from .flow import AMPLITUDE_PARAMETERS, nutation_cubic
 from .plant_model import PlantModel
+from .similar_modulus import modulus_on_similar_box
 
 __all__ = ["BOX_QUANTITIES", "quantities_box"]
 
@@ -68,7 +72,14 @@ def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
         return {}
     grad = dict(zip(dirs, o.theta_gradient))
     out = {"theta_star": BoxValue(o.theta, grad), "period": BoxValue(2 * o.theta, {k: 2 * g for k, g in grad.items()})}
-    if o.max_modulus is not None and o.max_modulus.is_finite():
-        out["max_modulus"] = BoxValue(o.max_modulus)
-        out["stability_margin"] = BoxValue(1 - o.max_modulus)
+    m = o.max_modulus if o.max_modulus is not None and o.max_modulus.is_finite() else None
+    if m is None and {"max_modulus", "stability_margin"} & set(names):
+        balls = {k: box.ball(k) for k in dirs}
+        tc = arb(o.theta_c.mid())
+        got = modulus_on_similar_box(model, box, o.theta,
+                                     lambda W: at_most_one_root(Pc, balls, dirs, guesses, W.union(tc), tc))
+        m = None if got is None else got[0]
+    if m is not None:
+        out["max_modulus"] = BoxValue(m)
+        out["stability_margin"] = BoxValue(1 - m)
     return {k: v for k, v in out.items() if k in names}

@@ -57,7 +57,7 @@ from .cellwise import decide_by_cells
 from .subbox_union import band_root, gradient_union, split_counts
 from .theta_fold import slope_ratio, slope_sign_change
 
-__all__ = ["OrbitOverBox", "continue_orbit", "MAX_PIECES"]
+__all__ = ["OrbitOverBox", "continue_orbit", "at_most_one_root", "MAX_PIECES"]
 
 #: t pieces the sign condition may use on the middle of (0, theta*)
 MAX_PIECES = 4000
@@ -531,3 +531,21 @@ def _stability(models: _Models, out: OrbitOverBox, th_n: Jet, th_c: Jet, x0n, x0
         out.stable = True
     else:
         out.problem = f"max multiplier modulus {_fmt(mx)} not certainly < 1 over the box"
+
+
+def at_most_one_root(centre: RelayParams, box: dict[str, arb], dirs: list[str], guesses: list[acb], W: arb,
+                     tc: arb) -> bool:
+    """True when dG/dtheta (G = g K, K > 0) certainly excludes 0 on W x box (second-order form about the centre
+    and ``tc``, a point of W): then, for every P of the box, G(., P) is strictly monotone on W, and g(., P) has at
+    most one root in W. False when not shown (never a claim that there are two). ``W``: an interval of theta > 0
+    containing ``tc``; arguments otherwise as :func:`continue_orbit`'s."""
+    if not (W.contains(tc) and certainly_positive(W.lower())):
+        return False
+    try:
+        models = _Models(centre, box, dirs, guesses)
+    except DegenerateSpectrum:
+        return False
+    k, m = len(dirs), models.m
+    Gc = models.centre.G(Jet.variable(acb(tc), k, m))
+    Gn = models.nested.G(nested_variable(W, k, m))
+    return certainly_nonzero(second_order_gradient(Gc, Gn, models.devs + [W - tc])[k])
