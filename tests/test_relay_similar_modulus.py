@@ -57,10 +57,10 @@ def test_pieces_count_only_where_their_orbit_is_shown_to_be_the_boxs():
         asked.append(W)
         return False                        # uniqueness not shown: the pieces' orbits may be other orbits
     with working_precision(128):
-        theta = arb("0.1381", "0.001")
+        theta = arb("0.1300", "1e-6")       # a wrong enclosure of the box's theta*, far from the pieces' orbits
         assert modulus_on_similar_box(m, Box.of(SMALL), theta, unique_in) is None
-        # W holds the box's theta and every piece's half-period mapped back (theta' tau / tau_c)
-        assert len(asked) == 1 and asked[0].contains(theta)
+        # W holds the given theta and every piece's half-period mapped back (theta' tau / tau_c, about 0.13813)
+        assert len(asked) == 1 and asked[0].contains(theta) and asked[0].contains(arb("0.13813", "1e-5"))
         got = modulus_on_similar_box(m, Box.of(SMALL), theta, lambda W: True)
     assert got is not None and got[0].upper() < 1
 
@@ -89,3 +89,6 @@ def test_at_most_one_root_only_where_g_is_monotone():
         # g has six roots on (0, 0.6] at the printed point (roitenberg1947's certificate): not monotone there
         assert not at_most_one_root(m.params, balls, dirs, guesses, arb("0.3", "0.29"), tc)
         assert not at_most_one_root(m.params, balls, dirs, guesses, arb("0.2", "0.01"), tc)    # tc outside W
+        # beside tc, where G is monotone too: still refused (the form is expanded about tc, which must lie in W)
+        assert at_most_one_root(m.params, balls, dirs, guesses, arb("0.1383", "0.0003"), tc)
+        assert not at_most_one_root(m.params, balls, dirs, guesses, arb("0.1384", "0.0001"), tc)
