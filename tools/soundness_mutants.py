@@ -1391,6 +1391,21 @@ MUTANTS = [
     ("check_phase_empty_unchecked", "rigor_gyro/kinds/periodic_orbit/check.py",
      "pieces_ok = pieces_ok and phase_count(G.coeffs, lo, hi, 0)[0]", "pieces_ok = pieces_ok and True",
      "the checker takes a phase_empty piece without re-deciding it"),
+    # issue 37: the relay's largest modulus over a box from pieces of its similar box (similar_modulus.py,
+    # continuation.at_most_one_root; group relay_modulus)
+    ("modulus_uniqueness_skipped", "rigor_gyro/kinds/periodic_orbit/similar_modulus.py",
+     "    if not unique_in(W):\n", "    if False:\n",
+     "the pieces' orbits taken for the box's theta*(P) without showing g has one root in W"),
+    ("modulus_mapped_theta_left_out", "rigor_gyro/kinds/periodic_orbit/similar_modulus.py",
+     "        W = W.union(t)\n", "        pass\n",
+     "W without the pieces' half-periods mapped back: uniqueness shown on an interval that may miss them"),
+    ("one_root_tc_outside", "rigor_gyro/kinds/periodic_orbit/continuation.py",
+     "    if not (W.contains(tc) and certainly_positive(W.lower())):\n", "    if not certainly_positive(W.lower()):\n",
+     "the second-order form of dG/dtheta expanded about a theta outside W"),
+    ("one_root_sign_unchecked", "rigor_gyro/kinds/periodic_orbit/continuation.py",
+     "    return certainly_nonzero(second_order_gradient(Gc, Gn, models.devs + [W - tc])[k])",
+     "    return second_order_gradient(Gc, Gn, models.devs + [W - tc])[k].is_finite()",
+     "G(., P) taken monotone on W without dG/dtheta excluding 0 there"),
 ]
 
 
