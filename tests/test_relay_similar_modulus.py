@@ -92,3 +92,19 @@ def test_at_most_one_root_only_where_g_is_monotone():
         # beside tc, where G is monotone too: still refused (the form is expanded about tc, which must lie in W)
         assert at_most_one_root(m.params, balls, dirs, guesses, arb("0.1383", "0.0003"), tc)
         assert not at_most_one_root(m.params, balls, dirs, guesses, arb("0.1384", "0.0001"), tc)
+
+
+def test_at_most_one_root_refuses_a_centre_outside_the_box():
+    import dataclasses
+    from flint import acb, fmpq
+    from rigor_gyro.core.polyroots import isolate_polynomial
+    from rigor_gyro.kinds.periodic_orbit.continuation import at_most_one_root
+    from rigor_gyro.kinds.periodic_orbit.flow import nutation_cubic
+    m = validate(load_scene("roitenberg1947"))
+    with working_precision(128):
+        box = Box.of(SMALL)
+        balls = {k: box.ball(k) for k in SMALL}
+        iso = isolate_polynomial(nutation_cubic(m.params))
+        guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
+        outside = dataclasses.replace(m.params, A=fmpq(126))          # A's box is [124.9375, 125.0625]
+        assert not at_most_one_root(outside, balls, list(SMALL), guesses, arb("0.1381", "0.0005"), arb("0.138133574136"))

@@ -538,9 +538,11 @@ def at_most_one_root(centre: RelayParams, box: dict[str, arb], dirs: list[str], 
     """True when dG/dtheta (G = g K, K > 0) certainly excludes 0 on W x box (second-order form about the centre
     and ``tc``, a point of W): then, for every P of the box, G(., P) is strictly monotone on W, and g(., P) has at
     most one root in W. False when not shown (never a claim that there are two). ``W``: an interval of theta > 0
-    containing ``tc``; arguments otherwise as :func:`continue_orbit`'s."""
+    containing ``tc``; ``centre`` a member of the box; arguments otherwise as :func:`continue_orbit`'s."""
     if not (W.contains(tc) and certainly_positive(W.lower())):
         return False
+    if not all(box[k].contains(_point(getattr(centre, k))) for k in dirs):
+        return False                    # the form's Hessian is taken over the box: the centre must lie in it
     try:
         models = _Models(centre, box, dirs, guesses)
     except DegenerateSpectrum:

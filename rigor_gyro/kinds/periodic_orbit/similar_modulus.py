@@ -17,8 +17,8 @@ theta*(P) lie in one interval W, and ``unique_in(W)`` (the caller's: :func:`.con
 the box) shows that g(., P) has at most one root in W for every P; so the mapped root of each piece is theta*(P)
 itself. The result is the hull of the pieces' balls.
 
-Guarantee: for every parameter P of the box, every multiplier modulus of the orbit theta*(P) (the caller's)
-lies in the returned ball. Precision: the current working precision. Fails when: never raises; returns None
+Guarantee: for every parameter P of the box, the largest multiplier modulus of the orbit theta*(P) (the
+caller's) lies in the returned ball. Precision: the current working precision. Fails when: never raises; returns None
 when the box does not reduce (it varies none of A, H, tau), a piece's centre has another candidate orbit, the
 cover's budget ends first, or uniqueness on W is not shown.
 """
