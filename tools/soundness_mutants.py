@@ -1406,6 +1406,9 @@ MUTANTS = [
      "    return certainly_nonzero(second_order_gradient(Gc, Gn, models.devs + [W - tc])[k])",
      "    return second_order_gradient(Gc, Gn, models.devs + [W - tc])[k].is_finite()",
      "G(., P) taken monotone on W without dG/dtheta excluding 0 there"),
+    ("one_root_centre_outside", "rigor_gyro/kinds/periodic_orbit/continuation.py",
+     "    if not all(box[k].contains(_point(getattr(centre, k))) for k in dirs):\n", "    if False:\n",
+     "the second-order form about a centre outside the box (its Hessian is taken over the box only)"),
 ]
 
 
