@@ -84,14 +84,30 @@ def test_at_most_one_root_only_where_g_is_monotone():
         balls = {k: box.ball(k) for k in dirs}
         iso = isolate_polynomial(nutation_cubic(m.params))
         guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
-        tc = arb("0.138133574136")
-        assert at_most_one_root(m.params, balls, dirs, guesses, arb("0.1381", "0.0005"), tc)
-        # g has six roots on (0, 0.6] at the printed point (roitenberg1947's certificate): not monotone there
-        assert not at_most_one_root(m.params, balls, dirs, guesses, arb("0.3", "0.29"), tc)
-        assert not at_most_one_root(m.params, balls, dirs, guesses, arb("0.2", "0.01"), tc)    # tc outside W
-        # beside tc, where G is monotone too: still refused (the form is expanded about tc, which must lie in W)
-        assert at_most_one_root(m.params, balls, dirs, guesses, arb("0.1383", "0.0003"), tc)
-        assert not at_most_one_root(m.params, balls, dirs, guesses, arb("0.1384", "0.0001"), tc)
+        assert at_most_one_root(m.params, balls, dirs, guesses, arb("0.1381", "0.0005"))
+        # g has six roots on (0, 0.73] at the printed point (roitenberg1947's certificate): not monotone there
+        assert not at_most_one_root(m.params, balls, dirs, guesses, arb("0.3", "0.29"))
+        # one form over a wide W spans 0 where four pieces of it decide (the pieces are what makes it work)
+        W = arb("0.1381", "0.004")
+        wide = Box.of({k: (v * Fraction(399, 400), v * Fraction(401, 400)) for k, v in PRINTED.items()})
+        wballs = {k: wide.ball(k) for k in PRINTED}
+        assert not at_most_one_root(m.params, wballs, list(PRINTED), guesses, W, pieces=(1,))
+        assert at_most_one_root(m.params, wballs, list(PRINTED), guesses, W)
+
+
+def test_a_piece_is_signed_only_about_a_point_inside_it():
+    from flint import acb
+    from rigor_gyro.core.polyroots import isolate_polynomial
+    from rigor_gyro.kinds.periodic_orbit.continuation import _Models, _slope_sign
+    from rigor_gyro.kinds.periodic_orbit.flow import nutation_cubic
+    m = validate(load_scene("roitenberg1947"))
+    with working_precision(128):
+        box = Box.of(SMALL)
+        iso = isolate_polynomial(nutation_cubic(m.params))
+        guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
+        models = _Models(m.params, {k: box.ball(k) for k in SMALL}, list(SMALL), guesses)
+        assert _slope_sign(models, arb("0.1381", "0.0002"), arb("0.1381")) != 0
+        assert _slope_sign(models, arb("0.1381", "0.0002"), arb("0.1385")) == 0
 
 
 def test_at_most_one_root_refuses_a_centre_outside_the_box():
@@ -107,4 +123,4 @@ def test_at_most_one_root_refuses_a_centre_outside_the_box():
         iso = isolate_polynomial(nutation_cubic(m.params))
         guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
         outside = dataclasses.replace(m.params, A=fmpq(126))          # A's box is [124.9375, 125.0625]
-        assert not at_most_one_root(outside, balls, list(SMALL), guesses, arb("0.1381", "0.0005"), arb("0.138133574136"))
+        assert not at_most_one_root(outside, balls, list(SMALL), guesses, arb("0.1381", "0.0005"))

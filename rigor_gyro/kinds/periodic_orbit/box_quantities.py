@@ -75,9 +75,7 @@ def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
     m = o.max_modulus if o.max_modulus is not None and o.max_modulus.is_finite() else None
     if m is None and {"max_modulus", "stability_margin"} & set(names):
         balls = {k: box.ball(k) for k in dirs}
-        tc = arb(o.theta_c.mid())
-        got = modulus_on_similar_box(model, box, o.theta,
-                                     lambda W: at_most_one_root(Pc, balls, dirs, guesses, W.union(tc), tc))
+        got = modulus_on_similar_box(model, box, o.theta, lambda W: at_most_one_root(Pc, balls, dirs, guesses, W))
         m = None if got is None else got[0]
     if m is not None:
         out["max_modulus"] = BoxValue(m)
