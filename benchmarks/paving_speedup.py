@@ -2,7 +2,7 @@
 Markdown table.
 
     python benchmarks/paving_speedup.py [--all | --scenes NAME ...] [--executors pool,dask] [--repeat 1]
-                                        [--workers 2] [--skip NAME ...]
+                                        [--workers 2] [--skip NAME ...] [--simulate 2,4,8]
 
 Per scene: the paving in this process (one worker: the batched loop), then on a pool of ``--workers``
 processes (the streaming frontier, rigor_gyro/margins/stream.py) and on a Dask LocalCluster of as many
@@ -14,7 +14,8 @@ run's (the work the pool adds: pickling, model builds per worker, speculative bo
 over the run. The pool and the cluster are started outside the timing (a pool forks its workers lazily:
 that is inside). A paving is the ``pave`` call: box evaluations, point proofs, the scene's searches; the
 quantities' ranges only with ``--ranges`` (as in paving_load_balance.py: they are a separate search, and
-take a minute on some one-box scenes).
+take a minute on some one-box scenes). With ``--simulate 2,4,8`` the same scenes' load balance follows, simulated
+up to those worker counts with the real engine replayed in virtual time (benchmarks/paving_load_balance.py).
 """
 from __future__ import annotations
 
@@ -74,6 +75,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--ranges", action="store_true", help="the quantities' ranges too")
     ap.add_argument("--repeat", type=int, default=1, help="pairs per executor (default 1)")
+    ap.add_argument("--simulate", default=None, metavar="N,N,...",
+                    help="then the simulated load balance of the same scenes up to these worker counts, with the "
+                         "real engine replayed in virtual time (benchmarks/paving_load_balance.py --replay)")
     args = ap.parse_args(argv)
     names = [n for n in builtin_scenes("all") if has_tolerances(load_scene(n))] if args.all else args.scenes
     names = [n for n in names if n not in args.skip]
@@ -109,6 +113,11 @@ def main(argv: list[str] | None = None) -> int:
         load = (load0 + os.getloadavg()[0]) / 2
         print(f"| {name} | {boxes} | {statistics.median(ones):.2f} | " + " | ".join(cells) + f" | {load:.1f} |",
               flush=True)
+    if args.simulate:
+        sys.path.insert(0, str(Path(__file__).resolve().parent))
+        import paving_load_balance
+        print()
+        return paving_load_balance.main(["--replay", "--workers", args.simulate, "--scenes", *names])
     return 0
 
 
