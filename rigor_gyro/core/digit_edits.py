@@ -12,17 +12,18 @@ An edit counts as *evidence* only when it is not a chance fit:
   (k = the digits the edit changes: 1, or 2 for a transposition or a two-digit substitution, which
   needs 4): the digits left untouched must agree with the window, and enough of them do.
 
-Guarantee: exact (Fraction and int comparisons, no float); every Edit returned has its intended value in
+Guarantee: exact (rational and integer comparisons, no float); every Edit returned has its intended value in
 [lo, hi] and passes both tests. Failure mode: none (an empty list when nothing fits); cost O(n^2 100) for
 n printed digits (the two-digit substitutions), each candidate one integer comparison.
 """
 from __future__ import annotations
 
 import functools
-import math
 from dataclasses import dataclass
 from decimal import Decimal
 from fractions import Fraction
+
+from flint import fmpq
 
 __all__ = ["Edit", "EDIT_CLASSES", "edits_into", "decimal_text"]
 
@@ -47,11 +48,20 @@ def decimal_text(negative: bool, digits: str, exponent: int) -> str:
     return format(d, "f")
 
 
-def _constrained(n: int, exponent: int, width: Fraction) -> int:
+def _constrained(n: int, exponent: int, width: fmpq) -> int:
     """How many of the n significant digits (the last at place 10^exponent) have a place >= width."""
     if width <= 0:
         return n
-    return sum(1 for i in range(n) if Fraction(10) ** (exponent + n - 1 - i) >= width)
+    return sum(1 for i in range(n) if _TEN ** (exponent + n - 1 - i) >= width)
+
+
+_TEN = fmpq(10)
+
+
+def _q(x) -> fmpq:
+    """An exact rational (int, Fraction or fmpq) as an fmpq: flint's C rationals are 4-5x faster than
+    Fraction for the window arithmetic below."""
+    return x if isinstance(x, fmpq) else fmpq(x.numerator, x.denominator)
 
 
 @functools.lru_cache(maxsize=16384)
@@ -70,14 +80,14 @@ def edits_into(printed: str, lo: Fraction, hi: Fraction, evidential: bool = True
     M = int(digits)
     sg = -1 if neg else 1
     v = sg * M                                     # the print in units of its last place, signed
-    scale = Fraction(10) ** -exp
-    a, b = lo * scale, hi * scale                  # the window in those units
+    scale = _TEN ** -exp
+    a, b = _q(lo) * scale, _q(hi) * scale          # the window in those units
     Wu = b - a
-    c = _constrained(n, exp, hi - lo)
+    c = _constrained(n, exp, _q(hi) - _q(lo))
     out: list[Edit] = []
     # the distance test |print - intended| >= factor W, in units of 10^(exp + e): an integer threshold
-    thr = {e: math.ceil(factor * Wu * Fraction(10) ** -e) for e in (-1, 0, 1)}
-    win = {e: (math.ceil(a * Fraction(10) ** -e), math.floor(b * Fraction(10) ** -e)) for e in (-1, 0, 1)}
+    thr = {e: int((factor * Wu * _TEN ** -e).ceil()) for e in (-1, 0, 1)}
+    win = {e: (int((a * _TEN ** -e).ceil()), int((b * _TEN ** -e).floor())) for e in (-1, 0, 1)}
 
     def fits(V: int, k: int, e: int = 0) -> bool:
         """the signed count V of units 10^(exp + e) is in the window (and, when evidential, far enough);
@@ -95,7 +105,7 @@ def edits_into(printed: str, lo: Fraction, hi: Fraction, evidential: bool = True
     if fits(-v, 1):
         out.append(Edit("sign", decimal_text(not neg, digits, exp), "the sign"))
     for k in _SHIFTS:
-        q = Fraction(v) * Fraction(10) ** k
+        q = v * _TEN ** k
         if a <= q <= b and (not evidential or (abs(q - v) >= factor * Wu and c >= 2)) and q != v:
             out.append(Edit("decimal-shift", decimal_text(neg, digits, exp + k),
                             f"the decimal point {abs(k)} place(s) {'right' if k > 0 else 'left'}"))

@@ -71,15 +71,7 @@ class _Reader:
             return value
         if value is None or not value.is_finite():
             return read(txt)
-        narrowed, names = value, []
-        for ref, name in relation_refs(rid, self.prints, self.rels):
-            win = chain_window(txt, narrowed, slack)
-            if ref.is_finite() and win is not None and name not in names:
-                lo, hi = exact_endpoints(ref)
-                a, b = max(lo, win[0]), min(hi, win[1])
-                if a <= b and (b - a) < (win[1] - win[0]):
-                    narrowed = _interval(a, b)
-                    names.append(name)
+        narrowed, names = self._narrow(rid, txt, value, slack)
         ch = Chain(narrowed, source, slack, identity="; ".join(names), computed=value if names else None)
         self.chains[rid] = ch
         self.order.append(rid)
@@ -100,6 +92,35 @@ class _Reader:
             if cand:
                 self.candidates[rid] = cand[0].intended
         return read(txt)
+
+
+    def _narrow(self, rid: str, txt: str, value: arb, slack: int) -> tuple[arb, list[str]]:
+        """``value`` narrowed by the identities of ``rid`` that meet its window, and their names; memoised
+        by everything the result depends on (the builder's passes ask the same row again with the same
+        ball and the same prints of the identities' other rows)."""
+        rels = self.rels.get(rid, ()) if isinstance(self.rels, dict) else self.rels
+        key = (rid, txt, value.mid().man_exp(), arb(value.rad()).man_exp(), slack, ctx.prec,
+               tuple((rel, tuple(self.prints.get(o) for o, _ in rel.terms)) for rel in rels))
+        hit = _NARROWED.get(key)
+        if hit is not None:
+            return hit
+        narrowed, names = value, []
+        for ref, name in relation_refs(rid, self.prints, self.rels):
+            win = chain_window(txt, narrowed, slack)
+            if ref.is_finite() and win is not None and name not in names:
+                lo, hi = exact_endpoints(ref)
+                a, b = max(lo, win[0]), min(hi, win[1])
+                if a <= b and (b - a) < (win[1] - win[0]):
+                    narrowed = _interval(a, b)
+                    names.append(name)
+        if len(_NARROWED) > 4096:
+            _NARROWED.clear()
+        _NARROWED[key] = (narrowed, names)
+        return narrowed, names
+
+
+#: :meth:`_Reader._narrow`'s results (arb balls are immutable, the name lists are never mutated)
+_NARROWED: dict = {}
 
 
 def _in(txt: str, ch: Chain) -> bool:
