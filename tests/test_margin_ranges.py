@@ -166,3 +166,26 @@ def test_a_threshold_without_a_claim_asks_for_one_unless_the_scene_has_one():
     from rigor_gyro.scene import load_scene
     with pytest.raises(ParameterError, match="--claim CLAIM.*damping_condition"):
         find_threshold(load_scene("agafonov2013"), "k")
+
+
+def test_the_checker_re_evaluates_the_range_tiles_on_the_executor_it_is_given(paving, fake, tmp_path):
+    """``rigor-gyro check -j N`` re-evaluates the range tiles and points on the workers (each once), and
+    the re-derivation still rejects an edited range: the executor only says where the evaluations run."""
+    js, _ = write_paving(paving, tmp_path)
+    data = json.loads(js.read_text())
+    seen = []
+
+    class Recording:
+        def map(self, fn, tasks):
+            tasks = list(tasks)
+            seen.append((fn.__name__, len(tasks)))
+            return [fn(*t) for t in tasks]
+    rep = check_file(js, executor=Recording())
+    assert all(r.ok for r in rep.results), [r for r in rep.results if not r.ok]
+    n = len(data["range_tiles"]) + len(data["range_points"])
+    assert ("range_task", n) in seen
+    _q(data, "sum")["outer"].update(lo="0.71")
+    p = tmp_path / "t.json"
+    p.write_text(json.dumps(reseal(data)))
+    bad = [r for r in check_file(p, executor=Recording()).results if not r.ok]
+    assert any(r.item == "quantities" for r in bad)

@@ -189,7 +189,7 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES, executor=No
     if pending is not None or stopped:
         add(_check_pending(bs, pending, stopped, leaves))
     if any(k in data for k in ("quantities", "range_tiles", "range_points")):
-        add(_check_ranges(bs, data, pj, oj, mj))
+        add(_check_ranges(bs, data, pj, oj, mj, executor))
     return out
 
 
@@ -308,10 +308,11 @@ def _check_searches(bs, data: dict[str, Any], c: dict[str, Any], boxes: list, oj
     return found
 
 
-def _check_ranges(bs, data: dict[str, Any], pj: str, oj: str, mj: str) -> tuple[str, bool, str]:
+def _check_ranges(bs, data: dict[str, Any], pj: str, oj: str, mj: str, executor=None) -> tuple[str, bool, str]:
     """The quantities' ranges: the stored tiles tile the box, every tile and cited point is re-evaluated
-    with the kind's box rigour at the stored precision, and every stated number (outer and inner ranges,
-    worst cases, sensitivities) is derived again from those evaluations alone (:func:`.ranges.summarise`)."""
+    with the kind's box rigour at the stored precision (on ``executor`` when given: the evaluations do not
+    depend on where they run), and every stated number (outer and inner ranges, worst cases,
+    sensitivities) is derived again from those evaluations alone (:func:`.ranges.summarise`)."""
     from .ranges import quantities_module, quantity_specs, range_task, summarise
     mod = quantities_module(bs.scene.kind)
     if mod is None:
@@ -329,8 +330,10 @@ def _check_ranges(bs, data: dict[str, Any], pj: str, oj: str, mj: str) -> tuple[
         if set(p) != set(bs.box.names) or any(not lo <= p[k] <= hi for k, lo, hi in bs.box.edges):
             return CheckResult("quantities", False, f"the point {p} is not a point of the box")
     from .ranges import point_box
-    tv = [(b, range_task(bs.scene.kind, pj, oj, mj, json.dumps(b.to_json()), bs.prec)) for b in tiles]
-    pv = [(p, range_task(bs.scene.kind, pj, oj, mj, json.dumps(point_box(p).to_json()), bs.prec)) for p in points]
+    tasks = [(bs.scene.kind, pj, oj, mj, json.dumps(b.to_json()), bs.prec) for b in tiles]
+    tasks += [(bs.scene.kind, pj, oj, mj, json.dumps(point_box(p).to_json()), bs.prec) for p in points]
+    outs = executor.map(range_task, tasks) if executor is not None else [range_task(*t) for t in tasks]
+    tv, pv = list(zip(tiles, outs[:len(tiles)])), list(zip(points, outs[len(tiles):]))
     want = summarise(bs.box, quantity_specs(bs.scene.kind, pj, oj, mj), tv, pv)
     ok = data["quantities"] == want
     return CheckResult("quantities", ok, f"{len(want)} quantity ranges re-derived from {len(tiles)} tiles and "
