@@ -237,3 +237,13 @@ def test_stable_not_claimed_where_the_disc_bound_reaches_one(monkeypatch):
         guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
         o = continue_orbit_normed(P, box, ["B"], guesses, arb("0.138133574136"))
     assert o.genuine and o.stable is not True and "Gershgorin bound" in o.problem
+
+
+def test_a_box_in_tau_alone_is_continued_directly_before_its_three_dimensional_similar_box():
+    """tau alone moves B', sigma' and n' of the similar box: a +-1 % box in tau is decided by one continuation over
+    the box itself (the similar box's cover is the fall-back); a box of all six is still reduced."""
+    m = validate(load_scene("roitenberg1947"))
+    with working_precision(128):
+        out = evaluate_box(m, Box.of({"tau": (F("0.0099"), F("0.0101"))}), ["orbit_genuine", "stable"])
+    assert {k: s for k, (s, _) in out.items()} == {"orbit_genuine": "proved", "stable": "proved"}
+    assert not any("similar box" in why for _, why in out.values())

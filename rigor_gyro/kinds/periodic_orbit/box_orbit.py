@@ -70,6 +70,14 @@ def continued_outcomes(model, box: Box, claims: list[str]) -> dict[str, tuple[st
         return {}
     out: dict[str, tuple[str, str]] = {}
     red = similar_box(model.params, box)
+    direct = red is not None and _spread(red[0]) > _spread(box)
+    if direct:
+        # the similar box spreads over more directions than the box (tau alone moves B', sigma' and n'):
+        # one continuation over the box itself first (tau +-1 %: 0.35 s, against 28 s for the 3-D cover)
+        out.update(_continued(model, box, wanted))
+        wanted = [c for c in wanted if c not in out]
+        if not wanted:
+            return out
     if red is not None:
         rbox, fixed = red
         if not conjugacy_holds(model.params, similar_point(model.params, fixed)):
@@ -79,12 +87,17 @@ def continued_outcomes(model, box: Box, claims: list[str]) -> dict[str, tuple[st
                 + f" at {', '.join(f'{k} = {_frac(v)}' for k, v in fixed.items())} (every member has the invariants "
                 "H^2 tau^2/(A B), n tau/A, sigma/tau of a member of it: the same orbits up to time tau/tau' and a "
                 "positive diagonal change of state, the same multipliers; theta* quoted for that system): ")
-        out = {c: (st, lead + why) for c, (st, why) in got.items()}
+        out.update({c: (st, lead + why) for c, (st, why) in got.items()})
         wanted = [c for c in wanted if c not in out]
-        if not wanted:
+        if not wanted or direct:
             return out
     out.update(_continued(model, box, wanted))
     return out
+
+
+def _spread(box: Box) -> int:
+    """How many of the box's parameters vary over it."""
+    return sum(1 for _, lo, hi in box.edges if lo != hi)
 
 
 #: the slope ratio (:func:`.theta_fold.slope_ratio`) below which halves cannot prove theta*: 4^-5 (five halvings,
