@@ -129,9 +129,14 @@ def edits_into(printed: str, lo: Fraction, hi: Fraction, evidential: bool = True
                 out.append(Edit("digits-transposed", text(m), f"{digits[i]}{digits[i + 1]} for "
                                 f"{digits[i + 1]}{digits[i]} at significant positions {i + 1}, {i + 2}"))
     # a dropped digit: the intended number has one more digit, inserted after position i (same decade)
+    A1, B1 = win[-1]
+    if neg:
+        A1, B1 = -B1, -A1                           # the window for the unsigned count, one place finer
     for i in range(1, n - 1):                      # at least two digits shifted after the gap
-        for d in "0123456789":
-            m = int(digits[:i] + d + digits[i:])
+        k = n - i                                  # the digits after the gap
+        base = (M // 10 ** k) * 10 ** (k + 1) + M % 10 ** k
+        for d in range(max(0, -((base - A1) // 10 ** k)), min(9, (B1 - base) // 10 ** k) + 1):
+            m = base + d * 10 ** k
             if fits(sg * m, 1, -1):
                 out.append(Edit("digit-dropped", text(m, exp - 1), f"the digit {d} left out after significant "
                                                                     f"position {i}"))
@@ -148,7 +153,9 @@ def edits_into(printed: str, lo: Fraction, hi: Fraction, evidential: bool = True
                 if evidential and place[j] < factor * Wu:   # each edited place above the noise
                     continue
                 rest = M - place[i] * dig[i] - place[j] * dig[j]
-                for d1 in range(1 if i == 0 else 0, 10):
+                # d1 with some d2 in 0..9 landing in [A, B]: A - 9 place[j] <= rest + d1 place[i] <= B
+                d1_lo = max(1 if i == 0 else 0, -((rest + 9 * place[j] - A) // place[i]))
+                for d1 in range(d1_lo, min(9, (B - rest) // place[i]) + 1):
                     if d1 == dig[i]:
                         continue
                     r1 = rest + d1 * place[i]
