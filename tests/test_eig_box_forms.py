@@ -236,3 +236,37 @@ def test_parametric_newton_encloses_every_members_root_and_refuses_a_double_root
         assert r is not None
         assert r.contains(arb(2).sqrt()) and r.contains(arb(3).sqrt()) and r.rad() < 0.2
         assert parametric_newton(G, arb("0.1"), {"c": variable("c", arb(-1).union(arb(1)))}) is None
+
+
+# ----------------------------------------------------------------------------- (5) on a whole box by the theorem
+
+def test_nu_bounds_on_a_wide_box_in_one_evaluation_and_mpmath_samples_agree():
+    """(5) holds for every a > b > 1, eps > 0: a box far wider than any tolerance is proved in one evaluation,
+    citing the theorem, and at sampled members the nus (mpmath roots of the quadratics (4), 50 digits) lie
+    inside the bounds (5) evaluated at 200 bits."""
+    from rigor_gyro.kinds.eigenfrequencies.model import nu_bounds
+    box = Box((("a", Fr(10), Fr(20)), ("b", Fr(2), Fr(9)), ("eps", Fr(1, 100), Fr(2)), ("Omega2", Fr(1, 10), Fr(5))))
+    with working_precision(128):
+        st, why = evaluate_box(_model(box), box, ["nu_bounds"])["nu_bounds"]
+    assert st == "proved" and "for every a > b > 1, eps > 0" in why
+    for P in _samples(box, 12, seed=5):
+        a, b, e = (fmpq(P[k].numerator, P[k].denominator) for k in ("a", "b", "eps"))
+        with working_precision(200):
+            bounds = nu_bounds(Params(*(arb(x) for x in (a, b, e)), arb(1)))
+        for k, q in zip((1, 2), nu_quadratics(a, b, e)):
+            with mpmath.workdps(50):
+                c = [mpmath.mpf(int(x.p)) / int(x.q) for x in reversed(q.coeffs())]
+                small, large = sorted(mpmath.re(r) for r in mpmath.polyroots(c, maxsteps=200, extraprec=100))
+            for nu, j in ((small, k), (large, {1: 4, 2: 6}[k])):
+                lo, hi = bounds[j]
+                assert _inside(lo.union(hi), nu), (P, j)
+
+
+def test_nu_bounds_by_the_theorem_only_where_the_box_lies_in_its_region():
+    """A box reaching a <= b (outside the theorem's a > b > 1) is not proved by the theorem: the enclosures
+    decide, or leave it undecided."""
+    box = Box((("a", Fr(6), Fr(7)), ("b", Fr(5), Fr(6)), ("eps", Fr(1, 10), Fr(1, 5)), ("Omega2", Fr(1, 2), Fr(1))))
+    with working_precision(128):
+        st, why = evaluate_box(_model(Box((("a", Fr(7), Fr(7)), ("b", Fr(5), Fr(5)), ("eps", Fr(1, 10), Fr(1, 10)),
+                                           ("Omega2", Fr(1, 2), Fr(1, 2))))), box, ["nu_bounds"])["nu_bounds"]
+    assert "for every a > b > 1, eps > 0" not in why

@@ -464,7 +464,8 @@ def evaluate_box(model, box: Box, claims: list[str]) -> dict[str, tuple[str, str
             out[cid] = _parametric(_branches(omegas, nus), omegas is not None and nus is not None,
                                    gaps.branch_gaps, box)
         elif cid == "nu_bounds":
-            out[cid] = _parametric(_nu_bounds(p, nus), nus is not None, gaps.bound_gaps, box)
+            out[cid] = _five_everywhere(model, box) or _parametric(_nu_bounds(p, nus), nus is not None,
+                                                                   gaps.bound_gaps, box)
         elif cid.startswith("bracket_"):
             j = int(cid[-1])
             second = None
@@ -538,6 +539,36 @@ def _bounds_status(items) -> tuple[str, str]:
     if und:
         return "undecided", f"{', '.join(und)} against its bounds undecided on this box"
     return "proved", "every inequality certified for every parameter in the box"
+
+
+def _five_everywhere(model, box: Box) -> tuple[str, str] | None:
+    """``nu_bounds`` for the whole box at once, by the theorem that (5) holds for every a > b > 1, eps > 0
+    (:func:`.paper_steps.five_identities`: exact polynomial identities over fmpq_mpoly, and the sign argument
+    of that audit row): ("proved", reason) when the box's exact ends put every member in that region (a's
+    lower end above b's upper end, b's lower end above 1, eps's lower end above 0) and every identity holds;
+    None otherwise (the enclosures decide). Exact rational comparisons; no precision involved."""
+    fixed = {k: Fraction(int(model.q(k).p), int(model.q(k).q)) for k in ("a", "b", "eps") if k not in box.names}
+    end = {k: box.interval(k) if k in box.names else (fixed[k], fixed[k]) for k in ("a", "b", "eps")}
+    if not (end["a"][0] > end["b"][1] and end["b"][0] > 1 and end["eps"][0] > 0):
+        return None
+    if not all(_five_identities_hold()):
+        return None
+    return ("proved", "for every a > b > 1, eps > 0 the bounds (5) hold (exact polynomial identities in (a, b, eps) "
+                      "over fmpq_mpoly and signs of products of positive factors: the audit row '(5) for every "
+                      "parameter'), and every member of the box lies there (exact ends: a >= "
+                      f"{end['a'][0]} > {end['b'][1]} >= b, b >= {end['b'][0]} > 1, eps >= {end['eps'][0]} > 0)")
+
+
+def _five_identities_hold() -> tuple[bool, ...]:
+    """The identities of :func:`.paper_steps.five_identities`, checked once per process."""
+    global _FIVE
+    if _FIVE is None:
+        from .paper_steps import five_identities
+        _FIVE = tuple(five_identities().values())
+    return _FIVE
+
+
+_FIVE: tuple[bool, ...] | None = None
 
 
 def _nu_bounds(p: Params, nus) -> tuple[str, str]:
