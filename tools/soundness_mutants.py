@@ -1046,6 +1046,10 @@ MUTANTS = [
     ("eig_system_box_symmetry_unchecked", "rigor_gyro/kinds/eigenfrequencies/system_boxes.py",
      "                if not _mirrored(a.tree, b.tree, sign):\n", "                if False:\n",
      "over a box, M symmetric / G skew taken from the midpoint alone (a pair toleranced apart accepted)"),
+    ("eig_five_region_unchecked", "rigor_gyro/kinds/eigenfrequencies/boxes.py",
+     "    if not (end[\"a\"][0] > end[\"b\"][1] and end[\"b\"][0] > 1 and end[\"eps\"][0] > 0):\n",
+     "    if False:\n",
+     "(5) over a box by the theorem for a > b > 1, eps > 0 without checking that the box lies in that region"),
     # issue 39: the paper's own chain and the two-reference classifier (group audit)
     ("audit_edit_distance_ignored", "rigor_gyro/core/digit_edits.py",
      "        return dist >= t and c >= k + 1\n", "        return c >= k + 1\n",
