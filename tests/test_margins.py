@@ -216,9 +216,9 @@ def test_a_box_where_bracket_8_fails_is_refuted_with_reproved_counterexamples():
 
 
 def test_a_resolution_limit_never_refutes():
-    """The general box (eps, Omega2 over decades) at resolution 1/2: the bounds (5) stay undecided on every
+    """The general box (eps, Omega2 over decades) at resolution 1/2: bracket (9) stays undecided on every
     sub-box (the parametric forms decide the example's small box whole), and that never refutes."""
-    text = RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #').replace('"1/16"', '"1/2"')
+    text = RUDENKO_BOX.replace('only = [', 'only = ["bracket_3"] #').replace('"1/16"', '"1/2"')
     text = text.replace('"[0.1, 0.12]"', '"[0.001, 2]"').replace('"0.625 +- 0.025"', '"[0.001, 10]"')
     data = paving_json(pave(box_scene(parse_scene(text))))
     c = data["claims"][0]

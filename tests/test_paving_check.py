@@ -34,8 +34,8 @@ def _refuted():
 
 
 def _undecided():
-    """The bounds (5) undecided on every sub-box at resolution 1/2; the point proofs prove them."""
-    return _paving(RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #').replace('"1/16"', '"1/2"')
+    """Bracket (9) undecided on every sub-box at resolution 1/2 (eps in [0.1, 2]); the point proofs prove it."""
+    return _paving(RUDENKO_BOX.replace('only = [', 'only = ["bracket_3"] #').replace('"1/16"', '"1/2"')
                    .replace('"[0.1, 0.12]"', '"[0.1, 2]"'))
 
 
@@ -132,14 +132,14 @@ ALTERATIONS = {
     "a point's status": (_refuted, lambda d: _claim(d)["points"][-1].update(status="inconclusive"),
                          [("bracket_2", "stored inconclusive, re-proved refuted")]),
     "a point moved": (_undecided, lambda d: _claim(d)["points"][0]["point"].update(eps="11/100"),
-                      [("nu_bounds", "not the midpoints")]),
+                      [("bracket_3", "not the midpoints")]),
     "a point dropped": (_refuted, lambda d: _claim(d)["points"].pop(), [("bracket_2", "not the midpoints")]),
     "every point dropped, no time limit": (_refuted, lambda d: _claim(d)["points"].clear(),
                                            [("bracket_2", "not the midpoints")]),
     "a refuted claim relabelled inconclusive": (_refuted, lambda d: _claim(d).update(status="inconclusive"),
                                                 [("bracket_2", "but the sub-boxes give 'refuted'")]),
     "an undecided claim relabelled proved": (_undecided, lambda d: _claim(d).update(status="proved"),
-                                             [("nu_bounds", "but the sub-boxes give 'inconclusive'")]),
+                                             [("bracket_3", "but the sub-boxes give 'inconclusive'")]),
     "a mixed claim relabelled proved": (_mixed, lambda d: _claim(d).update(status="proved"),
                                         [("bracket_2", "but the sub-boxes give 'inconclusive'")]),
     "verdict proved for refuted": (_refuted, lambda d: d.update(verdict="proved"), [("verdict", "verdict")]),
@@ -200,7 +200,7 @@ def test_a_paving_whose_data_cannot_be_read_fails_at_data():
 def test_a_pavings_counters_and_budget_are_what_it_did():
     data = _undecided()                     # resolution 1/2: the whole box, 2 halves, 4 quarters
     assert (data["boxes_evaluated"], data["levels"], data["budget_exhausted"]) == (7, 3, False)
-    short = _paving(RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #').replace('"[0.1, 0.12]"', '"[0.1, 2]"')
+    short = _paving(RUDENKO_BOX.replace('only = [', 'only = ["bracket_3"] #').replace('"[0.1, 0.12]"', '"[0.1, 2]"')
                     .replace('box_resolution = "1/16"', 'box_resolution = "1/16"\nmax_boxes = "7"'))
     assert short["budget_exhausted"] is True and short["boxes_evaluated"] <= 7
     assert _failures(short) == []
@@ -264,7 +264,7 @@ def test_the_report_states_what_the_paving_holds_answer_first(make):
 
 
 def test_the_report_says_when_the_budget_ran_out_and_which_edges_were_not_split():
-    short = _paving(RUDENKO_BOX.replace('only = [', 'only = ["nu_bounds"] #').replace('"[0.1, 0.12]"', '"[0.1, 2]"')
+    short = _paving(RUDENKO_BOX.replace('only = [', 'only = ["bracket_3"] #').replace('"[0.1, 0.12]"', '"[0.1, 2]"')
                     .replace('box_resolution = "1/16"', 'box_resolution = "1/16"\nmax_boxes = "7"'))
     assert any(ln.startswith("Settings:") and ln.endswith("levels; the box budget was exhausted.")
                for ln in _report_lines(short))
