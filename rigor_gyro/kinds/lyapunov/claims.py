@@ -69,6 +69,8 @@ from .. import Attempt, Phases
 from .equilibria import equilibria
 from .direct_mu import direct_point_search, direct_sup_upper_bound, piece_upper
 from .direct_face import face_margin, face_polish
+from .float_twin import float_twin, in_safe_range
+from .search import PROPOSAL_WINDOW
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
 from .natural_domain import NATURAL_GAP, natural_sublevel
 from .trajectory_claims import (TRAJECTORY_CLAIMS, TRAJECTORY_OPTIONS, initial_point_claim, parse_initial_point,
@@ -879,6 +881,29 @@ def rho_function(g: Gimbal):
     return rho
 
 
+def _float_candidates(g: Gimbal, pts: list[float]) -> list[int] | None:
+    """The indices (in order) where the float-twin rho (:mod:`.float_twin`) at x2 = t x2*, t in ``pts``, is
+    within PROPOSAL_WINDOW (relative) of its largest value, or None (no twin, a NaN, a value outside the
+    doubles' safe range, or no finite largest value: scan in balls). A proposal: the caller evaluates the
+    candidates in balls."""
+    fg = float_twin(g)
+    if fg is None:
+        return None
+    vals = []
+    for t in pts:
+        try:
+            r = fg.rho(fg.xs * t)
+        except (OverflowError, ZeroDivisionError, ValueError):
+            return None
+        if r != r or not in_safe_range(r if math.isfinite(r) else 0.0):
+            return None
+        vals.append(r)
+    top = max(vals)
+    if not math.isfinite(top):
+        return None
+    return [i for i, v in enumerate(vals) if v >= top - PROPOSAL_WINDOW * abs(top)]
+
+
 def _r_sup_search(g: Gimbal, xs: arb, grid: int = 16, steps: int = 24) -> tuple[float, arb]:
     """A float estimate of R_sup(mu) = 1 / max over [0, x2*] of rho, and the point x2 (an exact ball)
     where it was found, from point values of rho (no subdivision): the largest of ``grid`` + 1 equally
@@ -894,8 +919,16 @@ def _r_sup_search(g: Gimbal, xs: arb, grid: int = 16, steps: int = 24) -> tuple[
         r = rho(point(t))
         return float(r.mid()) if r.is_finite() else math.inf
     pts = [j / grid for j in range(grid + 1)]
-    vals = [val(t) for t in pts]
-    j = max(range(len(vals)), key=vals.__getitem__)
+    near = _float_candidates(g, pts)
+    if near is None:
+        vals = [val(t) for t in pts]
+        j = max(range(len(vals)), key=vals.__getitem__)
+    else:
+        # only the twin's candidates in balls (the other entries are never read): the first largest, as above
+        vals = [-math.inf] * len(pts)
+        for i in near:
+            vals[i] = val(pts[i])
+        j = max(near, key=vals.__getitem__)
     if math.isinf(vals[j]):
         return 0.0, point(pts[j])
     lo, hi = pts[max(j - 1, 0)], pts[min(j + 1, grid)]

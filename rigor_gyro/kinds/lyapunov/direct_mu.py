@@ -25,6 +25,7 @@ from flint import arb, fmpq
 from ...core.balls import certainly_gt, certainly_le, certainly_lt, exact_fraction
 from ...core.subdivision import best_first_bisection
 from .direct_face import face_polish
+from .float_twin import float_twin, in_safe_range
 from .model import Gimbal, direct_radius_upper, vdot_polar
 from .search import compass, grid_then_compass, scaled_ratio
 
@@ -51,12 +52,36 @@ def direct_point_search(g: Gimbal, start: tuple[float, float] | None = None) -> 
         a, b = float(A.mid()), float(B.mid())
         amin = min(amin, a)
         return scaled_ratio(A, B, a, b), None
+
+    def amin_seen(a: float) -> None:
+        nonlocal amin
+        amin = min(amin, a)
     if start is None:
-        v, u, s, _ = grid_then_compass(value, (17, 33), 90)
+        v, u, s, _ = grid_then_compass(value, (17, 33), 90, propose=_float_proposal(g, lambda a: amin_seen(a)))
     else:
         v0, _ = value(*start)
         v, u, s, _ = compass(value, (v0, start[0], start[1], None), (1 / 64, 1 / 128), 40)
     return v, u, s, amin
+
+
+def _float_proposal(g: Gimbal, seen):
+    """The grid scan of :func:`direct_point_search` in floats (:mod:`.float_twin`), each A passed to ``seen``
+    (the smallest A seen is part of the search's answer); None without a twin."""
+    fg = float_twin(g)
+    if fg is None:
+        return None
+    xs, pi = fg.xs, math.pi
+
+    def propose(u: float, s: float) -> float:
+        try:
+            A, B = fg.vdot_polar(xs * u, pi * s)
+        except (OverflowError, ZeroDivisionError, ValueError):
+            return math.nan
+        if not in_safe_range(A, B):
+            return math.nan
+        seen(A)
+        return A / abs(B) if B != 0 else math.inf
+    return propose
 
 
 def piece_upper(g: Gimbal, Mu: arb, points: list[tuple[fmpq, fmpq]]) -> arb:

@@ -263,10 +263,12 @@ class Gimbal:
         c = self.c
         return c.H * x2.cos() * self.f(x2) / (self.D(x2) * c.B0)
 
+    @_per_ball
     def G(self, x2: arb) -> arb:
         """int_0^x2 cos f / D: closed form or quadrature on thin balls; on wide balls G is even and
         increasing in |x2| (integrand > 0 on (0, x2*], certified by the v_positive claim), so it is
-        enclosed by its values at the smallest and largest |x2|."""
+        enclosed by its values at the smallest and largest |x2|. (Memoised per ball: F and F on a Dual
+        number both need G of the same ball.)"""
         c = self.c
         if x2.rad() < arb(2) ** (-(current_precision() // 2)):
             return self.law.G(c.a, c.A0, c.C0, x2)
@@ -414,7 +416,10 @@ class Gimbal:
 
     @_per_ball
     def S(self, x2):
-        return self.f2(x2) + self.c.mu * (self.f1(x2) - self.c.mu)
+        """f2 + mu (f1 - mu), D evaluated once (the same operations as f2 and f1 make: the same ball)."""
+        c = self.c
+        D = self.D(x2)
+        return c.H ** 2 * x2.cos() ** 2 / (D * c.B0) + c.mu * (c.k / D - c.mu)
 
     def psi(self, x2: arb) -> arb:
         """psi = (H cos^2/(D B0)) (mu H - q) + mu^2 (f1 - mu): V > 0 off the origin iff psi > 0 on

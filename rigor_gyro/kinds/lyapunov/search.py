@@ -30,17 +30,51 @@ def scaled_ratio(A, B, a: float, b: float) -> float:
     return float((A.mid() / abs(mb)).mid())
 
 
+#: the grid points whose float-twin value is within this relative distance of the twin's minimum are
+#: evaluated in balls (the twin agrees with the balls' midpoints to about 1e-13; a margin far above it)
+PROPOSAL_WINDOW = 1e-6
+
+
 def grid_then_compass(value: Callable[[float, float], tuple[float, Any]], grid: tuple[int, int], steps: int,
-                      extra: Any = None) -> tuple[float, float, float, Any]:
+                      extra: Any = None, propose: Callable[[float, float], float] | None = None
+                      ) -> tuple[float, float, float, Any]:
     """The smallest ``value(u, s)[0]`` on an nu x ns grid of the rectangle (ends included), then refined by a
     compass search (the four axis moves; the step halves when none improves) for ``steps`` rounds. Returns
     (value, u, s, the second item ``value`` returned there; ``extra`` if no finite value was seen). A
-    heuristic: no guarantee of a global minimum."""
+    heuristic: no guarantee of a global minimum.
+
+    ``propose``: a cheap twin of ``value(u, s)[0]`` (floats, :mod:`.float_twin`) that scans the grid instead;
+    only the grid points within PROPOSAL_WINDOW (relative) of its minimum are evaluated by ``value``, the best
+    of them (the first in grid order on ties) starts the compass search. Where the twin agrees with ``value``
+    to better than that window (its purpose) the result is the very one the ball grid gives; where it
+    returns NaN anywhere or no finite value, the grid is scanned by ``value`` as without it."""
     nu, ns = grid
-    best = (math.inf, 0.0, 0.5, extra)
-    for i in range(nu):
-        for j in range(ns):
-            u, s = -1 + 2 * i / (nu - 1), j / (ns - 1)
+    pts = [(-1 + 2 * i / (nu - 1), j / (ns - 1)) for i in range(nu) for j in range(ns)]
+    best = None
+    if propose is not None:
+        twin = []
+        for u, s in pts:
+            v = propose(u, s)
+            if v != v:                  # NaN: the twin is out of its range here; scan in balls
+                twin = None
+                break
+            twin.append(v)
+        bv = min(twin) if twin else math.inf
+        if math.isfinite(bv):
+            # every grid point within the twin's noise of its minimum (ties, e.g. by a symmetry, are broken
+            # by the ball values in grid order, exactly as the ball grid breaks them)
+            near = bv + PROPOSAL_WINDOW * abs(bv)
+            best = (math.inf, 0.0, 0.5, extra)
+            for (u, s), tv in zip(pts, twin):
+                if tv <= near:
+                    v, x = value(u, s)
+                    if v < best[0]:
+                        best = (v, u, s, x)
+            if not best[0] < math.inf:
+                best = None
+    if best is None:
+        best = (math.inf, 0.0, 0.5, extra)
+        for u, s in pts:
             v, x = value(u, s)
             if v < best[0]:
                 best = (v, u, s, x)
@@ -52,15 +86,23 @@ def compass(value: Callable[[float, float], tuple[float, Any]], start: tuple[flo
             step: tuple[float, float], steps: int) -> tuple[float, float, float, Any]:
     """A compass search for the smallest ``value(u, s)[0]`` from ``start`` = (value, u, s, extra) there: the
     four axis moves of ``step``, halved when none improves, for ``steps`` rounds. Returns (value, u, s,
-    extra) at the best point seen. A heuristic: a local minimum at best."""
+    extra) at the best point seen. A heuristic: a local minimum at best. ``value`` must be a function of the
+    point (each point is evaluated once; ``start``'s value is taken as given)."""
     v0, u, s, x0 = start
     hu, hs = step
+    # each point's value once: a move makes the point left behind a neighbour again, and steps below a
+    # double's resolution give the same points over and over (``value`` is a function of the point: the
+    # same comparisons, the same answer, about half the evaluations)
+    seen: dict = {(u, s): (v0, x0)}
     for _ in range(steps):
         moved = False
         for du, ds in ((hu, 0), (-hu, 0), (0, hs), (0, -hs)):
             a, b = u + du, s + ds
             if -1 <= a <= 1 and 0 <= b <= 1:
-                v, x = value(a, b)
+                hit = seen.get((a, b))
+                if hit is None:
+                    hit = seen[(a, b)] = value(a, b)
+                v, x = hit
                 if v < v0:
                     v0, u, s, x0, moved = v, a, b, x, True
         if not moved:

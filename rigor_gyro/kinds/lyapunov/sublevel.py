@@ -40,6 +40,7 @@ from ...core.balls import certainly_gt, certainly_le, certainly_lt, certainly_po
 from ...core.boxes import Box
 from ...core.subdivision import lower_bound_on_box
 from .model import DIRECT_DOMAIN, GIMBAL_LOCK_COS, Gimbal, square_from_ends, sublevel_lower_bound, symmetric_in_x2, v_polar, vdot_polar
+from .float_twin import float_twin, half_line_value
 from .search import grid_then_compass
 
 __all__ = ["Sublevel", "largest_sublevel", "box_lower_bound", "phi_lower", "GAP", "GAP_FACES_BIND", "BOX_BUDGET"]
@@ -125,7 +126,10 @@ def _search(g: Gimbal, grid: tuple[int, int] = (33, 65)) -> tuple[float, float, 
         if not all(math.isfinite(v) for v in fl) or fl[4] <= 0:
             return math.inf, math.nan
         return _value_on_half_line(*fl)
-    return grid_then_compass(val, grid, 80, extra=math.nan)
+    # the grid scanned by the float twin (it only proposes the compass search's start; None: in balls)
+    fg = float_twin(g)
+    propose = half_line_value(fg, _value_on_half_line) if fg is not None else None
+    return grid_then_compass(val, grid, 80, extra=math.nan, propose=propose)
 
 
 def _point_of_n(g: Gimbal, u: float, s: float, r: float) -> tuple[tuple[arb, arb, arb], arb] | None:
