@@ -417,3 +417,53 @@ def test_a_refutation_naming_a_root_inside_its_branch_is_rejected(rudenko, j):
     c["status"] = "refuted"
     c["counterexample"] = {"outside": [{"root": f"omega_{j}", "value": [q["lo"], q["hi"]]}]}
     assert _items(bad)["branches"] is False
+
+
+@pytest.mark.parametrize("params", [("15.08", "6.154", "0.1076", "0.629"), ("9", "2.5", "0.7", "3.1"),
+                                    ("40", "1.5", "0.02", "0.05")])
+def test_the_slacks_and_relative_errors_hold_an_mpmath_reference_and_lose_no_bits_to_cancellation(params):
+    """bracket_j_slack and approx_rel_error_j (issue 41, work-precision): each contains the mpmath value at
+    60 digits (the quartic's roots by polyroots, the bounds and approximations by the model at 400 bits), and at
+    128 bits its relative radius is below 2^-124 although omega_j and the bound agree to 8-12 bits."""
+    mpmath = pytest.importorskip("mpmath")
+    from rigor_gyro.core.polyroots import isolate_polynomial
+    from rigor_gyro.kinds.eigenfrequencies.model import characteristic_quartic
+    exact = tuple(fmpq(*Fraction(x).as_integer_ratio()) for x in params)
+    with mpmath.workdps(60):
+        Q = characteristic_quartic(*exact)
+        roots = sorted(mpmath.re(r) for r in mpmath.polyroots([mpmath.mpf(int(c.p)) / int(c.q) for c in reversed(Q.coeffs())],
+                                                               maxsteps=300, extraprec=300))
+    with working_precision(128):
+        omegas = isolate_polynomial(characteristic_quartic(*exact)).real
+    assert len(omegas) == 4
+    mpmath.mp.dps, dps = 60, mpmath.mp.dps
+    try:
+        checked = _slack_rows(exact, omegas, roots, mpmath)
+    finally:
+        mpmath.mp.dps = dps
+    assert checked >= 2
+
+
+def _slack_rows(exact, omegas, roots, mpmath) -> int:
+    """How many brackets j have a real value; for each, the slack and relative error checked (60 digits)."""
+    from rigor_gyro.kinds.eigenfrequencies.model import (NotReal, Params, approx_rel_error, approximation, bracket,
+                                                         bracket_slack)
+    checked = 0
+    for j in range(1, 5):
+        with working_precision(400):
+            P = Params(*(arb(x) for x in exact))
+            try:
+                lo, hi = bracket(j, P, reading="intended")
+            except NotReal:
+                continue
+            ref_ap = mpmath.mpf(approximation(j, P).mid().str(70, radius=False))
+        w = roots[j - 1]
+        ref_slack = min(w - mpmath.mpf(lo.mid().str(70, radius=False)), mpmath.mpf(hi.mid().str(70, radius=False)) - w)
+        with working_precision(128):
+            s, e = bracket_slack(j, exact, omegas[j - 1]), approx_rel_error(j, exact, omegas[j - 1])
+        for ball, ref in ((s, ref_slack), (e, (ref_ap - w) / w)):
+            lo_, hi_ = (mpmath.mpf(x.str(50, radius=False)) for x in (ball.lower(), ball.upper()))
+            assert lo_ - mpmath.mpf("1e-45") * abs(ref) <= ref <= hi_ + mpmath.mpf("1e-45") * abs(ref), (j, ball, ref)
+            assert ball.rad() <= abs(ball.mid()) * arb(2) ** -124, (j, ball)
+        checked += 1
+    return checked

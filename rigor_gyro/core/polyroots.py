@@ -93,6 +93,13 @@ def _refine(p: fmpq_poly, x: arb) -> arb:
     return x
 
 
+def refine_root(p: fmpq_poly, x: arb) -> arb:
+    """The root of the exact polynomial p in the ball x (which must hold exactly one root), refined by
+    interval Newton to about 2^-(prec - 8) relative at the working precision; x itself when Newton cannot
+    improve it. Guarantee: the result contains the root whenever x does (Newton's enclosure is verified)."""
+    return _refine(p, x)
+
+
 def isolate_polynomial(p: fmpq_poly, rel_tol: object | None = None) -> PolynomialRoots:
     """Isolate every root of ``p`` at the current precision; see the module docstring."""
     if p.degree() < 1:

@@ -30,7 +30,7 @@ from ...core.roots import RootStatus, newton_root
 from ...core.stored import encloses, fmpq_of, interval, meets
 from .system_check import check_system
 from .system_model import SystemModel
-from .model import (BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic, nu_bounds,
+from .model import (BRACKETS, NotReal, Params, approximation, approx_rel_error, bracket, bracket_slack, characteristic_quartic, nu_bounds,
                     nu_identities, nu_quadratics, nus_exactly_equal, r2_denominator)
 
 __all__ = ["branch_sides", "check", "sturm_positive_roots"]
@@ -203,13 +203,13 @@ def check(model, data: dict) -> list[CheckResult]:
                     brackets[j] = bracket(j, ck.P, reading="intended")
                     ck.contains(f"bracket_{j}_lo", brackets[j][0])
                     ck.contains(f"bracket_{j}_hi", brackets[j][1])
-                    ck.contains(f"bracket_{j}_slack", (omegas[j - 1] - brackets[j][0]).min(brackets[j][1] - omegas[j - 1]))
+                    ck.contains(f"bracket_{j}_slack", bracket_slack(j, ck.exact, omegas[j - 1]))
                 except NotReal as err:
                     brackets[j] = f"no real value ({err})"
             try:
                 approx[j] = approximation(j, ck.P)
                 ck.contains(f"approx_omega_{j}", approx[j])
-                ck.contains(f"approx_rel_error_{j}", (approx[j] - omegas[j - 1]) / omegas[j - 1])
+                ck.contains(f"approx_rel_error_{j}", approx_rel_error(j, ck.exact, omegas[j - 1]))
             except NotReal:
                 pass
         if model.hz_scale is not None:

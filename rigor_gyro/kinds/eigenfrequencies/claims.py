@@ -41,7 +41,7 @@ from .. import Attempt, Phases
 from .system_claims import SYSTEM_CLAIMS, attempt_system
 from .system_model import SystemModel, validate_system
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table
-from .model import (BRACKETS, NotReal, Params, approximation, bracket, characteristic_quartic, nu_bounds,
+from .model import (BRACKETS, NotReal, Params, approximation, approx_rel_error, bracket, bracket_slack, characteristic_quartic, nu_bounds,
                     nu_identities, nu_quadratics, nus_exactly_equal, r2_denominator)
 
 __all__ = ["CLAIMS", "ALL_CLAIMS", "SYSTEM_ONLY_CLAIMS", "PARAMETERS", "RudenkoModel", "validate", "attempt",
@@ -270,7 +270,7 @@ def attempt(model: RudenkoModel, wanted: list[str], prec: int) -> Attempt:
         if cid in wanted:
             claims.append(_bracket_claim(j, balls, omegas, quantities, model))
     if "approximations" in wanted:
-        claims.append(_approx_claim(balls, omegas, quantities))
+        claims.append(_approx_claim(balls, omegas, quantities, tuple(model.q(k) for k in REQUIRED)))
     if model.hz_scale is not None and omegas:
         s = ball(model.hz_scale.fmpq())
         for j, w in enumerate(omegas, start=1):
@@ -368,7 +368,7 @@ def _bracket_claim(j: int, p: Params, omegas: list[arb], quantities: dict[str, a
                       {"not_real": str(e), "radicand": _bounds(e.radicand)})
     quantities[f"bracket_{j}_lo"], quantities[f"bracket_{j}_hi"] = lo, hi
     # the design margin of the bracket: how far omega_j is from the nearer bound (< 0: outside)
-    quantities[f"bracket_{j}_slack"] = (omegas[j - 1] - lo).min(hi - omegas[j - 1])
+    quantities[f"bracket_{j}_slack"] = bracket_slack(j, tuple(model.q(k) for k in REQUIRED), omegas[j - 1])
     st, why, ce, decides = _check_bounds([(f"omega_{j}", lo, omegas[j - 1], hi)])
     if st is Status.PROVED:
         why = f"{_fmt(lo)} <= omega_{j} <= {_fmt(hi)} certified (reading: {BRACKETS[j].reading_note})"
@@ -377,7 +377,7 @@ def _bracket_claim(j: int, p: Params, omegas: list[arb], quantities: dict[str, a
     return c
 
 
-def _approx_claim(p: Params, omegas: list[arb], quantities: dict[str, arb]) -> Claim:
+def _approx_claim(p: Params, omegas: list[arb], quantities: dict[str, arb], exact: tuple) -> Claim:
     if len(omegas) != 4:
         return _claim("approximations", Status.INCONCLUSIVE, "needs the certified roots")
     parts = []
@@ -387,7 +387,7 @@ def _approx_claim(p: Params, omegas: list[arb], quantities: dict[str, arb]) -> C
         except NotReal as e:
             parts.append(f"omega_{j}: approximation not real ({e})")
             continue
-        err = (approx - omegas[j - 1]) / omegas[j - 1]
+        err = approx_rel_error(j, exact, omegas[j - 1])
         quantities[f"approx_omega_{j}"] = approx
         quantities[f"approx_rel_error_{j}"] = err
         parts.append(f"omega_{j}: {_fmt(err)}")

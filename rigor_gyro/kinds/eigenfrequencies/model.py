@@ -26,11 +26,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, NamedTuple
 
-from flint import arb, fmpq, fmpq_poly
+from flint import arb, ctx, fmpq, fmpq_poly
 
-from ...core.balls import certainly_lt, decimal_bounds
+from ...core.balls import certainly_lt, decimal_bounds, working_precision
+from ...core.polyroots import refine_root
 
-__all__ = ["characteristic_quartic", "quartic_value", "nu_quadratics", "nu_identities", "nus_exactly_equal", "r2_denominator", "NotReal", "Params", "nu_bounds", "Bracket", "BRACKETS",
+__all__ = ["characteristic_quartic", "quartic_value", "bracket_slack", "approx_rel_error", "SLACK_GUARD_BITS", "nu_quadratics", "nu_identities", "nus_exactly_equal", "r2_denominator", "NotReal", "Params", "nu_bounds", "Bracket", "BRACKETS",
            "bracket", "approximation", "APPROX_TEXT"]
 
 
@@ -297,6 +298,35 @@ def bracket(j: int, p: Params, reading: str = "intended") -> tuple[arb, arb]:
     if reading == "printed":
         return br.lo(p), br.hi(p)
     return (br.lo_read or br.lo)(p), (br.hi_read or br.hi)(p)
+
+
+#: guard bits of a bracket's slack: omega_j and the nearer bound nearly cancel (Rudenko's example: omega_3 -
+#: lower_3 is 2^-11.5 of omega_3, so the difference of two balls of relative width 2^-p is 2^(11.5-p) wide)
+SLACK_GUARD_BITS = 32
+
+
+def bracket_slack(j: int, exact: tuple, omega: arb) -> arb:
+    """min(omega_j - lower_j, upper_j - omega_j) at the exact parameters ``exact`` = (a, b, eps, Omega2)
+    (fmpq), computed with :data:`SLACK_GUARD_BITS` more bits than the working precision: omega_j refined by
+    interval Newton on the exact quartic from the ball ``omega`` (which must hold exactly that root), the
+    bracket recomputed from the exact parameters. Guarantee: an enclosure of the slack that loses no more
+    of the working precision to the cancellation than the guard bits absorb. Raises NotReal as
+    :func:`bracket` does."""
+    with working_precision(ctx.prec + SLACK_GUARD_BITS):
+        w = refine_root(characteristic_quartic(*exact), omega)
+        lo, hi = bracket(j, Params(*(arb(x) for x in exact)), reading="intended")
+        s = (w - lo).min(hi - w)
+    return +s                   # rounded to the working precision: 2^-p relative, none of it lost
+
+
+def approx_rel_error(j: int, exact: tuple, omega: arb) -> arb:
+    """(approx_j - omega_j) / omega_j for the approximation (12)/(13) at the exact parameters, with the guard
+    bits of :func:`bracket_slack` (the approximation agrees with omega_j to 2^-8 .. 2^-11: the same
+    cancellation). Raises NotReal as :func:`approximation` does."""
+    with working_precision(ctx.prec + SLACK_GUARD_BITS):
+        w = refine_root(characteristic_quartic(*exact), omega)
+        r = (approximation(j, Params(*(arb(x) for x in exact))) - w) / w
+    return +r
 
 
 # ----------------------------------------------------------------------------- approximations
