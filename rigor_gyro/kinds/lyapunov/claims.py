@@ -981,6 +981,12 @@ def _argmax_x2(g: Gimbal, xs: arb, mu: fmpq) -> arb:
     return _r_sup_search(g.with_mu(mu), xs)[1]
 
 
+def _bound_memo() -> dict:
+    """The memo of :func:`r_sup_upper_bound`'s point bounds (a plain dict; the tests swap in one that forgets,
+    to compare)."""
+    return {}
+
+
 def r_sup_upper_bound(g: Gimbal, xs: arb, mu_lo: arb, mu_hi: arb, target: arb, max_pieces: int = 2000):
     """A certified upper bound U of sup over mu in [mu_lo, mu_hi] of R_sup(mu), by branch and bound
     over mu: on a piece Mu, max over x2 of rho(x2, m) >= max over a point set P of rho_lower(x, Mu) for
@@ -990,12 +996,18 @@ def r_sup_upper_bound(g: Gimbal, xs: arb, mu_lo: arb, mu_hi: arb, target: arb, m
     Guarantee: U (returned as an exact ball, its upper end) is >= R_sup(mu) for every mu in the
     interval, whatever the stopping reason; the pieces count says how much work it took."""
     points = [xs * j / 16 for j in range(17)]
+    lows: dict = _bound_memo()  # (point index, piece ends) -> rho_lower: a piece re-bounded after a new point
+                                # keeps the old points' values (each computed once)
 
     def bound(a: arb, b: arb) -> arb:
         M = interval(a, b)
+        ends = (a.mid().man_exp(), a.rad().man_exp(), b.mid().man_exp(), b.rad().man_exp())
         L = arb(0)
-        for x in points:
-            L = L.max(rho_lower(g, x, M))
+        for i, x in enumerate(points):
+            low = lows.get((i, ends))
+            if low is None:
+                low = lows[(i, ends)] = rho_lower(g, x, M)
+            L = L.max(low)
         return (1 / L).upper() if certainly_positive(L) else arb("inf")
 
     def refine(mid: arb) -> None:

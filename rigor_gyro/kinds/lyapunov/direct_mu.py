@@ -84,12 +84,20 @@ def _float_proposal(g: Gimbal, seen):
     return propose
 
 
-def piece_upper(g: Gimbal, Mu: arb, points: list[tuple[fmpq, fmpq]]) -> arb:
+def piece_upper(g: Gimbal, Mu: arb, points: list[tuple[fmpq, fmpq]], memo: dict | None = None) -> arb:
     """The smallest of the points' bounds of R_dsup over the mu ball ``Mu`` (exact comparisons: arb's min of
-    two balls widens), +inf if none is finite."""
+    two balls widens), +inf if none is finite. ``memo``: a dict kept by the caller (one precision) where each
+    point's bound over each ball is computed once (a piece re-bounded after a new point keeps the old ones)."""
     best = arb("inf")
+    mkey = (Mu.mid().man_exp(), Mu.rad().man_exp()) if memo is not None else None
     for u, s in points:
-        b = direct_radius_upper(g, u, s, Mu)
+        if memo is None:
+            b = direct_radius_upper(g, u, s, Mu)
+        else:
+            key = (u, s, mkey)
+            b = memo.get(key)
+            if b is None:
+                b = memo[key] = direct_radius_upper(g, u, s, Mu)
         if b.is_finite() and (not best.is_finite() or certainly_lt(b, best)):
             best = b
     return best
@@ -110,6 +118,7 @@ def direct_sup_upper_bound(g: Gimbal, mu_lo: arb, mu_hi: arb, gap: arb, max_piec
     float search result, not certified."""
     points: list[tuple[fmpq, fmpq]] = []
     seen: set = set()
+    bounds: dict = {}           # piece_upper's memo: (u, s, mu ball) -> bound
     best = (-math.inf, None)
     last = None
 
@@ -132,7 +141,7 @@ def direct_sup_upper_bound(g: Gimbal, mu_lo: arb, mu_hi: arb, gap: arb, max_piec
             points.append((_fq(u), _fq(s)))
         # the search's value overestimates R_dsup(mu) when it misses the global minimiser: every known
         # point bounds it too, so keep the smallest
-        at = piece_upper(g, arb(fmpq(mu.numerator, mu.denominator)), points)
+        at = piece_upper(g, arb(fmpq(mu.numerator, mu.denominator)), points, bounds)
         if at.is_finite():
             v = min(v, float(at))
         if math.isfinite(v) and v > best[0]:
@@ -140,7 +149,7 @@ def direct_sup_upper_bound(g: Gimbal, mu_lo: arb, mu_hi: arb, gap: arb, max_piec
 
     own_point(exact_fraction(((mu_lo + mu_hi) / 2).mid()))
     pieces, count = best_first_bisection(
-        mu_lo, mu_hi, lambda a, b: piece_upper(g, a.union(b), points), lambda mid: own_point(exact_fraction(mid)),
+        mu_lo, mu_hi, lambda a, b: piece_upper(g, a.union(b), points, bounds), lambda mid: own_point(exact_fraction(mid)),
         lambda up: up.is_finite() and best[1] is not None and certainly_le(up, arb(best[0]) * (1 + gap)),
         max_pieces, refined=True)
     U = pieces[0][2]

@@ -39,7 +39,7 @@ import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 
-from flint import arb, fmpq
+from flint import arb, ctx as _ctx, fmpq
 
 from ...core.balls import (certainly_gt, certainly_le, certainly_lt, certainly_negative, certainly_positive, current_precision, decimal_bounds,
                            exact_fraction, sqrt_of_nonnegative)
@@ -181,12 +181,22 @@ def _per_ball(method):
     def wrapper(self, x2, *args, **kwargs):
         if args or kwargs:
             return method(self, x2, *args, **kwargs)
-        if type(x2) is arb and x2.is_finite():
-            key = (name, current_precision(), x2.mid().man_exp(), x2.rad().man_exp())
+        # the key's ball part is remembered for the last argument object (arb and Dual objects are never
+        # changed in place, and the gimbal keeps a reference, so ``is`` means the same ball): the methods of
+        # one evaluation pass the same object to one another, and its exact midpoint and radius are read once
+        prec = _ctx.prec
+        last = self._last_key
+        if last[0] is x2 and last[1] == prec:
+            base = last[2]
+        elif type(x2) is arb and x2.is_finite():
+            base = (prec, x2.mid().man_exp(), x2.rad().man_exp())
+            self._last_key = (x2, prec, base)
         elif type(x2) is Dual and type(x2.d) is arb and x2.v.is_finite() and x2.d.is_exact() and x2.d.is_finite():
-            key = (name, current_precision(), x2.v.mid().man_exp(), x2.v.rad().man_exp(), x2.d.man_exp())
+            base = (prec, x2.v.mid().man_exp(), x2.v.rad().man_exp(), x2.d.man_exp())
+            self._last_key = (x2, prec, base)
         else:
             return method(self, x2)
+        key = (name, base)
         memo = self._memo
         hit = memo.get(key)
         if hit is None:
@@ -227,6 +237,10 @@ class Gimbal:
     def __post_init__(self):
         self._cache: dict[int, ParameterBalls] = {}
         self._memo: dict = {}
+        #: (argument object, precision, the ball part of its memo key) of the last memoised call (_per_ball)
+        self._last_key: tuple = (None, None, None)
+        #: (precision, parameter balls) of the last read of ``c``
+        self._last_c: tuple = (None, None)
 
     def with_mu(self, mu: fmpq) -> "Gimbal":
         return Gimbal(self.A0, self.B0, self.C0, self.H, self.k, self.a, mu, self.x2_star, self.law)
@@ -234,10 +248,14 @@ class Gimbal:
     @property
     def c(self) -> ParameterBalls:
         """The parameters as balls at the current precision (cached per precision)."""
-        p = current_precision()
+        p = _ctx.prec
+        last = self._last_c
+        if last[0] == p:
+            return last[1]
         if p not in self._cache:
             self._cache[p] = ParameterBalls(*(arb(v) for v in (self.A0, self.B0, self.C0, self.H, self.k, self.a,
                                                         self.mu)), self.x2_star.ball())
+        self._last_c = (p, self._cache[p])
         return self._cache[p]
 
     # --------------------------------------------------------------------- the model's functions
