@@ -50,7 +50,7 @@ __all__ = [
     "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
     "overlaps", "certainly_within", "interval", "exact_fraction", "exponent10", "decimal_bounds", "is_far", "enclosure_text", "rational_text", "interval_text", "inward_interval_text",
     "width_text", "about_text", "Quantity", "as_quantity", "quantity", "stored_hull",
-    "rel_width_at_most", "sqrt_of_nonnegative", "exact_endpoints", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
+    "rel_width_at_most", "sqrt_of_nonnegative", "exact_endpoints", "exact_endpoints_fmpq", "Escalation", "escalate", "check_precision", "MIN_PREC", "MAX_PREC", "series_length", "series_coefficients", "SeriesTruncated",
 ]
 
 DEFAULT_PREC = 64
@@ -373,6 +373,19 @@ def exact_endpoints(x: arb) -> tuple[Fraction, Fraction]:
     whatever the bits of the midpoint and the exponent of the radius)."""
     mid, rad = exact_fraction(x.mid()), exact_fraction(arb(x.rad()))
     return mid - rad, mid + rad
+
+
+def exact_endpoints_fmpq(x: arb) -> tuple[fmpq, fmpq]:
+    """:func:`exact_endpoints` as flint rationals (the same exact numbers; C arithmetic, several times faster
+    than Fraction where a loop compares many of them)."""
+    mid, rad = _fmpq_exact(x.mid()), _fmpq_exact(arb(x.rad()))
+    return mid - rad, mid + rad
+
+
+def _fmpq_exact(x: arb) -> fmpq:
+    man, exp = x.man_exp()
+    man, exp = int(man), int(exp)
+    return fmpq(man * 2**exp) if exp >= 0 else fmpq(man, 2**-exp)
 
 
 def _endpoints(x: arb) -> tuple[Fraction | None, Fraction | None]:

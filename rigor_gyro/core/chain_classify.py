@@ -27,24 +27,24 @@ from __future__ import annotations
 from decimal import Decimal
 from fractions import Fraction
 
-from flint import arb
+from flint import arb, fmpq
 
 from .audit import audit_printed, half_unit
-from .balls import exact_endpoints
+from .balls import exact_endpoints, exact_endpoints_fmpq
 from .classification import Classification
 from .digit_edits import edits_into
 from .paper_chain import Chain
 
-__all__ = ["classify_against_chain", "decide", "chain_window", "chain_text", "MISPRINT_CLASSES"]
+__all__ = ["classify_against_chain", "decide", "chain_window", "chain_text", "print_value", "MISPRINT_CLASSES"]
 
 #: classes that say "a misprint" (the print is not what the author computed)
 MISPRINT_CLASSES = ("sign", "decimal-shift", "digits-transposed", "digit-dropped", "digit-doubled",
                     "digit-substituted", "multi-digit-substituted")
 
 
-def chain_window(printed: str, value: arb, slack: int) -> tuple[Fraction, Fraction] | None:
+def chain_window(printed: str, value: arb, slack: int) -> tuple[fmpq, fmpq] | None:
     """[lo - h - slack u, hi + h + slack u] for the ball ``value`` and the print's half unit h and unit u
-    (None when the ball is not finite)."""
+    (None when the ball is not finite), as exact flint rationals (compare them with :func:`print_value`)."""
     if not value.is_finite():
         return None
     key = (printed, value.mid().man_exp(), arb(value.rad()).man_exp(), slack)
@@ -54,7 +54,7 @@ def chain_window(printed: str, value: arb, slack: int) -> tuple[Fraction, Fracti
             _WINDOWS.clear()
         lo, hi = _ends(value)
         h = half_unit(printed)
-        pad = h + 2 * h * slack
+        pad = fmpq(h.numerator, h.denominator) * (1 + 2 * slack)
         hit = _WINDOWS[key] = (lo - pad, hi + pad)
     return hit
 
@@ -65,19 +65,19 @@ _ENDS: dict = {}
 _WINDOWS: dict = {}
 
 
-def _ends(value: arb) -> tuple[Fraction, Fraction]:
+def _ends(value: arb) -> tuple[fmpq, fmpq]:
     """The exact ends of a finite ball, memoised by its exact midpoint and radius."""
     key = (value.mid().man_exp(), arb(value.rad()).man_exp())
     hit = _ENDS.get(key)
     if hit is None:
         if len(_ENDS) > 8192:
             _ENDS.clear()
-        hit = _ENDS[key] = exact_endpoints(value)
+        hit = _ENDS[key] = exact_endpoints_fmpq(value)
     return hit
 
 
-def _inside(printed: str, window: tuple[Fraction, Fraction] | None) -> bool:
-    return window is not None and window[0] <= Fraction(printed.strip()) <= window[1]
+def _inside(printed: str, window: tuple[fmpq, fmpq] | None) -> bool:
+    return window is not None and window[0] <= print_value(printed.strip()) <= window[1]
 
 
 def chain_text(value: arb, printed: str) -> str:
@@ -138,12 +138,14 @@ def _ball_key(value: arb):
     return (value.mid().man_exp(), arb(value.rad()).man_exp()) if value.is_finite() else None
 
 
-def _print_value(text: str) -> Fraction:
+def print_value(text: str) -> fmpq:
+    """The printed decimal ``text`` (stripped) as an exact flint rational, memoised."""
     hit = _PRINTS.get(text)
     if hit is None:
         if len(_PRINTS) > 16384:
             _PRINTS.clear()
-        hit = _PRINTS[text] = Fraction(text)
+        x = Fraction(text)
+        hit = _PRINTS[text] = fmpq(x.numerator, x.denominator)
     return hit
 
 
@@ -152,7 +154,7 @@ _PRINTS: dict = {}
 
 def _decide(text: str, chain: Chain):
     """:func:`decide` without its memo."""
-    x = _print_value(text)
+    x = print_value(text)
     refs = [(chain.value, True)] + ([(chain.computed, False)] if chain.computed is not None else [])
     for val, narrowed in refs:
         w0, ws = chain_window(text, val, 0), chain_window(text, val, chain.slack)
@@ -191,7 +193,7 @@ def _classify(text: str, value: arb, chain: Chain):
                                             "the paper's own rounding", ["last-digit"])
     for alt, upstream in chain.alternates:
         w = chain_window(text, alt, chain.slack)
-        if w is not None and w[0] <= Fraction(text) <= w[1]:
+        if w is not None and w[0] <= print_value(text) <= w[1]:
             return Classification("propagated-misprint",
                                   f"{text} follows from the misprint in {upstream} as printed (the chain with "
                                   f"{upstream} as printed gives {chain_text(alt, text)}; corrected, the {ref})",

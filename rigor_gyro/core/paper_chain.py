@@ -77,8 +77,14 @@ def _rounding_interval(txt: str, prec: int) -> arb:
 
 
 def exact_value(txt: str) -> arb:
-    """The printed decimal as an exact number (for a constant the paper states exactly: S = 0.15)."""
-    return ball(txt.strip())
+    """The printed decimal as an exact number (for a constant the paper states exactly: S = 0.15), as a
+    ball at the working precision (memoised per precision)."""
+    return _exact_value(txt.strip(), ctx.prec)
+
+
+@functools.lru_cache(maxsize=4096)
+def _exact_value(txt: str, prec: int) -> arb:
+    return ball(txt)
 
 
 @dataclass(frozen=True)

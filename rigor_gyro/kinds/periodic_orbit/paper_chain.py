@@ -30,9 +30,9 @@ from typing import Any
 
 from flint import acb, arb, arb_mat, ctx, fmpq, fmpq_poly
 
-from ...core.balls import ball, certainly_negative, certainly_positive, exact_endpoints
+from ...core.balls import ball, certainly_negative, certainly_positive, exact_endpoints_fmpq
 from ...core.digit_edits import edits_into
-from ...core.chain_classify import chain_window, decide
+from ...core.chain_classify import chain_window, decide, print_value
 from ...core.paper_chain import DEFAULT_SLACK, Chain, exact_value, relation_refs, rounding_interval
 from .paper_identities import printed_rows, relations
 from .paper_forms import a_from_exponents, alpha_of_omega, b_coefficients, k_of_c, quartic_of_k, table1
@@ -53,8 +53,10 @@ class _Reader:
     outside that window with an evidential edit into it is read downstream as the edit's result; with a
     non-evidential edit only, the edit is a candidate (``candidates``), tried by :func:`relay_chains`."""
 
-    def __init__(self, prints: dict[str, str], rels, keep=(), forced: dict | None = None):
+    def __init__(self, prints: dict[str, str], rels, keep=(), forced: dict | None = None, memo: dict | None = None):
         self.prints, self.rels, self.keep = prints, rels, set(keep)
+        #: :meth:`_narrow`'s results, shared by the passes of one :func:`relay_chains` call (its relations)
+        self.memo = {} if memo is None else memo
         self.order: list[str] = []
         self.forced = forced or {}
         self.chains: dict[str, Chain] = {}
@@ -100,41 +102,30 @@ class _Reader:
         ball and the same prints of the identities' other rows)."""
         rels = self.rels.get(rid, ()) if isinstance(self.rels, dict) else self.rels
         key = (rid, txt, value.mid().man_exp(), arb(value.rad()).man_exp(), slack, ctx.prec,
-               tuple((rel, tuple(self.prints.get(o) for o, _ in rel.terms)) for rel in rels))
-        hit = _NARROWED.get(key)
+               tuple(tuple(self.prints.get(o) for o, _ in rel.terms) for rel in rels))
+        hit = self.memo.get(key)
         if hit is not None:
             return hit
         narrowed, names = value, []
         for ref, name in relation_refs(rid, self.prints, self.rels):
             win = chain_window(txt, narrowed, slack)
             if ref.is_finite() and win is not None and name not in names:
-                lo, hi = exact_endpoints(ref)
+                lo, hi = exact_endpoints_fmpq(ref)
                 a, b = max(lo, win[0]), min(hi, win[1])
                 if a <= b and (b - a) < (win[1] - win[0]):
                     narrowed = _interval(a, b)
                     names.append(name)
-        if len(_NARROWED) > 4096:
-            _NARROWED.clear()
-        _NARROWED[key] = (narrowed, names)
+        self.memo[key] = (narrowed, names)        # arb balls are immutable; the name lists are never mutated
         return narrowed, names
-
-
-#: :meth:`_Reader._narrow`'s results (arb balls are immutable, the name lists are never mutated)
-_NARROWED: dict = {}
 
 
 def _in(txt: str, ch: Chain) -> bool:
     w = chain_window(txt, ch.value, ch.slack)
-    return w is not None and w[0] <= _frac(txt) <= w[1]
+    return w is not None and w[0] <= print_value(txt.strip()) <= w[1]
 
 
-def _interval(a, b) -> arb:
-    return arb(fmpq(a.numerator, a.denominator)).union(arb(fmpq(b.numerator, b.denominator)))
-
-
-def _frac(txt: str):
-    from fractions import Fraction
-    return Fraction(txt.strip())
+def _interval(a: fmpq, b: fmpq) -> arb:
+    return arb(a).union(arb(b))
 
 
 def _roots_of_printed_cubic(coefs: list[str]):
@@ -235,8 +226,8 @@ def _binom(n: int, k: int) -> int:
     return comb(n, k)
 
 
-def _build(paper: dict[str, Any], P, prints, rels, keep=(), forced: dict | None = None) -> _Reader:
-    R = _Reader(prints, rels, keep, forced)
+def _build(paper: dict[str, Any], P, prints, rels, keep=(), forced: dict | None = None, memo: dict | None = None) -> _Reader:
+    R = _Reader(prints, rels, keep, forced, memo)
     S = ball(P.S)
     a17S, a47S = -ball(P.K * P.p / P.H) * S, ball(P.p) * S
     # the cubic (4) has no chain: it is where the reading of B is decided (its row keeps the exact value)
@@ -446,13 +437,14 @@ def relay_chains(paper: dict[str, Any], P) -> tuple[dict[str, Chain], dict[str, 
         for k, c in ch.items():
             txt = orig.get(k)
             w = _w(txt, c.value, c.slack) if txt else None
-            if w is not None and w[0] <= _frac(txt) <= w[1]:
+            if w is not None and w[0] <= print_value(txt.strip()) <= w[1]:
                 out.add(k)
         return out
     forced: dict[str, str] = {}
-    full = _build(paper, P, prints, rels)
+    memo: dict = {}
+    full = _build(paper, P, prints, rels, memo=memo)
     for _ in range(2):          # the identities read the other rows as corrected by the previous pass
-        again = _build(paper, P, {**prints, **full.strong}, rels)
+        again = _build(paper, P, {**prints, **full.strong}, rels, memo=memo)
         if again.fixes == full.fixes:
             break
         full = again
@@ -462,7 +454,7 @@ def relay_chains(paper: dict[str, Any], P) -> tuple[dict[str, Chain], dict[str, 
     for rid, intended in list(full.candidates.items()):
         if rid.startswith("Table 2 ") or rid in _LEAVES:
             continue                # no later stage reads it: no downstream evidence to find
-        trial = _build(paper, P, prints, rels, forced={**forced, rid: intended})
+        trial = _build(paper, P, prints, rels, forced={**forced, rid: intended}, memo=memo)
         got = inside(trial.chains)
         gained = sorted(got - base - {rid})
         if gained and not (base - got - {rid}):
@@ -470,7 +462,7 @@ def relay_chains(paper: dict[str, Any], P) -> tuple[dict[str, Chain], dict[str, 
             why[rid] = ", ".join(gained[:4]) + (" ..." if len(gained) > 4 else "")
             base = got
     if forced:
-        full = _build(paper, P, prints, rels, forced=forced)
+        full = _build(paper, P, prints, rels, forced=forced, memo=memo)
     chains = full.chains
     for rid in forced:
         if rid in chains:
@@ -480,14 +472,14 @@ def relay_chains(paper: dict[str, Any], P) -> tuple[dict[str, Chain], dict[str, 
     # printed reproduces them (then one build per earlier correction names the one that does)
     lost = [k for k in full.order if k in orig and k not in full.fixes and decide(orig[k], chains[k])[0] == "none"]
     if lost and full.fixes:
-        raw = _build(paper, P, prints, rels, keep=set(full.fixes), forced=forced)
+        raw = _build(paper, P, prints, rels, keep=set(full.fixes), forced=forced, memo=memo)
         lost = [k for k in lost if k in raw.chains and _in(orig[k], raw.chains[k])]
         pos = {k: i for i, k in enumerate(full.order)}
         for rid in sorted(full.fixes, key=lambda r: pos.get(r, 0)):
             todo = [k for k in lost if pos[k] > pos.get(rid, 0)]
             if not todo:
                 continue
-            alt = _build(paper, P, prints, rels, keep={rid}, forced=forced)
+            alt = _build(paper, P, prints, rels, keep={rid}, forced=forced, memo=memo)
             for k in todo:
                 if k in alt.chains and _in(orig[k], alt.chains[k]):
                     chains[k].alternates = chains[k].alternates + ((alt.chains[k].value, rid),)
