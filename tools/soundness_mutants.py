@@ -1077,7 +1077,7 @@ MUTANTS = [
      "        return dist >= t and c >= k + 1\n", "        return dist >= t\n",
      "an edit against a window wider than the print's digits counts as evidence of a misprint"),
     ("audit_slack_ignored", "rigor_gyro/core/chain_classify.py",
-     "        pad = h + 2 * h * slack\n", "        pad = h\n",
+     "        pad = fmpq(h.numerator, h.denominator) * (1 + 2 * slack)\n", "        pad = fmpq(h.numerator, h.denominator)\n",
      "the author's own rounding beyond the chain is not allowed: his arithmetic becomes a misprint or unexplained"),
     ("audit_exact_agreement_skipped", "rigor_gyro/core/chain_classify.py",
      "    if status.value == \"agrees\":\n", "    if False:\n",
