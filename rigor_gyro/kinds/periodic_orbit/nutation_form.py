@@ -39,6 +39,10 @@ __all__ = ["NutationForm", "nutation_form", "fast_form", "FAST_NUTATION_RATIO"]
 #: paper scenes' ratio is 3.2, the stress scenes' H = 1e3, 1e4 32 and 322, H = 1e5 3227
 FAST_NUTATION_RATIO = 1000
 
+#: exact constants (arb balls are immutable: sharing them is safe; converting a Python int costs more than
+#: the arithmetic it feeds, and coeffs runs ~10^5 times a search)
+_ZERO, _ONE, _TWO = arb(0), arb(1), arb(2)
+
 
 def fast_form(sp) -> "NutationForm | None":
     """The spectrum's nutation form when it is a fast nutation (a point spectrum, one complex pair,
@@ -72,6 +76,9 @@ class NutationForm:
         self.four_qi = 4 * q.imag
         self.two_qr = 2 * q.real
         self.real = [(m.lam.real, (m.pe[0] / m.lam).real) for m in sp.modes if m.weight == 1]
+        # per real mode, the constants of _short's terms: 2 c_r lam_r, c_r lam_r^2 and c_r lam_r / 6
+        self._short_consts = [(lam_r, c_r, 2 * c_r * lam_r, c_r * lam_r * lam_r, c_r * lam_r / 6)
+                              for lam_r, c_r in self.real]
         self.half_p0 = sp.p0e[0] / 2
         self._prec = None
         self._pow: tuple = ([], [], [])
@@ -96,13 +103,13 @@ class NutationForm:
         Ec = (self.lam * acb(center)).exp()
         R2c = (self.two_d * center).exp()
         ImE, R2, U = [], [], []
-        one = arb(1)
+        one = _ONE
         for j in range(n):
             e = Ec * L[j]
             ImE.append(e.imag)
             r2 = R2c * D[j]
             R2.append(r2)
-            U.append(r2 + 2 * e.real)
+            U.append(r2 + _TWO * e.real)
         U[0] += one
         if n <= 4:
             return self._short(center, n, U, ImE, R2)
@@ -129,19 +136,20 @@ class NutationForm:
         (= tanh(lam_r theta / 2)), y' = 2 lam_r E_r/(E_r + 1)^2, y''/2 = lam_r^2 E_r (1 - E_r)/(E_r + 1)^3
         (from y' = (lam_r / 2)(1 - y^2)), y'''/6 = -lam_r (y'^2 - lam_r y^2 y') / 6; then the product s U
         term by term."""
-        s = [-self.half_p0 * center, -self.half_p0, arb(0), arb(0)][:n]
-        for lam_r, c_r in self.real:
+        s = [-self.half_p0 * center, -self.half_p0, _ZERO, _ZERO][:n]
+        for lam_r, c_r, two_c_lam, c_lam2, c_lam_6 in self._short_consts:
             E = (lam_r * center).exp()
-            p = E + 1
-            y = (E - 1) / p
+            ip = _ONE / (E + _ONE)
+            y = (E - _ONE) * ip
             s[0] -= c_r * y
             if n > 1:
-                y1 = 2 * lam_r * E / (p * p)
-                s[1] -= c_r * y1
+                Eip2 = E * ip * ip
+                s[1] -= two_c_lam * Eip2                # c_r y', y' = 2 lam_r E / (E + 1)^2
             if n > 2:
-                s[2] -= c_r * lam_r * lam_r * E * (1 - E) / (p * p * p)
+                s[2] -= c_lam2 * Eip2 * (_ONE - E) * ip  # c_r lam_r^2 E (1 - E) / (E + 1)^3
             if n > 3:           # y''' = -lam_r (y'^2 + y y''), y'' = -lam_r y y': the coefficient y'''/6
-                s[3] -= c_r * (-lam_r * (y1 * y1 - lam_r * y * y * y1)) / 6
+                y1 = _TWO * lam_r * Eip2
+                s[3] += c_lam_6 * (y1 * y1 - lam_r * y * y * y1)
         out = []
         for j in range(n):
             sU = s[0] * U[j]
