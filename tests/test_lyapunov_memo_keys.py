@@ -85,3 +85,38 @@ def test_direct_sup_upper_bound_with_and_without_its_memo(monkeypatch):
         r2 = direct_mu.direct_sup_upper_bound(g, lo, hi, arb("1e-4"), max_pieces=14)
     assert _same(r1[0], r2[0]) and r1[1] == r2[1] and r1[3] == r2[3] and r1[4] == r2[4]
     assert all(_same(a, c) and _same(b, d) for (a, b), (c, d) in zip(r1[2], r2[2]))
+
+
+def test_with_mu_shares_only_what_does_not_depend_on_mu():
+    """Gimbals made by with_mu share the memo of the mu-free functions (f3, G, F, psi's x2 factors); every
+    function of mu (S, phi, psi's coefficients) is the one a fresh gimbal at that mu computes."""
+    g = _gimbal()
+    mu2 = fmpq(23, 1000)
+    with working_precision(64):
+        xs = [arb(5) / 16, arb(1) / 4 + arb(0, 2.0 ** -20)]
+        for x in xs:
+            g.S(x), g.phi(x), g.psi_coefficients(x), g.f3(x), g.F(x)
+        gm = g.with_mu(mu2)
+        fresh = _gimbal().with_mu(mu2)
+        for x in xs:
+            for name in ("S", "phi", "f3", "F", "G"):
+                assert _same(getattr(gm, name)(x), getattr(fresh, name)(x)), name
+            for a, b in zip(gm.psi_coefficients(x), fresh.psi_coefficients(x)):
+                assert all(_same(p, q) for p, q in zip(a, b))
+        assert gm._shared is g._shared
+
+
+def test_a_subclass_with_ball_parameters_shares_nothing_with_with_mu():
+    """A ParamGimbal (parameters are balls over a box) memoises f3 over its own parameters; the plain Gimbal
+    its with_mu makes must not read that memo."""
+    from rigor_gyro.kinds.lyapunov.box_forms import ParamGimbal
+    from rigor_gyro.kinds.lyapunov.model import ParameterBalls
+    g = _gimbal()
+    with working_precision(64):
+        c = g.c
+        wide = ParameterBalls(c.A0, c.B0, c.C0, c.H * arb(1, 0.01), c.k, c.a, c.mu, c.x2_star)
+        pg = ParamGimbal(g, wide)
+        x = arb(5) / 16
+        boxed = pg.f3(x)
+        plain = pg.with_mu(fmpq(23, 1000))
+        assert _same(plain.f3(x), _gimbal().f3(x)) and not _same(plain.f3(x), boxed)

@@ -168,6 +168,15 @@ def hypot_ball(a: arb, b: arb) -> arb:
 MEMO_LIMIT = 200_000
 
 
+def _mu_free(method):
+    """:func:`_per_ball` for a method that does not depend on mu: its memo (``_shared``) is shared by the
+    gimbals :meth:`Gimbal.with_mu` makes from one plain Gimbal (the same parameters but mu), so the searches
+    and branch and bounds over mu meet each x2 ball once."""
+    wrapper = _per_ball(method)
+    wrapper.mu_free = True
+    return wrapper
+
+
 def _per_ball(method):
     """Memoise a Gimbal method of one ball ``x2`` (at the scene's mu), keyed by the precision and the
     ball's exact midpoint and radius. Arb arithmetic is deterministic given those, so a memoised
@@ -197,7 +206,7 @@ def _per_ball(method):
         else:
             return method(self, x2)
         key = (name, base)
-        memo = self._memo
+        memo = self._shared if wrapper.mu_free else self._memo
         hit = memo.get(key)
         if hit is None:
             if len(memo) >= MEMO_LIMIT:
@@ -205,6 +214,7 @@ def _per_ball(method):
             hit = memo[key] = method(self, x2)
         return hit
     wrapper.__name__, wrapper.__doc__, wrapper.__wrapped__ = name, method.__doc__, method
+    wrapper.mu_free = False
     return wrapper
 
 
@@ -237,13 +247,18 @@ class Gimbal:
     def __post_init__(self):
         self._cache: dict[int, ParameterBalls] = {}
         self._memo: dict = {}
+        #: the memo of the methods that do not depend on mu (_mu_free), shared by with_mu's gimbals
+        self._shared: dict = {}
         #: (argument object, precision, the ball part of its memo key) of the last memoised call (_per_ball)
         self._last_key: tuple = (None, None, None)
         #: (precision, parameter balls) of the last read of ``c``
         self._last_c: tuple = (None, None)
 
     def with_mu(self, mu: fmpq) -> "Gimbal":
-        return Gimbal(self.A0, self.B0, self.C0, self.H, self.k, self.a, mu, self.x2_star, self.law)
+        g = Gimbal(self.A0, self.B0, self.C0, self.H, self.k, self.a, mu, self.x2_star, self.law)
+        if type(self) is Gimbal:        # the same parameters but mu: the mu-free memo is shared (a subclass's
+            g._shared = self._shared    # parameters are balls of its own: never shared with a plain Gimbal)
+        return g
 
     @property
     def c(self) -> ParameterBalls:
@@ -276,12 +291,12 @@ class Gimbal:
         c = self.c
         return c.H ** 2 * x2.cos() ** 2 / (self.D(x2) * c.B0)
 
-    @_per_ball
+    @_mu_free
     def f3(self, x2):
         c = self.c
         return c.H * x2.cos() * self.f(x2) / (self.D(x2) * c.B0)
 
-    @_per_ball
+    @_mu_free
     def G(self, x2: arb) -> arb:
         """int_0^x2 cos f / D: closed form or quadrature on thin balls; on wide balls G is even and
         increasing in |x2| (integrand > 0 on (0, x2*], certified by the v_positive claim), so it is
@@ -299,7 +314,7 @@ class Gimbal:
                 return direct.intersection(hull)
         return hull
 
-    @_per_ball
+    @_mu_free
     def F(self, x2):
         """F = (H/B0) G; on a Dual its derivative is f3 (the definition of F)."""
         c = self.c
@@ -335,18 +350,10 @@ class Gimbal:
         as Vdot actually is (derived from (7) and (2)); for every mu in the ball ``mu`` when given (the
         scene's mu otherwise)."""
         c = self.c
-        H, B0, C0, A0, k = c.H, c.B0, c.C0, c.A0, c.k
+        H, B0, C0, k = c.H, c.B0, c.C0, c.k
         mu = c.mu if mu is None else mu
-        s, cs = sin_cos(x2)
-        # common factors computed once (a Dual operation costs several ball operations)
-        iD = 1 / (A0 - C0 * s * s)                   # 1 / D
-        f, fp = self.f(x2), self.df(x2)
-        cs2, sf = cs * cs, s * f
-        scs_iD = s * cs * iD
-        HB = H / B0
-        C0HB2 = C0 * H / (B0 * B0)
-        mkBC, AH2 = mu * k * B0 * C0, (A0 - C0) * H * H
-        P = A0 - C0 - C0 * cs2
+        s, cs, iD, fp, cs2, sf, scs_iD, HB, C0HB2, AH2, P = self._psi_parts(x2)
+        mkBC = mu * k * B0 * C0
         c10 = cs2 * (HB * HB * (k * iD - mu) + C0HB2 * sf * iD)
         c11 = mu * C0HB2 * s * cs2
         c13 = (mkBC + AH2) / (B0 * B0) * scs_iD
@@ -354,6 +361,24 @@ class Gimbal:
         c21 = mu * HB * P * s * iD
         c23 = (AH2 - mkBC) / B0 * scs_iD * iD
         return (c10, c11, c13), (c20, c21, c23)
+
+    @_mu_free
+    def _psi_parts(self, x2):
+        """The factors of :meth:`psi_coefficients` that do not depend on mu (memoised per ball: the branch and
+        bounds over mu ask the same x2 for many mu balls)."""
+        c = self.c
+        H, B0, C0, A0 = c.H, c.B0, c.C0, c.A0
+        s, cs = sin_cos(x2)
+        # common factors computed once (a Dual operation costs several ball operations)
+        iD = 1 / (A0 - C0 * s * s)                   # 1 / D
+        fp = self.df(x2)
+        cs2, sf = cs * cs, s * self.f(x2)
+        scs_iD = s * cs * iD
+        HB = H / B0
+        C0HB2 = C0 * H / (B0 * B0)
+        AH2 = (A0 - C0) * H * H
+        P = A0 - C0 - C0 * cs2
+        return s, cs, iD, fp, cs2, sf, scs_iD, HB, C0HB2, AH2, P
 
     def psi_printed_coefficients(self, x2: arb) -> tuple[tuple[arb, arb, arb], tuple[arb, arb, arb]]:
         """The same coefficients as printed in (8) (the x3 term of Psi2 carries sin 2x2)."""
