@@ -907,7 +907,8 @@ def _float_candidates(g: Gimbal, pts: list[float]) -> list[int] | None:
 def _r_sup_search(g: Gimbal, xs: arb, grid: int = 16, steps: int = 24) -> tuple[float, arb]:
     """A float estimate of R_sup(mu) = 1 / max over [0, x2*] of rho, and the point x2 (an exact ball)
     where it was found, from point values of rho (no subdivision): the largest of ``grid`` + 1 equally
-    spaced points, refined by ``steps`` golden-section steps around it. A search heuristic (it may miss a
+    spaced points (scanned by the float twin when the law has one, :func:`_float_candidates`; its near-best
+    points in balls), refined by ``steps`` golden-section steps around it. A search heuristic (it may miss a
     narrow peak): it only chooses mu_best and the points of the upper bound's branch and bound; what is
     certified is computed afterwards at those choices."""
     rho = rho_function(g)

@@ -39,7 +39,8 @@ def _fq(x: float) -> fmpq:
 
 def direct_point_search(g: Gimbal, start: tuple[float, float] | None = None) -> tuple[float, float, float, float]:
     """A float search for inf over (x2, t) of A/|B| at g's mu (the supremum radius of the direct test):
-    the smallest value on a 17 x 33 grid of (u, s) (x2 = u x2*, t = pi s), refined by a compass search; from
+    the smallest value on a 17 x 33 grid of (u, s) (x2 = u x2*, t = pi s; scanned by the float twin when the law
+    has one, :func:`_float_proposal`: the same grid point, fewer ball evaluations), refined by a compass search; from
     ``start``, the compass search only (a warm start). Returns (estimate, u, s, the smallest A seen). A
     heuristic: it only chooses a radius to certify, a direction for a point above it, a bounding point;
     everything is certified afterwards."""

@@ -19,7 +19,8 @@ How:
   domain (:func:`rigor_gyro.core.subdivision.lower_bound_on_box`) raises the smallest bound towards
   the search's value. The faces add phi(+-x2*) = min of V there.
 * upper bound: V at a certified point of N (Vdot > 0 certainly, evaluated by automatic
-  differentiation, not through the polar form), found by a float-free search on point values, or
+  differentiation, not through the polar form), found by a search on point values (ball midpoints; its
+  grid scanned by a float twin, :mod:`.float_twin`, which only proposes where the compass search starts), or
   phi(x2*) at the face's minimiser, whichever is smaller. It bounds c_max as defined; it is not a
   proof that a larger sublevel set fails to be an estimate (that depends on which component).
 
@@ -292,7 +293,8 @@ def largest_sublevel(g: Gimbal, max_pieces: int) -> Sublevel:
 
 
 def search_over_n(g: Gimbal) -> tuple[float, float, float, float]:
-    """The float-free point search of :func:`largest_sublevel` for the minimum of V over N (x2* of ``g``):
+    """The point search of :func:`largest_sublevel` for the minimum of V over N (x2* of ``g``; ball midpoints,
+    the grid scanned by a float twin):
     (value, u, s, r) with x2 = u x2*, t = pi s. A heuristic: it decides nothing."""
     return _search(g)
 
