@@ -42,7 +42,7 @@ class FloatGimbal:
     """The parameters of a :class:`.model.Gimbal` as doubles, with float twins of ``psi_coefficients``,
     ``vdot_polar``, ``v_polar`` and the Psi test's rho (a heuristic; see the module docstring)."""
 
-    __slots__ = ("A0", "B0", "C0", "H", "k", "a", "mu", "xs", "sine", "_k")
+    __slots__ = ("A0", "B0", "C0", "H", "k", "a", "mu", "xs", "sine", "_k", "_psi")
 
     def __init__(self, g) -> None:
         pb = g.c                # the parameter balls (exact points here): their midpoints as doubles
@@ -51,6 +51,8 @@ class FloatGimbal:
         x = g.x2_star
         self.xs = float(x.rational) * math.pi ** x.pi_power
         self.sine = type(g.law) is SineMoment
+        self._psi: dict = {}            # x2 -> psi_coefficients, ("v", x2) -> v_polar's x2 parts (a grid has
+                                        # few distinct x2)
         H, B0, C0, A0, k, mu = self.H, self.B0, self.C0, self.A0, self.k, self.mu
         HB = H / B0
         self._k = (HB, C0 * H / (B0 * B0), mu * k * B0 * C0, (A0 - C0) * H * H)
@@ -61,7 +63,13 @@ class FloatGimbal:
         return self.a * x, self.a
 
     def psi_coefficients(self, x2: float):
-        """((c10, c11, c13), (c20, c21, c23)) as :meth:`.model.Gimbal.psi_coefficients`, in floats."""
+        """((c10, c11, c13), (c20, c21, c23)) as :meth:`.model.Gimbal.psi_coefficients`, in floats (kept per x2)."""
+        hit = self._psi.get(x2)
+        if hit is None:
+            hit = self._psi[x2] = self._psi_coefficients(x2)
+        return hit
+
+    def _psi_coefficients(self, x2: float):
         H, B0, C0, A0, k, mu = self.H, self.B0, self.C0, self.A0, self.k, self.mu
         HB, C0HB2, mkBC, AH2 = self._k
         s, cs = math.sin(x2), math.cos(x2)
@@ -91,20 +99,25 @@ class FloatGimbal:
         otherwise)."""
         if not self.sine:
             return None
-        H, B0, C0, A0, k, mu, a = self.H, self.B0, self.C0, self.A0, self.k, self.mu, self.a
-        s2, cs = math.sin(x2), math.cos(x2)
-        D = A0 - C0 * s2 * s2
-        if C0 == 0:
-            G = a * s2 * s2 / (2 * A0)
-        else:
-            G = a / (2 * C0) * -math.log1p(-(C0 * s2 * s2 / A0))
-        f = a * s2
-        f3 = H * cs * f / (D * B0)
-        S = H * H * cs * cs / (D * B0) + mu * (k / D - mu)
+        key = ("v", x2)
+        hit = self._psi.get(key)
+        if hit is None:
+            H, B0, C0, A0, k, mu, a = self.H, self.B0, self.C0, self.A0, self.k, self.mu, self.a
+            s2, cs = math.sin(x2), math.cos(x2)
+            D = A0 - C0 * s2 * s2
+            if C0 == 0:
+                G = a * s2 * s2 / (2 * A0)
+            else:
+                G = a / (2 * C0) * -math.log1p(-(C0 * s2 * s2 / A0))
+            f = a * s2
+            f3 = H * cs * f / (D * B0)
+            S = H * H * cs * cs / (D * B0) + mu * (k / D - mu)
+            hit = self._psi[key] = (mu * (H / B0 * G), f3, S, H * cs / B0)
+        alpha, f3, S, h = hit
+        mu = self.mu
         ct, st = math.cos(t), math.sin(t)
-        h = H * cs / B0
         gamma = ((h * ct + mu * st) ** 2 + S * st * st) / 2
-        return mu * (H / B0 * G), f3 * st, gamma
+        return alpha, f3 * st, gamma
 
     def rho(self, x2: float) -> float:
         """max_i |(ci1, ci3)| / ci0 (+inf where ci0 <= 0), as the Psi test's rho at a point, in floats."""
