@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 
-from .model import Gimbal
+from .model import Gimbal, psi_from_parts
 from .moments import LinearMoment, SineMoment
 
 __all__ = ["FloatGimbal", "float_twin", "half_line_value", "in_safe_range", "SAFE"]
@@ -78,13 +78,7 @@ class FloatGimbal:
         cs2, sf = cs * cs, s * f
         scs_iD = s * cs * iD
         P = A0 - C0 - C0 * cs2
-        c10 = cs2 * (HB * HB * (k * iD - mu) + C0HB2 * sf * iD)
-        c11 = mu * C0HB2 * s * cs2
-        c13 = (mkBC + AH2) / (B0 * B0) * scs_iD
-        c20 = HB * iD * (mu * H * cs2 - cs * fp + P * sf * iD)
-        c21 = mu * HB * P * s * iD
-        c23 = (AH2 - mkBC) / B0 * scs_iD * iD
-        return (c10, c11, c13), (c20, c21, c23)
+        return psi_from_parts((s, cs, iD, fp, cs2, sf, scs_iD, HB, C0HB2, AH2, P), H, B0, k, mu, mkBC)
 
     def vdot_polar(self, x2: float, t: float) -> tuple[float, float]:
         """(A, B) of :func:`.model.vdot_polar` in floats."""

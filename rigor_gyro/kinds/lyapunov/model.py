@@ -230,6 +230,21 @@ class ParameterBalls:
     x2_star: arb
 
 
+def psi_from_parts(parts: tuple, H, B0, k, mu, mkBC) -> tuple[tuple, tuple]:
+    """((c10, c11, c13), (c20, c21, c23)) of the Psi form from the mu-free factors of
+    :meth:`Gimbal._psi_parts` (s, cos, 1/D, f', cos^2, s f, s cos / D, H/B0, C0 H/B0^2, (A0 - C0) H^2, P) and
+    H, B0, k, mu, mu k B0 C0: plain arithmetic, the same for balls (the proofs) and floats (the float twin's
+    proposals, :mod:`.float_twin`), so the two cannot drift apart."""
+    s, cs, iD, fp, cs2, sf, scs_iD, HB, C0HB2, AH2, P = parts
+    c10 = cs2 * (HB * HB * (k * iD - mu) + C0HB2 * sf * iD)
+    c11 = mu * C0HB2 * s * cs2
+    c13 = (mkBC + AH2) / (B0 * B0) * scs_iD
+    c20 = HB * iD * (mu * H * cs2 - cs * fp + P * sf * iD)
+    c21 = mu * HB * P * s * iD
+    c23 = (AH2 - mkBC) / B0 * scs_iD * iD
+    return (c10, c11, c13), (c20, c21, c23)
+
+
 @dataclass
 class Gimbal:
     """Exact parameters of system (2) and Lyapunov function (7), with ball-valued functions."""
@@ -352,15 +367,7 @@ class Gimbal:
         c = self.c
         H, B0, C0, k = c.H, c.B0, c.C0, c.k
         mu = c.mu if mu is None else mu
-        s, cs, iD, fp, cs2, sf, scs_iD, HB, C0HB2, AH2, P = self._psi_parts(x2)
-        mkBC = mu * k * B0 * C0
-        c10 = cs2 * (HB * HB * (k * iD - mu) + C0HB2 * sf * iD)
-        c11 = mu * C0HB2 * s * cs2
-        c13 = (mkBC + AH2) / (B0 * B0) * scs_iD
-        c20 = HB * iD * (mu * H * cs2 - cs * fp + P * sf * iD)
-        c21 = mu * HB * P * s * iD
-        c23 = (AH2 - mkBC) / B0 * scs_iD * iD
-        return (c10, c11, c13), (c20, c21, c23)
+        return psi_from_parts(self._psi_parts(x2), H, B0, k, mu, mu * k * B0 * C0)
 
     @_mu_free
     def _psi_parts(self, x2):
