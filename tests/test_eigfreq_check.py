@@ -467,3 +467,21 @@ def _slack_rows(exact, omegas, roots, mpmath) -> int:
             assert ball.rad() <= abs(ball.mid()) * arb(2) ** -124, (j, ball)
         checked += 1
     return checked
+
+
+@pytest.mark.parametrize("eps, omega2, claims, want", [
+    ("20", "3.4037869954943623161860840475034175994290869710", ["bracket_3", "bracket_4"], "refuted"),
+    ("8", "0.76393202250021030359082633126872376456038164000", ["approximations"], "inconclusive")])
+def test_a_radicand_settled_only_by_the_guard_bits_gives_a_verdict_not_a_crash(eps, omega2, claims, want):
+    """A radicand about 1e-40 below 0 (a hostile review's scenes): at 128 bits bracket (9)/(10) and
+    approximation (13) still evaluate, and only the slack's 32 guard bits find the radicand negative. The
+    claims then say so (the bracket has no real value: refuted; the approximation is not real: the
+    relative errors are not all enclosed), as a higher precision would; they never stop the proof, and the
+    checker confirms."""
+    from rigor_gyro.prover import prove_scene
+    from rigor_gyro.scene import parse_scene
+    scene = parse_scene(f'name = "nr"\nkind = "eigenfrequencies"\nsource = "t"\n[parameters]\na = "10"\nb = "3"\n'
+                        f'eps = "{eps}"\nOmega2 = "{omega2}"\n[claims]\nonly = {["roots"] + claims!r}\n'.replace("'", '"'))
+    cert = prove_scene(scene, maxprec=256)
+    assert {c.id: c.status.value for c in cert.claims if c.id != "roots"} == {c: want for c in claims}
+    assert all(r.ok for r in check_certificate(cert.to_json()).results)

@@ -363,12 +363,14 @@ def _bracket_claim(j: int, p: Params, omegas: list[arb], quantities: dict[str, a
                       {"undefined": "R2 denominator b/(b-1) - eps a/(b(a-b)) = 0 (exact rational arithmetic)"})
     try:
         lo, hi = bracket(j, p, reading="intended")
+        # the design margin of the bracket: how far omega_j is from the nearer bound (< 0: outside); with its
+        # guard bits it may find a radicand certainly negative that the working precision left straddling 0
+        slack = bracket_slack(j, tuple(model.q(k) for k in REQUIRED), omegas[j - 1])
     except NotReal as e:
         return _claim(cid, Status.REFUTED, f"the bracket has no real value for these parameters: {e}",
                       {"not_real": str(e), "radicand": _bounds(e.radicand)})
     quantities[f"bracket_{j}_lo"], quantities[f"bracket_{j}_hi"] = lo, hi
-    # the design margin of the bracket: how far omega_j is from the nearer bound (< 0: outside)
-    quantities[f"bracket_{j}_slack"] = bracket_slack(j, tuple(model.q(k) for k in REQUIRED), omegas[j - 1])
+    quantities[f"bracket_{j}_slack"] = slack
     st, why, ce, decides = _check_bounds([(f"omega_{j}", lo, omegas[j - 1], hi)])
     if st is Status.PROVED:
         why = f"{_fmt(lo)} <= omega_{j} <= {_fmt(hi)} certified (reading: {BRACKETS[j].reading_note})"
@@ -384,10 +386,10 @@ def _approx_claim(p: Params, omegas: list[arb], quantities: dict[str, arb], exac
     for j in range(1, 5):
         try:
             approx = approximation(j, p)
+            err = approx_rel_error(j, exact, omegas[j - 1])     # its guard bits may settle a radicand's sign
         except NotReal as e:
             parts.append(f"omega_{j}: approximation not real ({e})")
             continue
-        err = approx_rel_error(j, exact, omegas[j - 1])
         quantities[f"approx_omega_{j}"] = approx
         quantities[f"approx_rel_error_{j}"] = err
         parts.append(f"omega_{j}: {_fmt(err)}")
