@@ -65,7 +65,8 @@ def _q(x) -> fmpq:
 
 
 @functools.lru_cache(maxsize=16384)
-def edits_into(printed: str, lo: Fraction, hi: Fraction, evidential: bool = True, factor: int = 10) -> list[Edit]:
+def edits_into(printed: str, lo: Fraction | fmpq, hi: Fraction | fmpq, evidential: bool = True,
+               factor: int = 10) -> list[Edit]:
     """Every evidential single edit of ``printed`` whose result lies in [lo, hi] (module docstring),
     in the order of :data:`EDIT_CLASSES`; with ``evidential=False`` every edit that lands there (candidates
     that need other evidence, such as a downstream row reproduced only with them). ``factor``: the distance
@@ -74,6 +75,7 @@ def edits_into(printed: str, lo: Fraction, hi: Fraction, evidential: bool = True
     the list returned."""
     sign, tup, exp = Decimal(printed.strip()).as_tuple()
     digits = "".join(map(str, tup)).lstrip("0")
+    lo, hi = _q(lo), _q(hi)                       # exact rationals of either kind, compared as fmpq
     if not digits or lo > hi:
         return []
     n, neg = len(digits), bool(sign)
@@ -81,9 +83,9 @@ def edits_into(printed: str, lo: Fraction, hi: Fraction, evidential: bool = True
     sg = -1 if neg else 1
     v = sg * M                                     # the print in units of its last place, signed
     scale = _TEN ** -exp
-    a, b = _q(lo) * scale, _q(hi) * scale          # the window in those units
+    a, b = lo * scale, hi * scale                  # the window in those units
     Wu = b - a
-    c = _constrained(n, exp, _q(hi) - _q(lo))
+    c = _constrained(n, exp, hi - lo)
     out: list[Edit] = []
     # the distance test |print - intended| >= factor W, in units of 10^(exp + e): an integer threshold
     thr = {e: int((factor * Wu * _TEN ** -e).ceil()) for e in (-1, 0, 1)}
