@@ -41,7 +41,7 @@ def test_max_modulus_over_the_box_holds_float_samples():
         q = quantities_box(m, Box.of(BOX), ["theta_star", "max_modulus", "stability_margin"])
     assert {"theta_star", "max_modulus", "stability_margin"} <= set(q)
     th, mx = q["theta_star"].value, q["max_modulus"].value
-    assert mx.upper() < 1 and mx.rad() < 0.1
+    assert mx.upper() < 1 and mx.rad() < 0.005         # the tight cover: [0.95390, 0.95895] (floats: [0.9556, 0.9575])
     for pt in _corners_and_centre():
         p = _params(m, **pt)
         t = _theta_mp(p, float(th.lower()) - 1e-6, float(th.upper()) + 1e-6)

@@ -10,8 +10,9 @@ claim ``stable`` is proved (:mod:`.box_orbit`).
 
 What: :func:`modulus_on_similar_box` covers the similar box with pieces; a piece counts when its centre has
 exactly one root of g that is not certified spurious, that root is genuine, and its continuation over the piece
-encloses every multiplier modulus in a ball of width at most :data:`MODULUS_WIDTH` (a wider ball is valid but
-says little, so the piece is halved instead). Then the pieces' orbits are shown to be the box's own: each
+encloses every multiplier modulus in a ball of width at most the stage's width (a wider ball is valid but
+says little, so the piece is halved instead; :data:`MODULUS_STAGES`: a tight cover first, the loose one where the
+tight one's budget or depth runs out). Then the pieces' orbits are shown to be the box's own: each
 piece's half-period mapped back to the box (theta = theta' tau / tau_c, tau over the box) and the box's
 theta*(P) lie in one interval W, and ``unique_in(W)`` (the caller's: :func:`.continuation.at_most_one_root` over
 the box) shows that g(., P) has at most one root in W for every P; so the mapped root of each piece is theta*(P)
@@ -19,8 +20,8 @@ itself. The result is the hull of the pieces' balls.
 
 Guarantee: for every parameter P of the box, the largest multiplier modulus of the orbit theta*(P) (the
 caller's) lies in the returned ball. Precision: the current working precision. Fails when: never raises; returns None
-when the box does not reduce (it varies none of A, H, tau), a piece's centre has another candidate orbit, the
-cover's budget ends first, or uniqueness on W is not shown.
+when the box does not reduce (it varies none of A, H, tau), when every stage's cover ends first (a piece's centre
+with another candidate orbit, the budget, the depth), or when uniqueness on W is not shown.
 """
 from __future__ import annotations
 
@@ -37,13 +38,17 @@ from .normed_orbit import continue_orbit_normed
 from .similar_cover import cover
 from .similarity import similar_box
 
-__all__ = ["modulus_on_similar_box", "MODULUS_WIDTH", "MODULUS_BUDGET"]
+__all__ = ["modulus_on_similar_box", "MODULUS_WIDTH", "MODULUS_BUDGET", "MODULUS_STAGES"]
 
 #: the widest ball of the largest modulus a piece may give (a piece with a wider one is halved; on A, H, tau at
 #: +-0.5 % the pieces of B' +-0.3 % .. +-0.1 % give widths 0.12-0.16: their sigma' and n' widths dominate)
 MODULUS_WIDTH = 0.2
 #: continuations a cover may spend on one box
 MODULUS_BUDGET = 24
+#: the covers tried in turn, (width, budget) each: a tight one first (all six at +-0.25 %: the hull [0.93502,
+#: 0.96140] with width 0.2 and 24 continuations, [0.95390, 0.95895] with width 0.01 and 64, 20 s -> 30 s; floats
+#: give [0.9556, 0.9575]), then the loose one where the tight one's budget or depth runs out
+MODULUS_STAGES = ((0.01, 64), (MODULUS_WIDTH, MODULUS_BUDGET))
 
 
 def _q(x) -> fmpq:
@@ -51,11 +56,30 @@ def _q(x) -> fmpq:
 
 
 def modulus_on_similar_box(model, box: Box, theta_box: arb, unique_in: Callable[[arb], bool],
-                           width: float = MODULUS_WIDTH, budget: int = MODULUS_BUDGET) -> tuple[arb, int, int] | None:
+                           stages: tuple = MODULUS_STAGES) -> tuple[arb, int, int] | None:
     """(the hull of the largest multiplier modulus over the box, pieces, continuations spent) or None (module
     docstring). ``model``: the relay model (its parameters outside the box are used); ``theta_box``: an
     enclosure of theta*(P) over the box; ``unique_in(W)``: True only if g(., P) has at most one root in W for
-    every P of the box."""
+    every P of the box. ``stages``: the covers' (width, budget), tried in turn until one gives a hull (each is
+    a complete cover on its own: the first that succeeds is returned, its continuations counted with the
+    earlier stages')."""
+    spent = 0
+    for width, budget in stages:
+        got = _modulus_cover(model, box, theta_box, unique_in, width, budget)
+        if got is None:                     # the box does not reduce, or uniqueness on W failed: final
+            return None
+        if got[0] is not None:
+            return got[0], got[1], spent + got[2]
+        spent += got[2]                     # the cover ran out of budget or depth: the next stage's turn
+    return None
+
+
+def _modulus_cover(model, box: Box, theta_box: arb, unique_in: Callable[[arb], bool], width: float,
+                   budget: int) -> tuple[arb | None, int, int] | None:
+    """One cover of :func:`modulus_on_similar_box` with pieces' balls at most ``width`` wide and ``budget``
+    continuations: (hull, pieces, spent); (None, 0, spent) when the cover does not complete (a looser stage may);
+    None when the box does not reduce or uniqueness on W is not shown (a looser cover's wider pieces cannot help
+    there)."""
     red = similar_box(model.params, box)
     if red is None:
         return None
@@ -93,7 +117,7 @@ def modulus_on_similar_box(model, box: Box, theta_box: arb, unique_in: Callable[
 
     got, spent = cover(rbox, ["max_modulus"], evaluate, budget=budget)
     if "max_modulus" not in got:
-        return None
+        return None, 0, spent
     W = theta_box
     for t in mapped:
         W = W.union(t)
