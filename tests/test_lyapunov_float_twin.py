@@ -127,3 +127,25 @@ def test_a_lying_twin_leaves_every_certified_number_true(monkeypatch):
         assert float(lied_d.R_text) <= float(honest_d.up_text)
     assert est > 0 and math.isfinite(est)
     assert est != honest_r[0]           # the liar did move the R_sup search (it only chooses: nothing certified)
+
+
+def test_a_twin_value_rounded_to_zero_never_stops_the_direct_search():
+    """A hostile review's scene: mu just below k/A0 (= 4/127), where A(x2 = 0, t = 0) = (H/B0)^2 (k/A0 - mu) is
+    1e-12, certainly > 0 in balls and exactly 0.0 in the float twin. The smallest A the direct search reports
+    (which, when <= 0, makes vdot_direct give up at any precision) comes from the ball there, as before the
+    twin: positive."""
+    from flint import arb
+    from rigor_gyro.core.balls import certainly_positive, working_precision
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    from rigor_gyro.kinds.lyapunov.direct_mu import direct_point_search
+    from rigor_gyro.kinds.lyapunov.float_twin import float_twin
+    from rigor_gyro.kinds.lyapunov.model import vdot_polar
+    from rigor_gyro.scene import load_scene, parse_scene
+    text = load_scene("agafonov2013").parameters
+    params = "\n".join(f'{k} = "{v}"' for k, v in text.items() if k != "mu")
+    g = validate(parse_scene(f'name = "edge"\nkind = "lyapunov"\nsource = "t"\n[parameters]\n{params}\n'
+                             f'mu = "0.031496062992125984"\n')).gimbal
+    with working_precision(64):
+        A, _ = vdot_polar(g, arb(0), arb(0))
+        assert certainly_positive(A) and float_twin(g).vdot_polar(0.0, 0.0)[0] == 0.0
+        assert direct_point_search(g)[3] > 0
