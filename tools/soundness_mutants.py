@@ -1075,6 +1075,9 @@ MUTANTS = [
     ("eig_slack_upper_side_dropped", "rigor_gyro/kinds/eigenfrequencies/model.py",
      "        s = (w - lo).min(hi - w)\n", "        s = w - lo\n",
      "a bracket's slack (guard-bit form shared by prover and checker) measured from the lower bound only"),
+    ("twin_small_A_trusted", "rigor_gyro/kinds/lyapunov/direct_mu.py",
+     "        if not A > TWIN_A_RELATIVE * (abs(c10) + abs(c20)):\n", "        if False:\n",
+     "the float twin's A near 0 taken for the smallest A seen: a rounding to 0.0 stops vdot_direct at any precision"),
     # issue 39: the paper's own chain and the two-reference classifier (group audit)
     ("audit_edit_distance_ignored", "rigor_gyro/core/digit_edits.py",
      "        return dist >= t and c >= k + 1\n", "        return c >= k + 1\n",
