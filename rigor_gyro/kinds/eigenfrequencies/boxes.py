@@ -39,6 +39,7 @@ monotone in each parameter), or ``hz_scale`` is given as an interval: ParameterE
 """
 from __future__ import annotations
 
+import functools
 from fractions import Fraction
 
 from flint import arb, arb_poly, fmpq
@@ -559,16 +560,11 @@ def _five_everywhere(model, box: Box) -> tuple[str, str] | None:
                       f"{end['a'][0]} > {end['b'][1]} >= b, b >= {end['b'][0]} > 1, eps >= {end['eps'][0]} > 0)")
 
 
+@functools.lru_cache(maxsize=1)
 def _five_identities_hold() -> tuple[bool, ...]:
     """The identities of :func:`.paper_steps.five_identities`, checked once per process."""
-    global _FIVE
-    if _FIVE is None:
-        from .paper_steps import five_identities
-        _FIVE = tuple(five_identities().values())
-    return _FIVE
-
-
-_FIVE: tuple[bool, ...] | None = None
+    from .paper_steps import five_identities
+    return tuple(five_identities().values())
 
 
 def _nu_bounds(p: Params, nus) -> tuple[str, str]:

@@ -313,8 +313,8 @@ def bracket_slack(j: int, exact: tuple, omega: arb) -> arb:
     of the working precision to the cancellation than the guard bits absorb. Raises NotReal as
     :func:`bracket` does."""
     with working_precision(ctx.prec + SLACK_GUARD_BITS):
-        w = refine_root(characteristic_quartic(*exact), omega)
-        lo, hi = bracket(j, Params(*(arb(x) for x in exact)), reading="intended")
+        w, P = _guarded(exact, omega)
+        lo, hi = bracket(j, P, reading="intended")
         s = (w - lo).min(hi - w)
     return +s                   # rounded to the working precision: 2^-p relative, none of it lost
 
@@ -324,9 +324,15 @@ def approx_rel_error(j: int, exact: tuple, omega: arb) -> arb:
     bits of :func:`bracket_slack` (the approximation agrees with omega_j to 2^-8 .. 2^-11: the same
     cancellation). Raises NotReal as :func:`approximation` does."""
     with working_precision(ctx.prec + SLACK_GUARD_BITS):
-        w = refine_root(characteristic_quartic(*exact), omega)
-        r = (approximation(j, Params(*(arb(x) for x in exact))) - w) / w
+        w, P = _guarded(exact, omega)
+        r = (approximation(j, P) - w) / w
     return +r
+
+
+def _guarded(exact: tuple, omega: arb) -> tuple[arb, Params]:
+    """omega_j refined on the exact quartic from the ball ``omega``, and the parameters' balls, both at the
+    (raised) working precision: the inputs of :func:`bracket_slack` and :func:`approx_rel_error`."""
+    return refine_root(characteristic_quartic(*exact), omega), Params(*(arb(x) for x in exact))
 
 
 # ----------------------------------------------------------------------------- approximations
