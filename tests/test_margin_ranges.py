@@ -17,7 +17,7 @@ from rigor_gyro.core.boxes import Box
 from rigor_gyro.margins import paving as mpaving, ranges as mranges
 from rigor_gyro.margins.paving import box_scene, pave
 from rigor_gyro.margins.ranges import summarise
-from rigor_gyro.margins.report import paving_json, render_paving, write_paving
+from rigor_gyro.margins.report import _render_ranges, paving_json, render_paving, write_paving
 from rigor_gyro.scene import parse_scene
 
 from .forgery import reseal
@@ -189,3 +189,67 @@ def test_the_checker_re_evaluates_the_range_tiles_on_the_executor_it_is_given(pa
     p.write_text(json.dumps(reseal(data)))
     bad = [r for r in check_file(p, executor=Recording()).results if not r.ok]
     assert any(r.item == "quantities" for r in bad)
+
+
+def _branch(key, unique, at_centre, centre, gradient):
+    return {"key": key, "unique_in": unique, "at_centre": at_centre, "centre": {"x": centre}, "gradient": {"x": gradient}}
+
+
+def _two_tiles(right_unique, right_gradient=("1", "2")):
+    """Two tiles of x in [0, 1] measuring an object chosen per tile (a ``branch``). Left: key 3/2 at its centre
+    1/4, gradient [1, 2], so over the common point x = 1/2 its key is in [7/4, 2]; its unique_in [1, 2]. Right: key
+    5/2 at 3/4 with ``right_gradient``, over x = 1/2 in [2, 9/4] for the default; its unique_in ``right_unique``.
+    Point values 1/2 at x = 1/4 and 5/2 at x = 3/4; gradients of certain sign."""
+    whole = Box.of({"x": (Fraction(0), Fraction(1))})
+    left, right = whole.split(whole)
+    lb = _branch(["1", "2"], ["1", "2"], ["3/2", "3/2"], "1/4", ["1", "2"])
+    rb = _branch(["3/2", "4"], right_unique, ["5/2", "5/2"], "3/4", list(right_gradient))
+
+    def v(lo, hi, branch):
+        return {"q": {"value": [lo, hi], "gradient": {"x": ["1", "2"]}, "branch": branch}}
+    tiles = [(left, v("0", "2", lb)), (right, v("1", "3", rb))]
+    points = [({"x": Fraction(1, 4)}, {"q": {"value": ["1/2", "1/2"], "gradient": {}}}),
+              ({"x": Fraction(3, 4)}, {"q": {"value": ["5/2", "5/2"], "gradient": {}}})]
+    (q,) = summarise(whole, {"q": QuantitySpec("q")}, tiles, points)
+    return q
+
+
+def test_tiles_whose_branches_agree_state_the_inner_range_and_the_sensitivities():
+    # the left key over x = 1/2, [7/4, 2], lies in the right's unique_in (its whole-tile enclosure [1, 2] does not)
+    q = _two_tiles(["7/4", "5"])
+    assert q["inner"] == {"lo": "0.5", "hi": "2.5"} and q["sensitivities"][0]["monotone"] == "increasing"
+    assert "branches" not in q
+
+
+def test_tiles_whose_branches_are_not_shown_to_agree_state_no_inner_range_and_no_sensitivities():
+    # two orbits may coexist on the common face (a fold between the centres): nothing joins the tiles
+    q = _two_tiles(["1.8", "5"])            # [7/4, 2] not inside [1.8, 5]; [2, 9/4] not inside [1, 2]
+    assert q["inner"] is None and "sensitivities" not in q and "no inner range" in q["branches"]
+    assert q["outer"] == {"lo": "0", "hi": "3"}          # the outer range still holds tile by tile
+    # the other direction suffices: with gradient [2, 4] the right key over x = 1/2 is [3/2, 2], inside [1, 2]
+    assert _two_tiles(["1.8", "5"], ("2", "4"))["inner"] is not None
+
+
+def test_branches_are_checked_on_every_touching_pair_only():
+    whole = Box.of({"x": (Fraction(0), Fraction(1))})
+    a, rest = whole.split(whole)
+    b, c = rest.split(whole)
+    near = lambda lo, hi: _branch([lo, hi], [lo, hi], [lo, lo], "1/2", ["0", "0"])
+    val = lambda br: {"value": ["0", "1"], "gradient": {}, "branch": br}    # one quantity's values on a tile
+    # a and c choose different objects, but do not touch: b agrees with both
+    b_branch = _branch(["1", "1"], ["0", "20"], ["1", "1"], "5/8", ["0", "0"])
+    assert mranges.one_branch([(a, val(near("1", "1"))), (b, val(b_branch)), (c, val(near("10", "10")))])
+    # a and b touch and do not agree
+    assert not mranges.one_branch([(a, val(near("10", "10"))), (b, val(near("1", "1"))), (c, val(near("1", "1")))])
+    # a tile whose object was not located (branch None) beside tiles that were: not joined
+    assert not mranges.one_branch([(a, val(near("1", "1"))), (b, val(None))])
+    # no branch anywhere: a function of the parameters
+    assert mranges.one_branch([(a, {"value": ["0", "1"], "gradient": {}}), (b, {"value": ["0", "1"], "gradient": {}})])
+
+
+def test_the_report_says_why_a_range_has_no_inner_part():
+    q = _two_tiles(["1.8", "5"])
+    lines = _render_ranges({"quantities": [q], "range_tiles": [{}, {}]})
+    row = next(x for x in lines if x.startswith("| q: q |"))
+    assert row.split("|")[4].strip() == "-"              # no inner range in the table
+    assert any(x.startswith("- q: ") and "no inner range" in x for x in lines)

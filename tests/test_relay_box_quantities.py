@@ -39,6 +39,14 @@ def test_box_quantities_hold_samples_of_a_half_percent_box():
         assert th.contains(arb(mp.nstr(t, 18))) and per.contains(arb(mp.nstr(2 * t, 18)))
         mods = [abs(z) for z in approx.approx_multipliers(_params(m, n=n), float(t))]
         assert mx.lower() < max(mods) < mx.upper() and margin.lower() < 1 - max(mods) < margin.upper()
+    # the branch: theta* about the centre by the mean value theorem, and theta* g's only root in unique_in
+    br = q["theta_star"].branch
+    assert all(q[k].branch is br for k in BOX_QUANTITIES) and list(br.centre) == ["n"] and br.centre["n"] == 50
+    assert br.unique_in.contains(br.key) and br.key.contains(br.at_centre)
+    for k in range(10):
+        n = lo + (hi - lo) * Fraction(k, 9)
+        t = _theta_mp(_params(m, n=n), float(th.lower()) - 1e-6, float(th.upper()) + 1e-6)
+        assert (br.at_centre + br.gradient["n"] * (arb(n.numerator) / n.denominator - 50)).contains(arb(mp.nstr(t, 18)))
 
 
 def test_box_quantities_tight_on_a_point_box():

@@ -16,8 +16,14 @@ margin is > 0. Its certified minimum over a box is the worst case an engineer de
 
 Guarantee: the caller (``rigor_gyro.margins.ranges``) turns these into statements over a box: the outer
 range is the union of the ``value`` balls over sub-boxes that tile the box; the inner range is spanned by
-values at two exact points of the box (continuity of q on the box is the kind's theorem where it states
-the quantity is enclosed on the whole box).
+values at two exact points of the box. That needs q to be one continuous function on the box: the kind's
+theorem where q is a function of the parameters (continuous where enclosed). Where q measures an object chosen
+per sub-box (the relay's orbit continued from each sub-box's centre), the kind gives each value a
+:class:`Branch`: a key that identifies the object (theta*), enclosed over the sub-box by a mean-value form about
+the sub-box's centre, and a ball U where, for every P of the sub-box, the object's key is the only candidate
+(theta*(P) the only root of g(., P) in U). Two touching sub-boxes measure the same object on their common part
+F when one's key over F lies inside the other's U; the caller states an inner range and tolerance effects only
+when every two touching sub-boxes are shown to agree (:func:`rigor_gyro.margins.ranges.one_branch`).
 
 Fails when: never here; this module only names the interface.
 """
@@ -27,7 +33,7 @@ from dataclasses import dataclass, field
 
 from flint import arb
 
-__all__ = ["QuantitySpec", "BoxValue"]
+__all__ = ["QuantitySpec", "BoxValue", "Branch"]
 
 
 @dataclass(frozen=True)
@@ -45,9 +51,25 @@ class QuantitySpec:
 
 
 @dataclass(frozen=True)
+class Branch:
+    """Which object a sub-box's values measure (module docstring): its key is in ``key`` for every P in the
+    sub-box, and key(P) - ``at_centre`` = sum_k dkey/dP_k (P_k - ``centre``[k]) with each dkey/dP_k in
+    ``gradient``[k] over the sub-box (the key depends on no other parameter); for every P in the sub-box no other
+    candidate object has its key in ``unique_in``."""
+
+    key: arb
+    centre: dict                    # {parameter: Fraction}, the sub-box's centre in the gradient's parameters
+    at_centre: arb
+    gradient: dict                  # {parameter: arb}
+    unique_in: arb
+
+
+@dataclass(frozen=True)
 class BoxValue:
     """A quantity's enclosure over a box: ``value`` contains q(P) for every P in the box; ``gradient`` (may be
-    empty) maps a box parameter k to a ball containing dq/dP_k for every P in the box."""
+    empty) maps a box parameter k to a ball containing dq/dP_k for every P in the box; ``branch`` for a quantity
+    of an object chosen per box (module docstring), None for a function of the parameters."""
 
     value: arb
     gradient: dict[str, arb] = field(default_factory=dict)
+    branch: Branch | None = None

@@ -7,9 +7,11 @@ The numbers an engineer designs with over a box (ibexopt style): for each quanti
   the kind's enclosures of q over sub-boxes (*tiles*) that are the leaves of a bisection tree of the box
   (so they cover it), each tile's ball containing q over the whole tile;
 * the **inner range** [a, b]: every value in [a, b] is taken by q somewhere in the box. a is an upper
-  bound of q at a certified point P_low and b a lower bound at P_high; q is continuous on the box (the
-  kind's theorem where it encloses q on every tile), so q takes every value between q(P_low) and
-  q(P_high). Given only when q was enclosed on every tile;
+  bound of q at a certified point P_low and b a lower bound at P_high; q is continuous on the box, so q
+  takes every value between q(P_low) and q(P_high). Given only when q was enclosed on every tile and the
+  tiles measure one object (:func:`one_branch`: a function of the parameters, or for an object each tile
+  chooses, such as the relay's orbit continued from the tile's centre, touching tiles shown to choose the
+  same one); otherwise the item says so under ``branches``;
 * for a **margin** (a quantity whose sign decides a claim) the **worst case**: min q >= L over the box,
   and q(P_low) <= a, so the minimum is known to within a - L (the gap, also relative to |a|);
 * **sensitivities**: for each box parameter k, a ball containing dq/dP_k over the box (the hull of the
@@ -96,7 +98,20 @@ def range_task(kind: str, points_json: str, options_json: str, mid_json: str, bo
                 continue
             grad = {k: g for k, g in ((k, _interval(b)) for k, b in sorted(bv.gradient.items())) if g is not None}
             out[q] = {"value": v, "gradient": grad}
+            if bv.branch is not None:
+                out[q]["branch"] = _branch_json(bv.branch)
     return out
+
+
+def _branch_json(b) -> dict[str, Any] | None:
+    """A :class:`~rigor_gyro.core.box_values.Branch` with exact rational ends as text; None (kept, so that the
+    tile is known to measure an object it chose) when a ball of it is not finite: such a tile joins no other."""
+    balls = [b.key, b.at_centre, b.unique_in, *b.gradient.values()]
+    if not all(x.is_finite() for x in balls):
+        return None
+    return {"key": _interval(b.key), "unique_in": _interval(b.unique_in), "at_centre": _interval(b.at_centre),
+            "centre": {k: fraction_text(v) for k, v in sorted(b.centre.items())},
+            "gradient": {k: _interval(g) for k, g in sorted(b.gradient.items())}}
 
 
 def _pair(v: list[str]) -> Interval:
@@ -206,6 +221,58 @@ def search_ranges(kind: str, whole: Box, frozen: tuple[str, ...], pj: str, oj: s
     return RangeSearch(tiles, points, evaluated, quantity_specs(kind, pj, oj, mj))
 
 
+def _common(a: Box, b: Box) -> Box | None:
+    """The intersection of two closed boxes over the same parameters, or None when they share no point."""
+    edges = tuple((n, max(alo, blo), min(ahi, bhi)) for (n, alo, ahi), (_, blo, bhi) in zip(a.edges, b.edges))
+    return Box(edges) if all(lo <= hi for _, lo, hi in edges) else None
+
+
+def _key_over(branch: dict[str, Any], part: Box) -> Interval:
+    """The branch's key over ``part`` (a part of its tile), exactly: at_centre + sum_k gradient_k (P_k - c_k)
+    in rational interval arithmetic (mean value theorem on the convex tile), intersected with the key's
+    enclosure over the whole tile."""
+    lo, hi = _pair(branch["at_centre"])
+    for k, g in branch["gradient"].items():
+        glo, ghi = _pair(g)
+        c = Fraction(branch["centre"][k])
+        plo, phi = part.interval(k)
+        ends = [x * (p - c) for x in (glo, ghi) for p in (plo, phi)]
+        lo, hi = lo + min(ends), hi + max(ends)
+    klo, khi = _pair(branch["key"])
+    return max(lo, klo), min(hi, khi)
+
+
+def one_branch(enclosed: list[tuple[Box, dict[str, Any]]]) -> bool:
+    """Whether the tiles' values of a quantity measure one object, so that the quantity is one function,
+    continuous on the box: true for a function of the parameters (no tile gives a ``branch``); for objects chosen
+    per tile, when every two touching tiles are shown to agree on their common part F: one's key over F
+    (:func:`_key_over`) lies inside the other's ``unique_in`` (exact rational comparisons). Why: for P in F the
+    first tile's key(P) is then a candidate in the second's unique_in, where the second tile's object is the only
+    one, so both measure the same object at P. The quantity, continuous on each closed tile and agreeing on every
+    overlap, is one continuous function on the union (pasting lemma). A tile without a branch (not located)
+    beside tiles with one: false."""
+    if not any("branch" in v for _, v in enclosed):
+        return True
+    branches = [v.get("branch") for _, v in enclosed]
+    if not all(branches):
+        return False
+    boxes = [b for b, _ in enclosed]
+
+    def inside(k: Interval, u: list[str]) -> bool:
+        ulo, uhi = _pair(u)
+        return ulo <= k[0] and k[1] <= uhi
+
+    for i in range(len(boxes)):
+        for j in range(i + 1, len(boxes)):
+            common = _common(boxes[i], boxes[j])
+            if common is None:
+                continue
+            if not (inside(_key_over(branches[i], common), branches[j]["unique_in"])
+                    or inside(_key_over(branches[j], common), branches[i]["unique_in"])):
+                return False
+    return True
+
+
 def _is_point(b: Box, frozen: tuple[str, ...]) -> bool:
     return all(lo == hi for n, lo, hi in b.edges if n not in frozen)
 
@@ -235,13 +302,17 @@ def summarise(whole: Box, specs: dict, tiles: list[tuple[Box, dict[str, Any]]],
         hi = max(_pair(v["value"])[1] for _, v in enclosed)
         l, h, _ = interval_text(lo, hi, DIGITS)
         item["outer"] = {"lo": l, "hi": h}
+        joined = one_branch(enclosed)
+        if not joined:
+            item["branches"] = ("the sub-boxes' objects are not shown to be one (some touching sub-boxes' branches "
+                                "not shown to agree): no inner range, no tolerance effects")
         pv = [(p, _pair(v[q]["value"])) for p, v in points if q in v]
         if pv:
             p_low, v_low = min(pv, key=lambda t: (t[1][1], sorted(t[0].items())))
             p_high, v_high = max(pv, key=lambda t: (t[1][0], [(-x) for _, x in sorted(t[0].items())]))
             item["points"] = {"low": {"point": _text(p_low), "value_at_most": interval_text(v_low[1], v_low[1], DIGITS)[1]},
                               "high": {"point": _text(p_high), "value_at_least": interval_text(v_high[0], v_high[0], DIGITS)[0]}}
-            if covered == 1 and v_low[1] <= v_high[0]:
+            if covered == 1 and v_low[1] <= v_high[0] and joined:
                 a, b = inward_interval_text(v_low[1], v_high[0], DIGITS)
                 item["inner"] = {"lo": a, "hi": b} if Fraction(a) <= Fraction(b) else None
             else:
@@ -257,7 +328,7 @@ def summarise(whole: Box, specs: dict, tiles: list[tuple[Box, dict[str, Any]]],
             gs = [_pair(v["gradient"][k]) for _, v in enclosed if k in v.get("gradient", {})]
             if len(gs) == len(enclosed):
                 grads[k] = (min(g[0] for g in gs), max(g[1] for g in gs))
-        if grads and covered == 1:
+        if grads and covered == 1 and joined:
             sens = []
             for k, (glo, ghi) in grads.items():
                 klo, khi = whole.interval(k)

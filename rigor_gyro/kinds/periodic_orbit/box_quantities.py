@@ -14,6 +14,13 @@ P, on the branch through the centre's root, genuine for every P. Quantities:
   shown to be this theta*(P));
 * ``stability_margin``: 1 - max_modulus, the margin of claim ``stable`` (> 0 where it holds).
 
+Each sub-box measures its own centre's orbit, so every value carries its :class:`~rigor_gyro.core.box_values.Branch`
+(theta* at the centre and its gradient over the sub-box, and the ball U where theta*(P) is g's only root for every P
+of the sub-box): touching sub-boxes measure one orbit where one's theta* over their common part lies in the
+other's U. Without that, two sub-boxes could follow two
+orbits that coexist on their common face (a fold between their centres), and the ranges layer states no inner
+range.
+
 Guarantee: each returned value ball contains the quantity for every parameter in the box; a quantity not
 certified on the box (the orbit not continued, its sign condition or multipliers not decided) is left
 out. Precision: the current working precision. Fails when: never raises for a box it cannot enclose.
@@ -24,7 +31,7 @@ import dataclasses
 
 from flint import acb, arb
 
-from ...core.box_values import BoxValue, QuantitySpec
+from ...core.box_values import BoxValue, Branch, QuantitySpec
 from ...core.boxes import Box
 from ...core.polyroots import isolate_polynomial
 from .box_orbit import box_directions, centre_orbits
@@ -71,13 +78,16 @@ def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
     if o.theta is None or not o.genuine:
         return {}
     grad = dict(zip(dirs, o.theta_gradient))
-    out = {"theta_star": BoxValue(o.theta, grad), "period": BoxValue(2 * o.theta, {k: 2 * g for k, g in grad.items()})}
+    # the orbit is the one whose theta* is g's only root in U; theta* about the centre by the mean value theorem
+    branch = Branch(o.theta, {k: mid[k] for k in dirs}, o.theta_c, grad, o.theta_unique_in)
+    out = {"theta_star": BoxValue(o.theta, grad, branch),
+           "period": BoxValue(2 * o.theta, {k: 2 * g for k, g in grad.items()}, branch)}
     m = o.max_modulus if o.max_modulus is not None and o.max_modulus.is_finite() else None
     if m is None and {"max_modulus", "stability_margin"} & set(names):
         balls = {k: box.ball(k) for k in dirs}
         got = modulus_on_similar_box(model, box, o.theta, lambda W: at_most_one_root(Pc, balls, dirs, guesses, W))
         m = None if got is None else got[0]
     if m is not None:
-        out["max_modulus"] = BoxValue(m)
-        out["stability_margin"] = BoxValue(1 - m)
+        out["max_modulus"] = BoxValue(m, branch=branch)
+        out["stability_margin"] = BoxValue(1 - m, branch=branch)
     return {k: v for k, v in out.items() if k in names}

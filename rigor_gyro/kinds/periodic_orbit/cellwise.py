@@ -72,7 +72,7 @@ def decide_by_cells(centre, box: dict[str, arb], dirs: list[str], guesses, out, 
         if res is None or not Theta.contains(res[0]):    # a finer cell narrows its root's enclosure
             return None, "split"
         o = OrbitOverBox(theta_c=tc)
-        o.theta, o.theta_gradient, th_c, th_n = res
+        o.theta, o.theta_gradient, th_c, th_n, o.theta_unique_in = res
         _decide(models, o, th_c, th_n, genuine, stability)
         if not o.genuine:
             return None, "split"

@@ -71,6 +71,7 @@ class OrbitOverBox:
 
     theta_c: arb
     theta: arb | None = None                  # theta*(P) for every P
+    theta_unique_in: arb | None = None        # g(., P) has no root but theta*(P) in this ball, for every P
     theta_method: str = ""                    # how theta*(P) was proved unique in ``theta``
     theta_gradient: list[arb] = field(default_factory=list)    # dtheta*/dP_k over the box, per direction
     genuine: bool = False
@@ -201,8 +202,9 @@ def _band(models: _Models, tc: arb, Gc: Jet, cells: int, make_models) -> arb | N
 
 
 def _theta_over_box(models: _Models, tc_ball: arb, cells: int = 1, make_models=None):
-    """((Theta, gradient, centre gradient, nested theta*), "") of theta*(P) over the box (step 1 of the module
-    docstring; second-order forms in (theta, P)), or (None, reason). With ``cells`` > 1 the gradient of G
+    """((Theta, gradient, centre gradient, nested theta*, U), "") of theta*(P) over the box (step 1 of the module
+    docstring; second-order forms in (theta, P)), or (None, reason). U contains Theta, and for every P of the
+    box theta*(P) is the only root of G(., P) in U (dG/dtheta excludes 0 on U x box). With ``cells`` > 1 the gradient of G
     over Theta x box is also enclosed as a union over that many cells (:mod:`.subbox_union`)."""
     tc = arb(tc_ball.mid())
     k = len(models.dirs)
@@ -244,6 +246,7 @@ def _theta_over_box(models: _Models, tc_ball: arb, cells: int = 1, make_models=N
         gth = grads[k]
         if not certainly_nonzero(gth):
             band = None
+        unique_in = Theta
     for _ in range(0 if band is not None else 24):
         Theta = arb(tc, r.upper())
         N, K, grads = images(Theta)
@@ -252,6 +255,7 @@ def _theta_over_box(models: _Models, tc_ball: arb, cells: int = 1, make_models=N
             return None, f"dG/dtheta = {_fmt(gth, 6)} may vanish on theta in {_fmt(Theta)} over the box"
         ok = [X for X in (N, K) if inside(X, Theta)]
         if ok:
+            unique_in = Theta
             # one unique root theta*(P) in Theta for every P (interval Newton, or Krawczyk's K inside Theta);
             # it lies in both images: contract while that narrows it
             N = ok[0].intersection(ok[-1])
@@ -311,7 +315,7 @@ def _theta_over_box(models: _Models, tc_ball: arb, cells: int = 1, make_models=N
         method = f"parametric interval Newton / Krawczyk on G = g K, G's derivatives as unions over {cells} cells"
     else:
         method = "parametric interval Newton on G = g K, second-order forms in (theta, P)"
-    return (Theta, grad, centre_theta, nested_theta), method
+    return (Theta, grad, centre_theta, nested_theta, unique_in), method
 
 
 def _with_value(j: Jet, enclosure: arb) -> Jet:
@@ -363,7 +367,7 @@ def continue_orbit(centre: RelayParams, box: dict[str, arb], dirs: list[str], gu
         out.problem = why
         out.slope_ratio = slope_ratio(models, tc)
         return out
-    out.theta, out.theta_gradient, th_c, th_n = res
+    out.theta, out.theta_gradient, th_c, th_n, out.theta_unique_in = res
     out.theta_method = why
     decide(models, out, th_c, th_n, genuine, stability)
     if (genuine or stability) and (not out.genuine or (stability and out.stable is not True)):
