@@ -253,3 +253,16 @@ def test_the_report_says_why_a_range_has_no_inner_part():
     row = next(x for x in lines if x.startswith("| q: q |"))
     assert row.split("|")[4].strip() == "-"              # no inner range in the table
     assert any(x.startswith("- q: ") and "no inner range" in x for x in lines)
+
+
+def test_a_branch_key_over_the_common_part_keeps_its_gradient_term():
+    """The left tile's key is 3/2 at its centre x = 1/4 and moves by [1, 2] per unit: at the common point x = 1/2 it
+    is in [7/4, 2], outside the right tile's unique_in [1.4, 1.6], though its centre value 3/2 is inside. The
+    right key there, 3/2, is outside the left's unique_in [1.7, 2.1]: the tiles are not shown to agree."""
+    whole = Box.of({"x": (Fraction(0), Fraction(1))})
+    left, right = whole.split(whole)
+    lb = _branch(["1", "2"], ["1.7", "2.1"], ["3/2", "3/2"], "1/4", ["1", "2"])
+    rb = _branch(["1.45", "1.55"], ["1.4", "1.6"], ["3/2", "3/2"], "3/4", ["0", "0"])
+    val = lambda br: {"value": ["0", "1"], "gradient": {}, "branch": br}
+    assert not mranges.one_branch([(left, val(lb)), (right, val(rb))])
+    assert mranges._key_over(lb, Box.of({"x": (Fraction(1, 2), Fraction(1, 2))})) == (Fraction(7, 4), Fraction(2))
