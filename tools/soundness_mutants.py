@@ -151,6 +151,8 @@ MUTANTS = [
      "orbit_genuine over a relay box proved although cells left over hold no cell proved genuine"),
     ("jets_hessian_dropped", "rigor_gyro/core/jets.py", "            out = out + _hessian(box, k, j) * dd / 2\n",
      "            pass\n", "the second-order form of a jet forgets its Lagrange remainder"),
+    ("quadrature_node_cache_kept", "rigor_gyro/core/quadrature.py", "    if _last_prec[0] != p:\n", "    if False:\n",
+     "a quadrature's radius depends on the process's history (Arb's node cache from another precision reused)"),
     ("certainly_lt_to_possibly", "rigor_gyro/core/balls.py", "    if x < y:\n        return -1",
      "    if not (x > y):\n        return -1", "a certainty predicate weakened to 'possibly' (compare / certainly_lt)"),
     ("certainly_le_to_possibly", "rigor_gyro/core/balls.py", "return bool(x.is_finite() and y.is_finite() and x <= y)",

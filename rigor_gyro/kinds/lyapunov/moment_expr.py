@@ -48,6 +48,7 @@ from typing import Mapping
 from flint import acb, arb, arb_series, fmpq
 
 from ...core.balls import current_precision, series_coefficients, series_length
+from ...core import quadrature
 from ...core.errors import ParameterError
 from ...core.expressions import UNARY_FUNCTIONS, Expr, compile_expr, derivative, evaluate_exact, parse, parity
 from .model import Dual
@@ -583,7 +584,7 @@ class ExpressionMoment(MomentLaw):
             s = t.sin()
             return t.cos() * fv / (A0c - C0c * s * s)
         try:
-            return acb.integral(integrand, 0, acb(x), eval_limit=EVAL_LIMIT + EVAL_LIMIT_PER_BIT * p).real
+            return quadrature.integral(integrand, 0, acb(x), eval_limit=EVAL_LIMIT + EVAL_LIMIT_PER_BIT * p).real
         finally:
             if budget is not None:
                 budget[0] -= count[0] * max(1, p // 64)

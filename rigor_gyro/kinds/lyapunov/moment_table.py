@@ -40,6 +40,7 @@ from typing import Mapping
 from flint import acb, arb, arb_series, fmpq
 
 from ...core.balls import certainly_le, current_precision, exact_endpoints, series_coefficients, working_precision
+from ...core import quadrature
 from ...core.errors import ParameterError
 from ...core.exact import Exact
 from ...core.expressions import evaluate_exact, parse
@@ -210,7 +211,7 @@ class SplineMoment(MomentLaw):
             u = t - bc
             sn = t.sin()
             return t.cos() * (cc[0] + u * (cc[1] + u * (cc[2] + u * cc[3]))) / (A0c - C0c * sn * sn)
-        return acb.integral(integrand, acb(lo), acb(hi)).real
+        return quadrature.integral(integrand, acb(lo), acb(hi)).real
 
     def _G_at_knots(self, A0, C0) -> list[arb]:
         """G at the knots 0 = x_0 < x_1 < ... < x_n (exact points), per precision and (A0, C0) balls."""

@@ -25,6 +25,7 @@ from fractions import Fraction
 
 from flint import acb, arb
 
+from ...core import quadrature
 from ...core.balls import certainly_lt, current_precision
 
 __all__ = ["MOMENTS", "MomentLaw", "SineMoment", "LinearMoment", "log1m_ratio", "log1m_tail", "moment_law"]
@@ -155,7 +156,7 @@ class LinearMoment(MomentLaw):
 
         def integrand(t, analytic):
             return ac * t * t.cos() / (A0c - C0c * t.sin() ** 2)
-        integral = acb.integral(integrand, 0, acb(x)).real
+        integral = quadrature.integral(integrand, 0, acb(x)).real
         return a * integral if small else integral
 
 
