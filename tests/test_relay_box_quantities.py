@@ -81,3 +81,41 @@ def test_the_stability_margins_lower_bound_is_below_a_float_optimisers_minimum()
                for x0 in ([(a + b) / 2 for a, b in bounds], [a for a, _ in bounds], [b for _, b in bounds]))
     assert lower <= best
     assert best - lower <= 0.002, (lower, best)       # measured: 0.04289 against 0.04315
+
+
+def test_touching_sub_boxes_of_a_two_parameter_box_are_shown_to_follow_one_orbit():
+    """H and n at +-1 %, cut in two along H: each half's theta* enclosure sits at an end of its range where they
+    meet, so its branch needs a uniqueness ball wider than the enclosure (the band step leaves them equal);
+    with it the ranges layer joins the halves (an inner range is stated)."""
+    from rigor_gyro.margins.ranges import one_branch
+    m = validate(load_scene("roitenberg1947"))
+    whole = Box.of({"H": (Fraction(99), Fraction(101)), "n": (Fraction(495, 10), Fraction(505, 10))})
+    tiles = []
+    with working_precision(128):
+        for half in whole.split(whole):
+            br = quantities_box(m, half, ["theta_star"])["theta_star"].branch
+            assert br.unique_in.contains(br.key) and br.unique_in.rad() > br.key.rad()
+            tiles.append((half, {"branch": _branch_text(br)}))
+    assert one_branch(tiles)
+
+
+def _branch_text(br):
+    from rigor_gyro.margins.ranges import _branch_json
+    return _branch_json(br)
+
+
+def test_the_uniqueness_ball_is_widened_only_where_dg_dtheta_is_shown_nonzero(monkeypatch):
+    """Where at_most_one_root does not show dG/dtheta != 0 on the wider ball, U stays the continuation's own."""
+    from rigor_gyro.kinds.periodic_orbit import box_quantities as bq
+    m = validate(load_scene("roitenberg1947"))
+    box = Box.of({"H": (Fraction(995, 10), Fraction(1005, 10))})
+    tried = []
+
+    def never(Pc, balls, dirs, guesses, W):
+        tried.append(W)
+        return False
+    monkeypatch.setattr(bq, "at_most_one_root", never)
+    with working_precision(128):
+        br = bq.quantities_box(m, box, ["theta_star"])["theta_star"].branch
+    assert len(tried) == len(bq.UNIQUE_WIDENING) and all(W.rad() > br.unique_in.rad() for W in tried)
+    assert br.unique_in.rad() <= 2 * br.key.rad()       # not widened: the continuation's U (about the enclosure)

@@ -23,7 +23,9 @@ per sub-box (the relay's orbit continued from each sub-box's centre), the kind g
 the sub-box's centre, and a ball U where, for every P of the sub-box, the object's key is the only candidate
 (theta*(P) the only root of g(., P) in U). Two touching sub-boxes measure the same object on their common part
 F when one's key over F lies inside the other's U; the caller states an inner range and tolerance effects only
-when every two touching sub-boxes are shown to agree (:func:`rigor_gyro.margins.ranges.one_branch`).
+when every two touching sub-boxes are shown to agree (:func:`rigor_gyro.margins.ranges.one_branch`). Such a
+kind's value at a point (a box of zero width) must measure the object every sub-box holding the point measures
+(the relay: the point's only orbit, every other root of (0, oo) certified spurious).
 
 Fails when: never here; this module only names the interface.
 """

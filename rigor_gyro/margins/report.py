@@ -226,7 +226,7 @@ def _render_ranges(data: dict[str, Any]) -> list[str]:
             out.append(f"- {it['id']}: {it['branches']}.")
             out.append("")
     out.append(f"Ranges from {len(data['range_tiles'])} sub-boxes tiling the box (each enclosure contains the quantity over "
-               "its whole sub-box) and certified values at sub-box midpoints; a tolerance's effect is at most the largest "
+               "its whole sub-box) and certified values at sub-box midpoints and corners; a tolerance's effect is at most the largest "
                "|dq/dk| over the box times k's half-width (monotone: the derivative's sign is certain on the whole box).")
     out.append("")
     return out

@@ -55,6 +55,26 @@ def _q(x):
     return fmpq(x.numerator, x.denominator)
 
 
+#: the widths (in theta*'s radii about its midpoint) tried for the branch's uniqueness ball, widest first
+UNIQUE_WIDENING = (4, 2)
+
+
+def _wider_unique(o, Pc, balls: dict, dirs: list[str], guesses: list) -> arb:
+    """A ball where theta*(P) is g's only root for every P of the box, as wide as shown: the continuation's own U
+    (which the band step leaves equal to theta*'s enclosure) or theta*'s enclosure widened UNIQUE_WIDENING times
+    where dG/dtheta certainly excludes 0 on it (:func:`.continuation.at_most_one_root`). Touching sub-boxes meet
+    where each one's theta* is at an end of its range, so each needs room beyond its own enclosure for the
+    other's theta* over the common face (:func:`rigor_gyro.margins.ranges.one_branch`). A point box: U as is."""
+    U = o.theta_unique_in
+    if not dirs:
+        return U
+    for f in UNIQUE_WIDENING:
+        W = arb(o.theta.mid(), f * o.theta.rad()).union(U)
+        if at_most_one_root(Pc, balls, dirs, guesses, W):
+            return W
+    return U
+
+
 def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
     """{quantity: BoxValue} for the requested names it can enclose on the box (module docstring)."""
     names = [k for k in names if k in BOX_QUANTITIES]
@@ -70,21 +90,23 @@ def quantities_box(model, box: Box, names) -> dict[str, BoxValue]:
     if getattr(model, "orbit", None) is not None:
         return {}           # a tracked orbit's nearness is not certified over a box (box_orbit.continued_outcomes)
     an, orbits = centre_orbits(centre, want_stable=False)
-    if len(orbits) != 1 or sum(v.kind != "spurious" for v in an.roots) != 1:
-        return {}           # the orbit must be the centre's only one, so that every sub-box measures the same
+    if len(orbits) != 1 or sum(v.kind != "spurious" for v in an.roots) != 1 or an.unknown or not an.covers_all:
+        # the orbit must be the centre's only one (every root of (0, oo) found and every other one certified
+        # spurious): a point's value then measures the orbit every sub-box holding the point follows
+        return {}
     dirs = box_directions(box)
     guesses = [acb(r) for r in iso.real] + [z for z in iso.nonreal if z.imag > 0]
-    o = continue_orbit(Pc, {k: box.ball(k) for k in dirs}, dirs, guesses, orbits[0].theta)
+    balls = {k: box.ball(k) for k in dirs}
+    o = continue_orbit(Pc, balls, dirs, guesses, orbits[0].theta)
     if o.theta is None or not o.genuine:
         return {}
     grad = dict(zip(dirs, o.theta_gradient))
     # the orbit is the one whose theta* is g's only root in U; theta* about the centre by the mean value theorem
-    branch = Branch(o.theta, {k: mid[k] for k in dirs}, o.theta_c, grad, o.theta_unique_in)
+    branch = Branch(o.theta, {k: mid[k] for k in dirs}, o.theta_c, grad, _wider_unique(o, Pc, balls, dirs, guesses))
     out = {"theta_star": BoxValue(o.theta, grad, branch),
            "period": BoxValue(2 * o.theta, {k: 2 * g for k, g in grad.items()}, branch)}
     m = o.max_modulus if o.max_modulus is not None and o.max_modulus.is_finite() else None
     if m is None and {"max_modulus", "stability_margin"} & set(names):
-        balls = {k: box.ball(k) for k in dirs}
         got = modulus_on_similar_box(model, box, o.theta, lambda W: at_most_one_root(Pc, balls, dirs, guesses, W))
         m = None if got is None else got[0]
     if m is not None:
