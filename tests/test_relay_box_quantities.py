@@ -119,3 +119,16 @@ def test_the_uniqueness_ball_is_widened_only_where_dg_dtheta_is_shown_nonzero(mo
         br = bq.quantities_box(m, box, ["theta_star"])["theta_star"].branch
     assert len(tried) == len(bq.UNIQUE_WIDENING) and all(W.rad() > br.unique_in.rad() for W in tried)
     assert br.unique_in.rad() <= 2 * br.key.rad()       # not widened: the continuation's U (about the enclosure)
+
+
+def test_a_point_whose_root_search_stops_at_t_max_measures_nothing():
+    """With T_max = 0.3 s (below the tail bound 0.73 s) the equation is searched on (0, 0.3] only: an orbit beyond it
+    is not excluded, so the one genuine orbit found need not be the one the sub-boxes around the point follow."""
+    import dataclasses
+    scene = load_scene("roitenberg1947")
+    full = validate(scene)
+    cut = validate(dataclasses.replace(scene, options={**scene.options, "T_max": "0.3"}))
+    point = Box.of({"n": (Fraction(50), Fraction(50))})
+    with working_precision(128):
+        assert "theta_star" in quantities_box(full, point, ["theta_star"])
+        assert quantities_box(cut, point, ["theta_star"]) == {}
