@@ -259,7 +259,8 @@ def test_the_report_states_what_the_paving_holds_answer_first(make):
         else:
             assert not mid
     settings = next(ln for ln in lines if ln.startswith("Settings:"))
-    assert f"{data['boxes_evaluated']} boxes evaluated in {data['levels']} levels." in settings
+    n, lv = data["boxes_evaluated"], data["levels"]
+    assert f"{n} {'box' if n == 1 else 'boxes'} evaluated in {lv} {'level' if lv == 1 else 'levels'}." in settings
     assert "budget was exhausted" not in settings
 
 

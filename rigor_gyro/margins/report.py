@@ -154,8 +154,8 @@ def render_paving(data: dict[str, Any]) -> str:
                    "module says why, and decides each sub-box at its lower end there).")
         out.append("")
     out.append(f"Settings: box_resolution {s['box_resolution']} of each edge, max_boxes {s['max_boxes']}, box "
-               f"evaluations at {s['box_prec']} bits; {data['boxes_evaluated']} boxes evaluated in "
-               f"{data['levels']} levels" + (f"; stopped: {data['stopped']}, {_pending_text(data)} and no point "
+               f"evaluations at {s['box_prec']} bits; {_count(data['boxes_evaluated'], 'box', 'boxes')} evaluated in "
+               f"{_count(data['levels'], 'level', 'levels')}" + (f"; stopped: {data['stopped']}, {_pending_text(data)} and no point "
                                       "proof run" if data.get("stopped") else "; the box budget was exhausted"
                                       if data["budget_exhausted"] else "") + "."
                + (f" Boxes evaluated {s['priority']} first." if s.get("priority") else ""))
@@ -170,6 +170,10 @@ def render_paving(data: dict[str, Any]) -> str:
                f"(schema `{data['schema']}`).")
     out.append("")
     return "\n".join(out)
+
+
+def _count(n: int, one: str, many: str) -> str:
+    return f"{n} {one if n == 1 else many}"
 
 
 def _pending_text(data: dict[str, Any]) -> str:
