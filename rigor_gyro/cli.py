@@ -541,7 +541,7 @@ def _pave(bs, executor, args, state=None) -> int:
             _say(f"{bs.scene.name}: {c.id}: {c.status} over the box (volume proved {float(v['proved']):.4g}, "
                  f"refuted {float(v['refuted']):.4g}, undecided {float(v['undecided']):.4g})")
     _say(f"{bs.scene.name}: verdict {paving.verdict} over the box in {seconds_text(paving.seconds)} "
-         f"({paving.evaluated} boxes, {executor.label}) -> {jpath}, {mpath}")
+         f"({paving.evaluated} {'box' if paving.evaluated == 1 else 'boxes'}, {executor.label}) -> {jpath}, {mpath}")
     if paving.stopped:
         pending = sum(len(g.boxes) for g in paving.pending)
         _say(f"{bs.scene.name}: stopped: {paving.stopped}" + (f"; {pending} sub-boxes pending: `rigor-gyro prove "
