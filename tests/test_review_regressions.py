@@ -511,3 +511,11 @@ def test_9_a_margin_decided_only_at_256_bits_is_not_given_up_at_128():
     are refined to the working precision and the prover waits for two doublings without progress."""
     cert = prove_scene(_rudenko("tight", a="120.392", b="1.00000001", eps="4.46363e-11", Omega2="3.25847e+09"))
     assert cert.verdict is Status.PROVED and 256 in cert.precisions_tried
+
+
+def test_a_relay_start_beyond_floats_is_inconclusive_not_an_internal_error():
+    """H = 1e-300 (fuzzing, session 9): -b/a ~ 1e600 overflowed the float that picks the tail ladder's start
+    (OverflowError, exit 4). The tail bound cannot be certified below the cap there: inconclusive."""
+    cert = prove_scene(_relay("tiny_h", H="1e-300"), maxprec=128)
+    hp = next(c for c in cert.claims if c.id == "half_period")
+    assert hp.status is Status.INCONCLUSIVE and "tail bound" in hp.reason

@@ -388,7 +388,10 @@ def _tail_point(sp: Spectrum) -> arb | None:
     """A T with g(theta) > 0 certified for every theta >= T (T from a geometric ladder)."""
     a, b = sp.a, sp.b
     fastest = max((float(abs(m.lam).mid()) for m in sp.modes))  # floats pick a start only
-    s0 = max(float((-b / a).mid()) if certainly_negative(b) else 0.0, 1.0 / (int(fastest) + 1))
+    ratio = float((-b / a).mid()) if certainly_negative(b) else 0.0
+    if not (math.isfinite(fastest) and math.isfinite(ratio)):
+        return None         # a start beyond floats (e.g. H = 1e-300: -b/a ~ 1e600): no ladder can be climbed
+    s0 = max(ratio, 1.0 / (int(fastest) + 1))
     # exact dyadic rungs, the same at every precision (a later attempt then searches the same range)
     start = _dyadic_up(Fraction(s0))
     cap = _slowest_scale(sp) * TAIL_CAP_FACTOR
