@@ -350,3 +350,25 @@ def test_the_claim_hooks_for_the_lead():
     assert list(available_claims(two_dof("3"))[0]) == ["roots", "stability"]
     assert statements(validate(sys_scene)) == SYSTEM_CLAIMS and statements(validate(load_scene("rudenko1976"))) == CLAIMS
     assert box_claims(validate(sys_scene)) == SYSTEM_BOX_CLAIMS and box_claims(validate(load_scene("rudenko1976"))) == BOX_CLAIMS
+
+
+@pytest.mark.parametrize("scene", [
+    system([["1", "0"], ["0", "2"]], [["1", "0"], ["0", "-3"]], G=[["0", "1"], ["-1", "0"]]),    # det M = 2
+    system([["-1"]], [["4"]]),                                                                   # one degree
+    system([["1", "0"], ["0", "1"]], [["-1", "0"], ["0", "-1"]], G=[["0", "1"], ["-1", "0"]])], # flutter, monic
+    ids=["det_M_2", "one_dof", "flutter"])
+def test_a_refutation_with_a_non_monic_characteristic_polynomial_is_confirmed(scene):
+    """Fuzzing (session 9): the certificate states the frequency polynomial monic; the checker compared its own
+    unnormalised one (det M != 1, or an odd number of degrees of freedom), and fitted the stored root boxes,
+    refined beyond the certificate's precision, with roots at that precision only: every such refutation failed
+    its check."""
+    data = proved(scene)
+    assert data["verdict"] == "refuted" and confirmed(data)
+    ce = next(c["counterexample"] for c in data["claims"] if c["status"] == "refuted")
+    assert Fraction(ce["frequency_polynomial"][-1]) == 1
+    bad = copy.deepcopy(data)
+    for c in bad["claims"]:
+        for r in (c.get("counterexample") or {}).get("negative_roots", []):
+            r[0], r[1] = "-1000.5", "-1000.25"            # a box holding no root
+    if bad != data:
+        assert not confirmed(refix(bad))

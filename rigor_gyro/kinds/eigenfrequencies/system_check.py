@@ -25,7 +25,7 @@ from fractions import Fraction
 from flint import arb, fmpq_poly
 
 from ...check import CheckResult
-from ...core.balls import ball, certainly_gt, certainly_le, current_precision
+from ...core.balls import ball, certainly_gt, certainly_le, current_precision, working_precision
 from ...core.polymat import det_by_expansion
 from ...core.polyroots import series_function
 from ...core.roots import RootStatus, newton_root
@@ -88,7 +88,8 @@ def frequency_data(model: SystemModel) -> tuple[fmpq_poly, int, list[int], fmpq_
         return P, mu, odd, None
     even = c[mu::2]
     Q = fmpq_poly([x if k % 2 == 0 else -x for k, x in enumerate(even)])
-    return P, mu, odd, Q
+    # monic, as the certificate states it (the prover divides by the leading coefficient, det M up to sign)
+    return P, mu, odd, Q / Q.leading_coefficient()
 
 
 def check_system(model: SystemModel, data: dict) -> list[CheckResult]:
@@ -216,6 +217,25 @@ def _box_holds_root(box: dict, roots: list) -> bool:
     return False
 
 
+#: the highest precision at which the checker computes a polynomial's roots to fit them in stored boxes
+ROOT_BOX_MAXPREC = 8192
+
+
+def _boxes_hold_roots(poly, boxes: list) -> bool:
+    """Whether each stored box certainly holds a root of ``poly`` (exact): Arb's roots at the checker's precision,
+    doubled (up to ROOT_BOX_MAXPREC) while a box is narrower than they are (the prover may store boxes refined
+    beyond the certificate's precision)."""
+    p = current_precision()
+    while True:
+        with working_precision(p):
+            roots = [z for z, _ in poly.complex_roots()]
+            if all(_box_holds_root(b, roots) for b in boxes):
+                return True
+        if 2 * p > ROOT_BOX_MAXPREC:
+            return False
+        p *= 2
+
+
 def counterexample_ok(ce: dict, P, mu: int, odd: list[int], Q, zero_roots: int) -> tuple[bool, str]:
     """A refuted claim's stored counterexample re-derived: its exact parts (the characteristic and frequency
     polynomials' coefficients, the zero-root multiplicity, the odd terms) equal to the checker's own (Laplace
@@ -237,17 +257,15 @@ def counterexample_ok(ce: dict, P, mu: int, odd: list[int], Q, zero_roots: int) 
     if "nonreal_roots" in ce or "negative_roots" in ce:
         if Q is None:
             return False, "roots of the frequency polynomial stored, but P is not lambda^z times an even polynomial"
-        roots = [z for z, _ in Q.complex_roots()]
         boxes = list(ce.get("nonreal_roots", [])) + [{"re": r, "im": ["0", "0"]} for r in ce.get("negative_roots", [])]
-        if not all(_box_holds_root(b, roots) for b in boxes):
+        if not _boxes_hold_roots(Q, boxes):
             return False, "a stored root box of the frequency polynomial holds none of its roots"
         if not all(interval(b["im"])[0] > 0 or interval(b["im"])[1] < 0 for b in ce.get("nonreal_roots", [])):
             return False, "a stored non-real root box does not exclude the real axis"
         if not all(interval(r)[1] < 0 for r in ce.get("negative_roots", [])):
             return False, "a stored negative root interval is not below 0"
     if "offaxis_roots" in ce:
-        roots = [z for z, _ in fmpq_poly(c[mu:]).complex_roots()]
-        if not all(_box_holds_root(b, roots) for b in ce["offaxis_roots"]):
+        if not _boxes_hold_roots(fmpq_poly(c[mu:]), ce["offaxis_roots"]):
             return False, "a stored off-axis root box holds none of the roots of P / lambda^z"
         if not all(interval(b["re"])[0] > 0 or interval(b["re"])[1] < 0 for b in ce["offaxis_roots"]):
             return False, "a stored off-axis root box does not exclude the imaginary axis"
