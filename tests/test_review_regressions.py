@@ -519,3 +519,19 @@ def test_a_relay_start_beyond_floats_is_inconclusive_not_an_internal_error():
     cert = prove_scene(_relay("tiny_h", H="1e-300"), maxprec=128)
     hp = next(c for c in cert.claims if c.id == "half_period")
     assert hp.status is Status.INCONCLUSIVE and "tail bound" in hp.reason
+
+
+def test_closed_form_radii_at_k_equal_to_mu_a0_are_finite():
+    """k = mu A0 exactly (fuzzing, session 9): k/A0 - mu is a ball centred at 0, and python-flint's ``** 2`` of
+    such a ball is nan; the checker's recomputed R1 was nan and rejected the prover's certificate."""
+    from flint import arb
+    from rigor_gyro.core.balls import square
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    from rigor_gyro.kinds.lyapunov.model import closed_form_constants
+    scene = load_scene("agafonov2013")
+    g = validate(dataclasses.replace(scene, parameters=dict(scene.parameters, k="0.254"))).gimbal   # mu A0 = 0.254
+    with working_precision(128):
+        out = closed_form_constants(g, arb(1), arb(2))
+        assert out["R1"].is_finite() and out["R1"].contains(0)
+        z = arb(0, 1e-10)
+        assert square(z).is_finite() and square(z).contains(0)

@@ -41,7 +41,7 @@ from fractions import Fraction
 
 from flint import arb, ctx as _ctx, fmpq
 
-from ...core.balls import (certainly_gt, certainly_le, certainly_lt, certainly_negative, certainly_positive, current_precision, decimal_bounds,
+from ...core.balls import (certainly_gt, square, certainly_le, certainly_lt, certainly_negative, certainly_positive, current_precision, decimal_bounds,
                            exact_fraction, sqrt_of_nonnegative)
 from ...core.boxes import even_in
 from ...core.exact import Exact
@@ -452,7 +452,7 @@ class Gimbal:
             top = abs(x2).upper()
             y = arb(0).union(top)
             g = y.cos() * self.law.f_over_x(c.a, y) / self.D(y)
-            return fx ** 2 / (self.D(x2) * g)
+            return square(fx) / (self.D(x2) * g)
         return self.f(x2) ** 2 / (2 * self.D(x2) * self.G(x2))
 
     def _q_away(self, x2):
@@ -480,7 +480,7 @@ class Gimbal:
     @_per_ball
     def phi(self, x2: arb) -> arb:
         """phi = min over (x1, x3) of V at fixed x2 = mu F - f3^2/(2 S)."""
-        return self.c.mu * self.F(x2) - self.f3(x2) ** 2 / (2 * self.S(x2))
+        return self.c.mu * self.F(x2) - square(self.f3(x2)) / (2 * self.S(x2))
 
     def phi_minimiser(self, x2: arb) -> tuple[arb, arb]:
         """(x1, x3) where V(., x2, .) attains phi(x2): x3 = -f3/S, x1 = -mu x3 B0/(H cos x2)."""
@@ -774,11 +774,11 @@ def closed_form_constants(g: Gimbal, m: arb, M: arb) -> dict[str, arb]:
     out = {"A0": A0, "B0": B0, "C0": C0, "m": m, "M": M, "A0_m_over_cos2": pA, "p": p,
            "k_min": p * A0 / H, "mu_min": p / H, "mu_max": k / A0}
     Ds = A0 - C0 * s ** 2
-    D1 = 108 * A0 * (A0 - C0) * H ** 4 * cs ** 4 * (k / A0 - mu) ** 2
-    D2 = 16 * mu ** 2 * A0 * (A0 - C0) * H ** 2 * C0 ** 2 + 27 * (mu * k * B0 * C0 + (A0 - C0) * H ** 2) ** 2
+    D1 = 108 * A0 * (A0 - C0) * H ** 4 * cs ** 4 * square(k / A0 - mu)
+    D2 = 16 * mu ** 2 * A0 * (A0 - C0) * H ** 2 * C0 ** 2 + 27 * square(mu * k * B0 * C0 + (A0 - C0) * H ** 2)
     P = A0 - C0 - C0 * cs ** 2
-    E1 = 4 * H ** 2 * (mu * H * cs ** 2 - m * A0) ** 2 * Ds ** 4
-    E2 = A0 ** 2 * (4 * mu ** 2 * H ** 2 * P ** 2 * Ds ** 2 * s ** 2 + (mu * k * B0 * C0 - (A0 - C0) * H ** 2) ** 2)
+    E1 = 4 * H ** 2 * square(mu * H * cs ** 2 - m * A0) * Ds ** 4
+    E2 = A0 ** 2 * (4 * mu ** 2 * H ** 2 * square(P) * Ds ** 2 * s ** 2 + square(mu * k * B0 * C0 - (A0 - C0) * H ** 2))
     # D1, E1 are squares times positive factors and D2, E2 sums of squares: >= 0 exactly
     R1, R2 = sqrt_of_nonnegative(D1 / D2), sqrt_of_nonnegative(E1 / E2)
     out.update({"R1": R1, "R2": R2, "R": R1.min(R2), "R2_base": mu * H * cs ** 2 - m * A0})
