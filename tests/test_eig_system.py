@@ -372,3 +372,17 @@ def test_a_refutation_with_a_non_monic_characteristic_polynomial_is_confirmed(sc
             r[0], r[1] = "-1000.5", "-1000.25"            # a box holding no root
     if bad != data:
         assert not confirmed(refix(bad))
+
+
+def test_a_stored_root_box_must_hold_a_root_of_the_checkers_polynomial():
+    """counterexample_ok on the det M = 2 system (Q = omega^2 - 3/2): the stored negative root box around
+    -sqrt(3/2) at 260 bits holds a root (found at doubled precisions); a box beside it does not."""
+    from rigor_gyro.kinds.eigenfrequencies.system_check import counterexample_ok, frequency_data
+    data = proved(system([["1", "0"], ["0", "2"]], [["1", "0"], ["0", "-3"]], G=[["0", "1"], ["-1", "0"]]))
+    ce = next(c["counterexample"] for c in data["claims"] if c["status"] == "refuted")
+    model = validate(Scene.from_header(data["scene"]))
+    with working_precision(128):
+        P, mu, odd, Q = frequency_data(model)
+        assert counterexample_ok(ce, P, mu, odd, Q, model.zero_roots)[0]
+        moved = dict(ce, negative_roots=[["-1.2", "-1.1"]])
+        assert not counterexample_ok(moved, P, mu, odd, Q, model.zero_roots)[0]
