@@ -535,3 +535,25 @@ def test_closed_form_radii_at_k_equal_to_mu_a0_are_finite():
         assert out["R1"].is_finite() and out["R1"].contains(0)
         z = arb(0, 1e-10)
         assert square(z).is_finite() and square(z).contains(0)
+
+
+def test_an_inconclusive_best_mu_states_no_quantity_its_checker_cannot_confirm(monkeypatch):
+    """max_pieces = 1 (fuzzing, session 9): best_mu stored mu_best and R_sup_at_mu_best, then R_max was not
+    re-certified and the claim ended inconclusive; the checker verifies those only from a proved best_mu, so it
+    rejected the certificate. Here R_max's re-certification is made to fail."""
+    from rigor_gyro.check import check_certificate
+    from rigor_gyro.kinds.lyapunov import claims as lyap
+    real = lyap._vdot_claim
+
+    def failing(ctx, R, how, cid="vdot_nonpositive"):
+        claim, info = real(ctx, R, how, cid)
+        if how.startswith("at mu = mu_best"):
+            claim = dataclasses.replace(claim, status=Status.INCONCLUSIVE, reason="made to fail")
+        return claim, info
+    monkeypatch.setattr(lyap, "_vdot_claim", failing)
+    scene = dataclasses.replace(load_scene("agafonov2013"), claims_only=["constants", "best_mu"])
+    data = prove_scene(scene, maxprec=64).to_json()          # one attempt: precision cannot help here
+    best = next(c for c in data["claims"] if c["id"] == "best_mu")
+    assert best["status"] == "inconclusive" and "mu_best" not in data["quantities"]
+    assert "R_sup_at_mu_best" not in data["quantities"]
+    assert check_certificate(data).ok

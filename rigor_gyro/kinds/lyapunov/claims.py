@@ -447,6 +447,13 @@ class _Direct:
     up_text: str = ""
 
 
+def _unstate(quantities: dict, *names: str) -> None:
+    """Drop the quantities an inconclusive claim had stored: the checker verifies them only from a proved claim's
+    witnesses, and a certificate states nothing its checker cannot confirm."""
+    for n in names:
+        quantities.pop(n, None)
+
+
 def _certify_direct(g: Gimbal, max_pieces: int, cap: float | None = None) -> _Direct:
     """Search the supremum radius of the direct test at g's mu, certify A - R |B| > 0 a little below it
     (DIRECT_MARGINS) and a point a little above it where Vdot > 0. ``cap``: a known upper bound of the
@@ -1091,6 +1098,7 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
         if claim.status is Status.PROVED:
             break
     if claim.status is not Status.PROVED:
+        _unstate(quantities, "mu_best", "R_sup_at_mu_best")
         return _claim("best_mu", Status.INCONCLUSIVE, f"R_max could not be re-certified: {claim.reason}",
                       decides=claim.decides)
     quantities["R_max"] = _searched(R_max)
@@ -1104,6 +1112,7 @@ def _best_mu(ctx: _Ctx, quantities: dict[str, arb]) -> Claim:
                                 "r_sup_point": ball_text(e.argpoint), "mu_pieces": pieces_text(u_cover),
                                 "x2_points": [ball_text(x) for x in u_points]}
     if not (U.is_finite() and certainly_le(_q(R_max), U)):
+        _unstate(quantities, "mu_best", "R_sup_at_mu_best", "R_max")
         return _claim("best_mu", Status.INCONCLUSIVE, f"no finite upper bound of sup R_sup over (16): {_fmt(U)}",
                       decides=U)
     # stored as its 15-digit decimal rounded up: a re-derivation on the same pieces at another precision
