@@ -557,3 +557,13 @@ def test_an_inconclusive_best_mu_states_no_quantity_its_checker_cannot_confirm(m
     assert best["status"] == "inconclusive" and "mu_best" not in data["quantities"]
     assert "R_sup_at_mu_best" not in data["quantities"]
     assert check_certificate(data).ok
+
+
+def test_a_stored_nan_states_nothing_and_never_stands_for_a_required_quantity():
+    """f = 0 (fuzzing, session 9): M = max f^2/(2 D G) is 0/0, stored nan; the checker rejected the certificate
+    for a bound it stated nothing about. A nan or infinite stored interval now states nothing; a proved claim
+    still needs every quantity its statement names finite."""
+    from rigor_gyro.kinds.lyapunov.check import _states_nothing
+    assert _states_nothing({"lo": "nan", "hi": "nan", "mid": "nan", "rad": "inf"})
+    assert _states_nothing({"lo": "-inf", "hi": "2"}) and _states_nothing({"lo": "1", "hi": "+inf"})
+    assert not _states_nothing({"lo": "0", "hi": "0"}) and not _states_nothing({"lo": "-1e-5", "hi": "2.5"})

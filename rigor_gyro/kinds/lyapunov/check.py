@@ -322,6 +322,9 @@ def check(model, data: dict) -> list[CheckResult]:
     def contains(name: str, x: arb) -> bool:
         if name not in q:
             return True
+        if _states_nothing(q[name]):
+            verified.add(name)      # a stored nan or inf states nothing (a proved claim needs it finite: REQUIRED)
+            return True
         ok = encloses(stored_interval(q[name]), x)
         if ok:
             verified.add(name)
@@ -392,7 +395,7 @@ def check(model, data: dict) -> list[CheckResult]:
             m = m_at.union(_max_upper(lambda X: _tighter(m_fn, X, cert_prec), wc["m"]["cover"], _stored_hi("m")))
             M = M_lower_at(g, _b(wc["M"]["point"])).union(_max_upper(lambda X: _tighter(g.q, X, cert_prec),
                                                                    wc["M"]["cover"], _stored_hi("M")))
-            if m.is_finite() and M.is_finite():
+            if m.is_finite():       # M not enclosed (f = 0: q = 0/0) leaves p, k_min, mu_min nan; R1, R2 need m only
                 K = closed_form_constants(g, m, M)
                 for name in ("A0", "B0", "C0", "m", "M", "p", "k_min", "mu_min", "mu_max", "R1", "R2", "R"):
                     contains(name, K[name])
@@ -730,13 +733,19 @@ def check(model, data: dict) -> list[CheckResult]:
             say(cid, False, f"unknown claim {cid!r}")
     for cid, names in REQUIRED.items():
         if claims.get(cid, {}).get("status") == "proved":
-            missing = [n for n in names if n not in q]
+            missing = [n for n in names if n not in q or _states_nothing(q[n])]
             if missing:
-                say(cid, False, f"a proved {cid} without the quantities its statement names: {missing}")
+                say(cid, False, f"a proved {cid} without finite values of the quantities its statement names: {missing}")
     unverified = sorted(set(q) - verified)
     say("quantities", not unverified, f"{len(verified)} stored enclosures verified"
         + (f"; not verified: {unverified}" if unverified else ""))
     return res
+
+
+def _states_nothing(stored) -> bool:
+    """Whether a stored quantity is not a finite interval (lo or hi nan or infinite)."""
+    return isinstance(stored, dict) and any(str(stored.get(k, "")).strip().lstrip("+-") in ("nan", "inf")
+                                            for k in ("lo", "hi"))
 
 
 def _face_level(g, xs: arb) -> arb:
