@@ -19,7 +19,7 @@ from rigor_gyro import load_scene, prove_scene
 from rigor_gyro.core.balls import exact_endpoints, working_precision
 from rigor_gyro.kinds.lyapunov import check as lc
 
-from .forgery import certificate, claim as _claim, failures as _failures, flipped, items as _items
+from .forgery import certificate, claim as _claim, failures as _failures, flipped, items as _items, refix
 
 
 _cert = functools.partial(certificate, "agafonov2013")
@@ -1302,3 +1302,11 @@ def test_a_root_of_h_not_separated_from_pi_or_from_cos_zero_is_not_decided(h_roo
         monkeypatch.setattr(lc, "_decided_roots", lambda f, p, pi_: (
             real(f, p, pi_) if p is pieces["f"] else [(pi * 2, pi * 2, pi * 2)]))     # outside: skipped
         assert lc._check_equilibria(g, pieces, [r for r in rows if not r["case"].startswith("k H")])[0] is True
+
+
+def test_a_proved_claim_with_a_nan_for_a_named_quantity_is_not_confirmed(agafonov):
+    """A stored nan states nothing (session 9), so it cannot stand for a quantity a proved claim's statement
+    names: constants proved with M = nan is rejected by the kind's checks (texts aside)."""
+    data = copy.deepcopy(agafonov)
+    data["quantities"]["M"] = {"lo": "nan", "hi": "nan", "mid": "nan", "rad": "inf"}
+    assert any(item == "constants" and "finite values" in msg for item, msg in _failures(refix(data)))
