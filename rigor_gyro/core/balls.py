@@ -44,8 +44,8 @@ from flint import acb, acb_series, arb, arb_series, ctx, fmpq
 from .errors import ParameterError
 from .exact import parse_exact
 
-__all__ = ["square", 
-    "DEFAULT_PREC", "DEFAULT_MAXPREC", "working_precision", "current_precision", "ball", "is_finite",
+__all__ = [
+    "DEFAULT_PREC", "square", "DEFAULT_MAXPREC", "working_precision", "current_precision", "ball", "is_finite",
     "certainly_lt", "certainly_le", "certainly_gt", "certainly_ge", "certainly_positive",
     "certainly_negative", "certainly_nonzero", "possibly_zero", "compare", "contains",
     "overlaps", "certainly_within", "interval", "exact_fraction", "exponent10", "decimal_bounds", "is_far", "enclosure_text", "rational_text", "interval_text", "inward_interval_text",

@@ -41,7 +41,7 @@ from fractions import Fraction
 
 from flint import arb, ctx as _ctx, fmpq
 
-from ...core.balls import (certainly_gt, square, certainly_le, certainly_lt, certainly_negative, certainly_positive, current_precision, decimal_bounds,
+from ...core.balls import (certainly_gt, certainly_le, certainly_lt, certainly_negative, certainly_positive, current_precision, decimal_bounds, square,
                            exact_fraction, sqrt_of_nonnegative)
 from ...core.boxes import even_in
 from ...core.exact import Exact
