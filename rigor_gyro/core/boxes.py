@@ -132,6 +132,13 @@ class Box:
     def midpoint(self) -> dict[str, Fraction]:
         return {k: (lo + hi) / 2 for k, lo, hi in self.edges}
 
+    def intersection(self, other: "Box") -> "Box | None":
+        """The common part of two closed boxes over the same parameters (exact), or None when they share no
+        point (touching boxes share a face, an edge or a corner)."""
+        edges = tuple((n, max(alo, blo), min(ahi, bhi))
+                      for (n, alo, ahi), (_, blo, bhi) in zip(self.edges, other.edges))
+        return Box(edges) if all(lo <= hi for _, lo, hi in edges) else None
+
     def volume(self) -> Fraction:
         """The product of the nonzero edge widths (degenerate edges do not count)."""
         v = Fraction(1)

@@ -221,12 +221,6 @@ def search_ranges(kind: str, whole: Box, frozen: tuple[str, ...], pj: str, oj: s
     return RangeSearch(tiles, points, evaluated, quantity_specs(kind, pj, oj, mj))
 
 
-def _common(a: Box, b: Box) -> Box | None:
-    """The intersection of two closed boxes over the same parameters, or None when they share no point."""
-    edges = tuple((n, max(alo, blo), min(ahi, bhi)) for (n, alo, ahi), (_, blo, bhi) in zip(a.edges, b.edges))
-    return Box(edges) if all(lo <= hi for _, lo, hi in edges) else None
-
-
 def _key_over(branch: dict[str, Any], part: Box) -> Interval:
     """The branch's key over ``part`` (a part of its tile), exactly: at_centre + sum_k gradient_k (P_k - c_k)
     in rational interval arithmetic (mean value theorem on the convex tile), intersected with the key's
@@ -264,7 +258,7 @@ def one_branch(enclosed: list[tuple[Box, dict[str, Any]]]) -> bool:
 
     for i in range(len(boxes)):
         for j in range(i + 1, len(boxes)):
-            common = _common(boxes[i], boxes[j])
+            common = boxes[i].intersection(boxes[j])
             if common is None:
                 continue
             if not (inside(_key_over(branches[i], common), branches[j]["unique_in"])

@@ -17,9 +17,8 @@ P, on the branch through the centre's root, genuine for every P. Quantities:
 Each sub-box measures its own centre's orbit, so every value carries its :class:`~rigor_gyro.core.box_values.Branch`
 (theta* at the centre and its gradient over the sub-box, and the ball U where theta*(P) is g's only root for every P
 of the sub-box): touching sub-boxes measure one orbit where one's theta* over their common part lies in the
-other's U. Without that, two sub-boxes could follow two
-orbits that coexist on their common face (a fold between their centres), and the ranges layer states no inner
-range.
+other's U. Without that, two sub-boxes could follow two orbits that coexist on their common face (a fold between
+their centres), and the ranges layer states no inner range.
 
 Guarantee: each returned value ball contains the quantity for every parameter in the box; a quantity not
 certified on the box (the orbit not continued, its sign condition or multipliers not decided) is left

@@ -244,9 +244,10 @@ def _theta_over_box(models: _Models, tc_ball: arb, cells: int = 1, make_models=N
         Theta = N.union(tc)
         _, _, grads = images(Theta)
         gth = grads[k]
-        if not certainly_nonzero(gth):
+        if certainly_nonzero(gth):
+            unique_in = Theta
+        else:
             band = None
-        unique_in = Theta
     for _ in range(0 if band is not None else 24):
         Theta = arb(tc, r.upper())
         N, K, grads = images(Theta)
