@@ -217,6 +217,8 @@ def parse_scene(text: str, where: str = "<string>") -> Scene:
     """Parse the TOML text of a scene; see the module docstring for the format."""
     if not isinstance(text, str):
         raise SceneError(f"{where}: scene text must be a string, got {type(text).__name__}")
+    if text.startswith("\ufeff"):      # a byte-order mark, as some editors save UTF-8: not part of the TOML
+        text = text[1:]
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:

@@ -213,3 +213,15 @@ def test_the_lyapunov_options_at_their_limits_are_accepted_and_kept():
     assert (q(m.rel_width), q(m.R_option), m.max_pieces) == (1, 10 ** 6, 1)
     assert m.text == {k: str(v) for k, v in LYAP.items()} and m.params["k"].rational == Fraction(2, 5)
     assert m.paper == {}
+
+
+def test_a_byte_order_mark_is_not_part_of_the_scene(tmp_path):
+    """Editors on some systems save UTF-8 with a byte-order mark; the scene is the same without it (a mutant that
+    keeps the mark fails: tomllib reads it as an invalid statement)."""
+    from rigor_gyro.scene import builtin_scenes
+    raw = builtin_scenes("all")["rudenko1976"].read_text(encoding="utf-8")
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + raw.encode("utf-8"))
+    with_bom, plain = load_scene(str(path)), parse_scene(raw)
+    assert (with_bom.name, with_bom.kind, with_bom.parameters, with_bom.paper) == (plain.name, plain.kind, plain.parameters, plain.paper)
+    assert parse_scene("\ufeff" + raw).parameters == plain.parameters
