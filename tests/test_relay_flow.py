@@ -130,6 +130,19 @@ def test_minus_one_over_sigma_a_root_of_the_cubic_is_a_degenerate_spectrum():
         assert len(Spectrum(Q).eigenvalues()) == 5
 
 
+def test_an_exact_repeated_eigenvalue_stops_the_escalation_at_once():
+    """The same point as a scene: the degeneracy is exact, so every claim is inconclusive at the first
+    precision, says that no precision lifts it and does not suggest a higher --maxprec (it escalated to
+    4096 bits and suggested --maxprec 8192)."""
+    from rigor_gyro import parse_scene, prove_scene
+    text = ('name = "rep"\nkind = "periodic_orbit"\n[parameters]\n'
+            + "".join(f'{k} = "{v}"\n' for k, v in dict(A="1", B="1", H="1", tau="1", sigma="2", n="5/4", K="1",
+                                                         p="1", S="1").items()))
+    cert = prove_scene(parse_scene(text))
+    assert cert.verdict.value == "inconclusive" and cert.precisions_tried == [64], cert.precisions_tried
+    assert all("no precision lifts it" in c.reason and c.status.value == "inconclusive" for c in cert.claims)
+
+
 def test_with_few_terms_the_cauchy_bound_uses_the_far_end_of_a_ball():
     """With 4 terms the tail (about 0.15) dominates every coefficient: at a ball c of radius 1e-3 the
     radius of coefficient k must cover T / (rho - |c|_upper)^k, the bound at the ball's far end (|c|'s

@@ -282,6 +282,7 @@ BAD = [
     ({"M": "[['-1', '0'], ['0', '-1']]"}, {}, r"repeated eigenvalue"),
     ({"M": "[['0', '1'], ['-4', '0']]"}, {}, r"imaginary axis"),
     ({"M": "[['0', '1'], ['0', '0']]"}, {}, r"repeated eigenvalue"),
+    ({"M": "[['0']]", "e": "['1']", "c": "['1']"}, {}, r"lone integrator.*give the plant a lag"),
     ({"x": "'1'"}, {}, r"\[plant\] x: unknown key"),
     ({}, {"zz": "1"}, r"parameter 'zz': not used"),
     ({"c": "['0', '1']", "e": "['1', '0']", "M": "[['-1', '0'], ['0', '-2']]"}, {}, r"Markov"),

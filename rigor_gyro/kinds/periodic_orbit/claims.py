@@ -359,6 +359,8 @@ class Analysis:
     unknown: list = field(default_factory=list)
     roots: list[RootVerdict] = field(default_factory=list)
     problem: str = ""
+    #: the problem is an exact degeneracy of the parameters (a repeated eigenvalue): no precision lifts it
+    exact_problem: bool = False
     piece_list: list = field(default_factory=list)
     #: the function whose roots were isolated: "pole_free" (G = g K) or "g"
     isolated: str = "g"
@@ -796,7 +798,7 @@ def analyse(model: RelayModel, spectrum=None, phase: Phases | None = None) -> An
         with phase("spectrum"):
             sp = spectrum() if spectrum is not None else Spectrum(P)
     except DegenerateSpectrum as e:
-        return Analysis(None, problem=str(e))
+        return Analysis(None, problem=str(e), exact_problem=e.exact)
     mom = moment_zero_orders(P)
     if any(m != 0 for m in mom[:4]) or mom[4] == 0:
         return Analysis(sp, problem=f"moment identities e1^T M^j e = 0 (j <= 3) fail: {mom}: a bug")
@@ -904,9 +906,14 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
     extra: dict[str, Any] = {}
     if an.sp is None or an.problem:
         why = an.problem or "spectrum unavailable"
+        if an.exact_problem:
+            why += (" (decided in exact arithmetic: no precision lifts it; the closed form needs five simple "
+                    "eigenvalues, so move one parameter off this point)")
         for cid in wanted:
             claims.append(_claim(cid, Status.INCONCLUSIVE, why))
-        return Attempt(claims, quantities, notes=notes, widths_met=False)
+            if an.exact_problem:
+                claims[-1].precision_cannot_help = why
+        return Attempt(claims, quantities, notes=notes, widths_met=False, stalled=an.exact_problem)
     sp = an.sp
     rng = (f"(0, {_fmt(an.T_search, 8)}]" + (" and beyond it by the tail bound, i.e. all of (0, oo)"
                                               if an.covers_all else " (option T_max; roots beyond it not searched)"))

@@ -70,7 +70,13 @@ PARAMETER_NAMES = ("A", "B", "H", "tau", "sigma", "n", "K", "p", "S")
 
 
 class DegenerateSpectrum(ArithmeticError):
-    """The closed form needs five simple eigenvalues; this says which condition failed."""
+    """The closed form needs five simple eigenvalues; this says which condition failed. ``exact``: the
+    condition was decided in exact rational arithmetic (a repeated eigenvalue of the exact parameters), so no
+    precision can lift it; otherwise it may be a ball too wide at this precision."""
+
+    def __init__(self, message: str, exact: bool = False):
+        super().__init__(message)
+        self.exact = exact
 
 
 @dataclass(frozen=True)
@@ -179,10 +185,10 @@ class Spectrum:
         C = nutation_cubic(P)
         nu = -1 / P.sigma
         if C(nu) == 0:
-            raise DegenerateSpectrum("-1/sigma is also a root of the cubic (4): a repeated eigenvalue")
+            raise DegenerateSpectrum("-1/sigma is also a root of the cubic (4): a repeated eigenvalue", exact=True)
         roots = isolate_polynomial(C)
         if not roots.squarefree:
-            raise DegenerateSpectrum(f"the cubic (4) has a repeated root ({roots.reason})")
+            raise DegenerateSpectrum(f"the cubic (4) has a repeated root ({roots.reason})", exact=True)
         if not roots.verified:
             raise DegenerateSpectrum(f"roots of the cubic (4) not isolated at this precision: {roots.reason}")
         S = ball(P.S)

@@ -232,6 +232,11 @@ def validate_plant(scene) -> PlantModel:
                              "half-period map is built from simple eigenvalues; perturb the repeated time constant "
                              "or write the plant with distinct eigenvalues")
     zero = p[0] == 0
+    if zero and n == 1:
+        raise ParameterError("[plant] M = [[\"0\"]]: a lone integrator, whose only eigenvalue is 0; the half-period map "
+                             "is built from the nonzero eigenvalues (with h = 0 the loop slides at y = 0 and has no "
+                             "self-oscillation; with h > 0 its triangle wave is not treated by this path): give the "
+                             "plant a lag, e.g. M = [[\"-1/T\"]]")
     if _imaginary_axis_roots(p):
         raise ParameterError("[plant] M: an eigenvalue on the imaginary axis other than 0 (an undamped "
                              "oscillation): I + exp(M theta) is singular at real theta, the half-period function "
