@@ -544,7 +544,7 @@ def _pave(bs, executor, args, state=None) -> int:
          f"({paving.evaluated} {'box' if paving.evaluated == 1 else 'boxes'}, {executor.label}) -> {jpath}, {mpath}")
     if paving.stopped:
         pending = sum(len(g.boxes) for g in paving.pending)
-        _say(f"{bs.scene.name}: stopped: {paving.stopped}" + (f"; {pending} sub-boxes pending: `rigor-gyro prove "
+        _say(f"{bs.scene.name}: stopped: {paving.stopped}" + (f"; {pending} sub-box{'es' if pending != 1 else ''} pending: `rigor-gyro prove "
                                                                f"--resume {jpath}` continues" if pending else ""))
     if paving.stopped == INTERRUPTED:
         return EXIT_INTERRUPTED

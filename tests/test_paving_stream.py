@@ -179,3 +179,32 @@ def test_a_dask_executor_gets_batches_of_its_own_target_seconds(plane_fast, sche
     ex.scheduler = scheduler
     assert _json(pave(_bs(plane_fast), ex)) == _json(pave(_bs(plane_fast)))
     assert max(ex.submitted) == 1 and len(ex.submitted) > 10
+
+
+@pytest.mark.parametrize("executor", ["in process", "shuffled stream"])
+def test_a_time_limit_ends_an_evaluation_of_the_whole_box_that_outlasts_it(plane_fast, monkeypatch, executor):
+    """A one-box paving whose single evaluation outlasts --time-limit (the relay at +-0.5 % in six parameters
+    takes a minute in one box) stops at the limit with the box pending, instead of at the end of the
+    evaluation; the partial paving checks and resumes to the whole one. (The stand-in evaluation here sleeps
+    on the whole box: the alarm interrupts it, as it interrupts Python code between Arb calls.)"""
+    import time
+    import rigor_gyro.margins.paving as paving
+    from tests.test_paving_anytime import _half_plane as instant
+    whole_box = _json(pave(_bs(plane_fast)))["box"]
+
+    def slow(kind, pj, oj, mj, box_json, claims, prec):
+        if json.loads(box_json) == whole_box:
+            time.sleep(30)
+        return instant(kind, pj, oj, mj, box_json, claims, prec)
+
+    monkeypatch.setattr(paving, "evaluate_task", slow)
+    ex = Executor(1) if executor == "in process" else Shuffled(3, 0)
+    t0 = time.monotonic()
+    data = _json(pave(_bs(plane_fast), ex, time_limit=0.5))
+    assert time.monotonic() - t0 < 20            # not the 30 s of the evaluation
+    assert "time limit" in data["stopped"] and data["boxes_evaluated"] == 0
+    assert [g["boxes"] for g in data["pending"]] == [[whole_box]]
+    assert check_certificate(data).ok
+    monkeypatch.setattr(paving, "evaluate_task", instant)
+    bs, state = resume_state(data)
+    assert _json(pave(bs, state=state)) == _json(pave(_bs(plane_fast)))

@@ -24,7 +24,7 @@ import threading
 import time
 from typing import Iterator
 
-__all__ = ["TimeLimitReached", "Budget", "time_limit", "check_time_limit"]
+__all__ = ["TimeLimitReached", "Budget", "time_limit", "until", "check_time_limit"]
 
 #: the largest budget accepted, in seconds (a week): anything larger is a typo
 MAX_SECONDS = 7 * 24 * 3600
@@ -97,3 +97,24 @@ def time_limit(seconds: float | None) -> Iterator[Budget]:
         signal.signal(signal.SIGALRM, old_handler)
         if old_delay:
             signal.setitimer(signal.ITIMER_REAL, max(1e-3, old_delay - (time.monotonic() - t0)))
+
+
+@contextlib.contextmanager
+def until(budget: Budget) -> Iterator[None]:
+    """Run the block under what is left of ``budget`` (a :class:`Budget` made earlier): :class:`TimeLimitReached`
+    inside the block when it runs out (``budget.fired`` is then set), at once when it has run out already.
+    Without a limit nothing is armed. Where the alarm does not work (not Unix, not the main thread) the block
+    runs to its end, as :func:`time_limit` says."""
+    left = budget.remaining()
+    if left is None:
+        yield
+        return
+    if left <= 0:
+        budget.fired = True
+        raise TimeLimitReached(budget.reason())
+    try:
+        with time_limit(left):
+            yield
+    except TimeLimitReached:
+        budget.fired = True
+        raise

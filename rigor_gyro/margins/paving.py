@@ -53,7 +53,7 @@ from typing import Any
 
 from ..core.balls import DEFAULT_MAXPREC, DEFAULT_PREC, working_precision
 from ..core.boxes import Box, exact_decimal, fraction_text, split_parameters
-from ..core.deadline import Budget, check_time_limit
+from ..core.deadline import Budget, TimeLimitReached, check_time_limit, until
 from ..core.errors import ParameterError, SceneError
 from ..core.exact import option_count, option_number
 from ..kinds import KINDS, box_claims, kind_module, optional_module, scene_claims
@@ -398,8 +398,9 @@ def pave(bs: BoxScene, executor: Executor | None = None, progress=None, time_lim
          box_budget: int | None = None, state: PaveState | None = None, checkpoint=None,
          checkpoint_every: float | None = None, keep_on_interrupt: bool = False) -> Paving:
     """The paving of ``bs.box`` for each of ``bs.claims`` (see the module docstring), best first in
-    ``bs.priority`` (:mod:`.order`), in batches. Between batches it stops when ``time_limit`` (seconds) has
-    run out, when this run has evaluated ``box_budget`` boxes or more, or on Ctrl-C (or a broken executor,
+    ``bs.priority`` (:mod:`.order`), in batches. It stops when ``time_limit`` (seconds) has run out (a batch
+    evaluated in process is interrupted by the alarm and left pending; a pool's batches in flight finish), and
+    between batches when this run has evaluated ``box_budget`` boxes or more, or on Ctrl-C (or a broken executor,
     whose batch in flight is left unevaluated): the queued boxes are then *pending* (undecided leaves of
     their open claims, listed in ``pending``), no point proof is run and the paving is a valid partial
     certificate (its decided leaves stand; a budget never refutes) that :mod:`.resume` continues exactly.
@@ -438,7 +439,14 @@ def _pave(bs: BoxScene, executor, progress, time_limit, box_budget, state, check
         items = [(g, b) for g in batch for b in g.boxes]
         tasks = [(bs.scene.kind, pj, oj, mj, json.dumps(b.to_json()), g.claims, bs.prec) for g, b in items]
         try:
-            outs = ex.map(evaluate_task, tasks)
+            # in process (one worker, or fewer boxes than workers: the whole box) a batch can take minutes:
+            # the alarm interrupts it at the time limit and the batch is left pending
+            with until(budget) if not ex.parallel or len(tasks) < ex.workers else contextlib.nullcontext():
+                outs = ex.map(evaluate_task, tasks)
+        except TimeLimitReached:
+            st.frontier.restore_batch()
+            stopped = budget.reason()
+            break
         except KeyboardInterrupt:
             st.frontier.restore_batch()
             stopped = INTERRUPTED
@@ -503,6 +511,8 @@ def _pave(bs: BoxScene, executor, progress, time_limit, box_budget, state, check
             ranges = search_ranges(bs.scene.kind, whole, bs.frozen, pj, oj, mj, bs.prec,
                                    list(quantity_specs(bs.scene.kind, pj, oj, mj)),
                                    bs.range_boxes, bs.range_gap, ex, budget)
+        except TimeLimitReached:        # the whole box's evaluation outlasted the limit: the claims stand, no ranges
+            ranges = None
         except KeyboardInterrupt:
             for cp in result.values():
                 cp.points = []

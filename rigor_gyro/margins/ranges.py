@@ -34,6 +34,7 @@ the box); the kind's ParameterError propagates.
 """
 from __future__ import annotations
 
+import contextlib
 import json
 from dataclasses import dataclass
 from fractions import Fraction
@@ -41,6 +42,7 @@ from typing import Any
 
 from ..core.balls import exact_endpoints, inward_interval_text, interval_text, working_precision
 from ..core.boxes import Box, fraction_text
+from ..core.deadline import TimeLimitReached, until
 from ..kinds import optional_module
 from .models import scene_model
 
@@ -161,7 +163,8 @@ def _corner(box: Box, grad: dict[str, list[str]], end: str, frozen: tuple[str, .
 def search_ranges(kind: str, whole: Box, frozen: tuple[str, ...], pj: str, oj: str, mj: str, prec: int,
                   names: list[str], budget: int, gap: Fraction, executor, clock=None) -> RangeSearch:
     """Tiles and points for the ranges of ``names`` (see the module docstring), at most ``budget`` tile
-    evaluations, fewer when ``clock`` (a :class:`~rigor_gyro.core.deadline.Budget`) expires between rounds.
+    evaluations, fewer when ``clock`` (a :class:`~rigor_gyro.core.deadline.Budget`) expires: in process its alarm
+    ends a round (dropped: the tiles before it stand) or the first evaluation (TimeLimitReached: no ranges).
     Points: each tile's midpoint, and for the tiles that hold a quantity's extreme end, the corner its
     gradient's signs point to. Deterministic without a clock: the same tiles for every executor."""
     seen: set = set()
@@ -176,7 +179,9 @@ def search_ranges(kind: str, whole: Box, frozen: tuple[str, ...], pj: str, oj: s
                 mids.append(m)
         tasks = [(kind, pj, oj, mj, json.dumps(b.to_json()), prec) for b in boxes]
         tasks += [(kind, pj, oj, mj, json.dumps(point_box(m).to_json()), prec) for m in mids]
-        outs = executor.map(range_task, tasks)
+        in_process = not executor.parallel or len(tasks) < executor.workers
+        with until(clock) if clock is not None and in_process else contextlib.nullcontext():
+            outs = executor.map(range_task, tasks)
         return list(zip(boxes, outs[:len(boxes)])), list(zip(mids, outs[len(boxes):]))
 
     def corners(items: list[tuple[Box, dict[str, Any]]]) -> list[dict[str, Fraction]]:
@@ -212,8 +217,11 @@ def search_ranges(kind: str, whole: Box, frozen: tuple[str, ...], pj: str, oj: s
         if not chosen:
             break
         children = [c for i in chosen for c in tiles[i][0].split(whole, frozen)]
-        new_tiles, new_points = evaluate(children, [])
-        _, more = evaluate([], corners(new_tiles))
+        try:
+            new_tiles, new_points = evaluate(children, [])
+            _, more = evaluate([], corners(new_tiles))
+        except TimeLimitReached:        # the round is dropped: the tiles so far still tile the box
+            break
         evaluated += len(children)
         gone = set(chosen)
         tiles = [t for i, t in enumerate(tiles) if i not in gone] + new_tiles

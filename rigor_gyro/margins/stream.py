@@ -43,6 +43,7 @@ from collections import deque
 from itertools import islice
 from concurrent.futures import BrokenExecutor
 
+from ..core.deadline import TimeLimitReached, until
 from .order import BATCH
 
 __all__ = ["stream_pave", "evaluate_batch", "TARGET_SECONDS", "DASK_TARGET_SECONDS", "MAX_BATCH"]
@@ -164,7 +165,9 @@ def stream_pave(bs, st, ex, scene: tuple, paving, *, budget, box_budget, progres
             if not inflight and len(items) == 1 and avail <= 1:
                 # one box and nothing else to do (the whole box, a paving of one box): here, as ``map``
                 # does with fewer tasks than workers, not a round trip to a worker
-                record(items, evaluate_batch(scene, payload))
+                with until(budget):             # minutes for a hard whole box: the alarm ends it at the limit
+                    outs = evaluate_batch(scene, payload)
+                record(items, outs)
                 return
             if not shared:
                 shared.append(ex.share(scene))
@@ -250,6 +253,8 @@ def stream_pave(bs, st, ex, scene: tuple, paving, *, budget, box_budget, progres
                 continue
             stopped = budget.reason()
             break
+    except TimeLimitReached:
+        stopped = budget.reason()
     except KeyboardInterrupt:
         stopped = paving.INTERRUPTED
     except BrokenExecutor as e:
