@@ -25,6 +25,7 @@ __all__ = ["main", "EXIT_BAD_INPUT", "EXIT_INTERNAL"]
 EXIT_BAD_INPUT = 2
 _KIND_NAMES = ("eigenfrequencies", "lyapunov", "periodic_orbit")
 EXIT_INTERNAL = 4
+EXIT_INCONCLUSIVE = 3
 #: the worst exit status wins when several scenes are proved
 _PRECEDENCE = (EXIT_INTERNAL, EXIT_BAD_INPUT, 1, 3, 0)
 
@@ -232,7 +233,8 @@ def _parser() -> argparse.ArgumentParser:
                         epilog=_epilog("  rigor-gyro check proofs/*.json\n  rigor-gyro check -q out/margin_*.json",
                                        "exit status:\n  0  every file confirmed\n  1  some file is not confirmed "
                                        "(the first failing check is named)\n  2  a file is unreadable or not a "
-                                       "result of rigor-gyro\n  4  internal error"))
+                                       "result of rigor-gyro\n  3  --time-limit ran out before every check of a file ran (nothing "
+                                       "found wrong; not confirmed either)\n  4  internal error"))
     ck.add_argument("certs", nargs="+", metavar="CERT.json", help="certificate files written by 'prove'")
     ck.add_argument("-q", "--quiet", action="store_true", help="print only one line per certificate")
     ck.add_argument("-j", "--workers", type=int, default=1,
@@ -240,6 +242,9 @@ def _parser() -> argparse.ArgumentParser:
     ck.add_argument("--samples", type=_nonnegative_int, default=None, metavar="N",
                     help="pavings: decided sub-boxes per claim that the point prover cross-checks at their "
                          "midpoint and extreme corners (default 8; 0: none)")
+    ck.add_argument("--time-limit", type=_seconds, default=None, metavar="SECONDS",
+                    help="wall-clock budget per file (some checks prove the scene again, as long as its proof "
+                         "took): when it runs out the file is neither confirmed nor failed (exit 3)")
     ck.add_argument("--debug", action="store_true", default=argparse.SUPPRESS, help=argparse.SUPPRESS)
     return p
 
@@ -670,9 +675,16 @@ def _cmd_check(args) -> int:
 
 def _check_files(args, ex, check_file, CertificateError) -> int:
     codes = []
+    from .core.deadline import TimeLimitReached, time_limit
     for path in args.certs:
         try:
-            report = check_file(path, samples=args.samples, executor=ex if args.workers > 1 else None)
+            with time_limit(args.time_limit):
+                report = check_file(path, samples=args.samples, executor=ex if args.workers > 1 else None)
+        except TimeLimitReached:
+            _say(f"{path}: not decided: the time limit of {args.time_limit:g} s (--time-limit) ran out before "
+                 "every check ran (neither confirmed nor failed); give it more time")
+            codes.append(EXIT_INCONCLUSIVE)
+            continue
         except CertificateError as e:
             _say(f"rigor-gyro: {e}", err=True)
             codes.append(EXIT_BAD_INPUT)
@@ -688,7 +700,7 @@ def _check_files(args, ex, check_file, CertificateError) -> int:
         _say(f"{path}: " + ("confirmed" if report.ok else f"NOT confirmed: {bad.item}: {bad.message}")
              + f" ({len(report.results)} checks, {seconds_text(report.seconds)})")
         codes.append(0 if report.ok else 1)
-    return next(c for c in (EXIT_BAD_INPUT, 1, 0) if c in codes or c == 0)
+    return next(c for c in (EXIT_BAD_INPUT, 1, EXIT_INCONCLUSIVE, 0) if c in codes or c == 0)
 
 
 def _plots(scene, cert, out: str) -> int:

@@ -156,6 +156,22 @@ def test_cli_check_exit_codes(tmp_path, capsys):
     assert "NOT confirmed" in out.out and "timings file" in out.err
 
 
+def test_cli_check_time_limit_leaves_a_file_undecided_exit_3(tmp_path, capsys):
+    """A check that outlasts --time-limit neither confirms nor fails the file (exit 3, as an inconclusive
+    proof); a failing file still wins (exit 1), and a generous limit changes nothing."""
+    assert main(["prove", "rudenko1976", "--quiet", "--out", str(tmp_path)]) == 0
+    good = str(tmp_path / "rudenko1976.json")
+    data = json.loads((tmp_path / "rudenko1976.json").read_text())
+    data["claims"][0]["status"] = "refuted"
+    (tmp_path / "bad.json").write_text(json.dumps(_refix(data)))
+    capsys.readouterr()
+    assert main(["check", "--time-limit", "0.001", good]) == 3
+    assert "not decided: the time limit of 0.001 s" in capsys.readouterr().out
+    assert main(["check", "--time-limit", "0.001", good, str(tmp_path / "bad.json")]) in (1, 3)
+    assert main(["check", "--time-limit", "600", good, str(tmp_path / "bad.json")]) == 1
+    assert main(["check", "--time-limit", "600", good]) == 0
+
+
 def test_unreadable_is_certificate_error(tmp_path):
     with pytest.raises(CertificateError):
         check_file(tmp_path / "missing.json")
