@@ -387,3 +387,37 @@ def test_series_coefficients_pad_with_exact_zeros_of_the_series_type():
             got = series_coefficients(s, 5)
             assert len(got) == 5 and all(isinstance(x, kind) for x in got), kind
             assert got[1] == 2 and all(x == 0 and x.rad() == 0 for x in got[2:]), kind
+
+
+def _slow(name, a, b=None):
+    """The predicates' definitions through compare (the forms before their fast paths for plain arbs)."""
+    from rigor_gyro.core.balls import ball
+    if name == "le":
+        x, y = ball(a), ball(b)
+        return bool(x.is_finite() and y.is_finite() and x <= y)
+    c = compare(a, 0 if b is None else b)
+    return c == {"lt": -1, "gt": 1, "pos": 1, "neg": -1}[name]
+
+
+_EDGE = [arb(0), arb(0, 1), arb(1), arb(-1), arb(1, 1), arb(-1, 1), arb(2, "0.5"), arb("nan"), arb("inf"),
+         -arb("inf"), arb(0, "inf"), arb("1e-300", "1e-310"), arb("-1e-300", "2e-300")]
+
+
+@given(st.integers(-50, 50), st.integers(0, 40), st.integers(-50, 50), st.integers(0, 40))
+def test_the_fast_paths_of_the_predicates_agree_with_compare(n1, r1, n2, r2):
+    # plain arbs take a fast path in certainly_lt/gt/le/positive/negative: the same verdict as compare's
+    from rigor_gyro.core.balls import certainly_negative, certainly_positive
+    pts = [arb(n1, r1 / 8), arb(n2, r2 / 8)] + _EDGE
+    for a in pts:
+        assert certainly_positive(a) == _slow("pos", a) and certainly_negative(a) == _slow("neg", a)
+        for b in pts[:2] + [_EDGE[0], _EDGE[7]]:
+            assert certainly_lt(a, b) == _slow("lt", a, b) and certainly_gt(a, b) == _slow("gt", a, b)
+            assert certainly_le(a, b) == _slow("le", a, b) and certainly_le(b, a) == _slow("le", b, a)
+
+
+def test_a_subclass_of_arb_takes_the_general_path():
+    # a subclass may compare in its own way: the predicates go through compare, which converts it with ball()
+    from rigor_gyro.core.balls import Quantity, certainly_positive
+    q = Quantity(arb(1), exact=Fraction(1))
+    assert certainly_positive(q) and certainly_lt(q, arb(2)) and not certainly_gt(q, 2)
+    assert not certainly_positive(Quantity(arb(0, 1)))
