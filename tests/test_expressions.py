@@ -80,3 +80,23 @@ def test_number_limits():
     with pytest.raises(ParameterError, match="at most .* digits"):
         parse("1" * (MAX_DIGITS + 1), "e")
     assert parse("0.125", "e").evaluate({}) == Fraction(1, 8) == parse("0.125", "f").evaluate({})
+
+
+@pytest.mark.parametrize("n", [2, 3, 4, 7])
+def test_a_power_of_a_ball_centred_at_zero_is_an_enclosure_not_nan(n):
+    """python-flint's arb ** n of a ball centred exactly at 0 (a parameter's box [-r, r] as a ball) is nan; an
+    expression's power is the product of n factors there, finite and containing x^n for every x of the ball;
+    elsewhere it is Arb's power itself."""
+    from flint import arb
+    from rigor_gyro.core.expressions import compile_expr, parse
+    e = parse(f"x^{n} - 1/x^{n}", "t", {"x"})
+    num = lambda q: arb(q.numerator) / q.denominator      # noqa: E731
+    x = arb(0, "0.25")
+    assert (x ** n).is_nan()                      # the trap itself, so the test fails if python-flint changes
+    p = parse(f"x^{n}", "t", {"x"})
+    for y in (p.evaluate({"x": x}, number=num), compile_expr(p, num)({"x": x})):
+        assert y.is_finite() and all(y.contains(arb(t) ** n) for t in ("-0.25", "-0.1", "0", "0.125", "0.25"))
+    off = arb("0.5", "0.25")
+    got = p.evaluate({"x": off}, number=num)
+    assert (got.mid(), got.rad()) == ((off ** n).mid(), (off ** n).rad())
+    assert not e.evaluate({"x": x}, number=num).is_finite()       # 1/x^n over a ball about 0 stays unbounded

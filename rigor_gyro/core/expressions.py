@@ -130,8 +130,8 @@ class Expr:
                 if power is not None:
                     return power(base, n)
                 if n < 0:
-                    return number(Fraction(1)) / base ** (-n)
-                return base ** n
+                    return number(Fraction(1)) / _int_power(base, -n)
+                return _int_power(base, n)
             x, y = ev(t[1]), ev(t[2])
             if op == "+":
                 return x + y
@@ -144,6 +144,19 @@ class Expr:
             return ev(self.tree)
         except ZeroDivisionError:
             raise ParameterError(f"{self.where}: {self.text!r} divides by zero") from None
+
+
+def _int_power(base, n: int):
+    """``base ** n`` (n >= 0), except where a ball type returns nan for it (python-flint's ``arb ** n`` of a ball
+    centred exactly at 0 with a positive radius, e.g. a parameter's box [-1, 1]): there the product of n
+    factors, which encloses every x^n of the ball (wider for even n: it has negative values)."""
+    y = base ** n
+    is_nan = getattr(y, "is_nan", None)
+    if is_nan is not None and n >= 2 and is_nan() and base.is_finite():
+        y = base
+        for _ in range(n - 1):
+            y = y * base
+    return y
 
 
 def compile_expr(expr: "Expr", number: Callable[[Fraction], Any], functions: Mapping[str, Callable] | None = None,
@@ -174,8 +187,8 @@ def compile_expr(expr: "Expr", number: Callable[[Fraction], Any], functions: Map
                 return lambda env: power(f(env), n)
             if n < 0:
                 one = number(Fraction(1))
-                return lambda env: one / f(env) ** (-n)
-            return lambda env: f(env) ** n
+                return lambda env: one / _int_power(f(env), -n)
+            return lambda env: _int_power(f(env), n)
         f1, f2 = c(t[1]), c(t[2])
         if op == "+":
             return lambda env: f1(env) + f2(env)

@@ -179,7 +179,7 @@ def _envelope_lower(sp: Spectrum, lo: arb, hi: arb) -> arb | None:
 
     def square(x: arb) -> arb:                      # x > 0: from its ends (a wide ball squared may reach < 0)
         return (x.lower() ** 2).lower().union((x.upper() ** 2).upper())
-    qi2 = square(abs(q.imag)) if certainly_positive(abs(q.imag).lower()) else q.imag ** 2
+    qi2 = square(abs(q.imag)) if certainly_positive(abs(q.imag).lower()) else q.imag * q.imag
     lower = ((u.lower() * square(one_minus).lower()).lower() + 2 * sign * q.real * one_minus_sq
              - 16 * rho * qi2 / (2 * u + (4 * square(u) + 16 * qi2).sqrt()))
     return lower

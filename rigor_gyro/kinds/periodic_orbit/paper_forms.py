@@ -134,7 +134,7 @@ def alpha_of_omega(om: list[arb], mu1: arb, omega: arb, mu2: arb, inv_sigma: arb
     """alpha's [sin, cos, e^-mu2t, e^-t/sigma, const] by the quadrature (14) of Omega's [sin, cos, e^-mu2t,
     e^-t/sigma] coefficients, with C from (15) alpha(0) = -alpha(theta)."""
     s, c, m2, sg = om
-    d = mu1 ** 2 + omega ** 2
+    d = mu1 * mu1 + omega * omega
     A = (-mu1 * s + omega * c) / d
     B = (-omega * s - mu1 * c) / d
     a3, a4 = -m2 / mu2, -sg / inv_sigma

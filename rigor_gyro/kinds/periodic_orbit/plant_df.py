@@ -75,7 +75,8 @@ def describing_function(model: PlantModel) -> Estimate:
     for w in roots.real:
         if not certainly_positive(w):
             continue
-        den = _at(rp, w) ** 2 + _at(ip, w) ** 2
+        r, i = _at(rp, w), _at(ip, w)
+        den = r * r + i * i                     # products: arb ** 2 of a ball about 0 is nan
         reG = (_at(rn, w) * _at(rp, w) + _at(in_, w) * _at(ip, w)) / den
         if certainly_positive(S * reG):
             out.omegas.append((w, 4 * S * reG / arb.pi(), 2 * arb.pi() / w))
