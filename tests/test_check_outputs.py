@@ -144,11 +144,16 @@ def test_a_scan_with_a_tampered_status_or_quantity_is_rejected(outputs):
     assert main(["check", "--quiet", str(outputs["scan"])]) == 0
 
 
-def test_a_long_scan_is_rechecked_on_an_even_sample_that_says_so(outputs, monkeypatch):
+def test_a_scan_rechecked_on_a_sample_is_not_confirmed(outputs, monkeypatch):
     from rigor_gyro.margins import scan as scan_module
     calls = []
     real = scan_module.scan_task
     monkeypatch.setattr(scan_module, "scan_task", lambda *a: calls.append(a) or real(*a))
     results = scan_module.check_scan(_load(outputs["scan"]), max_points=2)
     assert len(calls) == 2 and '"n": "1"' in calls[0][1] and '"n": "100"' in calls[1][1]
-    assert ("re-proved", True, "2 of 3 points re-proved (evenly spread, both ends: a sample)") in results
+    assert ("re-proved", False, "only a sample was re-proved (2 of 3 points, evenly spread, both ends): the other "
+            "points are not verified (re-prove every point: the default)") in results
+    calls.clear()
+    assert ("re-proved", True, "all 3 points re-proved (status, reason, precision, quantities)") in \
+        scan_module.check_scan(_load(outputs["scan"]))
+    assert len(calls) == 3

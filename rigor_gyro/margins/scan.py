@@ -33,8 +33,6 @@ __all__ = ["Scan", "scan_points", "run_scan", "write_scan", "check_scan", "state
 
 SCHEMA = "rigor-gyro/scan/1"
 MAX_POINTS = 10000
-#: the checker re-proves every point of a scan up to this many, else this many evenly spread (ends included)
-MAX_RECHECK = 64
 
 
 def scan_points(lo: Fraction, hi: Fraction, n: int, log: bool) -> list[Fraction]:
@@ -192,16 +190,18 @@ def write_scan(res: Scan, out_dir: str) -> list[Path]:
                            res.markdown(), None))
 
 
-def check_scan(data: dict[str, Any], max_points: int = MAX_RECHECK) -> list[tuple[str, bool, str]]:
+def check_scan(data: dict[str, Any], max_points: int | None = None) -> list[tuple[str, bool, str]]:
     """Re-verify a scan output (schema ``rigor-gyro/scan/1``, already validated against its JSON Schema) as
     (item, ok, message) triples.
 
     Checked: the scene, parameter, claims and quantities valid for the kind (as :func:`run_scan` requires);
     the points exact, strictly increasing, each with exactly the claims and quantities listed; the counts
-    and the statement re-derived; then the points re-proved by the point prover (every point when there are
-    at most ``max_points``, else ``max_points`` of them evenly spread, both ends included: the message says
-    how many): each stored proved or refuted status must be re-decided the same (an inconclusive one claims
-    nothing), and each stored quantity interval must contain the re-computed one."""
+    and the statement re-derived; then every point re-proved by the point prover, which is deterministic:
+    each stored status (proved, refuted or inconclusive), reason and ``precision_bits`` must be the
+    re-proof's own, and each stored quantity interval (or null) the re-computed one, digit for digit.
+    ``max_points``: re-prove only that many points, evenly spread with both ends (a quick look); the points
+    not re-proved are then unverified, so the ``re-proved`` item FAILS, saying only a sample was re-proved
+    (a sample never confirms a scan)."""
     out: list[tuple[str, bool, str]] = []
 
     def add(item: str, ok: bool, message: str) -> None:
@@ -233,24 +233,34 @@ def check_scan(data: dict[str, Any], max_points: int = MAX_RECHECK) -> list[tupl
     add("counts", data["counts"] == counts, "the counts re-derived from the points")
     add("statement", data["statement"] == statement(param), "the scan's statement")
     n = len(points)
-    picked = list(range(n)) if n <= max_points else sorted({round(i * (n - 1) / (max_points - 1))
-                                                             for i in range(max_points)})
+    k = n if max_points is None else max(2, max_points)
+    sampled = n > k
+    picked = sorted({round(i * (n - 1) / (k - 1)) for i in range(k)}) if sampled else list(range(n))
     options_json = settings_json(scene.options, scene.model)
     bad: list[str] = []
     for i in picked:
         x, stored = values[i], points[i]
         res = scan_task(scene.kind, json.dumps({**scene.parameters, param: fraction_text(x)}, sort_keys=True),
                         options_json, tuple(claims), tuple(quantities))
+        at = f"{param} = {_d(x)}"
         for c in claims:
-            st = stored["claims"][c]["status"]
-            if st != "inconclusive" and res["claims"][c]["status"] != st:
-                bad.append(f"{c} at {param} = {_d(x)}: stored {st}, re-decided {res['claims'][c]['status']}")
+            st, got = stored["claims"][c], res["claims"][c]
+            if st["status"] != got["status"]:
+                bad.append(f"{c} at {at}: stored {st['status']}, re-decided {got['status']}")
+            elif st.get("reason") != got["reason"]:
+                bad.append(f"{c} at {at}: the stored reason is not the re-proof's own ({got['reason'][:120]!r})")
+        if stored.get("precision_bits") != res["precision_bits"]:
+            bad.append(f"{at}: precision_bits {stored.get('precision_bits')!r}, the re-proof's {res['precision_bits']}")
         for q in quantities:
             s_b, r_b = stored["quantities"][q], res["quantities"][q]
-            if s_b is not None and (r_b is None or not Fraction(s_b[0]) <= Fraction(r_b[0]) <= Fraction(r_b[1])
-                                    <= Fraction(s_b[1])):
-                bad.append(f"{q} at {param} = {_d(x)}: stored {s_b} does not contain the re-computed {r_b}")
-    what = (f"all {n} points re-proved" if len(picked) == n else
-            f"{len(picked)} of {n} points re-proved (evenly spread, both ends: a sample)")
-    add("re-proved", not bad, what + ("" if not bad else f": {len(bad)} mismatch(es), first: {bad[0]}"))
+            if s_b != r_b:      # the same decimals (12 digits, outward), or null where the re-proof has none
+                bad.append(f"{q} at {at}: stored {s_b}, not the re-computed {r_b}" + (
+                    " (it does not contain it)" if s_b is not None and r_b is not None and not
+                    Fraction(s_b[0]) <= Fraction(r_b[0]) <= Fraction(r_b[1]) <= Fraction(s_b[1]) else ""))
+    mismatch = "" if not bad else f": {len(bad)} mismatch(es), first: {bad[0]}"
+    if sampled:
+        add("re-proved", False, f"only a sample was re-proved ({len(picked)} of {n} points, evenly spread, both "
+            f"ends){mismatch}: the other points are not verified (re-prove every point: the default)")
+    else:
+        add("re-proved", not bad, f"all {n} points re-proved (status, reason, precision, quantities)" + mismatch)
     return out
