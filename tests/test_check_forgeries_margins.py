@@ -63,3 +63,71 @@ def test_a_scan_point_must_be_its_re_proof_exactly(scan5, edit, says):
                                   for k in ("proved", "refuted", "inconclusive")}
     failed = _failed(bad)
     assert [f.item for f in failed] == ["re-proved"] and says in failed[0].message, failed
+
+
+@pytest.fixture(scope="module")
+def threshold():
+    """rudenko1976's bracket_2 in Omega2: refuted at 1e-6, proved at 1, bisected to 1e-3."""
+    return rg.find_threshold(rg.load_scene("rudenko1976"), "Omega2", lo="0.000001", hi="1", claim="bracket_2",
+                             width="1e-3").to_json()
+
+
+def test_the_genuine_threshold_checks(threshold):
+    assert [s["status"] for s in threshold["steps"][:2]] == ["refuted", "proved"] and len(threshold["steps"]) > 6
+    assert _failed(threshold) == []
+
+
+def test_a_threshold_search_end_flipped_is_rejected(threshold):
+    bad = copy.deepcopy(threshold)
+    bad["steps"][0].update(status="proved", reason="bracket (8) holds at Omega2 = 1e-6, certified")
+    items = {f.item for f in _failed(bad)}
+    assert {"Omega2 = 0.000001", "search log"} <= items
+
+
+def test_a_threshold_step_flipped_in_the_middle_is_rejected(threshold):
+    bad = copy.deepcopy(threshold)
+    k = 3                                   # neither an end nor the last step: the next midpoint depends on it
+    bad["steps"][k]["status"] = {"proved": "refuted", "refuted": "proved"}[bad["steps"][k]["status"]]
+    failed = _failed(bad)
+    assert failed[0].item == "search log" and f"step {k + 2}:" in failed[0].message
+
+
+def test_a_threshold_reason_at_its_proved_point_must_be_the_re_decisions(threshold):
+    bad = copy.deepcopy(threshold)
+    i = next(i for i, s in enumerate(bad["steps"]) if s["value"] == bad["proved_at"])
+    bad["steps"][i]["reason"] = "omega_2 = 0.5 certified"
+    failed = _failed(bad)
+    assert [f.item for f in failed] == ["proved_at"] and "not the re-decision's own" in failed[0].message
+
+
+def test_a_threshold_search_range_moved_is_rejected(threshold):
+    bad = copy.deepcopy(threshold)
+    bad["search"][1] = "2"
+    bad["steps"][1]["value"] = "2"
+    assert "search log" in {f.item for f in _failed(bad)}
+    bad = copy.deepcopy(threshold)
+    bad["stopped"] = "stopped by the user"
+    assert "search log" in {f.item for f in _failed(bad)}
+
+
+def test_a_threshold_cut_by_its_time_limit_still_checks(threshold):
+    """A run stopped by --time-limit after 6 steps (written as find_threshold writes it; no timing in the test)."""
+    from rigor_gyro.core.balls import interval_text
+    from rigor_gyro.core.boxes import fraction_text
+    from rigor_gyro.margins.threshold import statement
+    data = copy.deepcopy(threshold)
+    data["steps"] = data["steps"][:6]
+    p, r = None, None
+    for s in data["steps"]:
+        if s["status"] == "proved":
+            p = Fraction(s["value"]) if p is None or r is None or abs(Fraction(s["value"]) - r) < abs(p - r) else p
+        else:
+            r = Fraction(s["value"]) if r is None or p is None or abs(Fraction(s["value"]) - p) < abs(p - r) else r
+    lo, hi = min(p, r), max(p, r)
+    data.update(stopped="time limit of 5 s reached (--time-limit): the bracket certified so far is kept",
+                certified=False, proved_at=fraction_text(p), refuted_at=fraction_text(r),
+                bracket=[fraction_text(lo), fraction_text(hi)], bracket_decimal=list(interval_text(lo, hi)[:2]),
+                statement=statement(data["claim"], data["param"], p, r))
+    assert _failed(data) == []
+    data["stopped"] = "the claim is inconclusive"
+    assert [f.item for f in _failed(data)] == ["search log"]

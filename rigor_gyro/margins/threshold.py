@@ -312,12 +312,16 @@ def check_threshold(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     Schema) as (item, ok, message) triples.
 
     Checked: the scene, parameter and claim valid for the kind (as :func:`find_threshold` requires); the
-    search range and width; the bracket, its decimals, ``certified`` and the statement re-derived from the
-    stored proved and refuted points and the requested width (the bracket's relative width); the two stored
-    points re-decided by the prover (a point proof, or the paving of the other parameters' box when they are
-    tolerances): proved at one, refuted at the other, as stored. A search that certified no bracket states
-    only the outcomes at its two search ends: both re-decided and compared. Not re-run: the bisection steps
-    in between (the search's log; the theorem is about the two points)."""
+    search range and width; the search log replayed by the bisection rule (:mod:`.threshold_log`): every
+    step's value is the one the rule gives after the statuses before it, the proved and refuted points are
+    where it ends and ``stopped`` is a text it writes there; the bracket, its decimals, ``certified`` and the
+    statement re-derived from the proved and refuted points and the requested width (the bracket's relative
+    width); the two search ends and the proved and refuted points re-decided by the prover (a point proof,
+    the paving of the other parameters' box when they are tolerances, or the point proof at a stored witness),
+    each status and reason as stored (an inconclusive end of a search stopped by its time limit claims
+    nothing). Not re-decided: the statuses of the steps in between (the replay ties each to the values after
+    it; the theorem is about the two points)."""
+    from .threshold_log import replay
     out: list[tuple[str, bool, str]] = []
 
     def add(item: str, ok: bool, message: str) -> None:
@@ -346,18 +350,60 @@ def check_threshold(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     add("search", lo < hi and 0 < w <= 1, f"search [{_d(lo)}, {_d(hi)}], relative width {_d(w)}")
     steps = data["steps"]
     values = [Fraction(s["value"]) for s in steps]
-    status_of = {v: s["status"] for v, s in zip(values, steps)}
+    step_of = {v: s for v, s in zip(values, steps)}
     add("steps", len(steps) >= 2 and values[:2] == [lo, hi] and len(set(values)) == len(values)
         and all(lo <= v <= hi for v in values), "the steps start at the search's two ends, each value once, inside it")
+    log = replay(steps, lo, hi, w, param) if lo < hi and 0 < w <= 1 else None
+    if log is not None:
+        ok = not log.error and log.stopped_ok(data["stopped"])
+        add("search log", ok, "the steps replayed by the bisection rule: each value the rule's next point, "
+            "'stopped' a text it writes there" if ok else log.error or
+            f"'stopped' {str(data['stopped'])[:120]!r} is not what the search writes after these steps")
+    redecided: dict[Fraction, tuple[str, str]] = {}
+
+    def redecide(x: Fraction, want: str | None, item: str) -> None:
+        """The step at ``x`` re-decided: its status (``want`` when given, else the stored one) and its reason."""
+        step = step_of.get(x, {})
+        stored = step.get("status")
+        if want is None and stored == "inconclusive" and log is not None and log.budget_only:
+            add(item, True, f"{param} = {_d(x)}: inconclusive when the time limit stopped the search (claims nothing)")
+            return
+        if step.get("witness") is not None:
+            # a refutation at a point of the other parameters' box: inside it, and refuted there by the point prover
+            w_text = step["witness"]
+            point = {k: Fraction(t) for k, t in w_text.items()}
+            from .paving import box_scene
+            box = box_scene(scene).box if any(is_tolerance(v) for v in scene.parameters.values()) else None
+            if stored != "refuted" or want == "proved" or box is None or not in_box(box, point):
+                add(item, False, f"{param} = {_d(x)}: a witness {w_text} that is not a point of the other "
+                    "parameters' box, or on a step that is not refuted")
+                return
+            if x not in redecided:
+                st, why = point_status(scene, param, x, claim, point)
+                redecided[x] = st, (f"refuted at a point of the other parameters' box, {_point_text(point)} "
+                                    f"(point proof): {why}")[:300]
+            how = f" at the witness {_point_text(point)} (point proof)"
+        else:
+            if x not in redecided:
+                st, why = _status(scene, param, x, claim)
+                redecided[x] = st, why[:300]
+            how = ""
+        st, why = redecided[x]
+        target = want or stored
+        ok = st == target == stored and step.get("reason") == why
+        add(item, ok, f"{param} = {_d(x)}: re-decided {st}{how}" + (
+            "" if ok else f", stored {stored} ({why[:160]})" if st != stored else
+            f", but this step must be {target}" if st != target else ": the stored reason is not the re-decision's own"))
+
+    for x in (lo, hi):
+        redecide(x, None, f"{param} = {_d(x)}")
     if data["proved_at"] is None or data["refuted_at"] is None:
         ok = (data["proved_at"] is None and data["refuted_at"] is None and data["bracket"] is None
               and data["bracket_decimal"] is None and data["statement"] is None and not data["certified"]
-              and bool(data["stopped"]))
+              and bool(data["stopped"]) and (log is None or log.proved_at is None))
         add("bracket", ok, "no bracket stated, not certified, stopped" if ok else
-            "a bracket, a statement or 'certified' without both a proved and a refuted point")
-        for x in (lo, hi):
-            st, _ = _status(scene, param, x, claim)
-            add(f"{param} = {_d(x)}", st == status_of.get(x), f"re-decided {st}, stored {status_of.get(x)}")
+            "a bracket, a statement or 'certified' without both a proved and a refuted point, or no bracket where "
+            "the steps give one")
         return out
     p, r = Fraction(data["proved_at"]), Fraction(data["refuted_at"])
     l, h = min(p, r), max(p, r)
@@ -365,28 +411,13 @@ def check_threshold(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     add("bracket", p != r and data["bracket"] == [fraction_text(l), fraction_text(h)]
         and data["bracket_decimal"] == list(interval_text(l, h)[:2])
         and data["statement"] == statement(claim, param, p, r)
-        and status_of.get(p) == "proved" and status_of.get(r) == "refuted",
-        "the bracket, its decimals and the statement re-derived from the proved and refuted points (steps of the "
-        "search)")
+        and (log is None or (log.proved_at, log.refuted_at) == (p, r))
+        and step_of.get(p, {}).get("status") == "proved" and step_of.get(r, {}).get("status") == "refuted",
+        "the bracket, its decimals and the statement re-derived from the proved and refuted points (where the "
+        "steps of the search end)")
     add("certified", data["certified"] == (width_ok and not data["stopped"]),
         f"certified {data['certified']}: relative width {'within' if width_ok else 'above'} {_d(w)}"
         + (", stopped" if data["stopped"] else ""))
-    witness_of = {v: s.get("witness") for v, s in zip(values, steps)}
     for x, want in ((p, "proved"), (r, "refuted")):
-        w_text = witness_of.get(x)
-        if w_text is not None:
-            # a refutation at a point of the other parameters' box: inside it, and refuted there by the point prover
-            point = {k: Fraction(t) for k, t in w_text.items()}
-            from .paving import box_scene
-            box = box_scene(scene).box if any(is_tolerance(v) for v in scene.parameters.values()) else None
-            if want != "refuted" or box is None or not in_box(box, point):
-                add(f"{want}_at", False, f"{param} = {_d(x)}: a witness {w_text} that is not a point of the other "
-                    "parameters' box, or on a step that is not the refuted end")
-                continue
-            st, why = point_status(scene, param, x, claim, point)
-            add(f"{want}_at", st == want, f"{param} = {_d(x)}: re-decided {st} at the witness {_point_text(point)} "
-                "(point proof)" + ("" if st == want else f" ({why[:160]})"))
-            continue
-        st, why = _status(scene, param, x, claim)
-        add(f"{want}_at", st == want, f"{param} = {_d(x)}: re-decided {st}" + ("" if st == want else f" ({why[:160]})"))
+        redecide(x, want, f"{want}_at")
     return out
