@@ -14,9 +14,10 @@ compared: ``scene``, ``software``, ``settings``, ``integrity`` (checked elsewher
 re-derived from the ``[paper]`` table the certificate's scene block carries.
 
 A run stopped by ``--time-limit`` is re-derived from its last finished attempt: the prover runs again
-with ``maxprec`` = the certificate's ``precision_bits`` and no limit, and the two agree up to the
-time-limit wording (the bracketed hint of an undecided claim, the time-limit note). A run in which no
-attempt finished must say exactly that, with nothing else.
+with ``maxprec`` = the certificate's ``precision_bits`` and no limit, and the time-limit wording the prover
+writes (the bracketed hint of an undecided claim, the time-limit note) is put in exactly before the two are
+compared. A run in which no attempt finished must say exactly that, with nothing else. A certificate
+written by another version is not confirmed: its texts can be re-derived only by that version.
 
 Cost: one proof of the scene. A process keeps its last few re-proofs (:data:`KEPT`), keyed by the scene
 block and the two precisions, so that checking several certificates of one scene (edited copies, a
@@ -102,30 +103,39 @@ def _first_difference(a: Any, b: Any, path: str) -> str | None:
     return None if a == b else path
 
 
-def _without_time_wording(cert: dict) -> dict:
-    """The certificate's compared fields, the time-limit wording taken out (see the module docstring)."""
-    out = {k: cert.get(k) for k in COMPARED}
-    out["claims"] = [{**c, "reason": c["reason"].split(_HINT, 1)[0]} if c.get("status") == "inconclusive" else c
-                     for c in cert.get("claims", [])]
-    out["notes"] = [n for n in cert.get("notes", [])
-                    if not n.startswith(_TIME) and not n.startswith("requested enclosure widths not met")]
+def _as_time_limited(again: dict, data: dict, seconds: float) -> dict:
+    """What the prover writes when ``seconds`` ran out after the attempts of ``data['precisions_tried']``, from
+    ``again`` (the same scene re-proved without a limit up to the last finished attempt's precision): each
+    undecided claim's hint names the time limit, the widths notes (written only without a time-out) go, and
+    the time-limit note is added. Every text is then compared exactly (an added or reworded note is named)."""
+    why = f"time limit of {seconds:g} s reached (--time-limit)"
+    out = {k: again.get(k) for k in COMPARED}
+    out["claims"] = [{**c, "reason": f"{c['reason'].split(_HINT, 1)[0]}{_HINT} {again['precisions_tried']} bits; {why}]"}
+                     if c.get("status") == "inconclusive" else c for c in again.get("claims", [])]
+    out["notes"] = [n for n in again.get("notes", []) if not n.startswith("requested enclosure widths not met")] + \
+        [f"{why}: the certificate is the last attempt that finished ({again['precision_bits']} bits)"]
     return out
 
 
-def _nothing_finished(data: dict, seconds: float) -> tuple[bool, str]:
-    """A run whose first attempt did not finish: every claim inconclusive for the time limit, nothing else."""
+def _nothing_finished(data: dict, seconds: float, settings: dict) -> tuple[bool, str]:
+    """A run whose first attempt did not finish: every claim inconclusive for the time limit at the precision
+    the prover starts at, nothing else (no quantity, audit row, extra field, formula or other note)."""
     from .kinds import claim_statements, kind_module
+    from .prover import starting_precision
     from .scene import Scene
     module = kind_module(data["scene"]["kind"])
-    statements = claim_statements(module, module.validate(Scene.from_header(data["scene"])))
+    model = module.validate(Scene.from_header(data["scene"]))
+    statements = claim_statements(module, model)
     why = f"time limit of {seconds:g} s reached (--time-limit)"
-    p0 = data["precisions_tried"][0] if data.get("precisions_tried") else None
+    p0 = starting_precision(model, settings["prec"], settings["maxprec"])
     bad = [c["id"] for c in data["claims"]
            if c.get("status") != "inconclusive" or c.get("statement") != statements.get(c["id"])
            or c.get("reason") != f"not decided: {why} before the first attempt ({p0} bits) finished"
+           or c.get("precision_bits", p0) != p0
            or set(c) - {"id", "statement", "status", "reason", "precision_bits"}]
     empty = not data.get("quantities") and not data.get("extra") and not data.get("witnesses") \
-        and not data.get("formulas") and data.get("precisions_tried") == [data.get("precision_bits")]
+        and not data.get("formulas") and not data.get("paper") \
+        and data.get("precisions_tried") == [p0] and data.get("precision_bits") == p0
     notes = data.get("notes") == [f"{why}: the certificate is the last attempt that finished (none did: nothing was "
                                   "decided)"]
     ok = not bad and empty and notes
@@ -140,18 +150,19 @@ def reproduction(data: dict, scene) -> tuple[bool, str]:
     against its schema): see the module docstring."""
     written_by = (data.get("software") or {}).get("rigor_gyro")
     if written_by != __version__:
-        return True, (f"not re-derived: written by rigor_gyro {written_by}, this is {__version__} (the verdicts are "
-                      "checked above; the texts are compared only by the version that wrote them)")
+        return False, (f"not re-derived: written by rigor_gyro {written_by}, this is {__version__}: the audit rows, "
+                       "reasons, counterexamples' values, extra fields and notes are re-derived only by the version "
+                       f"that wrote them, so the certificate is not confirmed (check it with rigor_gyro {written_by})")
     settings = data["settings"]
     limit = settings.get("time_limit")
     fired = limit is not None and any(n.startswith(_TIME) for n in data.get("notes", []))
     if fired and any(n.endswith("(none did: nothing was decided)") for n in data["notes"]):
-        return _nothing_finished(data, limit)
+        return _nothing_finished(data, limit, settings)
     maxprec = data["precision_bits"] if fired else settings["maxprec"]
     if not settings["prec"] <= maxprec:
         return False, f"settings prec {settings['prec']} above the last attempt's {maxprec} bits"
     again = _reproved(data, scene, settings["prec"], maxprec)
-    stored, derived = (_without_time_wording(data), _without_time_wording(again)) if fired else (data, again)
+    stored, derived = (data, _as_time_limited(again, data, limit)) if fired else (data, again)
     for key in COMPARED:
         where = _first_difference(stored.get(key), derived.get(key), key)
         if where:

@@ -565,5 +565,24 @@ def test_a_stored_nan_states_nothing_and_never_stands_for_a_required_quantity():
     still needs every quantity its statement names finite."""
     from rigor_gyro.kinds.lyapunov.check import _states_nothing
     assert _states_nothing({"lo": "nan", "hi": "nan", "mid": "nan", "rad": "inf"})
-    assert _states_nothing({"lo": "-inf", "hi": "2"}) and _states_nothing({"lo": "1", "hi": "+inf"})
+    assert _states_nothing({"lo": "-inf", "hi": "+inf", "mid": "inf", "rad": "inf"})
     assert not _states_nothing({"lo": "0", "hi": "0"}) and not _states_nothing({"lo": "-1e-5", "hi": "2.5"})
+    # one infinite end bounds the other (hostile review, session 10: damping_margin [-inf, 0.001] was accepted
+    # although the true value is 0.5748)
+    assert not _states_nothing({"lo": "-inf", "hi": "2"}) and not _states_nothing({"lo": "1", "hi": "+inf"})
+
+
+def test_a_half_infinite_stored_quantity_is_checked_not_waved_through():
+    """agafonov2013's damping_margin stored as [-inf, 0.001] (the true value is 0.5748): refused by the kind's
+    checker, whatever the texts check says."""
+    import copy
+    import json
+    from rigor_gyro.check import check_certificate
+    from rigor_gyro.certificate import digest
+    data = json.loads(json.dumps(prove_scene(load_scene("agafonov2013")).to_json()))
+    bad = copy.deepcopy(data)
+    bad["quantities"]["damping_margin"].update(lo="-inf", hi="0.001", mid="0.001", rad="0")
+    bad["software"]["rigor_gyro"] = "0.0.0-other"          # the texts check aside: the kind's check alone
+    bad["integrity"]["sha256"] = digest(bad)
+    items = {r.item: r for r in check_certificate(bad).results}
+    assert not all(r.ok for k, r in items.items() if k != "texts"), {k: r.message for k, r in items.items() if not r.ok}

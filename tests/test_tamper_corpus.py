@@ -126,12 +126,14 @@ def test_a_certificate_without_settings_is_not_a_certificate_of_this_version(cer
     assert not report.ok and report.first_failure.item == "schema"
 
 
-def test_another_versions_certificate_says_its_texts_are_not_compared(certs):
+def test_another_versions_certificate_is_not_confirmed(certs):
     data = copy.deepcopy(certs["rudenko1976"])
     data["software"]["rigor_gyro"] = "0.0.1"
     data["notes"].append("forged, but by another version")
-    texts = next(r for r in check_certificate(reseal(data)).results if r.item == "texts")
-    assert texts.ok and texts.message.startswith("not re-derived: written by rigor_gyro 0.0.1")
+    report = check_certificate(reseal(data))
+    texts = next(r for r in report.results if r.item == "texts")
+    assert not texts.ok and texts.message.startswith("not re-derived: written by rigor_gyro 0.0.1")
+    assert not report.ok and report.first_failure.item == "texts"
 
 
 # --- a run stopped by its time limit is re-derived too -------------------------------------------------
@@ -166,6 +168,14 @@ def test_a_run_stopped_before_any_attempt_finished_is_confirmed_and_forgeries_ar
     forged = copy.deepcopy(cert)
     forged["claims"][0]["reason"] += " (roots certified anyway)"
     assert not check_certificate(reseal(forged)).ok
+    # hostile review, session 10: an audit row or a claim's precision in a run that says nothing finished
+    genuine = json.loads(json.dumps(prove_scene(load_scene("rudenko1976")).to_json()))
+    row = next(r for r in genuine["paper"] if r["status"] == "refuted")
+    for edit in (lambda d: d["paper"].append({**row, "status": "confirmed"}),
+                 lambda d: d["claims"][0].update(precision_bits=32768)):
+        forged = copy.deepcopy(cert)
+        edit(forged)
+        assert not check_certificate(reseal(forged)).ok
 
 
 def test_a_run_stopped_after_a_finished_attempt_is_re_derived_from_it(monkeypatch):
@@ -198,6 +208,15 @@ def test_a_run_stopped_after_a_finished_attempt_is_re_derived_from_it(monkeypatc
     forged["claims"][0]["reason"] = "isolated by hand"
     texts = next(r for r in check_certificate(reseal(forged)).results if r.item == "texts")
     assert not texts.ok and texts.message.startswith("claims[0].reason")
+    # hostile review, session 10: the time-limit wording is the prover's exactly, not a free-text prefix
+    for edit in (lambda d: d["notes"].append("time limit of 1000 s reached; every bracket holds (certified)"),
+                 lambda d: d["notes"].append("requested enclosure widths not met; the brackets hold everywhere"),
+                 lambda d: d["claims"][1].update(reason=d["claims"][1]["reason"].split(" [undecided")[0]
+                                                 + " [undecided at every precision tried: it holds (certified)]")):
+        forged = copy.deepcopy(cert)
+        edit(forged)
+        texts = next(r for r in check_certificate(reseal(forged)).results if r.item == "texts")
+        assert not texts.ok, texts.message
 
 
 def test_a_genuine_time_limited_run_that_finished_in_time_is_confirmed():

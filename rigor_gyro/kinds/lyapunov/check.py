@@ -743,9 +743,13 @@ def check(model, data: dict) -> list[CheckResult]:
 
 
 def _states_nothing(stored) -> bool:
-    """Whether a stored quantity is not a finite interval (lo or hi nan or infinite)."""
-    return isinstance(stored, dict) and any(str(stored.get(k, "")).strip().lstrip("+-") in ("nan", "inf")
-                                            for k in ("lo", "hi"))
+    """Whether a stored quantity bounds nothing: both ends nan, or -inf and +inf (what the prover writes for a
+    non-finite ball). One infinite end does not qualify: [-inf, 0.001] states "<= 0.001" (the prover never writes
+    it; it is then read as a stored number and refused as not finite)."""
+    if not isinstance(stored, dict):
+        return False
+    lo, hi = (str(stored.get(k, "")).strip() for k in ("lo", "hi"))
+    return (lo, hi) == ("nan", "nan") or (lo == "-inf" and hi in ("inf", "+inf"))
 
 
 def _face_level(g, xs: arb) -> arb:
