@@ -421,3 +421,14 @@ def test_a_subclass_of_arb_takes_the_general_path():
     q = Quantity(arb(1), exact=Fraction(1))
     assert certainly_positive(q) and certainly_lt(q, arb(2)) and not certainly_gt(q, 2)
     assert not certainly_positive(Quantity(arb(0, 1)))
+
+
+def test_ball_key_is_the_exact_ball():
+    # the memos' key: equal exactly for the same midpoint and radius, different for any other ball
+    from rigor_gyro.core.balls import ball_key
+    a = arb(1) / 3
+    assert ball_key(a) == ball_key(arb(1) / 3) and all(type(v) is int for v in ball_key(a))
+    for other in (a + arb(0, 2.0 ** -80), arb(1) / 3 * (1 + arb(2) ** -60), -a, arb(0), arb(0, 1)):
+        assert ball_key(other) != ball_key(a)
+    with working_precision(128):
+        assert ball_key(arb(1) / 3) != ball_key(a)

@@ -83,3 +83,15 @@ def test_every_edit_found_lands_in_the_window_and_a_planted_substitution_is_foun
     for ed in got:
         assert lo <= F(ed.intended) <= hi and ed.cls in EDIT_CLASSES
     assert any(ed.cls == "digit-substituted" and F(ed.intended) == target for ed in got)
+
+
+def test_the_memo_of_edits_into_keys_the_window_exactly():
+    # the memo is keyed by the window's integer numerators and denominators: a Fraction and an fmpq window give
+    # the same edits, and a window one unit narrower (which excludes the intended value) gives none of them
+    from fractions import Fraction as F
+    from flint import fmpq
+    from rigor_gyro.core.digit_edits import edits_into
+    got = edits_into("0.1432", F(1341, 10000), F(1343, 10000))
+    assert [e.intended for e in got] == [e.intended for e in edits_into("0.1432", fmpq(1341, 10000), fmpq(1343, 10000))]
+    assert "0.1342" in [e.intended for e in got]
+    assert "0.1342" not in [e.intended for e in edits_into("0.1432", F(13421, 100000), F(1343, 10000))]

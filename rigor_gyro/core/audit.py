@@ -25,7 +25,7 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from .balls import certainly_gt, certainly_le, exact_endpoints
+from .balls import ball_key, certainly_gt, certainly_le, exact_endpoints
 from .errors import SceneError
 from .outcome import AuditStatus
 
@@ -176,7 +176,7 @@ _ENDS: dict = {}
 def _endpoint_integers(value: arb) -> tuple[int, int, int, int]:
     """(ln, ld, hn, hd) with the exact ends of a finite ball lo = ln/ld, hi = hn/hd, memoised by the
     ball's exact midpoint and radius (the classifier asks the same value about many readings)."""
-    key = (value.mid().man_exp(), value.rad().man_exp())
+    key = ball_key(value)
     hit = _ENDS.get(key)
     if hit is None:
         if len(_ENDS) > 4096:

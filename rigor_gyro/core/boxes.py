@@ -29,6 +29,7 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
+from .balls import ball_key
 from .errors import ParameterError
 from .exact import parse_exact
 
@@ -248,7 +249,7 @@ def even_in(f, name: str):
         b = balls[name]
         if b.mid() < 0:
             balls = {**balls, name: -b}
-        key = tuple((k, balls[k].mid().man_exp(), balls[k].rad().man_exp()) for k in sorted(balls))
+        key = tuple((k, *ball_key(balls[k])) for k in sorted(balls))
         hit = cache.get(key)
         if hit is None:
             hit = cache[key] = f(balls)

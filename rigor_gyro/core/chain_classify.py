@@ -30,7 +30,7 @@ from fractions import Fraction
 from flint import arb, fmpq
 
 from .audit import audit_printed, half_unit
-from .balls import exact_endpoints, exact_endpoints_fmpq
+from .balls import ball_key, exact_endpoints, exact_endpoints_fmpq
 from .classification import Classification
 from .digit_edits import edits_into
 from .paper_chain import Chain
@@ -47,7 +47,7 @@ def chain_window(printed: str, value: arb, slack: int) -> tuple[fmpq, fmpq] | No
     (None when the ball is not finite), as exact flint rationals (compare them with :func:`print_value`)."""
     if not value.is_finite():
         return None
-    key = (printed, value.mid().man_exp(), arb(value.rad()).man_exp(), slack)
+    key = (printed, *ball_key(value), slack)
     hit = _WINDOWS.get(key)
     if hit is None:
         if len(_WINDOWS) > 16384:
@@ -67,7 +67,7 @@ _WINDOWS: dict = {}
 
 def _ends(value: arb) -> tuple[fmpq, fmpq]:
     """The exact ends of a finite ball, memoised by its exact midpoint and radius."""
-    key = (value.mid().man_exp(), arb(value.rad()).man_exp())
+    key = ball_key(value)
     hit = _ENDS.get(key)
     if hit is None:
         if len(_ENDS) > 8192:
@@ -101,7 +101,7 @@ def classify_against_chain(printed: str, value: arb, chain: Chain):
     docstring). Returns a :class:`rigor_gyro.core.classification.Classification` with ``intended`` set for a
     misprint class."""
     text = printed.strip()
-    key = (text, value.mid().man_exp(), arb(value.rad()).man_exp())
+    key = (text, *ball_key(value))
     hit = chain.cache.get(key)
     if hit is None:
         hit = chain.cache[key] = _classify(text, value, chain)
@@ -135,7 +135,7 @@ _NO_BALL = ("no ball",)
 
 def _ball_key(value: arb):
     """A finite ball's exact midpoint and radius (None for any non-finite ball: every window is None)."""
-    return (value.mid().man_exp(), arb(value.rad()).man_exp()) if value.is_finite() else None
+    return ball_key(value) if value.is_finite() else None
 
 
 def print_value(text: str) -> fmpq:

@@ -64,18 +64,25 @@ def _q(x) -> fmpq:
     return x if isinstance(x, fmpq) else fmpq(x.numerator, x.denominator)
 
 
-@functools.lru_cache(maxsize=16384)
 def edits_into(printed: str, lo: Fraction | fmpq, hi: Fraction | fmpq, evidential: bool = True,
                factor: int = 10) -> list[Edit]:
     """Every evidential single edit of ``printed`` whose result lies in [lo, hi] (module docstring),
     in the order of :data:`EDIT_CLASSES`; with ``evidential=False`` every edit that lands there (candidates
     that need other evidence, such as a downstream row reproduced only with them). ``factor``: the distance
     test's multiple of W (10; 5 for a window of the print's rounding alone, slack 0, where a chance fit is
-    rarer). Memoised (the chain builder asks the same question in each of its passes): do not mutate
-    the list returned."""
+    rarer). Memoised (the chain builder asks the same question in each of its passes), keyed by the window's
+    ends as integer numerators and denominators (an fmpq's hash costs about 3 us): do not mutate the list
+    returned."""
+    lo, hi = _q(lo), _q(hi)                       # exact rationals of either kind, compared as fmpq
+    return _edits_into(printed, int(lo.p), int(lo.q), int(hi.p), int(hi.q), evidential, factor)
+
+
+@functools.lru_cache(maxsize=16384)
+def _edits_into(printed: str, lp: int, lq: int, hp: int, hq: int, evidential: bool, factor: int) -> list[Edit]:
+    """:func:`edits_into` of the window [lp/lq, hp/hq] (lowest terms, lq, hq > 0)."""
     sign, tup, exp = Decimal(printed.strip()).as_tuple()
     digits = "".join(map(str, tup)).lstrip("0")
-    lo, hi = _q(lo), _q(hi)                       # exact rationals of either kind, compared as fmpq
+    lo, hi = fmpq(lp, lq), fmpq(hp, hq)
     if not digits or lo > hi:
         return []
     n, neg = len(digits), bool(sign)

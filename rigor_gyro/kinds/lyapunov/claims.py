@@ -54,7 +54,7 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from ...core.balls import (certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds,
+from ...core.balls import (ball_key, certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds,
                            Quantity, exact_fraction, interval, rel_width_at_most, stored_hull,
                            working_precision)
 from ...core.audit import check_printed
@@ -1009,7 +1009,7 @@ def r_sup_upper_bound(g: Gimbal, xs: arb, mu_lo: arb, mu_hi: arb, target: arb, m
 
     def bound(a: arb, b: arb) -> arb:
         M = interval(a, b)
-        ends = (a.mid().man_exp(), a.rad().man_exp(), b.mid().man_exp(), b.rad().man_exp())
+        ends = (*ball_key(a), *ball_key(b))
         L = arb(0)
         for i, x in enumerate(points):
             low = lows.get((i, ends))

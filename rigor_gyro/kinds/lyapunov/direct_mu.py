@@ -22,7 +22,7 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from ...core.balls import certainly_gt, certainly_le, certainly_lt, exact_fraction
+from ...core.balls import ball_key, certainly_gt, certainly_le, certainly_lt, exact_fraction
 from ...core.subdivision import best_first_bisection
 from .direct_face import face_polish
 from .float_twin import float_twin, in_safe_range
@@ -98,15 +98,17 @@ def _float_proposal(g: Gimbal, seen, ball_value):
 
 def piece_upper(g: Gimbal, Mu: arb, points: list[tuple[fmpq, fmpq]], memo: dict | None = None) -> arb:
     """The smallest of the points' bounds of R_dsup over the mu ball ``Mu`` (exact comparisons: arb's min of
-    two balls widens), +inf if none is finite. ``memo``: a dict kept by the caller (one precision) where each
-    point's bound over each ball is computed once (a piece re-bounded after a new point keeps the old ones)."""
+    two balls widens), +inf if none is finite. ``memo``: a dict kept by the caller (one precision) with one
+    list ``points`` that only grows at its end, where each point's bound over each ball is computed once (a
+    piece re-bounded after a new point keeps the old ones); keyed by the point's index in that list (an fmpq's
+    hash costs about 3 us) and the ball."""
     best = arb("inf")
-    mkey = (Mu.mid().man_exp(), Mu.rad().man_exp()) if memo is not None else None
-    for u, s in points:
+    mkey = ball_key(Mu) if memo is not None else None
+    for i, (u, s) in enumerate(points):
         if memo is None:
             b = direct_radius_upper(g, u, s, Mu)
         else:
-            key = (u, s, mkey)
+            key = (i, mkey)
             b = memo.get(key)
             if b is None:
                 b = memo[key] = direct_radius_upper(g, u, s, Mu)

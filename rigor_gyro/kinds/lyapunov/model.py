@@ -41,7 +41,7 @@ from fractions import Fraction
 
 from flint import arb, ctx as _ctx, fmpq
 
-from ...core.balls import (certainly_gt, certainly_le, certainly_lt, certainly_negative, certainly_positive, current_precision, decimal_bounds, square,
+from ...core.balls import (ball_key, certainly_gt, certainly_le, certainly_lt, certainly_negative, certainly_positive, current_precision, decimal_bounds, square,
                            exact_fraction, sqrt_of_nonnegative)
 from ...core.boxes import even_in
 from ...core.exact import Exact
@@ -198,10 +198,10 @@ def _per_ball(method):
         if last[0] is x2 and last[1] == prec:
             base = last[2]
         elif type(x2) is arb and x2.is_finite():
-            base = (prec, x2.mid().man_exp(), x2.rad().man_exp())
+            base = (prec, *ball_key(x2))
             self._last_key = (x2, prec, base)
         elif type(x2) is Dual and type(x2.d) is arb and x2.v.is_finite() and x2.d.is_exact() and x2.d.is_finite():
-            base = (prec, x2.v.mid().man_exp(), x2.v.rad().man_exp(), x2.d.man_exp())
+            base = (prec, *ball_key(x2.v), *ball_key(x2.d))
             self._last_key = (x2, prec, base)
         else:
             return method(self, x2)

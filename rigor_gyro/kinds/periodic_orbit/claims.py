@@ -52,7 +52,7 @@ from typing import Any
 
 from flint import acb, arb, arb_series, fmpq
 
-from ...core.balls import (ball, exact_fraction, series_coefficients, certainly_gt, certainly_le, certainly_lt, certainly_negative,
+from ...core.balls import (ball, ball_key, exact_fraction, series_coefficients, certainly_gt, certainly_le, certainly_lt, certainly_negative,
                            certainly_positive, current_precision, decimal_bounds, decimal_bounds_apart, interval,
                            working_precision)
 from ...core.errors import ParameterError
@@ -455,7 +455,7 @@ def isolation_coeffs(sp: Spectrum):
     def coeffs(ctr, n):
         if type(ctr) is not arb or not ctr.is_finite():
             return pole_free_coeffs(sp, ctr, n)
-        key = (current_precision(), ctr.mid().man_exp(), ctr.rad().man_exp(), n)
+        key = (current_precision(), *ball_key(ctr), n)
         hit = memo.get(key)
         if hit is None:
             if len(memo) >= COEFF_MEMO_LIMIT:

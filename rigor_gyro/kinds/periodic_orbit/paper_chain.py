@@ -30,7 +30,7 @@ from typing import Any
 
 from flint import acb, arb, arb_mat, ctx, fmpq, fmpq_poly
 
-from ...core.balls import ball, certainly_negative, certainly_positive, exact_endpoints_fmpq
+from ...core.balls import ball, ball_key, certainly_negative, certainly_positive, exact_endpoints_fmpq
 from ...core.digit_edits import edits_into
 from ...core.chain_classify import chain_window, decide, print_value
 from ...core.paper_chain import DEFAULT_SLACK, Chain, exact_value, relation_refs, rounding_interval
@@ -101,7 +101,7 @@ class _Reader:
         by everything the result depends on (the builder's passes ask the same row again with the same
         ball and the same prints of the identities' other rows)."""
         rels = self.rels.get(rid, ()) if isinstance(self.rels, dict) else self.rels
-        key = (rid, txt, value.mid().man_exp(), arb(value.rad()).man_exp(), slack, ctx.prec,
+        key = (rid, txt, *ball_key(value), slack, ctx.prec,
                tuple(tuple(self.prints.get(o) for o, _ in rel.terms) for rel in rels))
         hit = self.memo.get(key)
         if hit is not None:
