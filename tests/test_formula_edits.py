@@ -64,6 +64,41 @@ def test_definitions_carry_an_edit_to_every_use():
         assert e.value.is_finite() and e.value.overlaps(arb(24))
 
 
+def test_an_edit_in_a_definition_gives_the_ball_of_a_whole_re_evaluation():
+    """The search reuses the unedited definitions an edit does not reach and shares an edited definition's
+    subtrees: each edit's value is still the very ball of evaluating every definition afresh."""
+    env = {"a": arb(3) / 7, "b": arb(5) / 11, "c": arb(2) / 3}
+    defs = {"D": "a ** 2 - b * c", "E": "sqrt(a + c) / b", "F": "D * c + a", "G": "b - c"}
+    text = "(D + E) * F / G"
+    with working_precision(64):
+        r = search_single_edits(text, env, "0.5", defs)
+        seen = 0
+        for where, body in defs.items():
+            for e in single_edits(body):
+                scope = dict(env)
+                for name, t in defs.items():
+                    scope[name] = evaluate(e.tree if name == where else t, scope)
+                want = evaluate(text, scope)
+                got = [x for x in r.reproducing if x.formula == f"{where} = {e.formula}"]
+                assert all(x.value.mid() == want.mid() and x.value.rad() == want.rad() for x in got)
+                seen += 1
+        # every value the search computed (reproducing or not) is compared through a print that each one gives
+        for where, body in defs.items():
+            for e in single_edits(body)[:6]:
+                scope = dict(env)
+                for name, t in defs.items():
+                    scope[name] = evaluate(e.tree if name == where else t, scope)
+                want = evaluate(text, scope)
+                if not want.is_finite():
+                    continue
+                printed = f"{float(want.mid()):.4g}"
+                hit = search_single_edits(text, env, printed, defs)
+                mine = [x for x in hit.reproducing if x.formula == f"{where} = {e.formula}"]
+                assert all(x.value.mid() == want.mid() and x.value.rad() == want.rad() for x in mine)
+                assert mine or hit.undecided or "e" in printed
+    assert seen == sum(len(single_edits(b)) for b in defs.values())
+
+
 def test_the_audit_formula_texts_are_the_model_functions():
     from rigor_gyro.kinds.eigenfrequencies.claims import validate
     from rigor_gyro.kinds.eigenfrequencies.model import BRACKETS, EDIT_FORMULAS, approximation

@@ -221,6 +221,11 @@ def show(t: Tree, memo: dict | None = None) -> str:
     return text
 
 
+def _symbols(t: Tree) -> set[str]:
+    """The names of the symbols a formula tree reads."""
+    return {n[1] for _, n in _sites(t) if n[0] == "sym"}
+
+
 def _sites(t: Tree, path: tuple = ()):
     """(path, subtree) for every node, breadth first (child indices: 1, 2 of binary nodes, 1 of neg/**,
     2 of call)."""
@@ -330,15 +335,30 @@ def search_single_edits(text: str, env: dict[str, arb], printed: str, defs: dict
     order = list(defs)
     for name in order:
         base[name] = evaluate(defs[name], base)
+    used = {name: _symbols(defs[name]) for name in order}
 
     memo: dict = {}                     # the edits of the text share all its subtrees but one path
+    # an edit in a definition: the definitions before it keep their unedited values, the edits of one
+    # definition share all its subtrees but one path (a memo per definition, on the same scope), and a later
+    # definition that reads no changed name keeps its unedited value (the same inputs give the same ball)
+    scopes: dict[str, tuple[dict, dict]] = {}
 
     def value(where: str | None, edited: Tree) -> arb:
         if where is None:
             return evaluate(edited, base, memo)
-        scope = dict(env)
-        for name in order:
-            scope[name] = evaluate(edited if name == where else defs[name], scope)
+        if where not in scopes:
+            before = order[:order.index(where)]
+            scopes[where] = ({**env, **{n: base[n] for n in before}}, {})
+        scope, def_memo = scopes[where]
+        scope = dict(scope)
+        scope[where] = evaluate(edited, scope, def_memo)
+        changed = {where}
+        for name in order[order.index(where) + 1:]:
+            if used[name] & changed:
+                scope[name] = evaluate(defs[name], scope)
+                changed.add(name)
+            else:
+                scope[name] = base[name]
         return evaluate(main, scope)
 
     sites = [(None, text)] + [(k, show(v)) for k, v in defs.items()]
