@@ -131,3 +131,97 @@ def test_a_threshold_cut_by_its_time_limit_still_checks(threshold):
     assert _failed(data) == []
     data["stopped"] = "the claim is inconclusive"
     assert [f.item for f in _failed(data)] == ["search log"]
+
+
+PAVING = """
+name = "cx_forgery"
+kind = "eigenfrequencies"
+source = "test: bracket (7) fails on part of this box (eps > 1), found by the counterexample search"
+[parameters]
+a = "15.08"
+b = "6.154"
+eps = "[0.1, 1.3]"
+Omega2 = "[0.5, 2.2]"
+[claims]
+only = ["bracket_1"]
+[options]
+box_resolution = "1/4"
+range_boxes = "0"
+search_points = "4"
+monte_carlo = "50"
+"""
+
+
+@pytest.fixture(scope="module")
+def searched():
+    from rigor_gyro.margins.paving import box_scene, pave
+    from rigor_gyro.margins.report import paving_json
+    from rigor_gyro.scene import parse_scene
+    return paving_json(pave(box_scene(parse_scene(PAVING))))
+
+
+def _paving_failures(data, change):
+    from tests.forgery import reseal
+    bad = copy.deepcopy(data)
+    change(bad)
+    return [r for r in check_certificate(reseal(bad)).results if not r.ok]
+
+
+def test_the_genuine_searched_paving_checks(searched):
+    c = searched["claims"][0]
+    assert "stopped" not in searched and c["counterexample_search"]["proofs"] and c["monte_carlo"]["samples"] == 50
+    assert _paving_failures(searched, lambda d: None) == []
+
+
+@pytest.mark.parametrize("change, says", [
+    (lambda c: c["counterexample_search"]["settings"].update(points=4000, samples=100000, sequence="sobol"),
+     "the counterexample search's settings"),
+    (lambda c: c["counterexample_search"].update(undecided_leaves=0), "the counterexample search's settings"),
+    (lambda c: c["monte_carlo"].update(confidence=0.5), "the Monte Carlo estimate's"),
+    (lambda c: c["counterexample_search"]["proofs"][0].update(
+        probe={"refuted": "undecided", "undecided": "refuted"}[c["counterexample_search"]["proofs"][0]["probe"]]),
+     "the probe gives"),
+])
+def test_a_paving_search_must_be_the_scenes_own(searched, change, says):
+    failed = _paving_failures(searched, lambda d: change(d["claims"][0]))
+    assert failed and failed[0].item == "bracket_1" and says in failed[0].message, failed
+
+
+def test_the_paving_schema_closes_the_monte_carlo_estimate_and_the_search_proofs(searched):
+    for change in (lambda c: c["monte_carlo"].update(note="no failing sample in 10^6 further samples"),
+                   lambda c: c["counterexample_search"]["proofs"][0].update(verified_by="referee"),
+                   lambda c: c["counterexample_search"]["proofs"][0].update(probe="proved")):
+        failed = _paving_failures(searched, lambda d: change(d["claims"][0]))
+        assert [f.item for f in failed] == ["schema"] or "schema" in {f.item for f in failed}, failed
+
+
+@pytest.mark.parametrize("stop, pending", [("time limit of 5 s reached", None),
+                                           ("time limit of 5 s reached (--time-limit)", None),
+                                           ("time limit of 5 s reached (--time-limit)", []),
+                                           ("stopped by Ctrl-C before the searches", [])])
+def test_a_complete_paving_cannot_say_it_stopped(searched, stop, pending):
+    def change(d):
+        d["stopped"] = stop
+        if pending is not None:
+            d["pending"] = pending
+    assert "stopped" in {f.item for f in _paving_failures(searched, change)}
+
+
+def test_a_paving_stopped_early_checks_and_its_stop_text_is_pinned():
+    from rigor_gyro.margins.paving import box_scene, pave
+    from rigor_gyro.margins.report import paving_json
+    from rigor_gyro.scene import parse_scene
+    data = paving_json(pave(box_scene(parse_scene(PAVING)), box_budget=3))
+    assert data["stopped"] == "box budget of 3 evaluations reached (--box-budget)" and data["pending"]
+    assert _paving_failures(data, lambda d: None) == []
+    failed = _paving_failures(data, lambda d: d.update(stopped="stopped by the referee"))
+    assert "stopped" in {f.item for f in failed}
+    failed = _paving_failures(data, lambda d: d.update(budget_exhausted=False))
+    assert [f.item for f in failed] == ["stopped"]
+
+
+def test_a_skipped_search_must_give_the_time_limit(searched):
+    def change(d):
+        d["claims"][0]["counterexample_search"] = {"skipped": "not needed: the claim holds"}
+    failed = _paving_failures(searched, change)
+    assert any("skipped for 'not needed" in f.message for f in failed), failed

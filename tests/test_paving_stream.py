@@ -128,9 +128,9 @@ def test_a_time_limit_mid_stream_resumes_to_the_whole(plane_fast, monkeypatch):
     calls = []
     with monkeypatch.context() as m:            # the clock runs out at the 31st look
         m.setattr(deadline.Budget, "expired", lambda self: calls.append(1) or len(calls) > 30)
-        m.setattr(deadline.Budget, "reason", lambda self: "time limit of 1 s reached")
+        m.setattr(deadline.Budget, "reason", lambda self: "time limit of 1 s reached (--time-limit)")
         data = _json(pave(_bs(plane_fast), Shuffled(3, 4), time_limit=1.0))
-    assert data["stopped"] == "time limit of 1 s reached" and data["pending"]
+    assert data["stopped"] == "time limit of 1 s reached (--time-limit)" and data["pending"]
     whole = _json(pave(_bs(plane_fast)))
     assert 0 < data["boxes_evaluated"] < whole["boxes_evaluated"]
     bs, state = resume_state(data)

@@ -27,6 +27,7 @@ point proof per stored point, and up to 3 ``samples`` point proofs per claim.
 from __future__ import annotations
 
 import json
+import re
 from fractions import Fraction
 from typing import Any
 
@@ -186,11 +187,54 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES, executor=No
     verdict = "refuted" if "refuted" in statuses else "proved" if statuses and all(s == "proved" for s in statuses) \
         else "inconclusive"
     add(CheckResult("verdict", data.get("verdict") == verdict, f"verdict {data.get('verdict')!r}"))
-    if pending is not None or stopped:
+    if pending is not None or stopped or "stopped" in data:
+        add(_check_stopped(data, stopped, pending, leaves))
         add(_check_pending(bs, pending, stopped, leaves))
     if any(k in data for k in ("quantities", "range_tiles", "range_points")):
         add(_check_ranges(bs, data, pj, oj, mj, executor))
     return out
+
+
+def _stop_texts() -> dict[str, str]:
+    """The texts pave writes in ``stopped`` (regular expressions, matched whole), by what stopped it."""
+    from ..core.deadline import Budget
+    from .paving import CHECKPOINT, INTERRUPTED, box_budget_reason
+    limit = re.escape(Budget(1.0).reason()).replace(re.escape("1"), r"\S+", 1)
+    return {"time limit": limit, "Ctrl-C": re.escape(INTERRUPTED),
+            "broken executor": r"the executor broke \(.*\); the (batch in flight was|batches in flight were) left pending",
+            "box budget": re.escape(box_budget_reason(7)).replace("7", r"[0-9]+", 1),
+            "checkpoint": re.escape(CHECKPOINT).replace(re.escape("{n}"), r"[0-9]+")}
+
+
+def _check_stopped(data: dict[str, Any], stopped: str, pending, leaves: dict[str, dict]) -> tuple[str, bool, str]:
+    """A paving that says it stopped early: ``stopped`` is a text pave writes (a time limit, Ctrl-C, a broken
+    executor, a box budget, a checkpoint: :func:`_stop_texts`); the stop came before the point proofs, the
+    searches and the quantities' ranges (pave runs them only after the last box), so none is stored and
+    ``budget_exhausted`` is set. Without pending boxes the only stop pave writes is Ctrl-C (during the point
+    proofs, the searches or the ranges: the leaves complete); a paving written before pavings listed their
+    pending boxes (no ``pending``) could stop only at its time limit, leaving undecided sub-boxes."""
+    texts = _stop_texts()
+    if not isinstance(data.get("stopped"), str) or not stopped:
+        return CheckResult("stopped", False, f"'stopped' {data.get('stopped')!r} in a paving: a stop is a non-empty "
+                           "text, written only when pave stopped early")
+    allowed = ("Ctrl-C",) if pending == [] else ("time limit",) if pending is None else tuple(texts)
+    if not any(re.fullmatch(texts[k], stopped, flags=re.S) for k in allowed):
+        return CheckResult("stopped", False, f"'stopped' {stopped[:120]!r} is not a text pave writes "
+                           + ("when it stops with no pending box (only Ctrl-C during the point proofs, searches or "
+                              "ranges)" if pending == [] else "without listing pending boxes (only its time limit: "
+                              "'time limit of S s reached (--time-limit)')" if pending is None else
+                              f"(a stop by: {', '.join(allowed)})"))
+    if m := re.fullmatch(texts["checkpoint"], stopped):
+        if f"after {data.get('boxes_evaluated')} box evaluations" not in m.group(0):
+            return CheckResult("stopped", False, "a checkpoint's count of box evaluations is not the paving's")
+    if any(c.get("points") for c in data["claims"]) or any(k in data for k in ("quantities", "range_tiles")):
+        return CheckResult("stopped", False, "point proofs or quantity ranges in a paving that stopped before them")
+    if data.get("budget_exhausted") is not True:
+        return CheckResult("stopped", False, "a paving that stopped early with budget_exhausted not true")
+    if pending is None and not any(s == "undecided" for ls in leaves.values() for s in ls.values()):
+        return CheckResult("stopped", False, "stopped at the time limit, yet no sub-box is undecided")
+    return CheckResult("stopped", True, f"stopped: {stopped[:80]} (a stop pave writes; no point proof, search or range "
+                       "after it)")
 
 
 def _pending_claims(pending, whole: Box) -> tuple[set, bool]:
@@ -274,7 +318,7 @@ def _check_searches(bs, data: dict[str, Any], c: dict[str, Any], boxes: list, oj
     skipped, holds none), every stored point proof re-proved, the estimate re-run with its seed. Returns
     whether the search holds a certified counterexample (verified here)."""
     from .counterexample_check import check_counterexamples, check_monte_carlo
-    from .counterexamples import failing_fraction_estimate
+    from .counterexamples import PROBE_PREC, failing_fraction_estimate, probe_task
     from .paving import point_task, searched_refutation
     cid = c["id"]
     stopped = isinstance(data.get("stopped"), str) and bool(data["stopped"])
@@ -286,14 +330,37 @@ def _check_searches(bs, data: dict[str, Any], c: dict[str, Any], boxes: list, oj
                                     "or none where they ask for one"))
         return False
     found = False
+    limit = _stop_texts()["time limit"]
+    for name, part in (("counterexample search", cs), ("Monte Carlo estimate", mc)):
+        if part is not None and "skipped" in part and not re.fullmatch(limit, str(part["skipped"])):
+            add(CheckResult(cid, False, f"the {name} says it was skipped for {str(part['skipped'])[:80]!r}: pave skips "
+                            "one only when its time limit ran out"))
     if cs is not None and "skipped" not in cs:
+        want = {"points": bs.search_points, "samples": bs.search_samples or 32 * bs.search_points,
+                "probe_prec": PROBE_PREC, "improve_steps": 2, "sequence": "halton"}
+        undecided = sum(1 for _, s in boxes if s == "undecided")
+        if cs.get("settings") != want or cs.get("undecided_leaves") != undecided:
+            add(CheckResult(cid, False, f"the counterexample search's settings {cs.get('settings')} and undecided leaves "
+                            f"{cs.get('undecided_leaves')!r} are not the scene's {want} and the claim's {undecided}"))
+
         def prove_at(point, cid=cid):
             return point_task(bs.scene.kind, json.dumps(bs.point_parameters(point), sort_keys=True), oj, cid,
                               bs.point_prec, bs.point_maxprec)
-        ok, msg = check_counterexamples(bs.box, boxes, cid, cs, prove_at)
+
+        def probe_at(point, cid=cid):
+            batch = json.dumps([{k: fraction_text(q) for k, q in point.items()}])
+            return probe_task(bs.scene.kind, json.dumps(bs.points, sort_keys=True), oj,
+                              json.dumps({k: fraction_text(q) for k, q in bs.box.midpoint().items()}, sort_keys=True),
+                              json.dumps(bs.box.to_json()), batch, (cid,), PROBE_PREC, False)[0][cid][0]
+        ok, msg = check_counterexamples(bs.box, boxes, cid, cs, prove_at, probe_at)
         add(CheckResult(cid, ok, msg))
         found = ok and searched_refutation({"counterexample_search": cs})
     if mc is not None and "skipped" not in mc:
+        want = {"samples": bs.monte_carlo, "seed": bs.monte_carlo_seed, "classifier": "point", "confidence": 0.999}
+        got = {k: mc.get(k) for k in want}
+        if got != want:
+            add(CheckResult(cid, False, f"the Monte Carlo estimate's {got} are not the scene's {want}"))
+            return found
         total = bs.box.volume()
         volume = {k: sum((b.volume() for b, s in boxes if s == k), Fraction(0)) / total
                   for k in ("proved", "refuted", "undecided")}

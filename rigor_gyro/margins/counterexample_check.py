@@ -3,8 +3,8 @@
 
 * :func:`check_counterexamples`: every stored point proof of a claim's search (``search_claim(...)["proofs"]``)
   names a point of the box (the box's parameters, exact text), a leaf of the claim that contains it (exact),
-  that leaf's stored status, and the point prover's status, reason and precision, which ``prove_at`` re-proves
-  and must give again exactly; a point refuted inside a leaf stored ``proved`` (or proved inside one stored
+  that leaf's stored status, the probe's status (``probe``: re-probed, never ``proved``), and the point
+  prover's status, reason and precision, which ``prove_at`` re-proves and must give again exactly; a point refuted inside a leaf stored ``proved`` (or proved inside one stored
   ``refuted``) is a contradiction. The counts (``refuted``, ``leaves``) must follow from the proofs.
 * :func:`check_monte_carlo`: a stored estimate's fraction and interval must follow from its counts (the
   Wilson interval recomputed), and its ``consistent`` flag from the paving's certified volume fractions;
@@ -39,10 +39,13 @@ def _point(whole: Box, text: Any) -> dict[str, Fraction] | None:
 
 
 def check_counterexamples(whole: Box, leaves: list[tuple[Box, str]], claim: str, search: dict[str, Any],
-                          prove_at: Callable[[dict[str, Fraction]], dict[str, Any]]) -> tuple[bool, str]:
+                          prove_at: Callable[[dict[str, Fraction]], dict[str, Any]],
+                          probe_at: Callable[[dict[str, Fraction]], str] | None = None) -> tuple[bool, str]:
     """(ok, message) for one claim's stored search (see the module docstring); ``prove_at(point)`` returns
     the point prover's ``{status, reason, precision_bits}`` at the exact point (e.g. through
-    :func:`rigor_gyro.margins.paving.point_task`)."""
+    :func:`rigor_gyro.margins.paving.point_task`); ``probe_at(point)``, when given, the probe's status there
+    (:func:`.counterexamples.probe_task`), which each stored ``probe`` must be (never ``proved``: the search
+    proves only the points its probe did not prove)."""
     proofs = search.get("proofs")
     if not isinstance(proofs, list):
         return False, f"claim {claim}: the counterexample search stores no list of point proofs"
@@ -60,6 +63,12 @@ def check_counterexamples(whole: Box, leaves: list[tuple[Box, str]], claim: str,
             return False, f"{where}: leaf {leaf} is stored {status}, the search says {p.get('leaf_status')!r}"
         if not contains(box, point):
             return False, f"{where}: the point {p['point']} is not in leaf {leaf} ({box.to_json()})"
+        if probe_at is not None:
+            probe = probe_at(point)
+            if p.get("probe") != probe or probe == "proved":
+                return False, (f"{where}: the probe gives {probe!r} at {p['point']}, the certificate "
+                               f"{p.get('probe')!r}" + (" (a point its probe proved is never a candidate)"
+                                                        if probe == "proved" else ""))
         got = prove_at(point)
         for key in ("status", "reason", "precision_bits"):
             if got.get(key) != p.get(key):
