@@ -232,3 +232,19 @@ def test_direct_radius_and_its_supremum_over_mu_bracket_mpmath_to_1e_9():
         assert _mq(Rm) <= Rmax <= _mq(U), (Rm, Rmax, U)
     assert (U - Rm) / Rm <= Fraction(1, 10 ** 9)
     assert check_certificate(data).ok
+
+
+def test_the_face_minimum_memo_gives_each_s_range_and_precision_its_own_value():
+    """face_margin asks face_min_lower through a memo on the gimbal: a repeated s-range gets the very ball, another
+    s-range or precision its own (a key without the range would hand one range's minimum to another)."""
+    from rigor_gyro.kinds.lyapunov.direct_face import _face_min_lower_memo
+    g = _g()
+    ranges = [(Fraction(1, 4), Fraction(5, 16)), (Fraction(5, 16), Fraction(3, 8)), (Fraction(1, 4), Fraction(5, 16))]
+    for prec in (64, 128, 64):
+        with working_precision(prec):
+            for lo, hi in ranges:
+                got, want = _face_min_lower_memo(g, 1, lo, hi), face_min_lower(_g(), 1, lo, hi)
+                assert (got is None) == (want is None)
+                if got is not None:
+                    assert got.mid() == want.mid() and got.rad() == want.rad()
+    assert len(g._face_min_lower) == 4

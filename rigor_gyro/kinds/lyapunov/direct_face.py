@@ -30,7 +30,7 @@ from fractions import Fraction
 
 from flint import arb, arb_series, fmpq
 
-from ...core.balls import certainly_negative, certainly_positive, exact_fraction
+from ...core.balls import certainly_negative, certainly_positive, current_precision, exact_fraction
 from .model import Dual, Gimbal, direct_margin, vdot_polar
 
 __all__ = ["face_series", "face_min_lower", "face_margin", "face_polish", "FACE_BOX_U", "FACE_BOX_S"]
@@ -108,6 +108,21 @@ def face_min_lower(g: Gimbal, face: int, s_lo: Fraction, s_hi: Fraction, mu: arb
     return low.min(inner.lower())
 
 
+_NONE = object()
+
+
+def _face_min_lower_memo(g: Gimbal, face: int, s_lo: Fraction, s_hi: Fraction) -> arb | None:
+    """:func:`face_min_lower` at g's mu, memoised on the gimbal by (face, s-range, precision): boxes of one s-range
+    at different u, and the certifications at several radii, ask the same face minimum (about half the calls
+    were repeats on agafonov2013). The value is a function of these and g's parameters alone."""
+    memo = g.__dict__.setdefault("_face_min_lower", {})
+    key = (face, s_lo, s_hi, current_precision())
+    hit = memo.get(key, _NONE)
+    if hit is _NONE:
+        hit = memo[key] = face_min_lower(g, face, s_lo, s_hi)
+    return hit
+
+
 def _face_of(U: arb) -> int | None:
     """The face (+1 or -1) whose distance from the u-ball's midpoint is at most FACE_BOX_U, or None (a choice
     of which boxes to try: the argument holds on any box, extended to its face)."""
@@ -150,7 +165,7 @@ def face_margin(g: Gimbal, R: arb):
         if not (certainly_negative(du) if face == 1 else certainly_positive(du)):
             return v
         lo_s, hi_s = exact_fraction(S.lower()), exact_fraction(S.upper())
-        low = face_min_lower(g, face, lo_s, hi_s)
+        low = _face_min_lower_memo(g, face, lo_s, hi_s)
         if low is None or not certainly_positive(low - R):
             return v
         _, B = vdot_polar(g, xs * U, pi * S)
