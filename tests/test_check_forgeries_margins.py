@@ -225,3 +225,48 @@ def test_a_skipped_search_must_give_the_time_limit(searched):
         d["claims"][0]["counterexample_search"] = {"skipped": "not needed: the claim holds"}
     failed = _paving_failures(searched, change)
     assert any("skipped for 'not needed" in f.message for f in failed), failed
+
+
+def _curve(**kw):
+    from rigor_gyro.margins.threshold_curve import find_curve
+    return find_curve(rg.load_scene("rudenko1976"), "eps", "Omega2", claim="bracket_1", **kw).to_json()
+
+
+@pytest.fixture(scope="module")
+def curve():
+    """Two cells of Omega2 in [0.6, 0.65], each bracketed to 1e-2 in eps."""
+    return _curve(lo="1/2", hi="2", along_lo="0.6", along_hi="0.65", cells=2, width="1e-2", max_depth=0)
+
+
+def test_the_genuine_curve_checks(curve):
+    assert curve["certified"] and all(c["stopped"] == "" for c in curve["cells"])
+    assert _failed(curve) == []
+
+
+@pytest.mark.parametrize("change, item", [
+    (lambda d: d.update(statement="for every Omega2 > 0 claim 'bracket_1' holds for every eps > 0 (certified)"),
+     "statement"),
+    (lambda d: d.update(search=["1/1000", "1000"]), "search"),
+    (lambda d: d.update(search=["1/2", "1"]), "search"),
+    (lambda d: d["cells"][0].update(stopped="stopped by the user"), "Omega2 in [0.6, 0.625] stopped"),
+    (lambda d: d.update(stopped="stopped by the user"), "stopped"),
+])
+def test_a_curve_edited_outside_its_bands_is_rejected(curve, change, item):
+    bad = copy.deepcopy(curve)
+    change(bad)
+    assert item in {f.item for f in _failed(bad)}
+
+
+def test_a_curve_cell_left_mixed_or_without_a_band_says_so_truly():
+    mixed = _curve(lo="1", hi="1.4", along_lo="0.5", along_hi="0.7", cells=1, width="1e-4", max_depth=0)
+    cell = mixed["cells"][0]
+    assert cell["stopped"].startswith("neither proved nor refuted over the whole cell at eps = ")
+    assert _failed(mixed) == []
+    bad = copy.deepcopy(mixed)
+    bad["cells"][0]["stopped"] = "neither proved nor refuted over the whole cell at eps = 1"
+    assert "Omega2 in [0.5, 0.7] stopped" in {f.item for f in _failed(bad)}
+    none = _curve(lo="1.3", hi="1.4", along_lo="0.6", along_hi="0.65", cells=1, width="1e-2", max_depth=0)
+    assert none["cells"][0]["band"] is None and _failed(none) == []
+    bad = copy.deepcopy(none)
+    bad["cells"][0]["stopped"] = "the pavings were not needed"
+    assert "Omega2 in [0.6, 0.65] stopped" in {f.item for f in _failed(bad)}

@@ -27,6 +27,7 @@ cells tile the ``along`` range.
 from __future__ import annotations
 
 import json
+import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
@@ -282,11 +283,25 @@ def write_curve(res: Curve, out_dir: str) -> list[Path]:
                            json.dumps(res.to_json(), indent=1) + "\n", md, None))
 
 
+def _dyadic_between(x: Fraction, lo: Fraction, hi: Fraction) -> bool:
+    """Whether x = lo + (hi - lo) t with t in [0, 1] a dyadic rational (what bisections from lo and hi reach)."""
+    t = (x - lo) / (hi - lo)
+    return 0 <= t <= 1 and t.denominator & (t.denominator - 1) == 0
+
+
 def check_curve(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     """Re-verify a threshold curve (schema ``rigor-gyro/threshold-curve/1``, already validated) as (item, ok,
-    message) triples: the scene, parameters and claim valid; the cells tile the ``along`` range in order; each
-    cell's band, decimals re-derived from its stored values; each stored value re-paved over its cell (proved
-    at proved_at, refuted at refuted_at, every leaf); ``certified`` re-derived. Not re-run: the bisections."""
+    message) triples: the scene, parameters and claim valid; the statement re-derived; the cells tile the
+    ``along`` range in order; each cell's band, decimals re-derived from its stored values; each stored value
+    re-paved over its cell (proved at proved_at, refuted at refuted_at, every leaf); ``certified`` re-derived.
+    The search range: every stored value inside it, and the first cell's (searched from the range's two ends,
+    no earlier band to start from) reached from them by bisection (lo + (hi - lo) t, t dyadic). Each ``stopped``
+    is a text the search writes there: none on a cell bracketed to the width; a cell left mixed names its
+    band's midpoint, where it and the points around it are re-paved neither proved nor refuted over the cell;
+    a cell with no band says the search ends do not decide it, re-paved so (these two re-pavings are skipped
+    when the time limit stopped the run: a paving cut short is inconclusive). Not re-run: the bisections, so
+    ``proofs`` (how many pavings the search ran) is not checked (the file does not record ``--cells`` and
+    ``--max-depth``, which the search needs)."""
     out: list[tuple[str, bool, str]] = []
 
     def add(item: str, ok: bool, message: str) -> None:
@@ -305,13 +320,28 @@ def check_curve(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
         add("scene", False, f"the curve's scene, parameters or claim are not valid: {e}")
         return out
     add("scene", True, f"scene {scene.name!r}, {param!r} along {along!r}, claim {claim!r}")
+    add("statement", data["statement"] == statement(claim, param, along), "the curve's statement re-derived")
     a_lo, a_hi = (Fraction(t) for t in data["along_range"])
+    lo_s, hi_s = (Fraction(t) for t in data["search"])
     w = Fraction(data["requested_relative_width"])
     cells = data["cells"]
     ends = [(Fraction(c["along"][0]), Fraction(c["along"][1])) for c in cells]
     tiled = (bool(ends) and ends[0][0] == a_lo and ends[-1][1] == a_hi and all(x < y for x, y in ends)
              and all(ends[i][1] == ends[i + 1][0] for i in range(len(ends) - 1)))
     add("cells", tiled, f"{len(cells)} cells tile [{rational_text(a_lo)}, {rational_text(a_hi)}] in order")
+    values = [Fraction(c[k]) for c in cells for k in ("proved_at", "refuted_at") if c[k] is not None]
+    first = [Fraction(cells[0][k]) for k in ("proved_at", "refuted_at") if cells and cells[0][k] is not None]
+    ok = (lo_s < hi_s and 0 < w <= 1 and all(lo_s <= x <= hi_s for x in values)
+          and all(_dyadic_between(x, lo_s, hi_s) for x in first))
+    add("search", ok, f"search [{rational_text(lo_s)}, {rational_text(hi_s)}]: every value inside it, the first "
+        "cell's reached from its ends by bisection" if ok else f"the search range [{rational_text(lo_s)}, "
+        f"{rational_text(hi_s)}] is not the one the cells' values were searched in")
+    limit = r"time limit of \S+ s reached \(--time-limit\)"
+    timed = bool(data["stopped"]) or any(re.fullmatch(limit, str(c["stopped"])) for c in cells)
+    stop_ok = data["stopped"] == "" or bool(re.fullmatch(limit + re.escape(": the cells bracketed so far are kept"),
+                                                         str(data["stopped"])))
+    add("stopped", stop_ok, "the curve's 'stopped' a text the search writes" if stop_ok else
+        f"'stopped' {str(data['stopped'])[:120]!r} is not a text the search writes")
     narrow_all = bool(cells)
     for c, cell in zip(cells, ends):
         where = f"{along} in [{rational_text(cell[0])}, {rational_text(cell[1])}]"
@@ -319,6 +349,7 @@ def check_curve(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
         if p is None or r is None:
             narrow_all = False
             add(where, c["band"] is None and c["band_decimal"] is None, "no band stated")
+            _check_cell_stop(add, scene, param, along, claim, c, cell, None, w, timed, data["stopped"], lo_s, hi_s)
             continue
         p, r = Fraction(p), Fraction(r)
         lo, hi = min(p, r), max(p, r)
@@ -329,6 +360,48 @@ def check_curve(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
             st, why = cell_status(scene, param, x, along, cell, claim)
             add(f"{where} {want}_at", st == want, f"{param} = {rational_text(x)}: re-paved {st} over the cell"
                 + ("" if st == want else f" ({why[:160]})"))
+        _check_cell_stop(add, scene, param, along, claim, c, cell, (p, r), w, timed, data["stopped"], lo_s, hi_s)
     add("certified", data["certified"] == (narrow_all and tiled and not data["stopped"]),
         f"certified {data['certified']}")
     return out
+
+
+def _check_cell_stop(add, scene: Scene, param: str, along: str, claim: str, c: dict[str, Any],
+                     cell: tuple[Fraction, Fraction], pr: tuple[Fraction, Fraction] | None, w: Fraction, timed: bool,
+                     curve_stopped: str, lo: Fraction, hi: Fraction) -> None:
+    """A cell's ``stopped``: a text the search writes for a cell in this state (see :func:`check_curve`)."""
+    where = f"{along} in [{rational_text(cell[0])}, {rational_text(cell[1])}] stopped"
+    text = c["stopped"]
+    limit = r"time limit of \S+ s reached \(--time-limit\)"
+    unsearched = "not searched: out of time (the band is its parent cell's)"
+    if isinstance(text, str) and (re.fullmatch(limit, text) or text == unsearched and curve_stopped):
+        add(where, True, "stopped by the time limit")
+        return
+    if pr is None:
+        ok = text == ("the claim is not proved over the cell at one end of the search and refuted over it at the "
+                      "other: widen --lo/--hi, or use more --cells")
+        if ok and not timed:
+            got = {cell_status(scene, param, x, along, cell, claim)[0] for x in (lo, hi)}
+            ok = got != {"proved", "refuted"}
+        add(where, ok, "no band: the search's ends re-paved, not one proved and one refuted over the cell" if ok else
+            f"no band, and 'stopped' {str(text)[:120]!r} is not what the search finds at its ends over the cell")
+        return
+    p, r = pr
+    narrow = abs(r - p) <= w * max(abs(p), abs(r))
+    if narrow:
+        add(where, text == "", "bracketed to the width: nothing stopped it" if text == "" else
+            f"a cell bracketed to the requested width with 'stopped' {str(text)[:120]!r}: the search writes none")
+        return
+    if text == f"{CELL_STEPS} bisection steps":
+        add(where, True, text)
+        return
+    ok = text == f"neither proved nor refuted over the whole cell at {param} = {rational_text(p + (r - p) / 2)}"
+    if ok and not timed:
+        for t in (Fraction(1, 2),) + AROUND:
+            st, _ = cell_status(scene, param, p + (r - p) * t, along, cell, claim)
+            if st in ("proved", "refuted"):
+                ok = False
+                break
+    add(where, ok, "left mixed: the band's midpoint and the points around it re-paved, none proved or refuted over "
+        "the cell" if ok else f"a band wider than the width with 'stopped' {str(text)[:120]!r}, not what the search "
+        "finds there")
