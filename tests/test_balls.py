@@ -432,3 +432,14 @@ def test_ball_key_is_the_exact_ball():
         assert ball_key(other) != ball_key(a)
     with working_precision(128):
         assert ball_key(arb(1) / 3) != ball_key(a)
+
+
+def test_ball_key_remembers_a_ball_by_identity_only():
+    # the remembered keys hold their balls: an equal ball that is another object gets the same key, and a new
+    # ball (even at an address a freed one had) its own
+    from rigor_gyro.core.balls import ball_key
+    a = arb(2) / 7
+    k = ball_key(a)
+    assert ball_key(a) is k and ball_key(arb(2) / 7) == k
+    keys = {ball_key(arb(j) / 7) for j in range(200)}          # 200 short-lived balls: 200 different keys
+    assert len(keys) == 200

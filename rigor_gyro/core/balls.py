@@ -391,10 +391,23 @@ def ball_key(x: arb) -> tuple[int, int, int, int]:
     ints. Two balls get the same key exactly when they are the same ball (Arb's (mantissa, exponent) pairs are
     canonical). Python ints rather than the fmpz that ``man_exp`` returns: a dict hashes its key at every
     lookup, and python-flint hashes an fmpz by converting it to an int each time (those hashes were about 3% of
-    the instructions of a cold proof of the three papers: issue 41)."""
+    the instructions of a cold proof of the three papers: issue 41). The keys of the last few ball objects are
+    remembered by identity (an arb is immutable, and the entry holds the object, so its id is not reused while
+    remembered): a chain row asks the key of one ball several times."""
+    hit = _KEYS.get(id(x))
+    if hit is not None and hit[0] is x:
+        return hit[1]
     m, e = x.mid().man_exp()
     rm, re = x.rad().man_exp()
-    return (int(m), int(e), int(rm), int(re))
+    key = (int(m), int(e), int(rm), int(re))
+    if len(_KEYS) >= 64:
+        _KEYS.clear()
+    _KEYS[id(x)] = (x, key)
+    return key
+
+
+#: ball_key's last keys: id -> (the ball object, its key)
+_KEYS: dict[int, tuple] = {}
 
 
 def exact_endpoints(x: arb) -> tuple[Fraction, Fraction]:
