@@ -198,6 +198,21 @@ def _conformance(data: Any, name: str) -> list[str]:
         return ["$: nested too deeply to validate"]
 
 
+class _DuplicateKey(ValueError):
+    pass
+
+
+def _unique_keys(pairs: list) -> dict:
+    """A JSON object's pairs as a dict; _DuplicateKey when a key repeats (Python keeps the last value, other
+    readers the first: a file could show one verdict to a person and another to the checker)."""
+    out = {}
+    for k, v in pairs:
+        if k in out:
+            raise _DuplicateKey(k)
+        out[k] = v
+    return out
+
+
 def check_file(path: str | Path, samples: int | None = None, executor=None) -> CheckReport:
     """Read and check an output file: a certificate, a paving, a threshold or a scan (by its ``schema``
     field); CertificateError if it cannot be read as one. ``samples``: a paving's decided sub-boxes per
@@ -206,7 +221,10 @@ def check_file(path: str | Path, samples: int | None = None, executor=None) -> C
     re-evaluated (the verdicts do not depend on where)."""
     p = Path(path)
     try:
-        data = json.loads(p.read_text(encoding="utf-8"))
+        data = json.loads(p.read_text(encoding="utf-8"), object_pairs_hook=_unique_keys)
+    except _DuplicateKey as e:
+        raise CertificateError(f"{path}: key {str(e)[:100]!r} appears twice in one object: readers disagree on "
+                               "which value counts (rigor-gyro never writes a key twice)") from None
     except (OSError, UnicodeDecodeError, json.JSONDecodeError, RecursionError) as e:
         raise CertificateError(f"{path}: not a readable certificate ({type(e).__name__}: {str(e)[:200]})") from None
     if isinstance(data, dict) and "total_s" in data and "schema" not in data:
@@ -239,6 +257,25 @@ def _structure(data: Any) -> None:
             raise CertificateError(f"claim {c['id']!r}: counterexample and details must be objects")
     if not isinstance(data.get("witnesses", {}), dict):
         raise CertificateError("witnesses must be an object")
+
+
+def _builtin_differs(block: dict) -> str | None:
+    """What is wrong with a scene block that names a built-in scene (``file`` = ``builtin:NAME``) but is not that
+    scene as shipped with this version (its name, source, parameters, options, claims, model or printed numbers
+    edited), or None. A reader takes such a certificate for one about the shipped scene."""
+    where = block.get("file")
+    if not (isinstance(where, str) and where.startswith("builtin:")):
+        return None
+    from .scene import builtin_scenes, load_scene
+    name = where[len("builtin:"):]
+    if name not in builtin_scenes("all"):
+        return f"the scene says it is the built-in {name!r}, which this version does not ship"
+    header = json.loads(json.dumps(load_scene(name).header(paper=True)))
+    differ = sorted(k for k in set(header) | set(block) if header.get(k) != block.get(k))
+    if differ:
+        return (f"the scene says it is the built-in {name!r} but differs from it in {differ}: a certificate of an "
+                "edited scene names its own file")
+    return None
 
 
 def check_certificate(data: Any, file: str = "<data>", samples: int | None = None, executor=None) -> CheckReport:
@@ -307,6 +344,9 @@ def check_certificate(data: Any, file: str = "<data>", samples: int | None = Non
         add(CheckResult("scene", False, f"the certificate's scene is not valid: {e}"))
         report.seconds = time.perf_counter() - t0
         return report
+    shipped = _builtin_differs(sc)
+    if shipped:
+        add(CheckResult("scene", False, shipped))
     ids = [c["id"] for c in data["claims"]]
     add(CheckResult("claims", ids == wanted, "the claims the scene asks for" if ids == wanted else
                     f"claims {ids} but the scene asks for {wanted}"))

@@ -26,11 +26,12 @@ any section); the kind is unknown; ``[claims] only`` is empty: :class:`SceneErro
 from __future__ import annotations
 
 import difflib
+import functools
 import os
 import re
 import stat
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -72,6 +73,15 @@ class Scene:
                                              or not all(isinstance(c, str) for c in self.claims_only)):
             raise SceneError(f"scene {self.name!r}: claims_only must be None or a non-empty list of claim names")
 
+    def is_shipped(self) -> bool:
+        """False for a scene whose ``path`` says ``builtin:NAME`` but which is not the built-in NAME as this
+        version ships it (edited through the API): its certificate then names no file, so that no reader takes
+        it for one about the shipped scene (the checker refuses a block that names a built-in and differs)."""
+        if not (isinstance(self.path, str) and self.path.startswith("builtin:")):
+            return True
+        shipped = _shipped(self.path[len("builtin:"):])
+        return shipped is not None and replace(shipped, path=None) == replace(self, path=None)
+
     @classmethod
     def from_header(cls, sc: dict[str, Any]) -> "Scene":
         """The scene a certificate's ``scene`` block (:meth:`header`) describes (its ``[paper]`` table when
@@ -89,12 +99,19 @@ class Scene:
                "parameters": dict(self.parameters),
                "options": {k: (v if isinstance(v, (str, int)) else str(v)) for k, v in self.options.items()},
                "claims_only": list(self.claims_only) if self.claims_only is not None else None,
-               "file": self.path}
+               "file": self.path if self.is_shipped() else None}
         if self.model:
             out["model"] = self.model
         if paper and self.paper:
             out["paper"] = dict(self.paper)
         return out
+
+
+@functools.lru_cache(maxsize=None)
+def _shipped(name: str) -> "Scene | None":
+    """The built-in scene ``name`` as shipped (None if there is none); shared: never edit it."""
+    ref = builtin_scenes("all").get(name)
+    return None if ref is None else parse_scene(ref.read_text(encoding="utf-8"), f"builtin:{name}")
 
 
 def _builtin_dir():

@@ -492,3 +492,40 @@ def test_the_checker_reuses_a_re_proof_only_for_the_same_scene_block_and_precisi
     check_certificate(_refix(higher))
     assert len(calls) == 3
     assert calls[-1]["prec"] == 2 * data["settings"]["prec"]
+
+
+def test_a_key_written_twice_is_not_a_certificate(tmp_path):
+    """Python's json keeps the last of two equal keys, other readers the first: '"verdict": "refuted", "verdict":
+    "proved"' would show one verdict to a person and another to the checker (hostile review, session 10)."""
+    assert main(["prove", "rudenko1976", "--quiet", "--out", str(tmp_path)]) == 0
+    text = (tmp_path / "rudenko1976.json").read_text()
+    assert main(["check", str(tmp_path / "rudenko1976.json")]) == 0
+    (tmp_path / "twice.json").write_text(text.replace('"verdict": "proved"', '"verdict": "refuted", "verdict": "proved"', 1))
+    with pytest.raises(CertificateError, match="appears twice"):
+        check_file(tmp_path / "twice.json")
+    assert main(["check", str(tmp_path / "twice.json")]) == 2
+
+
+def test_a_certificate_names_a_built_in_scene_only_when_it_is_that_scene():
+    """An API-edited built-in scene is certified under no file name; a block that says builtin:NAME must be the
+    shipped NAME (hostile review, session 10: another scene's refutation relabelled 'builtin:rudenko1976' was
+    confirmed, as was an edited source text)."""
+    import dataclasses
+    from rigor_gyro import load_scene, prove_scene
+    from rigor_gyro.certificate import digest
+    shipped = load_scene("rudenko1976")
+    edited = dataclasses.replace(shipped, parameters={**shipped.parameters, "Omega2": "0.0071"})
+    cert = json.loads(json.dumps(prove_scene(edited).to_json()))
+    assert shipped.is_shipped() and not edited.is_shipped() and cert["scene"]["file"] is None
+    assert check_certificate(cert).ok
+    for edit in (lambda d: d["scene"].update(file="builtin:rudenko1976"),
+                 lambda d: d["scene"].update(file="builtin:no_such_scene")):
+        bad = copy.deepcopy(cert)
+        edit(bad)
+        bad["integrity"]["sha256"] = digest(bad)
+        items = {r.item: r for r in check_certificate(bad).results if not r.ok}
+        assert "scene" in items, items
+    genuine = json.loads(json.dumps(prove_scene(shipped).to_json()))
+    genuine["scene"]["source"] = genuine["scene"]["source"].replace("15.08", "16.08")
+    genuine["integrity"]["sha256"] = digest(genuine)
+    assert "scene" in {r.item for r in check_certificate(genuine).results if not r.ok}
