@@ -100,3 +100,13 @@ def test_a_power_of_a_ball_centred_at_zero_is_an_enclosure_not_nan(n):
     got = p.evaluate({"x": off}, number=num)
     assert (got.mid(), got.rad()) == ((off ** n).mid(), (off ** n).rad())
     assert not e.evaluate({"x": x}, number=num).is_finite()       # 1/x^n over a ball about 0 stays unbounded
+
+
+@pytest.mark.parametrize("text", ["20 +- 1", "J+-0.1", "a*x + - b", "1 + -2"])
+def test_plus_minus_in_an_expression_is_refused_not_read_as_mid_minus_rad(text):
+    """'20 +- 1' in a model entry was read as 20 + (-1) = 19 and proved there, exit 0 (hostile fuzzing, session
+    10): a tolerance cannot live in an expression; a - b and a + (-b) still read."""
+    with pytest.raises(ParameterError, match=r"'\+-' is a tolerance"):
+        parse(text, "t", {"J", "a", "x", "b"})
+    assert parse("a - b", "t", {"a", "b"}).evaluate({"a": Fraction(3), "b": Fraction(1)}) == 2
+    assert parse("a + (-b)", "t", {"a", "b"}).evaluate({"a": Fraction(3), "b": Fraction(1)}) == 2

@@ -281,6 +281,10 @@ class _Parser:
         left = self.term(depth)
         while self.peek()[1] in ("+", "-"):
             op = self.take()[1]
+            if op == "+" and self.peek()[1] == "-":
+                self.fail("'+-' is a tolerance, which an expression cannot hold (it would read as mid - rad): write a "
+                          "tolerance as a parameter in [parameters] (\"mid +- rad\", if the kind takes boxes), and a "
+                          "sum with a negative term as a - b")
             self.operation()
             left = (op, left, self.term(depth))
         return left
