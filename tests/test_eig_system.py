@@ -386,3 +386,25 @@ def test_a_stored_root_box_must_hold_a_root_of_the_checkers_polynomial():
         assert counterexample_ok(ce, P, mu, odd, Q, model.zero_roots)[0]
         moved = dict(ce, negative_roots=[["-1.2", "-1.1"]])
         assert not counterexample_ok(moved, P, mu, odd, Q, model.zero_roots)[0]
+
+
+def test_an_exact_double_root_is_refuted_at_the_first_precision():
+    """M = K = I: Q has the double root omega = 1, refuted exactly; no enclosure width is asked of a root that is
+    not stored, so the escalation stops at the first precision (it doubled to --maxprec, hostile fuzzing)."""
+    from rigor_gyro import parse_scene, prove_scene
+    text = ('name = "d"\nkind = "eigenfrequencies"\n[parameters]\na = "1"\n[system]\n'
+            'M = [["1", "0"], ["0", "1"]]\nK = [["1", "0"], ["0", "a"]]\n')
+    cert = prove_scene(parse_scene(text))
+    assert cert.verdict.value == "refuted" and len(cert.precisions_tried) == 1, cert.precisions_tried
+
+
+def test_maxprec_32768_leaves_room_for_guard_bits():
+    """--maxprec 32768 is documented; the claims add guard bits to the working precision (32768 + 64 stopped a
+    scene with exit 2, hostile fuzzing). Beyond the guard room it is still refused."""
+    from rigor_gyro.core.balls import GUARD_ROOM, MAX_PREC, current_precision, working_precision
+    from rigor_gyro.core.errors import ParameterError
+    with working_precision(MAX_PREC):
+        with working_precision(current_precision() + 64):
+            assert current_precision() == MAX_PREC + 64
+    with pytest.raises(ParameterError, match="guard bits"):
+        working_precision(MAX_PREC + GUARD_ROOM + 1).__enter__()

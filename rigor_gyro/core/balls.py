@@ -58,14 +58,22 @@ DEFAULT_MAXPREC = 4096
 #: the working precision is an integer number of bits in [MIN_PREC, MAX_PREC] (checked before any work)
 MIN_PREC = 16
 MAX_PREC = 32768
+#: bits a computation may add to the working precision as guard digits (a claim's final quantities at
+#: prec + 64, a checker's recomputation): :func:`working_precision` accepts up to MAX_PREC + this, so that
+#: --maxprec 32768 itself stays usable (it stopped with exit 2 at 32768 + 64)
+GUARD_ROOM = 1024
 
 T = TypeVar("T")
 
 
 @contextlib.contextmanager
 def working_precision(prec: int) -> Iterator[int]:
-    """Set the working precision to ``prec`` bits inside the block; always restored afterwards."""
-    check_precision(prec, "precision")
+    """Set the working precision to ``prec`` bits inside the block (MIN_PREC to MAX_PREC + GUARD_ROOM: a
+    requested precision is checked against MAX_PREC by :func:`check_precision`, its guard bits may exceed it);
+    always restored afterwards."""
+    if isinstance(prec, bool) or not isinstance(prec, int) or not MIN_PREC <= prec <= MAX_PREC + GUARD_ROOM:
+        raise ParameterError(f"precision must be an integer number of bits from {MIN_PREC} to {MAX_PREC} (plus at "
+                             f"most {GUARD_ROOM} guard bits), got {prec!r}")
     saved = ctx.prec
     try:
         ctx.prec = prec

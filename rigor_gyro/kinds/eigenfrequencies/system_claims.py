@@ -141,7 +141,9 @@ def attempt_system(model: SystemModel, prec: int, wanted=None) -> Attempt:
         if pr.verified and not pr.nonreal:
             for j, w in enumerate(pr.real, start=1):
                 quantities[f"omega_{j}"] = w
-        width_met = pr.width_met
+        # refuted with no root stored (a multiple or non-real root): no width is asked of anything, so the
+        # escalation stops here (it doubled to --maxprec for nothing)
+        width_met = pr.width_met or (st is Status.REFUTED and not any(k.startswith("omega_") for k in quantities))
         if st is Status.PROVED and not pr.width_met:
             st, why = Status.INCONCLUSIVE, (f"roots isolated but not yet to relative width {model.rel_width} "
                                             "(raise --maxprec or relax option rel_width)")
