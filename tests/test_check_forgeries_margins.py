@@ -270,3 +270,10 @@ def test_a_curve_cell_left_mixed_or_without_a_band_says_so_truly():
     bad = copy.deepcopy(none)
     bad["cells"][0]["stopped"] = "the pavings were not needed"
     assert "Omega2 in [0.6, 0.65] stopped" in {f.item for f in _failed(bad)}
+
+
+@pytest.mark.parametrize("change", [lambda d: d.update(boxes_evaluated=d["boxes_evaluated"] + 1),
+                                    lambda d: d.update(levels=12),
+                                    lambda d: d.update(budget_exhausted=not d["budget_exhausted"])])
+def test_a_complete_pavings_counters_are_its_sub_boxes_own(searched, change):
+    assert [f.item for f in _paving_failures(searched, change)] == ["counters"]

@@ -18,8 +18,12 @@ reason. ``prove --resume`` runs these checks before it continues a paving (:mod:
 A second path beside the box rigour: decided sub-boxes are cross-checked by the point prover at their
 midpoints and extreme corners (:mod:`.sampled`: a spread of ``samples`` of them per claim); a point
 verdict that contradicts its sub-box fails the check.
-Not checked: what describes the run rather than the box (the boxes evaluated, the levels, the budget
-flag); the report prints them as such.
+The run's counters of a paving that ran its course (boxes evaluated, levels, the budget flag) are
+re-derived from its sub-boxes (:func:`_check_counters`); a paving that stopped early must say so in a
+text pave writes, with nothing pave runs after the last box (:func:`_check_stopped`). A counterexample
+search's settings, undecided-leaf count and probes, and a Monte Carlo estimate's settings, are the scene's.
+Not checked: the settings chosen on the command line (``point_prec``, ``point_maxprec``, ``priority``:
+range-checked only; the point proofs are re-run at the stored precisions).
 
 Cost: one box evaluation per decided sub-box and one of the whole box (no search, no splitting), one
 point proof per stored point, and up to 3 ``samples`` point proofs per claim.
@@ -190,9 +194,37 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES, executor=No
     if pending is not None or stopped or "stopped" in data:
         add(_check_stopped(data, stopped, pending, leaves))
         add(_check_pending(bs, pending, stopped, leaves))
+    elif leaves and all(_tiles(bs.box, [Box(e) for e in ls], bs.frozen) for ls in leaves.values()):
+        add(_check_counters(bs, data, leaves))
     if any(k in data for k in ("quantities", "range_tiles", "range_points")):
         add(_check_ranges(bs, data, pj, oj, mj, executor))
     return out
+
+
+def _check_counters(bs, data: dict[str, Any], leaves: dict[str, dict]) -> tuple[str, bool, str]:
+    """The counters of a paving that ran its course, from its leaves: every box of the union of the claims'
+    bisection trees (each leaf and each box split on the way to one) was evaluated exactly once, so
+    ``boxes_evaluated`` is their count and ``levels`` the depth of the deepest plus one; ``budget_exhausted``
+    says whether some undecided sub-box is coarser than the resolution (split no further for ``max_boxes``).
+    The same for a paving resumed or refined (:mod:`.resume` keeps the counts) or streamed (:mod:`.stream`)."""
+    boxes = {e for ls in leaves.values() for e in ls}
+    count, deepest = 0, 0
+    todo = [(bs.box, [Box(e) for e in boxes], 0)]
+    while todo:
+        node, inside, depth = todo.pop()
+        count, deepest = count + 1, max(deepest, depth)
+        if all(b == node for b in inside):
+            continue
+        for child in node.split(bs.box, bs.frozen):
+            todo.append((child, [b for b in inside if all(lo >= clo and hi <= chi for (_, lo, hi), (_, clo, chi)
+                                                              in zip(b.edges, child.edges))], depth + 1))
+    coarse = any(s == "undecided" and any(w > bs.resolution for n, w in Box(e).relative_widths(bs.box).items()
+                                          if n not in bs.frozen)
+                 for ls in leaves.values() for e, s in ls.items())
+    want = {"boxes_evaluated": count, "levels": deepest + 1, "budget_exhausted": coarse}
+    got = {k: data.get(k) for k in want}
+    return CheckResult("counters", got == want, f"the run's counters {want} re-derived from the sub-boxes" if got == want
+                       else f"the run's counters {got} are not the sub-boxes' {want}")
 
 
 def _stop_texts() -> dict[str, str]:
