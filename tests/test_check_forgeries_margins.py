@@ -277,3 +277,10 @@ def test_a_curve_cell_left_mixed_or_without_a_band_says_so_truly():
                                     lambda d: d.update(budget_exhausted=not d["budget_exhausted"])])
 def test_a_complete_pavings_counters_are_its_sub_boxes_own(searched, change):
     assert [f.item for f in _paving_failures(searched, change)] == ["counters"]
+
+
+def test_a_paving_of_another_version_or_with_more_software_keys_is_not_confirmed(searched):
+    failed = _paving_failures(searched, lambda d: d["software"].update(rigor_gyro="9.9"))
+    assert [f.item for f in failed] == ["software"] and "check it with the version that wrote it" in failed[0].message
+    failed = _paving_failures(searched, lambda d: d["software"].update(checked_by="referee"))
+    assert [f.item for f in failed] == ["schema"]

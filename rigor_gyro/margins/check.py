@@ -67,6 +67,11 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES, executor=No
     add = out.append
     ok = isinstance(data.get("integrity"), dict) and data["integrity"].get("sha256") == digest(data)
     add(CheckResult("integrity", ok, "digest matches" if ok else "the digest does not match the content"))
+    from .. import __version__
+    wrote = (data.get("software") or {}).get("rigor_gyro") if isinstance(data.get("software"), dict) else None
+    add(CheckResult("software", wrote == __version__, f"written by rigor_gyro {wrote}" if wrote == __version__ else
+                    f"written by rigor_gyro {wrote!r}: this checker re-derives the reasons and records of pavings of "
+                    f"its own version ({__version__}) only; check it with the version that wrote it"))
     sc = data["scene"]
     try:
         scene = Scene.from_header(sc)
