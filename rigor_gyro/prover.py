@@ -222,6 +222,8 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
     timed_out = esc is None or (budget.expired() and not esc.result.settled)
     if esc is None:
         esc = _interrupted(history, claim_statements(module, model), wanted, p0, budget.reason())
+    elif not esc.done and not timed_out:
+        esc = _best_attempt(esc, history)
     final = esc.result
     for claim in final.claims:
         claim.precision_bits = esc.prec
@@ -261,6 +263,25 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
                        formulas=final.formulas, notes=notes, extra=final.extra, witnesses=final.witnesses,
                        settings={"prec": prec, "maxprec": maxprec,
                                  **({"time_limit": time_limit} if time_limit is not None else {})})
+
+
+def _decided(a: Attempt) -> set[tuple[str, Status]]:
+    return {(c.id, c.status) for c in a.claims if c.status is not Status.INCONCLUSIVE}
+
+
+def _best_attempt(esc: Escalation, history: list[tuple[int, Attempt]]) -> Escalation:
+    """The escalation's result, or an earlier attempt that decided every claim any attempt decided (the same
+    statuses) where the last one decided fewer: a higher precision can spend a budget sooner (a quadrature's
+    subdivisions) and lose claims decided below it, and more time must not give a weaker certificate. The last
+    such attempt is taken (the narrowest enclosures); a claim it leaves undecided is undecided at every precision
+    tried. Without one attempt deciding all the others' claims, the last attempt stands, as before."""
+    every = set().union(*(_decided(a) for _, a in history))
+    if _decided(esc.result) == every:
+        return esc
+    for p, a in reversed(history):
+        if _decided(a) == every:
+            return Escalation(a, p, False, esc.tried)
+    return esc
 
 
 def _interrupted(history: list[tuple[int, Attempt]], statements: dict[str, str], wanted: list[str], p0: int,

@@ -291,3 +291,33 @@ def test_a_threshold_out_of_time_keeps_its_certified_bracket(monkeypatch, capsys
     by_value = {s["value"]: s["status"] for s in res.steps}
     assert by_value[threshold.fraction_text(p)] == "proved" and by_value[threshold.fraction_text(r)] == "refuted"
     assert main(["margin", "rudenko1976", "--param", "Omega2", "--scan", "3", "--time-limit", "5"]) == 2
+
+
+def test_more_precision_that_decides_less_does_not_weaken_the_certificate(monkeypatch):
+    """A higher precision can spend a budget sooner and leave undecided what a lower one decided (a [moment]
+    law's quadrature: refuted with 60 s, all inconclusive at 2048 bits without a limit; hostile fuzzing). The
+    certificate is then the last attempt that decided every claim any attempt decided."""
+    from rigor_gyro import load_scene, prove_scene
+    from rigor_gyro.core.outcome import Status
+    from rigor_gyro.kinds import eigenfrequencies
+    real = eigenfrequencies.attempt
+    calls = []
+
+    def staged(model, wanted, prec):
+        calls.append(prec)
+        a = real(model, wanted, prec)
+        a.widths_met, a.width_quantities = False, ()         # escalation goes on
+        if prec > 128:                                       # the higher precision decides nothing
+            for c in a.claims:
+                c.status, c.decides, c.reason = Status.INCONCLUSIVE, None, "budget spent"
+        return a
+    monkeypatch.setattr(eigenfrequencies, "attempt", staged)
+    cert = prove_scene(load_scene("rudenko1976"), prec=128, maxprec=256)
+    assert cert.precisions_tried == [128, 256] and cert.precision_bits == 128
+    assert all(c.status is Status.PROVED for c in cert.claims), [c.status for c in cert.claims]
+    from rigor_gyro.check import check_certificate
+    from rigor_gyro.reproduce import forget
+    forget()                                  # the texts check re-proves with the same (patched) kind
+    report = check_certificate(json.loads(json.dumps(cert.to_json())))
+    forget()
+    assert report.ok, report.first_failure
