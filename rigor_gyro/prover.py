@@ -222,7 +222,7 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
     timed_out = esc is None or (budget.expired() and not esc.result.settled)
     if esc is None:
         esc = _interrupted(history, claim_statements(module, model), wanted, p0, budget.reason())
-    elif not esc.done and not timed_out:
+    elif not esc.result.settled and not timed_out:
         esc = _best_attempt(esc, history)
     final = esc.result
     for claim in final.claims:

@@ -293,7 +293,8 @@ def test_a_threshold_out_of_time_keeps_its_certified_bracket(monkeypatch, capsys
     assert main(["margin", "rudenko1976", "--param", "Omega2", "--scan", "3", "--time-limit", "5"]) == 2
 
 
-def test_more_precision_that_decides_less_does_not_weaken_the_certificate(monkeypatch):
+@pytest.mark.parametrize("stalled", [False, True], ids=["escalated", "stalled"])
+def test_more_precision_that_decides_less_does_not_weaken_the_certificate(monkeypatch, stalled):
     """A higher precision can spend a budget sooner and leave undecided what a lower one decided (a [moment]
     law's quadrature: refuted with 60 s, all inconclusive at 2048 bits without a limit; hostile fuzzing). The
     certificate is then the last attempt that decided every claim any attempt decided."""
@@ -310,6 +311,7 @@ def test_more_precision_that_decides_less_does_not_weaken_the_certificate(monkey
         if prec > 128:                                       # the higher precision decides nothing
             for c in a.claims:
                 c.status, c.decides, c.reason = Status.INCONCLUSIVE, None, "budget spent"
+            a.stalled = stalled                              # "more precision does not help": escalation stops
         return a
     monkeypatch.setattr(eigenfrequencies, "attempt", staged)
     cert = prove_scene(load_scene("rudenko1976"), prec=128, maxprec=256)
