@@ -284,3 +284,22 @@ def test_a_paving_of_another_version_or_with_more_software_keys_is_not_confirmed
     assert [f.item for f in failed] == ["software"] and "check it with the version that wrote it" in failed[0].message
     failed = _paving_failures(searched, lambda d: d["software"].update(checked_by="referee"))
     assert [f.item for f in failed] == ["schema"]
+
+
+def test_a_margin_output_naming_a_built_in_scene_must_be_that_scene(scan5, threshold, curve):
+    for data in (scan5, threshold, curve):
+        assert data["scene"]["file"] == "builtin:rudenko1976"
+        bad = copy.deepcopy(data)
+        bad["scene"]["source"] = bad["scene"]["source"].replace("0.629", "0.0071")
+        assert bad["scene"]["source"] != data["scene"]["source"]
+        failed = _failed(bad)
+        assert [f.item for f in failed] == ["scene"] and "differs from it in ['source']" in failed[0].message
+    edited = rg.find_threshold(_rudenko(Omega2="0.0071"), "eps", lo="0.01", hi="2", claim="bracket_1",
+                               width="1e-2").to_json()
+    assert edited["scene"]["file"] is None and _failed(edited) == []
+
+
+def _rudenko(**params):
+    import dataclasses
+    s = rg.load_scene("rudenko1976")
+    return dataclasses.replace(s, parameters={**s.parameters, **params})

@@ -79,6 +79,9 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES, executor=No
     except (RigorGyroError, TypeError, ValueError, KeyError) as e:
         add(CheckResult("scene", False, f"the paving's scene is not a valid box scene: {e}"))
         return out
+    from .identity import builtin_differs
+    if (differs := builtin_differs(sc)) is not None:
+        add(CheckResult("scene", False, differs))
     add(CheckResult("box", data["box"] == bs.box.to_json(), "the box re-derived from the scene"))
     st = data.get("settings") if isinstance(data.get("settings"), dict) else {}
     if "point_prec" in st or "point_maxprec" in st:     # chosen on the command line, not by the scene

@@ -222,7 +222,10 @@ def check_scan(data: dict[str, Any], max_points: int | None = None) -> list[tupl
     except (RigorGyroError, TypeError, ValueError, KeyError) as e:
         add("scene", False, f"the scan's scene, parameter, claims or quantities are not valid: {e}")
         return out
-    add("scene", True, f"scene {scene.name!r}, parameter {param!r}, claims {claims} valid for the kind")
+    from .identity import builtin_differs
+    differs = builtin_differs(sc)
+    add("scene", differs is None, differs or f"scene {scene.name!r}, parameter {param!r}, claims {claims} valid for "
+        "the kind")
     points = data["points"]
     values = [Fraction(p["value"]) for p in points]
     add("points", len(values) >= 2 and all(a < b for a, b in zip(values, values[1:]))

@@ -344,7 +344,10 @@ def check_threshold(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     except (RigorGyroError, TypeError, ValueError, KeyError) as e:
         add("scene", False, f"the threshold's scene, parameter or claim is not valid: {e}")
         return out
-    add("scene", True, f"scene {scene.name!r}, parameter {param!r}, claim {claim!r} valid for the kind")
+    from .identity import builtin_differs
+    differs = builtin_differs(sc)
+    add("scene", differs is None, differs or f"scene {scene.name!r}, parameter {param!r}, claim {claim!r} valid for "
+        "the kind")
     lo, hi = (Fraction(t) for t in data["search"])
     w = Fraction(data["requested_relative_width"])
     add("search", lo < hi and 0 < w <= 1, f"search [{_d(lo)}, {_d(hi)}], relative width {_d(w)}")

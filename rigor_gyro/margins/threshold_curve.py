@@ -319,7 +319,9 @@ def check_curve(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     except (RigorGyroError, TypeError, ValueError, KeyError) as e:
         add("scene", False, f"the curve's scene, parameters or claim are not valid: {e}")
         return out
-    add("scene", True, f"scene {scene.name!r}, {param!r} along {along!r}, claim {claim!r}")
+    from .identity import builtin_differs
+    differs = builtin_differs(data["scene"])
+    add("scene", differs is None, differs or f"scene {scene.name!r}, {param!r} along {along!r}, claim {claim!r}")
     add("statement", data["statement"] == statement(claim, param, along), "the curve's statement re-derived")
     a_lo, a_hi = (Fraction(t) for t in data["along_range"])
     lo_s, hi_s = (Fraction(t) for t in data["search"])
