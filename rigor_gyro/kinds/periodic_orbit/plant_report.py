@@ -97,7 +97,8 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
               + (f"; {len(genuine) - 1} further genuine orbit(s) proved likewise" if len(genuine) > 1 else ""))
     elif complete:
         wit = "; ".join(f"theta = {_fmt(v.theta, 10)}: {v.reason}" for v in spurious[:4])
-        text = f"no root of g on {rng} is a genuine orbit ({len(spurious)} spurious): {wit}"
+        text = (f"none of the {len(spurious)} root(s) of g on {rng} is a genuine orbit: {wit}" if spurious else
+                f"g has no root on {rng}: there is no symmetric orbit with two switchings per period")
         og = (Status.REFUTED, text, no_orbit) if exhaustive else (Status.INCONCLUSIVE, text + beyond)
     else:
         og = (Status.INCONCLUSIVE, "no genuine orbit certified and not every root classified: " + hp[1])
