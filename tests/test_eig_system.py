@@ -408,3 +408,22 @@ def test_maxprec_32768_leaves_room_for_guard_bits():
             assert current_precision() == MAX_PREC + 64
     with pytest.raises(ParameterError, match="guard bits"):
         working_precision(MAX_PREC + GUARD_ROOM + 1).__enter__()
+
+
+def test_margin_and_scan_take_a_system_scenes_own_claims(tmp_path):
+    """`rigor-gyro margin --claim stability` on a [system] scene was refused with the paper kind's claim list
+    (hostile fuzzing); the threshold (k = -2 for the top: H^2 + 4 J k = 0 with J = 2, H = 4) and a scan are
+    found, written and confirmed by the checker."""
+    from rigor_gyro.cli import main
+    scene = tmp_path / "top.toml"
+    scene.write_text('name = "top"\nkind = "eigenfrequencies"\n[parameters]\nJ = "2"\nH = "4"\nk = "-1"\n[system]\n'
+                     'M = [["J", "0"], ["0", "J"]]\nG = [["0", "H"], ["-H", "0"]]\nK = [["k", "0"], ["0", "k"]]\n')
+    out = tmp_path / "out"
+    assert main(["margin", str(scene), "--param", "k", "--lo", "-2.5", "--hi", "-1", "--claim", "stability",
+                 "--width", "1e-3", "-o", str(out)]) == 0
+    data = json.loads((out / "margin_top_k.json").read_text())
+    lo, hi = sorted(Fraction(data[k]) for k in ("proved_at", "refuted_at"))
+    assert lo <= -2 <= hi and hi - lo <= Fraction(1, 100)
+    assert main(["margin", str(scene), "--param", "k", "--lo", "-2.5", "--hi", "-1", "--scan", "3", "--claim",
+                 "stability", "-o", str(out)]) == 0
+    assert main(["check", "-q", str(out / "margin_top_k.json"), str(out / "scan_top_k.json")]) == 0

@@ -24,7 +24,7 @@ from typing import Any
 from ..core.balls import rational_text
 from ..core.boxes import fraction_text, is_tolerance
 from ..core.errors import ParameterError, RigorGyroError
-from ..kinds import kind_module
+from ..kinds import kind_module, scene_claims
 from ..scene import Scene
 from .models import settings_json, task_scene
 from .threshold import search_range
@@ -151,10 +151,11 @@ def run_scan(scene: Scene, param: str, n: int, *, lo: str | None = None, hi: str
     module.validate(scene)
     if not 2 <= n <= MAX_POINTS:
         raise ParameterError(f"--scan {n}: need 2 <= N <= {MAX_POINTS}")
-    claims = list(module.CLAIMS) if scene.claims_only is None else [c for c in module.CLAIMS if c in scene.claims_only]
+    default, every = scene_claims(module, scene)        # a [system] scene's own claims, not the paper kind's
+    claims = list(default) if scene.claims_only is None else [c for c in every if c in scene.claims_only]
     if claim is not None:
-        if claim not in module.CLAIMS:
-            raise ParameterError(f"--claim {claim!r}: kind {scene.kind!r} has {list(module.CLAIMS)}")
+        if claim not in every:
+            raise ParameterError(f"--claim {claim!r}: scene {scene.name!r} has {list(every)}")
         claims = [claim]
     quantities = list(quantities or [])
     bad = [q for q in quantities if q not in getattr(module, "HEADLINE", {})]
@@ -214,8 +215,8 @@ def check_scan(data: dict[str, Any], max_points: int | None = None) -> list[tupl
         param, claims, quantities = data["param"], list(data["claims"]), list(data["quantities"])
         if param not in scene.parameters or any(is_tolerance(v) for v in scene.parameters.values()):
             raise ParameterError(f"{param!r} is not a parameter of a scene of points")
-        if not claims or any(c not in module.CLAIMS for c in claims) or len(set(claims)) != len(claims):
-            raise ParameterError(f"claims {claims} are not distinct claims of kind {scene.kind!r}")
+        if not claims or any(c not in scene_claims(module, scene)[1] for c in claims) or len(set(claims)) != len(claims):
+            raise ParameterError(f"claims {claims} are not distinct claims of scene {scene.name!r}")
         if any(q not in getattr(module, "HEADLINE", {}) for q in quantities):
             raise ParameterError(f"quantities {quantities}: kind {scene.kind!r} reports {sorted(module.HEADLINE)}")
         module.validate(scene)

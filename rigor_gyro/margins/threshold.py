@@ -31,7 +31,7 @@ from ..core.boxes import fraction_text, is_tolerance
 from ..core.deadline import Budget, check_time_limit
 from ..core.errors import ParameterError, RigorGyroError
 from ..core.exact import option_number, parse_exact
-from ..kinds import kind_module
+from ..kinds import kind_module, scene_claims
 from ..scene import Scene
 from .threshold_witness import Witnesses, in_box, point_status, witness_json
 
@@ -220,7 +220,8 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
         box_scene(scene)                     # the other parameters' box, validated (exit 2 if bad)
     else:
         module.validate(scene)
-    claims = list(module.CLAIMS) if scene.claims_only is None else [c for c in module.CLAIMS if c in scene.claims_only]
+    default, every = scene_claims(module, scene)        # a [system] scene's own claims, not the paper kind's
+    claims = list(default) if scene.claims_only is None else [c for c in every if c in scene.claims_only]
     # the kind's table names its paper's parameters; a scene writing its own model ([plant], [system], [moment])
     # depends on a parameter wherever its entries use it
     independent = {} if getattr(scene, "model", None) else getattr(module, "CLAIMS_INDEPENDENT_OF", {})
@@ -230,8 +231,8 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
             raise ParameterError(f"name the claim whose change in {param!r} to bracket: --claim CLAIM; the scene's "
                                  f"claims that depend on {param!r}: {', '.join(depends)}")
         claim = claims[0]
-    if claim not in module.CLAIMS:
-        raise ParameterError(f"--claim {claim!r}: kind {scene.kind!r} has {list(module.CLAIMS)}")
+    if claim not in every:
+        raise ParameterError(f"--claim {claim!r}: scene {scene.name!r} has {list(every)}")
     if claim in independent.get(param, ()):
         raise ParameterError(f"claim {claim!r} does not depend on {param!r}: no threshold to find")
     lo_q, hi_q = search_range(scene, param, lo, hi)
@@ -334,8 +335,8 @@ def check_threshold(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
         param, claim = data["param"], data["claim"]
         if param not in scene.parameters or is_tolerance(scene.parameters[param]):
             raise ParameterError(f"{param!r} is not a number parameter of the scene")
-        if claim not in module.CLAIMS:
-            raise ParameterError(f"claim {claim!r} is not one of kind {scene.kind!r}")
+        if claim not in scene_claims(module, scene)[1]:
+            raise ParameterError(f"claim {claim!r} is not one of scene {scene.name!r}")
         if any(is_tolerance(v) for v in scene.parameters.values()):
             from .paving import box_scene
             box_scene(scene)

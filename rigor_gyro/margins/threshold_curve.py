@@ -233,10 +233,11 @@ def find_curve(scene: Scene, param: str, along: str, *, lo: str | None, hi: str 
             raise ParameterError(f"{flag} {name!r} is written as a tolerance: write it as a number")
     if param == along:
         raise ParameterError("--along must name another parameter than --param")
-    from ..kinds import kind_module
+    from ..kinds import kind_module, scene_claims
     module = kind_module(scene.kind)
-    if claim not in module.CLAIMS:
-        raise ParameterError(f"--claim {claim!r}: kind {scene.kind!r} has {list(module.CLAIMS)}")
+    every = scene_claims(module, scene)[1]              # a [system] scene's own claims, not the paper kind's
+    if claim not in every:
+        raise ParameterError(f"--claim {claim!r}: scene {scene.name!r} has {list(every)}")
     lo_q, hi_q = search_range(scene, param, lo, hi)
     a_lo, a_hi = search_range(scene, along, along_lo, along_hi)
     n = option_count(str(cells), "--cells", 1, 256)
