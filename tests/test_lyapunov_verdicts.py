@@ -251,3 +251,23 @@ def test_the_sublevel_bound_near_the_gimbal_lock_is_finite():
     c = a.claims[0]
     assert c.status.value == "proved" and "inf" not in c.reason, c.reason
     assert "gamma" not in c.reason
+
+
+def test_a_destabilising_law_refutes_v_positive_with_a_certified_point():
+    """f = -a x2 (a law that pushes away from x2 = 0): f/x2 > 0 fails at a certified point, and V at the point
+    minimising its squares there is certified <= 0, a counterexample to "V > 0"; it was left inconclusive with
+    "try --maxprec or max_pieces", which no precision could change (hostile fuzzing). The checker confirms it."""
+    import json
+    from rigor_gyro import parse_scene, prove_scene
+    from rigor_gyro.check import check_certificate
+    params = dict(A="2", C="3.3", A1="2.2", B1="2.2", C1="2.8", A2="8.5", H="1e4", k="0.4", a="100",
+                  x2_star="pi/6", mu="0.02", moment="expression")
+    text = ('name = "negx"\nkind = "lyapunov"\n[parameters]\n' + "".join(f'{k} = "{v}"\n' for k, v in params.items())
+            + '[moment]\nf = "-a*x2"\n[claims]\nonly = ["v_positive"]\n')
+    cert = prove_scene(parse_scene(text), maxprec=64)
+    (claim,) = cert.claims
+    assert claim.status.value == "refuted" and "the law destabilises" in claim.reason, claim.reason
+    v = claim.counterexample["V"]
+    assert v.startswith("[-") and float(v.strip("[]").split(",")[1]) < 0
+    report = check_certificate(json.loads(json.dumps(cert.to_json())))
+    assert report.ok, report.first_failure

@@ -740,7 +740,10 @@ def _v_positive_claim(ctx: _Ctx) -> Claim:
             ctx.witnesses["v_positive"] = record
             continue
         # a rational point of (0, x2*] (the witness may be the irrational end x2*: issue 37 part 3)
-        for x2 in (rational_points_inside(r.witness, xs) if r.status is Status.REFUTED and key == "psi" else ()):
+        # psi <= 0 or f <= 0 at a point (a law that destabilises: F < 0 there): V at the point minimising phi's
+        # squares is then phi(x2) = (F/S) psi, certified <= 0 or not
+        for x2 in (rational_points_inside(r.witness, xs) if r.status is Status.REFUTED and key in ("psi", "f_over_x")
+                   else ()):
             if not certainly_positive(x2):
                 continue
             x1, x3 = g.phi_minimiser(x2)
@@ -749,12 +752,14 @@ def _v_positive_claim(ctx: _Ctx) -> Claim:
             if certainly_le(v, 0):
                 return _claim("v_positive", Status.REFUTED,
                               f"V = {_fmt(v, 6)} <= 0 at x1 = {_fmt(x1q)}, x2 = {_fmt(x2)}, x3 = {_fmt(x3q)} "
-                              f"(certified; psi <= 0 there, i.e. mu H - q + ... fails)",
+                              + ("(certified; psi <= 0 there, i.e. mu H - q + ... fails)" if key == "psi" else
+                                 "(certified; f <= 0 at a point of (0, x2*]: the law destabilises)"),
                               {"point": {"x1": ball_text(x1q), "x2": ball_text(x2), "x3": ball_text(x3q)},
                                "V": _fmt(v, 20)},
                               witness={"x1": _fmt(x1q, 20), "x2": _fmt(x2, 20), "x3": _fmt(x3q, 20)})
-        return _claim("v_positive", Status.INCONCLUSIVE,
-                      f"could not certify {text} on [0, x2*]: {r.reason}; try --maxprec or max_pieces",
+        hint = ("certified false at that point, so no precision changes it (V itself was not certified <= 0 at a "
+                "rational point there)" if r.status is Status.REFUTED else "try --maxprec or max_pieces")
+        return _claim("v_positive", Status.INCONCLUSIVE, f"could not certify {text} on [0, x2*]: {r.reason}; {hint}",
                       decides=r.stuck_value)
     return _claim("v_positive", Status.PROVED,
                   "on [0, x2*]: " +
