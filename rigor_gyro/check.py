@@ -52,6 +52,7 @@ from typing import Any
 
 from .certificate import SCHEMA, digest
 from .core.errors import RigorGyroError
+from .margins.identity import builtin_differs
 
 __all__ = ["CertificateError", "CheckResult", "CheckReport", "check_certificate", "check_file", "digest", "SCHEMA_FILES",
            "load_schema", "schema_errors"]
@@ -259,25 +260,6 @@ def _structure(data: Any) -> None:
         raise CertificateError("witnesses must be an object")
 
 
-def _builtin_differs(block: dict) -> str | None:
-    """What is wrong with a scene block that names a built-in scene (``file`` = ``builtin:NAME``) but is not that
-    scene as shipped with this version (its name, source, parameters, options, claims, model or printed numbers
-    edited), or None. A reader takes such a certificate for one about the shipped scene."""
-    where = block.get("file")
-    if not (isinstance(where, str) and where.startswith("builtin:")):
-        return None
-    from .scene import builtin_scenes, load_scene
-    name = where[len("builtin:"):]
-    if name not in builtin_scenes("all"):
-        return f"the scene says it is the built-in {name!r}, which this version does not ship"
-    header = json.loads(json.dumps(load_scene(name).header(paper=True)))
-    differ = sorted(k for k in set(header) | set(block) if header.get(k) != block.get(k))
-    if differ:
-        return (f"the scene says it is the built-in {name!r} but differs from it in {differ}: a certificate of an "
-                "edited scene names its own file")
-    return None
-
-
 def check_certificate(data: Any, file: str = "<data>", samples: int | None = None, executor=None) -> CheckReport:
     """Check a certificate given as parsed JSON; see the module docstring (``samples``: see :func:`check_file`)."""
     from .core.balls import MAX_PREC, working_precision
@@ -344,7 +326,7 @@ def check_certificate(data: Any, file: str = "<data>", samples: int | None = Non
         add(CheckResult("scene", False, f"the certificate's scene is not valid: {e}"))
         report.seconds = time.perf_counter() - t0
         return report
-    shipped = _builtin_differs(sc)
+    shipped = builtin_differs(sc, paper=True)
     if shipped:
         add(CheckResult("scene", False, shipped))
     ids = [c["id"] for c in data["claims"]]

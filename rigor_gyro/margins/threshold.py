@@ -33,15 +33,12 @@ from ..core.errors import ParameterError, RigorGyroError
 from ..core.exact import option_number, parse_exact
 from ..kinds import kind_module, scene_claims
 from ..scene import Scene
+from .threshold_log import AROUND, MAX_STEPS, replay     # the bisection rule's constants live with its replay
 from .threshold_witness import Witnesses, in_box, point_status, witness_json
 
 __all__ = ["Threshold", "find_threshold", "search_range", "write_threshold", "check_threshold", "statement", "SCHEMA"]
 
 SCHEMA = "rigor-gyro/threshold/1"
-MAX_STEPS = 200
-#: where the search tries next, as fractions of the way from the proved end to the refuted end, when a
-#: midpoint is inconclusive: any decided point in between still halves part of the bracket
-AROUND = (Fraction(3, 8), Fraction(5, 8), Fraction(1, 4), Fraction(3, 4), Fraction(1, 8), Fraction(7, 8))
 
 
 @dataclass
@@ -322,7 +319,6 @@ def check_threshold(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     each status and reason as stored (an inconclusive end of a search stopped by its time limit claims
     nothing). Not re-decided: the statuses of the steps in between (the replay ties each to the values after
     it; the theorem is about the two points)."""
-    from .threshold_log import replay
     out: list[tuple[str, bool, str]] = []
 
     def add(item: str, ok: bool, message: str) -> None:

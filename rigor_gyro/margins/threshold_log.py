@@ -42,9 +42,15 @@ class Replay:
         return bool(self.stopped) and all(p.startswith(_BUDGET) for p in self.stopped)
 
 
+#: the most steps a threshold search takes
+MAX_STEPS = 200
+#: where the search tries next, as fractions of the way from the proved end to the refuted end, when a
+#: midpoint is inconclusive: any decided point in between still halves part of the bracket
+AROUND = (Fraction(3, 8), Fraction(5, 8), Fraction(1, 4), Fraction(3, 4), Fraction(1, 8), Fraction(7, 8))
+
+
 def replay(steps: list[dict[str, Any]], lo: Fraction, hi: Fraction, width: Fraction, param: str) -> Replay:
     """The bisection rule run on the stored statuses (module docstring)."""
-    from .threshold import AROUND, MAX_STEPS
     out = Replay()
     values = [Fraction(s["value"]) for s in steps]
     sts = [s["status"] for s in steps]
