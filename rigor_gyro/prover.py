@@ -222,7 +222,7 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
     timed_out = esc is None or (budget.expired() and not esc.result.settled)
     if esc is None:
         esc = _interrupted(history, claim_statements(module, model), wanted, p0, budget.reason())
-    elif not esc.result.settled and not timed_out:
+    if history and not esc.result.settled:
         esc = _best_attempt(esc, history)
     final = esc.result
     for claim in final.claims:
@@ -244,8 +244,7 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
             claim.reason += f" [undecided at every precision tried: {esc.tried} bits; {hint}]"
     notes = list(final.notes)
     if timed_out:
-        notes.append(f"{budget.reason()}: the certificate is the last attempt that finished"
-                     + (f" ({esc.prec} bits)" if history else " (none did: nothing was decided)"))
+        notes.append(time_limit_note(budget.reason(), esc.prec if history else None, esc.tried[-1]))
     if not final.widths_met and not timed_out:
         if "widths" in hopeless:
             notes.append(f"requested enclosure widths not met: {hopeless['widths']}")
@@ -263,6 +262,18 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
                        formulas=final.formulas, notes=notes, extra=final.extra, witnesses=final.witnesses,
                        settings={"prec": prec, "maxprec": maxprec,
                                  **({"time_limit": time_limit} if time_limit is not None else {})})
+
+
+def time_limit_note(why: str, prec: int | None, last: int) -> str:
+    """The note of a run stopped by its time limit: the certificate is the attempt at ``prec`` bits (None: no
+    attempt finished), ``last`` being the last attempt that finished (:func:`_best_attempt` may take an earlier
+    one). The checker writes the same note for its re-proof (:mod:`.reproduce`)."""
+    if prec is None:
+        return f"{why}: the certificate is the last attempt that finished (none did: nothing was decided)"
+    if prec == last:
+        return f"{why}: the certificate is the last attempt that finished ({prec} bits)"
+    return (f"{why}: the certificate is the attempt at {prec} bits, which decided every claim any attempt that "
+            f"finished decided (the last one, at {last} bits, decided fewer)")
 
 
 def _decided(a: Attempt) -> set[tuple[str, Status]]:

@@ -13,8 +13,8 @@ Not independent of the prover: a wrong reason written by the prover itself would
 compared: ``scene``, ``software``, ``settings``, ``integrity`` (checked elsewhere). The audit rows are
 re-derived from the ``[paper]`` table the certificate's scene block carries.
 
-A run stopped by ``--time-limit`` is re-derived from its last finished attempt: the prover runs again
-with ``maxprec`` = the certificate's ``precision_bits`` and no limit, and the time-limit wording the prover
+A run stopped by ``--time-limit`` is re-derived from its finished attempts: the prover runs again with
+``maxprec`` = the last finished attempt's precision and no limit, and the time-limit wording the prover
 writes (the bracketed hint of an undecided claim, the time-limit note) is put in exactly before the two are
 compared. A run in which no attempt finished must say exactly that, with nothing else. A certificate
 written by another version is not confirmed: its texts can be re-derived only by that version.
@@ -30,6 +30,7 @@ import json
 from collections import OrderedDict
 from typing import Any
 
+from .prover import time_limit_note
 from .version import __version__
 
 __all__ = ["reproduction", "COMPARED", "forget"]
@@ -113,7 +114,7 @@ def _as_time_limited(again: dict, data: dict, seconds: float) -> dict:
     out["claims"] = [{**c, "reason": f"{c['reason'].split(_HINT, 1)[0]}{_HINT} {again['precisions_tried']} bits; {why}]"}
                      if c.get("status") == "inconclusive" else c for c in again.get("claims", [])]
     out["notes"] = [n for n in again.get("notes", []) if not n.startswith("requested enclosure widths not met")] + \
-        [f"{why}: the certificate is the last attempt that finished ({again['precision_bits']} bits)"]
+        [time_limit_note(why, again["precision_bits"], again["precisions_tried"][-1])]
     return out
 
 
@@ -158,7 +159,11 @@ def reproduction(data: dict, scene) -> tuple[bool, str]:
     fired = limit is not None and any(n.startswith(_TIME) for n in data.get("notes", []))
     if fired and any(n.endswith("(none did: nothing was decided)") for n in data["notes"]):
         return _nothing_finished(data, limit, settings)
-    maxprec = data["precision_bits"] if fired else settings["maxprec"]
+    tried = data.get("precisions_tried")
+    if fired and not (isinstance(tried, list) and tried and all(type(p) is int and 16 <= p <= 32768 for p in tried)):
+        return False, f"precisions_tried {tried!r} is not a list of precisions"
+    # a time-limited run is re-proved up to its last finished attempt (the certificate may be an earlier one)
+    maxprec = max(tried) if fired else settings["maxprec"]
     if not settings["prec"] <= maxprec:
         return False, f"settings prec {settings['prec']} above the last attempt's {maxprec} bits"
     again = _reproved(data, scene, settings["prec"], maxprec)

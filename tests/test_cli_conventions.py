@@ -323,3 +323,35 @@ def test_more_precision_that_decides_less_does_not_weaken_the_certificate(monkey
     report = check_certificate(json.loads(json.dumps(cert.to_json())))
     forget()
     assert report.ok, report.first_failure
+
+
+def test_a_time_limited_run_keeps_its_best_finished_attempt_and_checks(monkeypatch):
+    """The same with a time limit: 128 bits decides every claim, 256 bits none, 512 bits outlasts the limit. The
+    certificate is the 128-bit attempt, its note says so, and the checker's re-proof (up to the last finished
+    attempt, 256 bits, without a limit) re-derives it."""
+    from rigor_gyro import load_scene, prove_scene
+    from rigor_gyro.check import check_certificate
+    from rigor_gyro.core.outcome import Status
+    from rigor_gyro.kinds import eigenfrequencies
+    from rigor_gyro.reproduce import forget
+    real = eigenfrequencies.attempt
+
+    def staged(model, wanted, prec):
+        if prec > 256:
+            time.sleep(30)
+        a = real(model, wanted, prec)
+        a.widths_met, a.width_quantities = False, ()
+        if prec > 128:
+            for c in a.claims:
+                c.status, c.decides, c.reason = Status.INCONCLUSIVE, None, "budget spent"
+        return a
+    monkeypatch.setattr(eigenfrequencies, "attempt", staged)
+    cert = json.loads(json.dumps(prove_scene(load_scene("rudenko1976"), prec=128, maxprec=1024,
+                                             time_limit=3.0).to_json()))
+    assert cert["precisions_tried"] == [128, 256] and cert["precision_bits"] == 128
+    assert all(c["status"] == "proved" for c in cert["claims"])
+    assert any("the attempt at 128 bits" in n and "at 256 bits, decided fewer" in n for n in cert["notes"]), cert["notes"]
+    forget()
+    report = check_certificate(cert)
+    forget()
+    assert report.ok, report.first_failure
