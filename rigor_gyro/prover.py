@@ -213,6 +213,8 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
         try:
             esc = escalate(run, done, prec=p0, maxprec=maxprec)
         except TimeLimitReached:
+            if not budget.fired:        # an outer alarm (a checker's --time-limit), not this proof's limit
+                raise
             esc = None
         except Exception:
             if not budget.fired:        # a bug, not the alarm surfacing through a C callback
@@ -237,7 +239,8 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
                 hint = budget.reason()
             elif claim.id in hopeless:
                 hint = f"escalation stopped: {hopeless[claim.id]}"
-            elif final.stalled and not final.settled:
+            elif (final.stalled or history[-1][1].stalled) and not final.settled:
+                # (the last attempt's stall stopped the escalation when an earlier attempt was kept)
                 hint = "more precision does not help here (see the reason)"
             else:
                 hint = f"try --maxprec {2 * maxprec}"
@@ -249,7 +252,7 @@ def prove_scene(scene: Scene, *, prec: int = DEFAULT_PREC, maxprec: int = DEFAUL
         if "widths" in hopeless:
             notes.append(f"requested enclosure widths not met: {hopeless['widths']}")
         elif not esc.done:
-            notes.append(f"requested enclosure widths not met by {esc.prec} bits: try --maxprec {2 * maxprec}")
+            notes.append(f"requested enclosure widths not met by {esc.tried[-1]} bits: try --maxprec {2 * maxprec}")
     for row in final.paper:
         if row.status is AuditStatus.UNDECIDED and f"row:{row.id}" in hopeless:
             row.note += f" [undecided: {hopeless[f'row:{row.id}']}]"
@@ -291,7 +294,7 @@ def _best_attempt(esc: Escalation, history: list[tuple[int, Attempt]]) -> Escala
         return esc
     for p, a in reversed(history):
         if _decided(a) == every:
-            return Escalation(a, p, False, esc.tried)
+            return Escalation(a, p, esc.done, esc.tried)     # done: why the escalation stopped, kept
     return esc
 
 

@@ -529,3 +529,27 @@ def test_a_certificate_names_a_built_in_scene_only_when_it_is_that_scene():
     genuine["scene"]["source"] = genuine["scene"]["source"].replace("15.08", "16.08")
     genuine["integrity"]["sha256"] = digest(genuine)
     assert "scene" in {r.item for r in check_certificate(genuine).results if not r.ok}
+
+
+def test_an_outer_time_limit_is_not_taken_for_the_proofs_own(tmp_path):
+    """`check --time-limit` arms an alarm around a re-proof that has no limit of its own: the prover took that
+    alarm for its own and crashed formatting a limit of None (exit 4; hostile review, session 10). The alarm now
+    goes through, and the command says the file was not decided in time (exit 3)."""
+    from rigor_gyro import load_scene, prove_scene
+    from rigor_gyro.core.deadline import TimeLimitReached, time_limit
+    with pytest.raises(TimeLimitReached):
+        with time_limit(0.05):
+            prove_scene(load_scene("agafonov2013"))
+    assert main(["prove", "agafonov2013", "--quiet", "--out", str(tmp_path)]) == 0
+    assert main(["check", "--time-limit", "0.3", str(tmp_path / "agafonov2013.json")]) == 3
+
+
+def test_a_threshold_stopped_before_both_ends_were_decided_is_confirmed(tmp_path):
+    """--time-limit before the search's ends were decided writes a threshold with fewer than two steps (the schema
+    asked for two, and the checker refused the genuine file; hostile review)."""
+    out = tmp_path / "o"
+    code = main(["margin", "rudenko1976", "--param", "Omega2", "--lo", "0.001", "--hi", "1", "--claim", "bracket_2",
+                 "--time-limit", "0.001", "-o", str(out)])
+    data = json.loads((out / "margin_rudenko1976_Omega2.json").read_text())
+    assert code == 3 and len(data["steps"]) < 2 and "before the claim was decided at both ends" in data["stopped"]
+    assert main(["check", str(out / "margin_rudenko1976_Omega2.json")]) == 0

@@ -275,6 +275,12 @@ class _Parser:
         self.i += 1
         return tok
 
+    def _plus_minus(self):
+        """'+' then '-' (spaces aside): the tolerance syntax, refused (it would read as mid - rad)."""
+        self.fail("'+-' is a tolerance, which an expression cannot hold (it would read as mid - rad): write a "
+                  "tolerance as a parameter in [parameters] (\"mid +- rad\", if the kind takes boxes), and a sum "
+                  "with a negative term as a - b or a + (-b)")
+
     def expr(self, depth):
         if depth > MAX_DEPTH:
             self.fail(f"nested deeper than {MAX_DEPTH}")
@@ -282,9 +288,7 @@ class _Parser:
         while self.peek()[1] in ("+", "-"):
             op = self.take()[1]
             if op == "+" and self.peek()[1] == "-":
-                self.fail("'+-' is a tolerance, which an expression cannot hold (it would read as mid - rad): write a "
-                          "tolerance as a parameter in [parameters] (\"mid +- rad\", if the kind takes boxes), and a "
-                          "sum with a negative term as a - b")
+                self._plus_minus()
             self.operation()
             left = (op, left, self.term(depth))
         return left
@@ -302,6 +306,8 @@ class _Parser:
             self.fail(f"nested deeper than {MAX_DEPTH}")
         if self.peek()[1] in ("+", "-"):
             op = self.take()[1]
+            if op == "+" and self.peek()[1] == "-":
+                self._plus_minus()
             inner = self.unary(depth + 1)
             return ("neg", inner) if op == "-" else inner
         return self.power(depth)

@@ -444,6 +444,8 @@ def _pave(bs: BoxScene, executor, progress, time_limit, box_budget, state, check
             with until(budget) if not ex.parallel or len(tasks) < ex.workers else contextlib.nullcontext():
                 outs = ex.map(evaluate_task, tasks)
         except TimeLimitReached:
+            if not budget.fired:        # an outer alarm (a checker's --time-limit), not this paving's limit
+                raise
             st.frontier.restore_batch()
             stopped = budget.reason()
             break
@@ -512,6 +514,8 @@ def _pave(bs: BoxScene, executor, progress, time_limit, box_budget, state, check
                                    list(quantity_specs(bs.scene.kind, pj, oj, mj)),
                                    bs.range_boxes, bs.range_gap, ex, budget)
         except TimeLimitReached:        # the whole box's evaluation outlasted the limit: the claims stand, no ranges
+            if not budget.fired:
+                raise
             ranges = None
         except KeyboardInterrupt:
             for cp in result.values():

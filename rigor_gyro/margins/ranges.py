@@ -221,6 +221,8 @@ def search_ranges(kind: str, whole: Box, frozen: tuple[str, ...], pj: str, oj: s
             new_tiles, new_points = evaluate(children, [])
             _, more = evaluate([], corners(new_tiles))
         except TimeLimitReached:        # the round is dropped: the tiles so far still tile the box
+            if clock is None or not clock.fired:
+                raise
             break
         evaluated += len(children)
         gone = set(chosen)

@@ -254,6 +254,8 @@ def stream_pave(bs, st, ex, scene: tuple, paving, *, budget, box_budget, progres
             stopped = budget.reason()
             break
     except TimeLimitReached:
+        if not budget.fired:            # an outer alarm (a checker's --time-limit), not this paving's limit
+            raise
         stopped = budget.reason()
     except KeyboardInterrupt:
         stopped = paving.INTERRUPTED

@@ -351,7 +351,8 @@ def check_threshold(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
     steps = data["steps"]
     values = [Fraction(s["value"]) for s in steps]
     step_of = {v: s for v, s in zip(values, steps)}
-    add("steps", len(steps) >= 2 and values[:2] == [lo, hi] and len(set(values)) == len(values)
+    # fewer than two steps: the time limit came before both ends were decided (the replay below checks the text)
+    add("steps", values[:2] == [lo, hi][:min(2, len(values))] and len(set(values)) == len(values)
         and all(lo <= v <= hi for v in values), "the steps start at the search's two ends, each value once, inside it")
     log = replay(steps, lo, hi, w, param) if lo < hi and 0 < w <= 1 else None
     if log is not None:
@@ -396,7 +397,8 @@ def check_threshold(data: dict[str, Any]) -> list[tuple[str, bool, str]]:
             f", but this step must be {target}" if st != target else ": the stored reason is not the re-decision's own"))
 
     for x in (lo, hi):
-        redecide(x, None, f"{param} = {_d(x)}")
+        if x in step_of:                # an end the time limit left undecided has no step to re-decide
+            redecide(x, None, f"{param} = {_d(x)}")
     if data["proved_at"] is None or data["refuted_at"] is None:
         ok = (data["proved_at"] is None and data["refuted_at"] is None and data["bracket"] is None
               and data["bracket_decimal"] is None and data["statement"] is None and not data["certified"]

@@ -55,6 +55,9 @@ def replay(steps: list[dict[str, Any]], lo: Fraction, hi: Fraction, width: Fract
     values = [Fraction(s["value"]) for s in steps]
     sts = [s["status"] for s in steps]
     d = rational_text
+    if len(steps) < 2 and values == [lo, hi][:len(steps)]:    # the time limit came before both ends were decided
+        out.stopped = [_BUDGET + re.escape(" before the claim was decided at both ends")]
+        return out
     if len(steps) < 2 or values[:2] != [lo, hi]:
         out.error = "the steps do not start at the search's two ends (lo, then hi)"
         return out
