@@ -10,6 +10,7 @@ import pytest
 import rigor_gyro as rg
 from rigor_gyro.check import check_certificate
 from rigor_gyro.margins import scan as scan_module
+from tests.test_paving_search import SCENE
 
 
 def _failed(data):
@@ -133,23 +134,9 @@ def test_a_threshold_cut_by_its_time_limit_still_checks(threshold):
     assert [f.item for f in _failed(data)] == ["search log"]
 
 
-PAVING = """
-name = "cx_forgery"
-kind = "eigenfrequencies"
-source = "test: bracket (7) fails on part of this box (eps > 1), found by the counterexample search"
-[parameters]
-a = "15.08"
-b = "6.154"
-eps = "[0.1, 1.3]"
-Omega2 = "[0.5, 2.2]"
-[claims]
-only = ["bracket_1"]
-[options]
-box_resolution = "1/4"
-range_boxes = "0"
-search_points = "4"
-monte_carlo = "50"
-"""
+# the counterexample search's scene (tests/test_paving_search.py) with a search and an estimate to forge
+PAVING = (SCENE.replace('name = "cx_test"', 'name = "cx_forgery"', 1)
+          + 'search_points = "4"\nmonte_carlo = "50"\n')
 
 
 @pytest.fixture(scope="module")
