@@ -118,9 +118,7 @@ class Executor:
         tasks = list(tasks)
         if not tasks:
             return []
-        if self._pool is None and self._client is None or len(tasks) < self.workers:
-            # fewer tasks than workers (the first levels of a paving): nothing to gain from the pool or
-            # the scheduler but their round trip; the results are the same wherever a task runs
+        if self.runs_here(len(tasks)):
             return [fn(*t) for t in tasks]
         # small batches balance uneven tasks (a hard box takes 100 times an easy one); batches of
         # many cheap tasks keep the per-task overhead of the pool or the scheduler low
@@ -133,6 +131,12 @@ class Executor:
         else:
             results = list(self._pool.map(_run_batch, [fn] * len(batches), batches))
         return [r for batch in results for r in batch]
+
+    def runs_here(self, n: int) -> bool:
+        """Whether :meth:`map` runs ``n`` tasks in this process: without a pool or a cluster, or with fewer tasks
+        than workers (the first levels of a paving: nothing to gain from the pool or the scheduler but their round
+        trip; the results are the same wherever a task runs). A time limit's alarm can then interrupt them."""
+        return self._pool is None and self._client is None or n < self.workers
 
     @property
     def parallel(self) -> bool:

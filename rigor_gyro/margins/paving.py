@@ -441,7 +441,7 @@ def _pave(bs: BoxScene, executor, progress, time_limit, box_budget, state, check
         try:
             # in process (one worker, or fewer boxes than workers: the whole box) a batch can take minutes:
             # the alarm interrupts it at the time limit and the batch is left pending
-            with until(budget) if not ex.parallel or len(tasks) < ex.workers else contextlib.nullcontext():
+            with until(budget) if ex.runs_here(len(tasks)) else contextlib.nullcontext():
                 outs = ex.map(evaluate_task, tasks)
         except TimeLimitReached:
             if not budget.fired:        # an outer alarm (a checker's --time-limit), not this paving's limit

@@ -179,8 +179,7 @@ def search_ranges(kind: str, whole: Box, frozen: tuple[str, ...], pj: str, oj: s
                 mids.append(m)
         tasks = [(kind, pj, oj, mj, json.dumps(b.to_json()), prec) for b in boxes]
         tasks += [(kind, pj, oj, mj, json.dumps(point_box(m).to_json()), prec) for m in mids]
-        in_process = not executor.parallel or len(tasks) < executor.workers
-        with until(clock) if clock is not None and in_process else contextlib.nullcontext():
+        with until(clock) if clock is not None and executor.runs_here(len(tasks)) else contextlib.nullcontext():
             outs = executor.map(range_task, tasks)
         return list(zip(boxes, outs[:len(boxes)])), list(zip(mids, outs[len(boxes):]))
 
