@@ -358,7 +358,8 @@ def _check_searches(bs, data: dict[str, Any], c: dict[str, Any], boxes: list, oj
     skipped, holds none), every stored point proof re-proved, the estimate re-run with its seed. Returns
     whether the search holds a certified counterexample (verified here)."""
     from .counterexample_check import check_counterexamples, check_monte_carlo
-    from .counterexamples import PROBE_PREC, failing_fraction_estimate, probe_task
+    from .counterexamples import (MC_CLASSIFIER, MC_CONFIDENCE, PROBE_PREC, failing_fraction_estimate, probe_task,
+                                  search_settings)
     from .paving import point_task, searched_refutation
     cid = c["id"]
     stopped = isinstance(data.get("stopped"), str) and bool(data["stopped"])
@@ -376,8 +377,7 @@ def _check_searches(bs, data: dict[str, Any], c: dict[str, Any], boxes: list, oj
             add(CheckResult(cid, False, f"the {name} says it was skipped for {str(part['skipped'])[:80]!r}: pave skips "
                             "one only when its time limit ran out"))
     if cs is not None and "skipped" not in cs:
-        want = {"points": bs.search_points, "samples": bs.search_samples or 32 * bs.search_points,
-                "probe_prec": PROBE_PREC, "improve_steps": 2, "sequence": "halton"}
+        want = search_settings(bs.search_points, bs.search_samples or None)
         undecided = sum(1 for _, s in boxes if s == "undecided")
         if cs.get("settings") != want or cs.get("undecided_leaves") != undecided:
             add(CheckResult(cid, False, f"the counterexample search's settings {cs.get('settings')} and undecided leaves "
@@ -396,7 +396,8 @@ def _check_searches(bs, data: dict[str, Any], c: dict[str, Any], boxes: list, oj
         add(CheckResult(cid, ok, msg))
         found = ok and searched_refutation({"counterexample_search": cs})
     if mc is not None and "skipped" not in mc:
-        want = {"samples": bs.monte_carlo, "seed": bs.monte_carlo_seed, "classifier": "point", "confidence": 0.999}
+        want = {"samples": bs.monte_carlo, "seed": bs.monte_carlo_seed, "classifier": MC_CLASSIFIER,
+                "confidence": MC_CONFIDENCE}
         got = {k: mc.get(k) for k in want}
         if got != want:
             add(CheckResult(cid, False, f"the Monte Carlo estimate's {got} are not the scene's {want}"))

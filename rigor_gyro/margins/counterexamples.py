@@ -286,17 +286,28 @@ def certified_counterexamples(proofs: list[dict[str, Any]]) -> list[dict[str, An
     return [p for p in proofs if p["status"] == "refuted"]
 
 
+#: a Monte Carlo estimate's default confidence and classifier (a paving's estimate uses them; its checker asks them)
+MC_CONFIDENCE = 0.999
+MC_CLASSIFIER = "point"
+
+
+def search_settings(n: int, samples: int | None = None, prec: int = PROBE_PREC, improve_steps: int = 2) -> dict:
+    """The ``settings`` a search of ``n`` points stores (``samples`` None: 32 n drawn samples); its checker
+    derives them from the scene's options the same way."""
+    return {"points": n, "samples": samples if samples is not None else 32 * n, "probe_prec": prec,
+            "improve_steps": improve_steps, "sequence": "halton"}
+
+
 def search_claim(bs, leaves: list[tuple[Box, str]], claim: str, n: int, samples: int | None = None,
                  prec: int = PROBE_PREC, improve_steps: int = 2, executor: Executor | None = None) -> dict[str, Any]:
     """Steps 1 and 2 for one claim, as a paving certificate would store them: ``{"settings": {points, samples,
     probe_prec, improve_steps, sequence}, "undecided_leaves", "proofs": prove_candidates(...), "refuted",
     "leaves": the distinct leaves holding a certified counterexample}``."""
-    count = samples if samples is not None else 32 * n
-    cands = candidate_points(bs, leaves, claim, n, count, prec, improve_steps, executor)
+    settings = search_settings(n, samples, prec, improve_steps)
+    cands = candidate_points(bs, leaves, claim, n, settings["samples"], prec, improve_steps, executor)
     proofs = prove_candidates(bs, leaves, claim, cands, executor)
     found = certified_counterexamples(proofs)
-    return {"settings": {"points": n, "samples": count, "probe_prec": prec, "improve_steps": improve_steps,
-                         "sequence": "halton"},
+    return {"settings": settings,
             "undecided_leaves": sum(1 for _, s in leaves if s == "undecided"), "proofs": proofs,
             "refuted": len(found), "leaves": sorted({p["leaf"] for p in found})}
 
@@ -332,7 +343,7 @@ def _point_statuses(kind: str, params_json: str, options_json: str, claims: tupl
 
 
 def failing_fraction_estimate(bs, claims: list[str] | None = None, samples: int = 1000, seed: int = 0,
-                              confidence: float = 0.999, classifier: str = "point", prec: int = PROBE_PREC,
+                              confidence: float = MC_CONFIDENCE, classifier: str = MC_CLASSIFIER, prec: int = PROBE_PREC,
                               executor: Executor | None = None) -> dict[str, dict[str, Any]]:
     """Per claim, {samples, failing, unknown, fraction, interval, confidence, seed, classifier}: ``samples``
     uniform points of the box (:func:`uniform_points`), each classified by the point prover at ``prec`` ..
