@@ -22,7 +22,8 @@ summed piece by piece, each by ``acb.integral`` of the piece's own polynomial (e
 bound is rigorous) between exact knots; where the ball x meets a knot x_k, G(x_k) + (x - x_k) g(hull(x_k, x))
 (mean value of the continuous integrand g).
 
-Bad input (ParameterError naming the entry, exit 2): lists of different lengths or fewer than 3 points (or more
+Bad input (ParameterError naming the entry, numbered from 1 as ``[plant]``'s ``M[1][1]``: ``x2[1]`` is the first
+point; exit 2): lists of different lengths or fewer than 3 points (or more
 than :data:`MAX_POINTS`), a first point other than (0, 0), x2 not strictly increasing, a last x2 below the scene's
 x2* (the law would be extrapolated over the range the claims use), an f_i <= 0 for x_i > 0 (the data violate
 x2 f(x2) > 0, which the method needs; between the points the claim v_positive certifies f/x > 0).
@@ -256,8 +257,8 @@ def _list(table: Mapping[str, object], key: str) -> list[Fraction]:
     out = []
     for i, t in enumerate(v):
         if isinstance(t, list):
-            raise ParameterError(f"[moment] {key}[{i}]: need an exact number, got a list")
-        out.append(evaluate_exact(parse(t, f"[moment] {key}[{i}]"), {}))
+            raise ParameterError(f"[moment] {key}[{i + 1}]: need an exact number, got a list")
+        out.append(evaluate_exact(parse(t, f"[moment] {key}[{i + 1}]"), {}))
     return out
 
 
@@ -276,18 +277,18 @@ def table_law(table: Mapping[str, object], x2_star: Exact) -> SplineMoment:
     if not 3 <= len(xs) <= MAX_POINTS:
         raise ParameterError(f"[moment] x2: need 3 to {MAX_POINTS} points (from 0), given {len(xs)}")
     if xs[0] != 0 or fs[0] != 0:
-        raise ParameterError("[moment] x2[0], f[0]: the first point must be (0, 0) (the equilibrium; the law is "
+        raise ParameterError("[moment] x2[1], f[1]: the first point must be (0, 0) (the equilibrium; the law is "
                              "the odd extension of the points)")
     for i in range(1, len(xs)):
         if not xs[i] > xs[i - 1]:
-            raise ParameterError(f"[moment] x2[{i}] = {xs[i]}: the points must be strictly increasing")
+            raise ParameterError(f"[moment] x2[{i + 1}] = {xs[i]}: the points must be strictly increasing")
         if not fs[i] > 0:
-            raise ParameterError(f"[moment] f[{i}] = {fs[i]}: need f > 0 at x2 > 0 (x2 f(x2) > 0 is the method's "
+            raise ParameterError(f"[moment] f[{i + 1}] = {fs[i]}: need f > 0 at x2 > 0 (x2 f(x2) > 0 is the method's "
                                  "condition)")
     with working_precision(256):
         covers = certainly_le(x2_star.ball(), arb(_q(xs[-1])))
     if not covers:
-        raise ParameterError(f"[moment] x2[{len(xs) - 1}] = {xs[-1]}: the table must reach x2* (the range the claims "
+        raise ParameterError(f"[moment] x2[{len(xs)}] = {xs[-1]}: the table must reach x2* (the range the claims "
                              "use), not be extrapolated over it")
     digest = hashlib.sha256(repr((xs, fs)).encode()).hexdigest()[:12]
     return SplineMoment(xs, fs, digest)
