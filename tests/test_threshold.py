@@ -153,3 +153,33 @@ def test_an_inconclusive_midpoint_is_stepped_around_and_the_bracket_still_reache
     assert not res.certified and res.exit_code == 3
     assert "inconclusive at k = 1.5 and at the 6 points around it tried" in res.stopped
     assert len(res.steps) == 2 + 1 + 6
+
+
+def test_time_out_among_the_points_around_says_how_many_were_tried(monkeypatch):
+    """When the time limit comes after 2 of the 6 points around an inconclusive midpoint, ``stopped`` says
+    so (not "at the 6 points around it tried"), and the log's replay accepts that text and only it."""
+    from rigor_gyro.core.deadline import Budget
+    from rigor_gyro.margins import threshold as th
+    from rigor_gyro.margins.threshold_log import replay
+    calls, out_of_time = [], [False]
+
+    def fake(scene, param, value, claim, seconds=None, leaves=None):
+        calls.append(value)
+        if len(calls) == 5:              # the ends, the midpoint 3/2, then the second point around it
+            out_of_time[0] = True
+        if abs(value - Fraction(3, 2)) < Fraction(1, 2):
+            return "inconclusive", "stand-in: undecided near 3/2"
+        return ("proved", "below") if value < Fraction(7, 5) else ("refuted", "above")
+    monkeypatch.setattr(th, "_status", fake)
+    monkeypatch.setattr(Budget, "expired", lambda self: out_of_time[0])
+    res = find_threshold(_agafonov(k="3"), "k", lo="1", hi="2", claim="damping_condition", width="1e-6",
+                         time_limit=1000)
+    assert not res.certified and res.exit_code == 3
+    assert len(res.steps) == 2 + 1 + 2
+    assert res.stopped == ("time limit of 1000 s reached (--time-limit) after 2 of the 6 points around k = 1.5: "
+                           "the bracket certified so far is kept")
+    log = replay(res.steps, Fraction(1), Fraction(2), Fraction(1, 10 ** 6), "k")
+    assert not log.error and log.stopped_ok(res.stopped) and log.budget_only
+    assert not log.stopped_ok(res.stopped.replace("after 2 of", "after 3 of"))
+    assert not log.stopped_ok("the claim is inconclusive at k = 1.5 and at the 6 points around it tried: "
+                              "stand-in: undecided near 3/2")

@@ -267,10 +267,12 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
             res.stopped = f"{budget.reason()} during the proof at {param} = {_d(m)}: the bracket certified so far is kept"
             break
         else:
-            moved = _step_around(res, scene, param, claim, p, r, budget, witnesses)
+            moved, tried = _step_around(res, scene, param, claim, p, r, budget, witnesses)
             if moved is None:
                 res.stopped = (f"the claim is inconclusive at {param} = {_d(m)} and at the {len(AROUND)} points "
-                               f"around it tried: {why[:200]}")
+                               f"around it tried: {why[:200]}" if tried == len(AROUND) else
+                               f"{budget.reason()} after {tried} of the {len(AROUND)} points around {param} = "
+                               f"{_d(m)}: the bracket certified so far is kept")
                 break
             p, r = moved
     else:
@@ -280,20 +282,21 @@ def find_threshold(scene: Scene, param: str, *, lo: str | None = None, hi: str |
 
 
 def _step_around(res: Threshold, scene: Scene, param: str, claim: str, p: Fraction, r: Fraction,
-                 budget: Budget, witnesses: Witnesses | None = None) -> tuple[Fraction, Fraction] | None:
+                 budget: Budget, witnesses: Witnesses | None = None
+                 ) -> tuple[tuple[Fraction, Fraction] | None, int]:
     """After an inconclusive midpoint: the claim at the points of :data:`AROUND` between ``p`` (proved)
-    and ``r`` (refuted), until one is decided; the new (p, r), or None when none was (or time ran out).
-    Each point tried is a step of the search."""
-    for t in AROUND:
+    and ``r`` (refuted), until one is decided. Returns the new (p, r), or None when none was decided (all
+    tried, or time ran out first), and how many points were tried (each is a step of the search)."""
+    for n, t in enumerate(AROUND):
         if budget.expired():
-            return None
+            return None, n
         x = p + (r - p) * t
         st, why = _decide(res, scene, param, x, claim, budget, witnesses)
         if st == "proved":
-            return x, r
+            return (x, r), n + 1
         if st == "refuted":
-            return p, x
-    return None
+            return (p, x), n + 1
+    return None, len(AROUND)
 
 
 def write_threshold(res: Threshold, out_dir: str) -> list[Path]:

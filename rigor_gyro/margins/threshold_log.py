@@ -100,13 +100,17 @@ def replay(steps: list[dict[str, Any]], lo: Fraction, hi: Fraction, width: Fract
             continue
         tried_all = re.escape(f"the claim is inconclusive at {param} = {d(m)} and at the {len(AROUND)} points "
                               f"around it tried: {str(why)[:200]}")
+        def short(n: int) -> str:       # time ran out after n < len(AROUND) points around m
+            return _BUDGET + re.escape(f" after {n} of the {len(AROUND)} points around {param} = {d(m)}: the bracket "
+                                       "certified so far is kept")
         if i == len(steps):
             out.stopped = [_BUDGET + re.escape(f" during the proof at {param} = {d(m)}: the bracket certified so "
-                                               "far is kept"), tried_all]
+                                               "far is kept"), short(0)]
             break
         moved = None
-        for t in AROUND:
+        for n, t in enumerate(AROUND):
             if i == len(steps):
+                tried_all = short(n)
                 break
             x = p + (r - p) * t
             if not expect(x):
