@@ -23,7 +23,8 @@ bound is rigorous) between exact knots; where the ball x meets a knot x_k, G(x_k
 (mean value of the continuous integrand g).
 
 Bad input (ParameterError naming the entry, numbered from 1 as ``[plant]``'s ``M[1][1]``: ``x2[1]`` is the first
-point; exit 2): lists of different lengths or fewer than 3 points (or more
+point; exit 2): an entry that is not an exact rational number (``pi/12``, a parameter's name: the spline is solved
+exactly in rationals), lists of different lengths or fewer than 3 points (or more
 than :data:`MAX_POINTS`), a first point other than (0, 0), x2 not strictly increasing, a last x2 below the scene's
 x2* (the law would be extrapolated over the range the claims use), an f_i <= 0 for x_i > 0 (the data violate
 x2 f(x2) > 0, which the method needs; between the points the claim v_positive certifies f/x > 0).
@@ -35,6 +36,7 @@ from __future__ import annotations
 
 import bisect
 import hashlib
+import re
 from fractions import Fraction
 from typing import Mapping
 
@@ -44,7 +46,7 @@ from ...core.balls import certainly_le, current_precision, exact_endpoints, seri
 from ...core import quadrature
 from ...core.errors import ParameterError
 from ...core.exact import Exact
-from ...core.expressions import evaluate_exact, parse
+from ...core.expressions import UNARY_FUNCTIONS, Expr, evaluate_exact, parse
 from .model import Dual
 from .moment_expr import taylor_q
 from .moments import MomentLaw
@@ -258,8 +260,27 @@ def _list(table: Mapping[str, object], key: str) -> list[Fraction]:
     for i, t in enumerate(v):
         if isinstance(t, list):
             raise ParameterError(f"[moment] {key}[{i + 1}]: need an exact number, got a list")
-        out.append(evaluate_exact(parse(t, f"[moment] {key}[{i + 1}]"), {}))
+        out.append(evaluate_exact(_entry(t, f"[moment] {key}[{i + 1}]"), {}))
     return out
+
+
+def _entry(t: object, where: str) -> Expr:
+    """One table entry parsed as an exact rational (no names, no functions); ParameterError naming ``where``.
+    A formula in names (``pi/12``, a parameter) gets a message saying why: the spline is solved exactly in
+    rationals, so its points must be rational."""
+    try:
+        return parse(t, where)
+    except ParameterError:
+        words = set(re.findall(r"(?<![0-9.])[A-Za-z_][A-Za-z0-9_]*", t)) if isinstance(t, str) else set()
+        if not words:
+            raise
+        named = parse(t, where, names=words, functions=UNARY_FUNCTIONS)     # a grammar error is raised as such
+        used = sorted(named.names() | ({"pi"} & words))
+        why = (f"; {t} uses pi, which is not rational" if "pi" in used else "") + \
+            (f"; {', '.join(repr(u) for u in used if u != 'pi')}: write the value, not the name"
+             if set(used) - {"pi"} else "")
+        raise ParameterError(f"{where} = {t!r}: table points are exact rational numbers such as 1/12 or 0.2618, "
+                             f"not formulas (the spline is solved exactly in rationals){why}") from None
 
 
 def table_law(table: Mapping[str, object], x2_star: Exact) -> SplineMoment:
