@@ -270,7 +270,19 @@ BAD = [
     (dict(system={"defs": '["2 = k"]'}), r"\[system\] defs\[1\]: expected \"name = expression\""),
     (dict(claims='["roots", "brackets"]'), r"claim 'brackets' is asked for but \[system\] gives no brackets"),
     (dict(claims='["roots", "nu_ordering"]'), r"claim\(s\) \['nu_ordering'\] belong to the paper's parameterisation"),
+    (dict(system={"K": '[["2", "0"], ["0", "1"]]'}), r"parameter 'k': not used by any entry of \[system\] \(a misspelt"),
 ]
+
+
+@pytest.mark.parametrize("kw", [dict(options='hz_scale = "k"'), dict(system={"defs": '["w = k"]'}),
+                                dict(system={"brackets": '[["0", "k"]]'}, claims='["roots", "brackets"]')],
+                         ids=["hz_scale", "defs", "brackets"])
+def test_a_parameter_named_only_outside_the_matrices_is_used(kw):
+    """The unused-parameter check reads every entry, not only M, G, K, D."""
+    from rigor_gyro import parse_scene
+    from rigor_gyro.kinds.eigenfrequencies.claims import validate
+    text = _toml(**dict(kw, system={"K": '[["2", "0"], ["0", "1"]]', **kw.get("system", {})}))
+    assert validate(parse_scene(text)).params.keys() == {"k"}
 
 
 @pytest.mark.parametrize("kw,match", BAD, ids=[m[:40] for _, m in BAD])

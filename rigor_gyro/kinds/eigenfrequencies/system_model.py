@@ -33,7 +33,8 @@ Guarantee: the polynomials are exact ``fmpq_poly``; every bad model is a Paramet
 
 Fails when: ``[system]`` lacks M or K, has an unknown key, a matrix is not square or not n x n, an entry does not
 parse or names an unknown parameter, divides by zero, M or K or D is not symmetric, G not skew, M singular,
-n > 12, ``zero_roots`` odd or > 2n, more brackets than frequencies: :class:`ParameterError` (exit 2).
+n > 12, ``zero_roots`` odd or > 2n, more brackets than frequencies, a parameter that no entry (matrix, def,
+bracket, ``hz_scale``) names (as ``[plant]``: a misspelt name): :class:`ParameterError` (exit 2).
 """
 from __future__ import annotations
 
@@ -290,6 +291,12 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
         for side, e in zip(("lower", "upper"), pair):   # an exact zero is bad input, not a precision to escalate
             if not _uses_sqrt(e) and set(e.names()) <= set(rational):
                 _exact(e, rational)
+    used = {v for mat in (M, G, K, D) if mat is not None for row in mat for e in row for v in e.names()}
+    used |= {v for _, e in defs for v in e.names()} | (hz.names() if hz is not None else set())
+    used |= {v for pair in brackets for e in pair for v in e.names()}
+    unused = sorted(set(params) - used)
+    if unused:
+        raise ParameterError(f"parameter {unused[0]!r}: not used by any entry of [system] (a misspelt name?)")
     if scene.paper:
         raise ParameterError("a [system] scene takes no [paper] table (the audit is the paper scene's)")
     return SystemModel(rational, params, n, M, G, K, D, tuple(defs), brackets, hz, rel, z, tuple(wanted), dict(table),
