@@ -64,6 +64,7 @@ from ...core.stored import exact_text
 from ...core.subdivision import certify_positive
 from .. import Attempt, Phases
 from .texts import complex_text as _fmt_c, interval_text as _fmt, modulus_text as _fmt1, stored_bounds as _bounds
+from .genuine_outcome import no_orbit_record, orbit_genuine_outcome
 from .tracked import statements as tracked_statements
 from .tracked_claims import choose, tracked_claims, tracked_extra
 from .paper import PAPER_SCHEMA, audit as audit_paper, formula_table, orbit_quantities
@@ -926,12 +927,7 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
     exhaustive = complete and an.covers_all
     beyond = (f"; roots beyond T_max = {_fmt(an.T_search, 8)} were not searched, so this is not a refutation "
               "(set option T_max = \"auto\" to search all of (0, oo))") if not an.covers_all else ""
-    no_orbit = None
-    if exhaustive and not genuine:
-        no_orbit = {"searched": "(0, oo)", "tail_point": _bounds(an.T_tail), "theta_min": _bounds(an.theta_min),
-                    "roots": [{"theta": _bounds(v.theta), "spurious_because": v.reason,
-                               "witness_t": _bounds(v.witness_t) if v.witness_t is not None else None}
-                              for v in spurious]}
+    no_orbit = no_orbit_record(an.T_tail, an.theta_min, spurious) if exhaustive and not genuine else None
     # ---- half_period
     if an.unknown:
         hp = (Status.INCONCLUSIVE, f"{len(an.unknown)} piece(s) of {rng} undecided, first "
@@ -952,17 +948,8 @@ def attempt(model: RelayModel, wanted: list[str], prec: int, spectrum=None) -> A
         tracked = choose(model, an)
         main, why_main = tracked.genuine, tracked.label
     # ---- orbit_genuine
-    if main is not None:
-        og = (Status.PROVED, f"{why_main}, theta* = {_fmt(main.theta, 16)}: {main.reason}"
-              + (f"; {len(genuine) - 1} further genuine orbit(s) proved likewise" if len(genuine) > 1 else ""))
-    elif complete:
-        wit = "; ".join(f"theta = {_fmt(v.theta, 10)}: {v.reason}" for v in spurious[:4])
-        text = (f"none of the {len(spurious)} root(s) of g on {rng} is a genuine orbit of the relay system: {wit}"
-                + (" ..." if len(spurious) > 4 else "") if spurious else
-                f"g has no root on {rng}: there is no symmetric orbit with two switchings per period")
-        og = (Status.REFUTED, text, no_orbit) if exhaustive else (Status.INCONCLUSIVE, text + beyond)
-    else:
-        og = (Status.INCONCLUSIVE, "no genuine orbit certified and not every root classified: " + hp[1])
+    og = orbit_genuine_outcome(main, why_main, genuine, spurious, rng, complete=complete, exhaustive=exhaustive,
+                               no_orbit=no_orbit, beyond=beyond, undecided_reason=hp[1], whose=" of the relay system")
     if "orbit_genuine" in wanted and tracked is None:
         claims.append(_claim("orbit_genuine", *og))
     none_exists = main is None and exhaustive

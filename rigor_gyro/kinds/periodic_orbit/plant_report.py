@@ -19,6 +19,7 @@ from ...core.balls import (ball, certainly_gt, certainly_le, current_precision, 
 from ...core.outcome import Claim, Status
 from ...core.stored import exact_text
 from .. import Attempt, Phases
+from .genuine_outcome import no_orbit_record, orbit_genuine_outcome
 from .plant_df import describing_function
 from .plant_orbit import amplitude, neutral_multiplier
 from .plant_statements import GUARD_BITS, PLANT_CLAIMS
@@ -71,13 +72,8 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
     exhaustive = complete and an.covers_all
     beyond = (f"; roots beyond T_max = {_fmt(T, 8)} were not searched, so this is not a refutation"
               if not an.covers_all else "")
-    no_orbit = None
-    if exhaustive and not genuine:
-        no_orbit = {"searched": "(0, oo)", "tail_point": _bounds(_qb(an.T_tail)),
-                    "theta_min": _bounds(_qb(an.theta_min)),
-                    "roots": [{"theta": _bounds(v.theta), "spurious_because": v.reason,
-                               "witness_t": _bounds(v.witness_t) if v.witness_t is not None else None}
-                              for v in spurious]}
+    no_orbit = (no_orbit_record(_qb(an.T_tail), _qb(an.theta_min), spurious) if exhaustive and not genuine
+                else None)
     if an.unknown:
         hp = (Status.INCONCLUSIVE, f"{len(an.unknown)} piece(s) of {rng} undecided, first "
               f"[{_fmt(an.unknown[0].lo, 10)}, {_fmt(an.unknown[0].hi, 10)}]: {an.unknown[0].reason}")
@@ -92,16 +88,8 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
     if "half_period" in wanted:
         claims.append(_claim("half_period", *hp, pieces=an.pieces, roots=len(an.roots)))
     main, why_main = select_orbit(genuine)
-    if main is not None:
-        og = (Status.PROVED, f"{why_main}, theta* = {_fmt(main.theta, 16)}: {main.reason}"
-              + (f"; {len(genuine) - 1} further genuine orbit(s) proved likewise" if len(genuine) > 1 else ""))
-    elif complete:
-        wit = "; ".join(f"theta = {_fmt(v.theta, 10)}: {v.reason}" for v in spurious[:4])
-        text = (f"none of the {len(spurious)} root(s) of g on {rng} is a genuine orbit: {wit}" if spurious else
-                f"g has no root on {rng}: there is no symmetric orbit with two switchings per period")
-        og = (Status.REFUTED, text, no_orbit) if exhaustive else (Status.INCONCLUSIVE, text + beyond)
-    else:
-        og = (Status.INCONCLUSIVE, "no genuine orbit certified and not every root classified: " + hp[1])
+    og = orbit_genuine_outcome(main, why_main, genuine, spurious, rng, complete=complete, exhaustive=exhaustive,
+                               no_orbit=no_orbit, beyond=beyond, undecided_reason=hp[1])
     if "orbit_genuine" in wanted:
         claims.append(_claim("orbit_genuine", *og))
     none_exists = main is None and exhaustive
