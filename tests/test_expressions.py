@@ -110,3 +110,43 @@ def test_plus_minus_in_an_expression_is_refused_not_read_as_mid_minus_rad(text):
         parse(text, "t", {"J", "a", "x", "b"})
     assert parse("a - b", "t", {"a", "b"}).evaluate({"a": Fraction(3), "b": Fraction(1)}) == 2
     assert parse("a + (-b)", "t", {"a", "b"}).evaluate({"a": Fraction(3), "b": Fraction(1)}) == 2
+
+
+# ------------------------------------------------------------------------------------ where an expression has no value
+
+def _undefined(text, x, names=("x",)):
+    from rigor_gyro.core.expression_domain import first_undefined
+    from rigor_gyro.core.expressions import UNARY_FUNCTIONS
+    e = parse(text, "t", names=set(names), functions=UNARY_FUNCTIONS)
+    fns = {"sqrt": arb.sqrt, "log": arb.log, "sin": arb.sin}
+    return first_undefined(e.tree, {"x": x, "a": arb(0, "inf")}, lambda q: arb(q.numerator) / q.denominator, fns,
+                           lambda b, n: b ** n if n >= 0 else 1 / b ** -n, at=" here")
+
+
+def test_only_an_exactly_zero_denominator_or_an_argument_certainly_outside_the_domain_has_no_value():
+    assert _undefined("x/(x - x)", arb(1)) == (parse("x/(x - x)", "t", names={"x"}).tree,
+                                               "it divides by x - x, which is exactly 0 here")
+    assert _undefined("x^-2", arb(0))[1] == "x^(-2) divides by x, which is exactly 0 here"
+    assert _undefined("x*sqrt(-1)", arb(1))[1] == ("sqrt(-1) has no real value: its argument is -1, certainly "
+                                                   "outside sqrt's domain x >= 0")
+    assert "certainly outside log's domain x > 0" in _undefined("log(x^2)", arb(0))[1]
+    # a ball merely containing 0, or touching the domain's boundary, is no evidence
+    assert _undefined("1/x", arb(0, "1e-30")) is None
+    assert _undefined("sqrt(x)", arb(0, "1e-30")) is None and _undefined("sqrt(x)", arb(0)) is None
+    assert _undefined("log(x)", arb(0, "1e-30")) is None
+    assert _undefined("1/(sin(x) - sin(x))", arb(1)) is None          # a ball about 0, not an exact 0
+    assert _undefined("x/(a*x)", arb(1), names=("x", "a")) is None     # a unknown: a*x is not exactly 0
+    assert _undefined("x/(x - 1/4)", arb(1) / 4)[1] == "it divides by x - 1/4, which is exactly 0 here"
+
+
+def _poles(text, consts=None):
+    from rigor_gyro.core.expression_domain import polynomial_poles, unparse
+    from rigor_gyro.core.expressions import UNARY_FUNCTIONS
+    e = parse(text, "t", names={"x", "a", "b"}, functions=UNARY_FUNCTIONS)
+    return [(unparse(d), r) for d, r in polynomial_poles(e.tree, "x", consts or {})]
+
+
+def test_a_denominator_that_is_the_zero_polynomial_is_found():
+    assert _poles("a*x/(x - x)") == [("x - x", None)] and _poles("x*(2*x - x - x)^-3") == [("2*x - x - x", None)]
+    assert _poles("x/(b - b)", {"b": Fraction(1, 3)}) == [("b - b", None)]
+    assert _poles("x/(a - a)") == [] and _poles("x/(sin(x) - sin(x))") == []     # not polynomials in x: nothing

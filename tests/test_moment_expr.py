@@ -6,6 +6,7 @@ claim, the example scenes proved and confirmed by the checker, which rebuilds th
 import json
 import math
 import random
+import re
 from fractions import Fraction
 from pathlib import Path
 
@@ -283,6 +284,11 @@ BAD = [
     ("f(0) != 0 and not odd", "expression", '[moment]\nf = "a*cos(x2)"\n', "[moment] f"),
     ("f undefined at 0", "expression", '[moment]\nf = "a*sin(x2)/x2^2"\n', "f(0)"),
     ("f without x2", "expression", '[moment]\nf = "a"\n', "does not depend on x2"),
+    ("f divides by x2 - x2", "expression", '[moment]\nf = "a*x2/(x2-x2)"\n',
+     "f has no value for any x2: it divides by x2 - x2, which is exactly 0 for every x2"),
+    ("f even, divides by x2 - x2", "expression", '[moment]\nf = "a*x2^2/(x2-x2)"\n', "divides by x2 - x2"),
+    ("sqrt of a negative constant", "expression", '[moment]\nf = "a*x2*sqrt(-1)"\n',
+     "sqrt(-1) has no real value: its argument is -1, certainly outside sqrt's domain x >= 0 (a constant)"),
     ("unknown name in f", "expression", '[moment]\nf = "a*sin(x2) + c*x2"\n', "'c'"),
     ("unknown function", "expression", '[moment]\nf = "a*sinh(x2)"\n', "sinh"),
     ("eval attempt", "expression", '[moment]\nf = "__import__(\'os\')"\n', "[moment] f"),
@@ -315,6 +321,26 @@ def test_a_bad_moment_law_is_exit_2_naming_the_entry(tmp_path, capsys, case, mom
     assert code == 2, err
     assert word in err and "Traceback" not in err
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+
+
+def test_f_without_a_value_at_0_or_at_a_point_inside_x2_star_is_refused_and_f_with_one_is_not():
+    """The input checks refuse f only where it certainly has no value for |x2| <= x2* (every a): a denominator
+    that is an exact 0, sqrt/log certainly outside their domain; the domain's boundary (sqrt(0)), a ball merely
+    containing 0, or a point beyond x2* is no reason."""
+    xs = parse_exact("pi/6")
+    for f, word in [("a*x2*sqrt(1/5 - x2^2)", "f(1/2) has no value: sqrt(1/5 - x2^2) has no real value: its "
+                     "argument 1/5 - x2^2 is [-0.0500000 +/- 1e-12] at x2 = 1/2 (inside |x2| <= x2*"),
+                    ("a*x2*sqrt(x2 - 1)", "f(0) has no value: sqrt(x2 - 1) has no real value"),
+                    ("a*x2*log(x2^2)", "f(0) has no value: log(x2^2) has no real value"),
+                    ("a*sin(x2)/x2", "f(0) has no value: it divides by x2, which is exactly 0 at x2 = 0"),
+                    ("a*x2/(sin(x2) - sin(x2))", "f(0) has no value: it divides by sin(x2) - sin(x2), which is "
+                     "exactly 0 at x2 = 0"),
+                    ("x2*(b - b)^-1", "f has no value for any x2: it divides by b - b, which is exactly 0")]:
+        with pytest.raises(ParameterError, match=re.escape(word)):
+            expression_law({"f": f, "b": "2/7"} if "b" in f else {"f": f}, xs)
+    for f, x2_star in [("a*x2*sqrt(1/4 - x2^2)", "0.5"), ("a*x2*sqrt(1/5 - x2^2)", "0.4"), ("a*x2 - a*x2", "pi/6"),
+                       ("a*x2*log(1 + x2^2)", "pi/6"), ("a*x2/(2 + x2^2)", "pi/6"), ("a*x2/(1 - x2^2)", "pi/6")]:
+        assert expression_law({"f": f}, parse_exact(x2_star)).expr.text == f
 
 
 def test_a_bad_law_is_a_parameter_error_in_the_api():

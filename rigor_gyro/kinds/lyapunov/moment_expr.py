@@ -16,6 +16,10 @@ integration's error bound stays rigorous).
 
 What the law certifies before it is used (:func:`expression_law`, bad input otherwise, naming the entry):
 
+* f has a value on |x2| <= x2* as far as cheap certain tests see (:mod:`rigor_gyro.core.expression_domain`):
+  a denominator that is the zero polynomial in x2, or, at the exact points x2 = 0 and a dyadic x2 in (0, x2*],
+  a denominator that is an exactly-zero ball or sqrt/log of an argument certainly outside its domain, is
+  refused naming the sub-expression and the point (a ball merely containing 0 is never a reason);
 * f(0) = 0 exactly, by exact evaluation at x2 = 0 (rationals, and sin 0 = 0, cos 0 = 1, exp 0 = 1, log 1 = 0,
   ...; the scene's ``a`` a real of unknown value): a value certainly nonzero, or one the exact evaluation
   cannot show to be 0, is refused;
@@ -47,9 +51,11 @@ from typing import Mapping
 
 from flint import acb, arb, arb_series, fmpq
 
-from ...core.balls import current_precision, series_coefficients, series_length
+from ...core.balls import current_precision, series_coefficients, series_length, working_precision
 from ...core import quadrature
 from ...core.errors import ParameterError
+from ...core.exact import Exact
+from ...core.expression_domain import first_undefined, polynomial_poles, unparse
 from ...core.expressions import UNARY_FUNCTIONS, Expr, compile_expr, derivative, evaluate_exact, parse, parity
 from .model import Dual
 from .moments import MomentLaw
@@ -620,9 +626,53 @@ class quadrature_budget:
         return False
 
 
-def expression_law(table: Mapping[str, object]) -> ExpressionMoment:
+def _refuse_undefined(f: Expr, params: Mapping[str, Fraction], x2_star: Exact | None) -> None:
+    """ParameterError when f certainly has no value at some x2 with |x2| <= x2* (x2 = 0 when ``x2_star`` is
+    None), for every a: a denominator (or base of a negative power) that is the zero polynomial in x2; or,
+    evaluated with balls at the exact points x2 = 0 and a dyadic x2 in (0, x2*] (a a ball of infinite radius:
+    every real), a division by an exactly-zero ball or sqrt/log of an argument certainly outside its domain
+    (:mod:`rigor_gyro.core.expression_domain`)."""
+    where = f"[moment] f = {f.text!r}"
+    for d, r in polynomial_poles(f.tree, "x2", params):
+        if r is None:
+            raise ParameterError(f"{where}: f has no value for any x2: it divides by {unparse(d)}, which is exactly 0 "
+                                 "for every x2; remove or rewrite the division")
+    points = [Fraction(0)]
+    if x2_star is not None:
+        points.append(_dyadic_below(x2_star))
+    with working_precision(64):
+        env0 = {k: arb(_q(v)) for k, v in params.items()}
+        env0["a"] = arb(0, "inf")
+        for x in points:
+            inside = f" (inside |x2| <= x2*, the range the claims use)" if x else ""
+            found = first_undefined(f.tree, {**env0, "x2": arb(_q(x))}, lambda q: arb(_q(q)), _FUNCTIONS, _power,
+                                    at=f" at x2 = {x}{inside}")
+            if found is None:
+                continue
+            sub, why = found
+            if _depends_on(sub, "x2"):
+                raise ParameterError(f"{where}: f({x}) has no value: {why}; change f")
+            raise ParameterError(f"{where}: {why} (a constant), so f has no real value for any x2; change f")
+
+
+def _depends_on(t: tuple, name: str) -> bool:
+    return name in Expr(t, "", "").names()
+
+
+def _dyadic_below(x2_star: Exact) -> Fraction:
+    """The largest 2^-k (k >= 0) certainly <= x2* (0 < x2* < pi/2)."""
+    with working_precision(64):
+        lo = x2_star.ball().lower()
+    p = Fraction(1)
+    while not arb(_q(p)) <= lo and p > Fraction(1, 2 ** 60):
+        p /= 2
+    return p
+
+
+def expression_law(table: Mapping[str, object], x2_star: Exact | None = None) -> ExpressionMoment:
     """The law of a ``[moment]`` table with ``f = "..."`` and named parameters; ParameterError naming the entry
-    when the table or the expression is unusable or f(0) = 0 / oddness cannot be certified."""
+    when the table or the expression is unusable, f certainly has no value at some |x2| <= x2* (x2 = 0 without
+    ``x2_star``), or f(0) = 0 / oddness cannot be certified."""
     where = "[moment] f"
     params: dict[str, Fraction] = {}
     names = [k for k in table if k != "f"]
@@ -645,6 +695,7 @@ def expression_law(table: Mapping[str, object]) -> ExpressionMoment:
     f = parse(text, where, names={"x2", "a", *params}, functions=UNARY_FUNCTIONS)
     if "x2" not in f.names():
         raise ParameterError(f"{where} = {f.text!r}: does not depend on x2")
+    _refuse_undefined(f, params, x2_star)
     if parity(f, "x2") != "odd":
         raise ParameterError(f"{where} = {f.text!r}: not certified odd in x2 from its formula; the lyapunov kind's "
                              "claims use the symmetry x2 -> -x2 of an odd law (V(-x) = V(x)), so f must be odd: "

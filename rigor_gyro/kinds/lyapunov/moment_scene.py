@@ -46,7 +46,7 @@ def scene_moment_law(moment: object, table: Mapping[str, object] | None, x2_star
                                 "with x2 = [...] and f = [...] (measured points)"))
     if moment == "expression":
         from .moment_expr import expression_law
-        law = expression_law(table)
+        law = expression_law(table, x2_star)
         fast = FAST_PATHS.get(law.expr.tree) if not law.params else None
         return MOMENTS[fast] if fast else law
     from .moment_table import table_law
