@@ -32,6 +32,11 @@ What is checked:
 The audit of the paper (rows about the source, never a verdict) is re-derived by that check only, from
 the ``[paper]`` table the scene block carries (no independent path).
 
+A certificate whose scene block names a built-in scene (``builtin:NAME``) it is not fails its ``scene`` check and
+is not confirmed; its claims, quantities and texts are then not re-derived (results marked ``skipped``, never
+``ok``: re-proving an edited scene costs as much as proving it and cannot make the certificate the built-in's).
+``stop_at_failure`` (``check -q``) ends a certificate's checks at the first that fails.
+
 Every output kind has a JSON Schema in ``rigor_gyro/schemas/`` (certificate, paving, threshold, scan), and
 :func:`check_certificate` dispatches on the file's ``schema``: each file is first validated against its
 schema (by :func:`schema_errors`, a small validator of the JSON Schema keywords those files use: the
@@ -170,11 +175,13 @@ class CertificateError(RigorGyroError, ValueError):
 
 @dataclass
 class CheckResult:
-    """One check: what was checked (a claim id, a quantity, 'integrity', ...), whether it passed, why."""
+    """One check: what was checked (a claim id, a quantity, 'integrity', ...), whether it passed, why.
+    ``skipped``: the check was not run (an earlier check made it meaningless); it is never ``ok``."""
 
     item: str
     ok: bool
     message: str
+    skipped: bool = False
 
 
 @dataclass
@@ -214,12 +221,13 @@ def _unique_keys(pairs: list) -> dict:
     return out
 
 
-def check_file(path: str | Path, samples: int | None = None, executor=None) -> CheckReport:
+def check_file(path: str | Path, samples: int | None = None, executor=None, stop_at_failure: bool = False) -> CheckReport:
     """Read and check an output file: a certificate, a paving, a threshold or a scan (by its ``schema``
     field); CertificateError if it cannot be read as one. ``samples``: a paving's decided sub-boxes per
     claim cross-checked by the point prover (:mod:`rigor_gyro.margins.sampled`; None: its default);
     ``executor`` (:class:`rigor_gyro.margins.executors.Executor`): where a paving's decided sub-boxes are
-    re-evaluated (the verdicts do not depend on where)."""
+    re-evaluated (the verdicts do not depend on where). ``stop_at_failure``: a certificate's checks stop at the
+    first that fails (``check -q``: only the verdict is wanted; the report holds the checks run)."""
     p = Path(path)
     try:
         data = json.loads(p.read_text(encoding="utf-8"), object_pairs_hook=_unique_keys)
@@ -231,7 +239,7 @@ def check_file(path: str | Path, samples: int | None = None, executor=None) -> C
     if isinstance(data, dict) and "total_s" in data and "schema" not in data:
         raise CertificateError(f"{path}: a timings file (timings/<name>.json), not a certificate")
     try:
-        report = check_certificate(data, str(path), samples=samples, executor=executor)
+        report = check_certificate(data, str(path), samples=samples, executor=executor, stop_at_failure=stop_at_failure)
     except CertificateError as e:
         raise CertificateError(f"{path}: {e}") from None
     return report
@@ -260,17 +268,41 @@ def _structure(data: Any) -> None:
         raise CertificateError("witnesses must be an object")
 
 
-def check_certificate(data: Any, file: str = "<data>", samples: int | None = None, executor=None) -> CheckReport:
-    """Check a certificate given as parsed JSON; see the module docstring (``samples``: see :func:`check_file`)."""
+#: the message of the checks a certificate whose scene is not the built-in it names does not run
+SCENE_MISMATCH_SKIP = "skipped: the scene does not match the built-in it names"
+
+
+class _Stop(Exception):
+    """A check failed and the caller asked to stop at the first failure."""
+
+
+def check_certificate(data: Any, file: str = "<data>", samples: int | None = None, executor=None,
+                      stop_at_failure: bool = False) -> CheckReport:
+    """Check a certificate given as parsed JSON; see the module docstring (``samples``, ``stop_at_failure``: see
+    :func:`check_file`). A certificate whose scene block names a built-in scene it is not (the ``scene`` check
+    fails) is not confirmed whatever its data say: its claims are not re-decided nor its texts re-derived (those
+    results say :data:`SCENE_MISMATCH_SKIP`; they cost as much as a proof, and answer nothing once the scene is
+    not the one named)."""
+    t0 = time.perf_counter()
+    report = CheckReport(file)
+    try:
+        _check_certificate(data, report, samples, executor, stop_at_failure)
+    except _Stop:
+        pass
+    report.seconds = time.perf_counter() - t0
+    return report
+
+
+def _check_certificate(data: Any, report: CheckReport, samples, executor, stop_at_failure: bool) -> None:
+    """The checks of :func:`check_certificate`, appended to ``report``; _Stop at the first failure when
+    ``stop_at_failure``."""
     from .core.balls import MAX_PREC, working_precision
     from .kinds import checker, claim_statements, kind_module, scene_claims
     from .prover import requested_claims
     from .scene import Scene
 
-    t0 = time.perf_counter()
     kind = data.get("schema") if isinstance(data, dict) else None
     if kind in ("rigor-gyro/paving/1", "rigor-gyro/threshold/1", "rigor-gyro/scan/1", "rigor-gyro/threshold-curve/1"):
-        report = CheckReport(file)
         errors = _conformance(data, SCHEMA_FILES[kind])
         schema = CheckResult("schema", not errors, f"conforms to {SCHEMA_FILES[kind]}.schema.json" if not errors
                              else f"does not conform to {SCHEMA_FILES[kind]}.schema.json: " + "; ".join(errors))
@@ -297,11 +329,13 @@ def check_certificate(data: Any, file: str = "<data>", samples: int | None = Non
                                                   f"{type(e).__name__}: {e}"))
         if kind == "rigor-gyro/paving/1":
             report.results.append(schema)
-        report.seconds = time.perf_counter() - t0
-        return report
+        return
     _structure(data)
-    report = CheckReport(file)
-    add = report.results.append
+
+    def add(result: CheckResult) -> None:
+        report.results.append(result)
+        if stop_at_failure and not result.ok:
+            raise _Stop
     integrity = data.get("integrity")
     ok = isinstance(integrity, dict) and integrity.get("sha256") == digest(data)
     add(CheckResult("integrity", ok, "digest matches" if ok else "the digest does not match the content: "
@@ -324,8 +358,7 @@ def check_certificate(data: Any, file: str = "<data>", samples: int | None = Non
         wanted = requested_claims(scene, *scene_claims(module, scene))
     except (RigorGyroError, TypeError, ValueError) as e:
         add(CheckResult("scene", False, f"the certificate's scene is not valid: {e}"))
-        report.seconds = time.perf_counter() - t0
-        return report
+        return
     shipped = builtin_differs(sc, paper=True)
     if shipped:
         add(CheckResult("scene", False, shipped))
@@ -339,23 +372,26 @@ def check_certificate(data: Any, file: str = "<data>", samples: int | None = Non
     prec = data["precision_bits"]
     if not isinstance(prec, int) or not 16 <= prec <= 32768:
         add(CheckResult("precision_bits", False, f"precision_bits {prec!r} out of range"))
-        report.seconds = time.perf_counter() - t0
-        return report
+        return
     kind_check = checker(scene.kind)
-    if kind_check is None:
+    if shipped:
+        add(CheckResult("claims and quantities", False, SCENE_MISMATCH_SKIP, skipped=True))
+    elif kind_check is None:
         add(CheckResult("kind", False, f"no checker for kind {scene.kind!r}"))
     else:
         with working_precision(min(max(2 * prec, 128), MAX_PREC)):
             try:
-                report.results.extend(kind_check(model, data))
+                results = kind_check(model, data)
             except (KeyError, TypeError, ValueError, ArithmeticError, AttributeError, IndexError, RecursionError) as e:
-                add(CheckResult("data", False, f"the certificate's data cannot be checked: {type(e).__name__}: {e}"))
+                results = [CheckResult("data", False, f"the certificate's data cannot be checked: {type(e).__name__}: {e}")]
+        for r in results:
+            add(r)
     errors = _conformance(data, SCHEMA_FILES[SCHEMA])
-    if not errors:
+    if not errors and shipped:
+        add(CheckResult("texts", False, SCENE_MISMATCH_SKIP, skipped=True))
+    elif not errors:
         from .reproduce import reproduction
         ok, msg = reproduction(data, scene)
         add(CheckResult("texts", ok, msg))
     add(CheckResult("schema", not errors, "conforms to certificate-2.schema.json" if not errors else
                     "does not conform to certificate-2.schema.json: " + "; ".join(errors)))
-    report.seconds = time.perf_counter() - t0
-    return report

@@ -236,7 +236,8 @@ def _parser() -> argparse.ArgumentParser:
                                        "result of rigor-gyro\n  3  --time-limit ran out before every check of a file ran (nothing "
                                        "found wrong; not confirmed either)\n  4  internal error"))
     ck.add_argument("certs", nargs="+", metavar="CERT.json", help="certificate files written by 'prove'")
-    ck.add_argument("-q", "--quiet", action="store_true", help="print only one line per certificate")
+    ck.add_argument("-q", "--quiet", action="store_true",
+                    help="print only one line per certificate (a certificate's checks stop at the first that fails)")
     ck.add_argument("-j", "--workers", type=int, default=1,
                     help="pavings: processes that re-evaluate the decided sub-boxes (default 1)")
     ck.add_argument("--samples", type=_nonnegative_int, default=None, metavar="N",
@@ -679,7 +680,8 @@ def _check_files(args, ex, check_file, CertificateError) -> int:
     for path in args.certs:
         try:
             with time_limit(args.time_limit):
-                report = check_file(path, samples=args.samples, executor=ex if args.workers > 1 else None)
+                report = check_file(path, samples=args.samples, executor=ex if args.workers > 1 else None,
+                                    stop_at_failure=args.quiet)
         except TimeLimitReached:
             _say(f"{path}: not decided: the time limit of {args.time_limit:g} s (--time-limit) ran out before "
                  "every check ran (neither confirmed nor failed); give it more time")
@@ -695,7 +697,8 @@ def _check_files(args, ex, check_file, CertificateError) -> int:
             continue
         if not args.quiet:
             for r in report.results:
-                _say(f"{path}: {r.item}: {'ok' if r.ok else 'FAILED'} - {r.message}")
+                _say(f"{path}: {r.item}: {r.message}" if r.skipped else
+                     f"{path}: {r.item}: {'ok' if r.ok else 'FAILED'} - {r.message}")
         bad = report.first_failure
         _say(f"{path}: " + ("confirmed" if report.ok else f"NOT confirmed: {bad.item}: {bad.message}")
              + f" ({len(report.results)} checks, {seconds_text(report.seconds)})")

@@ -486,6 +486,7 @@ def test_the_checker_reuses_a_re_proof_only_for_the_same_scene_block_and_precisi
     assert check_certificate(copy.deepcopy(data)).ok and len(calls) == 1
     other = copy.deepcopy(data)
     other["scene"]["parameters"]["eps"] = "0.26"
+    other["scene"]["file"] = None       # an edited scene names no built-in (one that does is not re-proved)
     assert not check_certificate(_refix(other)).ok and len(calls) == 2
     higher = copy.deepcopy(data)
     higher["settings"]["prec"] = data["settings"]["prec"] * 2
@@ -529,6 +530,47 @@ def test_a_certificate_names_a_built_in_scene_only_when_it_is_that_scene():
     genuine["scene"]["source"] = genuine["scene"]["source"].replace("15.08", "16.08")
     genuine["integrity"]["sha256"] = digest(genuine)
     assert "scene" in {r.item for r in check_certificate(genuine).results if not r.ok}
+
+
+def test_an_edited_built_in_scene_is_rejected_without_re_proving_it(rudenko, monkeypatch, tmp_path, capsys):
+    """A certificate whose scene block names a built-in it is not (its scene check fails) is not confirmed; its
+    claims are not re-decided nor its texts re-derived (a re-proof of the edited scene took 341 s and 1.35 GB,
+    hostile fuzzing): those results say so. With stop_at_failure (check -q) the checks end at the first failure."""
+    import rigor_gyro.kinds as kinds
+    import rigor_gyro.reproduce as reproduce
+    from rigor_gyro.check import SCENE_MISMATCH_SKIP
+    calls = []
+    real_checker, real_reproduction = kinds.checker, reproduce.reproduction
+    monkeypatch.setattr(kinds, "checker", lambda kind: (lambda model, data: calls.append("kind") or
+                                                        real_checker(kind)(model, data)))
+    monkeypatch.setattr(reproduce, "reproduction", lambda data, scene: calls.append("texts") or
+                        real_reproduction(data, scene))
+    assert check_certificate(copy.deepcopy(rudenko)).ok and calls == ["kind", "texts"]     # the counters count
+    edited = copy.deepcopy(rudenko)
+    edited["scene"]["parameters"]["eps"] = str(Fraction(edited["scene"]["parameters"]["eps"]) * 2)
+    _refix(edited)
+    calls.clear()
+    report = check_certificate(edited)
+    assert not report.ok and report.first_failure.item == "scene" and calls == []
+    skipped = [(r.item, r.ok, r.message) for r in report.results if r.skipped]
+    assert skipped == [("claims and quantities", False, SCENE_MISMATCH_SKIP), ("texts", False, SCENE_MISMATCH_SKIP)]
+    quick = check_certificate(edited, stop_at_failure=True)
+    assert [r.item for r in quick.results] == ["integrity", "verdict", "scene"] and not quick.ok and calls == []
+    (tmp_path / "edited.json").write_text(json.dumps(edited))
+    assert main(["check", str(tmp_path / "edited.json")]) == 1
+    assert main(["check", "-q", str(tmp_path / "edited.json")]) == 1 and calls == []
+    out = capsys.readouterr().out
+    assert f"texts: {SCENE_MISMATCH_SKIP}" in out and "NOT confirmed: scene:" in out and "(3 checks," in out
+
+
+def test_stop_at_failure_stops_at_the_first_failed_check(rudenko):
+    """check -q: a certificate altered in its verdict stops there; a genuine one runs every check."""
+    bad = _refix(dict(copy.deepcopy(rudenko), verdict="refuted"))
+    quick = check_certificate(bad, stop_at_failure=True)
+    assert [(r.item, r.ok) for r in quick.results] == [("integrity", True), ("verdict", False)]
+    assert len(check_certificate(bad).results) > 2
+    full = check_certificate(copy.deepcopy(rudenko), stop_at_failure=True)
+    assert full.ok and len(full.results) == len(check_certificate(copy.deepcopy(rudenko)).results)
 
 
 def test_an_outer_time_limit_is_not_taken_for_the_proofs_own(tmp_path):

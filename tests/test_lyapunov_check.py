@@ -880,6 +880,7 @@ def test_a_largest_sublevel_refutation_at_the_faces_needs_phi_at_most_zero(refut
     for x2_star in ("pi/6", "1/20"):
         bad = copy.deepcopy(agafonov)
         bad["scene"]["parameters"]["x2_star"] = x2_star
+        bad["scene"]["file"] = None     # an edited scene names no built-in (one that does is not re-decided)
         c = _claim(bad, "largest_sublevel")
         c["status"], c["counterexample"] = "refuted", {"where": "faces"}
         assert _items(bad)["largest_sublevel"] is False, x2_star
@@ -1000,6 +1001,7 @@ def test_a_forged_sublevel_refutation_is_rejected(refuted, agafonov):
     # mu = k/A0 - 1e-7: A(0, 0) = 0.0567, positive but small (below 1): still rejected
     near = copy.deepcopy(bad)
     near["scene"]["parameters"]["mu"] = "399999873/12700000000"
+    near["scene"]["file"] = None        # an edited scene names no built-in (one that does is not re-decided)
     _claim(near, "largest_sublevel")["counterexample"] = {"where": "origin", "x2": "0", "t_over_pi": "0"}
     assert _items(near)["largest_sublevel"] is False
     # mu = 0.0315: A(0, 0) = -22.3 < 0 (a true refutation at t = 0) but A(0, pi/4), A(0, pi/2) > 0: a
