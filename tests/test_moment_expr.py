@@ -289,6 +289,8 @@ BAD = [
     ("f even, divides by x2 - x2", "expression", '[moment]\nf = "a*x2^2/(x2-x2)"\n', "divides by x2 - x2"),
     ("sqrt of a negative constant", "expression", '[moment]\nf = "a*x2*sqrt(-1)"\n',
      "sqrt(-1) has no real value: its argument is -1, certainly outside sqrt's domain x >= 0 (a constant)"),
+    ("f identically 0", "expression", '[moment]\nf = "0*x2"\n',
+     "f(x2) = 0 exactly for every x2 (it does not depend on x2): the method needs a restoring moment"),
     ("unknown name in f", "expression", '[moment]\nf = "a*sin(x2) + c*x2"\n', "'c'"),
     ("unknown function", "expression", '[moment]\nf = "a*sinh(x2)"\n', "sinh"),
     ("eval attempt", "expression", '[moment]\nf = "__import__(\'os\')"\n', "[moment] f"),
@@ -341,6 +343,13 @@ def test_f_without_a_value_at_0_or_at_a_point_inside_x2_star_is_refused_and_f_wi
     for f, x2_star in [("a*x2*sqrt(1/4 - x2^2)", "0.5"), ("a*x2*sqrt(1/5 - x2^2)", "0.4"), ("a*x2 - a*x2", "pi/6"),
                        ("a*x2*log(1 + x2^2)", "pi/6"), ("a*x2/(2 + x2^2)", "pi/6"), ("a*x2/(1 - x2^2)", "pi/6")]:
         assert expression_law({"f": f}, parse_exact(x2_star)).expr.text == f
+
+
+def test_a_constant_f_is_refused():
+    for f in ("a*x2*(1 - 1)", "0*sin(x2)", "x2*0 + 0*x2^3"):
+        with pytest.raises(ParameterError, match=re.escape("f(x2) = 0 exactly for every x2 (it does not depend on "
+                                                           "x2): the method needs a restoring moment")):
+            expression_law({"f": f}, parse_exact("pi/6"))
 
 
 def test_a_bad_law_is_a_parameter_error_in_the_api():

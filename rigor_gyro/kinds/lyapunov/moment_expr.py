@@ -20,6 +20,8 @@ What the law certifies before it is used (:func:`expression_law`, bad input othe
   a denominator that is the zero polynomial in x2, or, at the exact points x2 = 0 and a dyadic x2 in (0, x2*],
   a denominator that is an exactly-zero ball or sqrt/log of an argument certainly outside its domain, is
   refused naming the sub-expression and the point (a ball merely containing 0 is never a reason);
+* f is not a constant: exact evaluation with x2 a real of unknown value (``0*x2``) giving one rational for
+  every x2 is refused (the method needs x2 f(x2) > 0 for 0 < |x2| <= x2*);
 * f(0) = 0 exactly, by exact evaluation at x2 = 0 (rationals, and sin 0 = 0, cos 0 = 1, exp 0 = 1, log 1 = 0,
   ...; the scene's ``a`` a real of unknown value): a value certainly nonzero, or one the exact evaluation
   cannot show to be 0, is refused;
@@ -247,11 +249,13 @@ def _pi(r: Fraction):
 
 
 def exact_value(expr: Expr, x2, params: Mapping[str, Fraction]):
-    """The exact value of ``expr`` at x2 = ``x2`` (a Fraction, or ("pi", r) for r pi), the scene's ``a`` a real
-    of unknown value: a Fraction, ("pi", r), :data:`FINITE` (a real, value unknown) or None (unknown, possibly
-    undefined: a division by something that may be 0, log of something that may be <= 0, tan at a pole).
+    """The exact value of ``expr`` at x2 = ``x2`` (a Fraction, ("pi", r) for r pi, or :data:`FINITE`: every real
+    x2 at once), the scene's ``a`` a real of unknown value: a Fraction, ("pi", r), :data:`FINITE` (a real, value
+    unknown) or None (unknown, possibly undefined: a division by something that may be 0, log of something that
+    may be <= 0, tan at a pole).
 
-    Guarantee: a Fraction returned is the exact value for every real a; FINITE means defined and real."""
+    Guarantee: a Fraction returned is the exact value for every real a (and every real x2 when ``x2`` is
+    FINITE); FINITE means defined and real."""
     def ev(t):
         op = t[0]
         if op == "num":
@@ -655,6 +659,15 @@ def _refuse_undefined(f: Expr, params: Mapping[str, Fraction], x2_star: Exact | 
             raise ParameterError(f"{where}: {why} (a constant), so f has no real value for any x2; change f")
 
 
+def _refuse_constant(f: Expr, params: Mapping[str, Fraction]) -> None:
+    """ParameterError when the exact evaluation with x2 a real of unknown value (:func:`exact_value`) shows f
+    to be the same rational c for every x2 and every a (``0*x2``): x2 f(x2) > 0 then fails for some x2 != 0."""
+    c = exact_value(f, FINITE, params)
+    if isinstance(c, Fraction):
+        raise ParameterError(f"[moment] f = {f.text!r}: f(x2) = {c} exactly for every x2 (it does not depend on x2): "
+                             "the method needs a restoring moment, x2 f(x2) > 0 for 0 < |x2| <= x2*")
+
+
 def _depends_on(t: tuple, name: str) -> bool:
     return name in Expr(t, "", "").names()
 
@@ -672,7 +685,7 @@ def _dyadic_below(x2_star: Exact) -> Fraction:
 def expression_law(table: Mapping[str, object], x2_star: Exact | None = None) -> ExpressionMoment:
     """The law of a ``[moment]`` table with ``f = "..."`` and named parameters; ParameterError naming the entry
     when the table or the expression is unusable, f certainly has no value at some |x2| <= x2* (x2 = 0 without
-    ``x2_star``), or f(0) = 0 / oddness cannot be certified."""
+    ``x2_star``), f is constant in x2, or f(0) = 0 / oddness cannot be certified."""
     where = "[moment] f"
     params: dict[str, Fraction] = {}
     names = [k for k in table if k != "f"]
@@ -696,6 +709,7 @@ def expression_law(table: Mapping[str, object], x2_star: Exact | None = None) ->
     if "x2" not in f.names():
         raise ParameterError(f"{where} = {f.text!r}: does not depend on x2")
     _refuse_undefined(f, params, x2_star)
+    _refuse_constant(f, params)
     if parity(f, "x2") != "odd":
         raise ParameterError(f"{where} = {f.text!r}: not certified odd in x2 from its formula; the lyapunov kind's "
                              "claims use the symmetry x2 -> -x2 of an odd law (V(-x) = V(x)), so f must be odd: "
