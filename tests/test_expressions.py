@@ -150,3 +150,12 @@ def test_a_denominator_that_is_the_zero_polynomial_is_found():
     assert _poles("a*x/(x - x)") == [("x - x", None)] and _poles("x*(2*x - x - x)^-3") == [("2*x - x - x", None)]
     assert _poles("x/(b - b)", {"b": Fraction(1, 3)}) == [("b - b", None)]
     assert _poles("x/(a - a)") == [] and _poles("x/(sin(x) - sin(x))") == []     # not polynomials in x: nothing
+
+
+def test_polynomial_poles_are_exact_rational_roots_of_polynomial_denominators():
+    poles = _poles
+    assert sorted(poles("a*x/(1 - 4*x^2)")) == [("1 - 4*x^2", Fraction(-1, 2)), ("1 - 4*x^2", Fraction(1, 2))]
+    assert poles("x*(x^2 - 3/10)^-1") == []                          # irrational roots: nothing claimed
+    assert poles("x/(x^2 + 1)") == [] and poles("x/(a - x)") == [] and poles("x/(sin(x) - 1)") == []
+    assert poles("x/(x - b)", {"b": Fraction(2, 7)}) == [("x - b", Fraction(2, 7))]
+    assert poles("sin(1/(3*x - 1))") == [("3*x - 1", Fraction(1, 3))]

@@ -291,6 +291,8 @@ BAD = [
      "sqrt(-1) has no real value: its argument is -1, certainly outside sqrt's domain x >= 0 (a constant)"),
     ("f identically 0", "expression", '[moment]\nf = "0*x2"\n',
      "f(x2) = 0 exactly for every x2 (it does not depend on x2): the method needs a restoring moment"),
+    ("a pole inside x2*", "expression", '[moment]\nf = "a*x2/(1 - 4*x2^2)"\n',
+     "f(1/2) has no value: it divides by 1 - 4*x2^2, which is exactly 0 at x2 = 1/2, inside |x2| <= x2* = pi/6"),
     ("unknown name in f", "expression", '[moment]\nf = "a*sin(x2) + c*x2"\n', "'c'"),
     ("unknown function", "expression", '[moment]\nf = "a*sinh(x2)"\n', "sinh"),
     ("eval attempt", "expression", '[moment]\nf = "__import__(\'os\')"\n', "[moment] f"),
@@ -342,6 +344,20 @@ def test_f_without_a_value_at_0_or_at_a_point_inside_x2_star_is_refused_and_f_wi
             expression_law({"f": f, "b": "2/7"} if "b" in f else {"f": f}, xs)
     for f, x2_star in [("a*x2*sqrt(1/4 - x2^2)", "0.5"), ("a*x2*sqrt(1/5 - x2^2)", "0.4"), ("a*x2 - a*x2", "pi/6"),
                        ("a*x2*log(1 + x2^2)", "pi/6"), ("a*x2/(2 + x2^2)", "pi/6"), ("a*x2/(1 - x2^2)", "pi/6")]:
+        assert expression_law({"f": f}, parse_exact(x2_star)).expr.text == f
+
+
+def test_a_pole_at_an_exact_rational_point_inside_x2_star_is_refused_and_one_beyond_it_is_not():
+    xs = parse_exact("pi/6")
+    with pytest.raises(ParameterError, match=re.escape("f(2/7) has no value: it divides by x2 - b, which is exactly "
+                                                       "0 at x2 = 2/7, inside |x2| <= x2* = pi/6")):
+        expression_law({"f": "a*x2*(x2 - b)^-2", "b": "2/7"}, xs)
+    with pytest.raises(ParameterError, match=r"at x2 = 1/2, inside \|x2\| <= x2\* = 0.5"):
+        expression_law({"f": "a*x2/(1 - 4*x2^2)"}, parse_exact("0.5"))
+    with pytest.raises(ParameterError, match=r"f\(1/3\) has no value: it divides by 1 - 9\*x2\^2"):
+        expression_law({"f": "a*x2/(1 - 9*x2^2)"}, xs)
+    for f, x2_star in [("a*x2/(1 - 4*x2^2)", "0.49"), ("a*x2/(1 - 4*x2^2)", "pi/7"), ("a*x2/(3/10 - x2^2)", "pi/6"),
+                       ("a*x2/(1 - 9*x2^2)", "0.33")]:
         assert expression_law({"f": f}, parse_exact(x2_star)).expr.text == f
 
 

@@ -11,7 +11,8 @@ Two tests, both certain and cheap:
   outside the function's domain; a ball that merely contains 0 or overlaps the domain's boundary is no evidence
   and is passed over.
 * :func:`polynomial_poles`: each denominator (and base of a negative power) that is a polynomial in one name
-  with exact rational coefficients is expanded exactly; the zero polynomial has no value anywhere.
+  with exact rational coefficients is expanded exactly; the zero polynomial, or its exact rational roots (FLINT's
+  factorisation over Q, degree at most :data:`MAX_POLE_DEGREE`), are points where the expression has no value.
 
 Guarantee: every finding is a proof that the expression has no (real) value at the point named, for every
 value of the names the caller left unknown (balls of infinite radius, or names outside the polynomial). None
@@ -24,7 +25,10 @@ from typing import Any, Callable, Mapping
 
 from flint import arb, fmpq, fmpq_poly
 
-__all__ = ["first_undefined", "polynomial_poles", "unparse", "ARB_DOMAINS"]
+__all__ = ["first_undefined", "polynomial_poles", "unparse", "ARB_DOMAINS", "MAX_POLE_DEGREE"]
+
+#: a denominator polynomial of higher degree is not factored (the test stays cheap; nothing is claimed)
+MAX_POLE_DEGREE = 64
 
 
 def _certainly_negative(v) -> bool:
@@ -172,7 +176,8 @@ def _polynomial(t: tuple, name: str, consts: Mapping[str, Fraction]) -> fmpq_pol
 def polynomial_poles(tree: tuple, name: str, consts: Mapping[str, Fraction]) -> list[tuple[tuple, Fraction | None]]:
     """For each denominator (or base of a negative power) of ``tree`` that is a polynomial D in ``name`` with
     exact rational coefficients (module docstring): (D's sub-tree, None) when D is the zero polynomial (no
-    value for any ``name``)."""
+    value for any ``name``), and (D's sub-tree, r) for each exact rational root r of D (no value at
+    ``name`` = r). Degrees above :data:`MAX_POLE_DEGREE` are skipped."""
     out: list[tuple[tuple, Fraction | None]] = []
 
     def visit(t):
@@ -199,5 +204,12 @@ def polynomial_poles(tree: tuple, name: str, consts: Mapping[str, Fraction]) -> 
             return
         if p.is_zero():
             out.append((d, None))
+            return
+        if not 1 <= p.degree() <= MAX_POLE_DEGREE:
+            return
+        for factor, _ in p.factor()[1]:
+            if factor.degree() == 1:
+                r = -factor[0] / factor[1]
+                out.append((d, Fraction(int(r.p), int(r.q))))
     visit(tree)
     return out

@@ -17,9 +17,10 @@ integration's error bound stays rigorous).
 What the law certifies before it is used (:func:`expression_law`, bad input otherwise, naming the entry):
 
 * f has a value on |x2| <= x2* as far as cheap certain tests see (:mod:`rigor_gyro.core.expression_domain`):
-  a denominator that is the zero polynomial in x2, or, at the exact points x2 = 0 and a dyadic x2 in (0, x2*],
-  a denominator that is an exactly-zero ball or sqrt/log of an argument certainly outside its domain, is
-  refused naming the sub-expression and the point (a ball merely containing 0 is never a reason);
+  a denominator that is the zero polynomial in x2 or has an exact rational root in [-x2*, x2*], or, at the exact
+  points x2 = 0 and a dyadic x2 in (0, x2*], a denominator that is an exactly-zero ball or sqrt/log of an
+  argument certainly outside its domain, is refused naming the sub-expression and the point (a ball merely
+  containing 0 is never a reason);
 * f is not a constant: exact evaluation with x2 a real of unknown value (``0*x2``) giving one rational for
   every x2 is refused (the method needs x2 f(x2) > 0 for 0 < |x2| <= x2*);
 * f(0) = 0 exactly, by exact evaluation at x2 = 0 (rationals, and sin 0 = 0, cos 0 = 1, exp 0 = 1, log 1 = 0,
@@ -632,15 +633,21 @@ class quadrature_budget:
 
 def _refuse_undefined(f: Expr, params: Mapping[str, Fraction], x2_star: Exact | None) -> None:
     """ParameterError when f certainly has no value at some x2 with |x2| <= x2* (x2 = 0 when ``x2_star`` is
-    None), for every a: a denominator (or base of a negative power) that is the zero polynomial in x2; or,
-    evaluated with balls at the exact points x2 = 0 and a dyadic x2 in (0, x2*] (a a ball of infinite radius:
-    every real), a division by an exactly-zero ball or sqrt/log of an argument certainly outside its domain
-    (:mod:`rigor_gyro.core.expression_domain`)."""
+    None), for every a: a denominator (or base of a negative power) that is a polynomial in x2 and is the zero
+    polynomial or has an exact rational root in [-x2*, x2*]; or, evaluated with balls at the exact points x2 = 0
+    and a dyadic x2 in (0, x2*] (a a ball of infinite radius: every real), a division by an exactly-zero ball or
+    sqrt/log of an argument certainly outside its domain (:mod:`rigor_gyro.core.expression_domain`)."""
     where = f"[moment] f = {f.text!r}"
     for d, r in polynomial_poles(f.tree, "x2", params):
         if r is None:
             raise ParameterError(f"{where}: f has no value for any x2: it divides by {unparse(d)}, which is exactly 0 "
                                  "for every x2; remove or rewrite the division")
+        if r == 0 or (x2_star is not None and _within_x2_star(r, x2_star)):
+            shown = x2_star.text or x2_star.rational if x2_star is not None else ""
+            region = "" if r == 0 else f", inside |x2| <= x2* = {shown} (the range the claims use)"
+            raise ParameterError(f"{where}: f({r}) has no value: it divides by {unparse(d)}, which is "
+                                 f"exactly 0 at x2 = {r}{region}; change f"
+                                 + ("" if r == 0 else " or choose x2* below the pole"))
     points = [Fraction(0)]
     if x2_star is not None:
         points.append(_dyadic_below(x2_star))
@@ -670,6 +677,20 @@ def _refuse_constant(f: Expr, params: Mapping[str, Fraction]) -> None:
 
 def _depends_on(t: tuple, name: str) -> bool:
     return name in Expr(t, "", "").names()
+
+
+def _within_x2_star(r: Fraction, x2_star: Exact) -> bool:
+    """|r| <= x2* certainly (x2* rational: exactly; r pi: by balls at rising precision, never equal)."""
+    if x2_star.pi_power == 0:
+        return abs(r) <= x2_star.rational
+    for prec in (64, 256, 1024):
+        with working_precision(prec):
+            b = x2_star.ball()
+            if arb(_q(abs(r))) < b:
+                return True
+            if arb(_q(abs(r))) > b:
+                return False
+    return False
 
 
 def _dyadic_below(x2_star: Exact) -> Fraction:
