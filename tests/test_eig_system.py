@@ -190,6 +190,19 @@ def test_brackets_are_decided_per_root():
     assert status(data, "brackets") == "proved"
 
 
+def test_a_bracket_bound_that_is_not_a_finite_ball_is_named_as_such():
+    """1/(sqrt(g) - sqrt(3)) at g = 3 divides by a ball about 0 (never exact: sqrt 3 is irrational): the claim is
+    inconclusive (a precision may not help, but is never a refutation) and says the bound could not be evaluated."""
+    data = proved(two_dof("3", brackets=[["1/(sqrt(g)-sqrt(3))", "1"]], claims=("roots", "brackets")))
+    c = claim(data, "brackets")
+    assert c["status"] == "inconclusive"
+    assert ("omega_1 (its lower bound '1/(sqrt(g)-sqrt(3))' could not be evaluated: not a finite ball at this "
+            "precision (it may divide by zero") in c["reason"]
+    assert "could not be evaluated" in c["details"]["per_root"][0]["reason"]
+    data = proved(two_dof("3", brackets=[["(7 - sqrt(45))/2", "(7 - sqrt(45))/2"]]))
+    assert "could not be evaluated" not in claim(data, "brackets")["reason"]    # finite bounds: no such words
+
+
 def test_a_forged_bracket_refutation_is_caught():
     data = proved(two_dof("3", brackets=[["1/10", "1/5"], ["7", "8"]]))
     f = copy.deepcopy(data)

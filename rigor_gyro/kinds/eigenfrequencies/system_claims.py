@@ -196,7 +196,13 @@ def _brackets_claim(model: SystemModel, omegas: list[arb], quantities: dict[str,
             violations.append({"root": f"omega_{j}", "value": _bounds(w), "lower_bound": _bounds(lo),
                                "upper_bound": _bounds(hi)})
         else:
-            per_root.append({"root": f"omega_{j}", "status": "undecided"})
+            entry = {"root": f"omega_{j}", "status": "undecided"}
+            unbounded = [f"{side} bound {e.text!r}" for side, e, b in zip(("lower", "upper"), model.brackets[j - 1],
+                                                                        (lo, hi)) if not b.is_finite()]
+            if unbounded:
+                entry["reason"] = (f"its {' and '.join(unbounded)} could not be evaluated: not a finite ball at this "
+                                   "precision (it may divide by zero, or by a number too close to 0 for it)")
+            per_root.append(entry)
             margin = (w - lo) if not certainly_le(lo, w) else (hi - w)
             decides = margin if decides is None else decides
     statuses = [r["status"] for r in per_root]
@@ -207,7 +213,8 @@ def _brackets_claim(model: SystemModel, omegas: list[arb], quantities: dict[str,
                   details={"per_root": per_root}, counterexample={"violations": violations})
     elif "undecided" in statuses:
         c = Claim("brackets", statement, Status.INCONCLUSIVE, "undecided at this precision: "
-                  + ", ".join(r["root"] for r in per_root if r["status"] == "undecided"), details={"per_root": per_root})
+                  + ", ".join(r["root"] + (f" ({r['reason']})" if "reason" in r else "") for r in per_root
+                              if r["status"] == "undecided"), details={"per_root": per_root})
         c.decides = decides
     else:
         c = Claim("brackets", statement, Status.PROVED, f"lo_j <= omega_j <= hi_j certified for j = 1..{len(per_root)}",
