@@ -361,6 +361,13 @@ def test_a_pole_at_an_exact_rational_point_inside_x2_star_is_refused_and_one_bey
         assert expression_law({"f": f}, parse_exact(x2_star)).expr.text == f
 
 
+def test_a_tiny_x2_star_tries_no_point_beyond_it():
+    """x2* = 1e-30 is below every 2^-k tried (k <= 60): no second point is evaluated, so the pole at x2 = 2^-60,
+    far beyond x2*, is not reported as "inside |x2| <= x2*" (it was, when 2^-60 was tried all the same)."""
+    law = expression_law({"f": "a*x2/(x2^2 - b)", "b": f"1/{2 ** 120}"}, parse_exact("1e-30"))
+    assert law.expr.text == "a*x2/(x2^2 - b)"
+
+
 def test_a_constant_f_is_refused():
     for f in ("a*x2*(1 - 1)", "0*sin(x2)", "x2*0 + 0*x2^3"):
         with pytest.raises(ParameterError, match=re.escape("f(x2) = 0 exactly for every x2 (it does not depend on "

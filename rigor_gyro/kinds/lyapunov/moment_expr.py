@@ -649,8 +649,8 @@ def _refuse_undefined(f: Expr, params: Mapping[str, Fraction], x2_star: Exact | 
                                  f"exactly 0 at x2 = {r}{region}; change f"
                                  + ("" if r == 0 else " or choose x2* below the pole"))
     points = [Fraction(0)]
-    if x2_star is not None:
-        points.append(_dyadic_below(x2_star))
+    if x2_star is not None and (p := _dyadic_below(x2_star)) is not None:
+        points.append(p)
     with working_precision(64):
         env0 = {k: arb(_q(v)) for k, v in params.items()}
         env0["a"] = arb(0, "inf")
@@ -693,12 +693,15 @@ def _within_x2_star(r: Fraction, x2_star: Exact) -> bool:
     return False
 
 
-def _dyadic_below(x2_star: Exact) -> Fraction:
-    """The largest 2^-k (k >= 0) certainly <= x2* (0 < x2* < pi/2)."""
+def _dyadic_below(x2_star: Exact) -> Fraction | None:
+    """The largest 2^-k (0 <= k <= 60) certainly <= x2* (0 < x2* < pi/2), or None when there is none (x2* below
+    2^-60: no second point is tried, since a point beyond x2* would name a pole outside the claims' range)."""
     with working_precision(64):
         lo = x2_star.ball().lower()
     p = Fraction(1)
-    while not arb(_q(p)) <= lo and p > Fraction(1, 2 ** 60):
+    while not arb(_q(p)) <= lo:
+        if p <= Fraction(1, 2 ** 60):
+            return None
         p /= 2
     return p
 
