@@ -475,3 +475,68 @@ def test_the_imaginary_axis_test_is_exact():
         validate(_scene(([0, 1, 0], [0, 0, 1], [-4, -4, -1]), (0, 0, 1), (1, 0, 0), "-1"))
     m = validate(_scene(([0, 1], [-1, "-1/10^20"]), (0, 1), (1, 0), "-1"))
     assert m.n == 2 and not m.zero_eigenvalue
+
+
+# ------------------------------------------------------------------- stable by Gershgorin's discs
+
+def test_clustered_multipliers_stable_by_gershgorin_discs_and_confirmed():
+    """The integrator plant at h = 1e6: theta* ~ 4e6, the two multipliers ~e^(-4e6) and e^(-8e6) are not isolated
+    at any precision tried, yet Gershgorin's discs of the Jacobian bound both far below 1: ``stable`` is proved
+    (the multipliers stay inconclusive), the margin is enclosed by [1 - U, 1], and the checker re-decides it on its
+    own Jacobian (the roots' table says stable without moduli)."""
+    cert = json.loads(json.dumps(prove_scene(_scene(*CASES["integrator"][:4], h="1e6"), maxprec=128).to_json()))
+    st = {c["id"]: c for c in cert["claims"]}
+    assert st["stable"]["status"] == "proved" and "Gershgorin" in st["stable"]["reason"]
+    assert st["multipliers"]["status"] == "inconclusive" and "not isolated" in st["multipliers"]["reason"]
+    margin = cert["quantities"]["stability_margin"]
+    assert Fraction(margin["hi"]) >= 1 > Fraction(margin["lo"]) > Fraction(999, 1000)
+    assert not any(k.startswith("multiplier_") for k in cert["quantities"])
+    row = cert["extra"]["roots"][0]
+    assert row["kind"] == "genuine" and row["moduli"] == [] and row["stable"] is True
+    rep = check_certificate(cert)
+    assert rep.ok, [r for r in rep.results if not r.ok]
+    from rigor_gyro.kinds.periodic_orbit import plant_check
+    saved = plant_check._disc_bound     # a checker whose discs decide nothing: stable and the row not confirmed
+    try:
+        plant_check._disc_bound = lambda d, th: None
+        failed = {r.item for r in check_certificate(cert).results if not r.ok}
+        assert {"stable", "extra.roots"} <= failed
+    finally:
+        plant_check._disc_bound = saved
+
+
+def test_the_disc_bound_holds_the_isolated_moduli_and_decides_nothing_at_or_above_1():
+    """Where the multipliers are isolated, Gershgorin's bound U lies above every certified modulus; a Jacobian
+    with an eigenvalue 1 or above (1; 3; 3/2 of [[1/2, 1], [1, 1/2]]) is never called stable."""
+    from flint import arb_mat
+    from rigor_gyro.kinds.periodic_orbit.claims import RootVerdict
+    from rigor_gyro.kinds.periodic_orbit.norm_stability import spectral_radius_bound
+    from rigor_gyro.kinds.periodic_orbit.plant_claims import stable_by_discs
+    from rigor_gyro.kinds.periodic_orbit.plant_orbit import jacobian, section_index
+    from flint import acb_mat
+    model = validate(_scene(*CASES["pair_and_lag"]))
+    an = __import__("rigor_gyro.kinds.periodic_orbit.plant_claims", fromlist=["analyse"]).analyse(model)
+    v = next(r for r in an.roots if r.kind == "genuine")
+    sp = an.sp_fine
+    J = jacobian(sp.M, sp.e, sp.c, sp.S, v.theta, v.x0, section_index(model))
+    U = spectral_radius_bound(acb_mat(J))
+    assert v.moduli and all(m.upper() <= U for m in v.moduli)
+    for entries in ([["1", "0"], ["0", "1/2"]], [["3", "0"], ["0", "1/10"]], [["1/2", "1"], ["1", "1/2"]]):
+        w = RootVerdict(arb(1), [], "genuine", "")
+        stable_by_discs(w, arb_mat([[arb(fmpq(Fraction(x).numerator, Fraction(x).denominator)) for x in r]
+                                    for r in entries]))
+        assert w.stable is None and w.radius_bound is None
+    w = RootVerdict(arb(1), [], "genuine", "")
+    stable_by_discs(w, arb_mat([[arb("0.5"), arb("0.25")], [arb(0), arb("0.5")]]))
+    assert w.stable is True and w.radius_bound < 1
+
+
+def test_the_checkers_disc_bound_is_none_at_or_above_1(monkeypatch):
+    """The checker's own Gershgorin bound decides stable only below 1: a Jacobian [[2]] (its multipliers taken as
+    not isolated) gives no bound, [[1/2]] gives one."""
+    from flint import arb_mat
+    from rigor_gyro.kinds.periodic_orbit import plant_check
+    monkeypatch.setattr(plant_check, "_spectrum", lambda d, th: (None, arb_mat([[arb(2)]])))
+    assert plant_check._disc_bound(None, arb(1)) is None
+    monkeypatch.setattr(plant_check, "_spectrum", lambda d, th: (None, arb_mat([[arb("0.5")]])))
+    assert plant_check._disc_bound(None, arb(1)) < 1

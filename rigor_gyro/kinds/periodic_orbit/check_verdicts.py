@@ -38,11 +38,13 @@ def other_orbit_moduli(genuine: list, main, multipliers_of, contains) -> tuple[l
 
 
 def redecide(cid: str, st: str, *, half_ok: bool, why: str, main, genuine: list, exhaustive: bool,
-             moduli_ok: bool, all_moduli: list) -> tuple[bool, str]:
+             moduli_ok: bool, all_moduli: list, bounded: list = ()) -> tuple[bool, str]:
     """(ok, message) for claim ``cid`` stored with status ``st`` (proved or refuted). ``main``: the
     re-verified orbit inside the stored theta* (None: none); ``genuine``: the re-verified genuine roots;
     ``exhaustive``: the search range covered to infinity and the half-period re-verified; ``moduli_ok``: the
-    main orbit's and the other genuine orbits' multipliers recomputed; ``all_moduli``: their moduli."""
+    main orbit's and the other genuine orbits' multipliers recomputed; ``all_moduli``: their moduli;
+    ``bounded``: for genuine orbits whose multipliers are not isolated, [[0, U]] with U a bound of every
+    modulus (Gershgorin): they confirm ``stable`` proved, never the multipliers nor a refutation."""
     if cid == "half_period":
         return st == "proved" and half_ok, why
     if cid == "orbit_genuine":
@@ -58,7 +60,7 @@ def redecide(cid: str, st: str, *, half_ok: bool, why: str, main, genuine: list,
                 "eigenvalues of the recomputed Jacobian (another algorithm)")
     if cid == "stable":
         if st == "proved":
-            ok = any(m is not None and all(certainly_lt(x, 1) for x in m) for m in all_moduli)
+            ok = any(m is not None and all(certainly_lt(x, 1) for x in m) for m in [*all_moduli, *bounded])
             return ok, "a genuine orbit with every modulus < 1, re-decided"
         ok = exhaustive and (not genuine or (len(all_moduli) == len(genuine) and
                                              all(any(certainly_gt(x, 1) for x in m) for m in all_moduli)))

@@ -43,6 +43,8 @@ from .check_verdicts import other_orbit_moduli, redecide
 from .flow import ExpSum, taylor_enclosure
 from .plant_check_rows import check_root_rows, encloses
 from .plant_df import describing_function
+from .plant_report import disc_margin
+from .norm_stability import spectral_radius_bound
 from .plant_orbit import leading_coefficient, matrix_ball, near_zero_bound, near_zero_order, section_index
 from .plant_statements import AMPLITUDE_REL, TAYLOR_ORDER
 
@@ -329,9 +331,25 @@ def _classify(d: Diagonal, theta: arb, w: dict) -> tuple[bool, str]:
 
 
 def _multipliers(d: Diagonal, theta: arb) -> list[acb] | None:
+    """The orbit's multipliers (ordered as the prover orders them), or None when they are not isolated."""
+    return _spectrum(d, theta)[0]
+
+
+def _disc_bound(d: Diagonal, theta: arb) -> arb | None:
+    """Where the multipliers are not isolated: Gershgorin's bound U of every modulus when certainly < 1, else None
+    (the prover's :func:`.plant_claims.stable_by_discs`, recomputed on this checker's own Jacobian)."""
+    mults, J = _spectrum(d, theta)
+    if mults is not None or J is None:
+        return None
+    U = spectral_radius_bound(acb_mat(J))
+    return U if U is not None and certainly_lt(U, 1) else None
+
+
+def _spectrum(d: Diagonal, theta: arb) -> tuple[list[acb] | None, arb_mat | None]:
+    """(the multipliers, None), or (None, the Jacobian) when its eigenvalues are not isolated."""
     model, n = d.model, d.n
     if n == 1:          # the section is a point: no multipliers (multipliers.decide_multipliers)
-        return []
+        return [], None
     x0 = d.x0(theta)
     E = d.expm(theta)
     M = matrix_ball(model.M)
@@ -352,7 +370,9 @@ def _multipliers(d: Diagonal, theta: arb) -> list[acb] | None:
         try:
             eig = list(acb_mat(J).eig(algorithm="rump"))
         except ValueError:
-            return None
+            return None, J
+    if not all(z.is_finite() for z in eig):
+        return None, J
     tr = sum((M[i, i] for i in range(n)), arb(0))
     liou = acb((-1) ** (n - 1) * (tr * theta).exp() * cf0 / cf1)
     m = n - 1
@@ -375,7 +395,7 @@ def _multipliers(d: Diagonal, theta: arb) -> list[acb] | None:
         a, b = out[i], out[i + 1]
         if abs(a).overlaps(abs(b)) and certainly_negative(a.imag) and certainly_positive(b.imag):
             out[i], out[i + 1] = b, a
-    return out
+    return out, None
 
 
 def check(model, data: dict) -> list[CheckResult]:
@@ -452,7 +472,7 @@ def check(model, data: dict) -> list[CheckResult]:
     if "theta_star" in q and genuine:
         s = stored_interval(q["theta_star"])
         main = next((th for th in genuine if encloses(s, th)), None)
-    moduli_main = None
+    moduli_main, bounded = None, []
     if main is not None:
         verified.add("theta_star")
         contains("period", 2 * main)
@@ -469,6 +489,9 @@ def check(model, data: dict) -> list[CheckResult]:
             for m in moduli_main[1:]:
                 mx = mx.max(m)
             contains("stability_margin", 1 - mx)
+        elif (U := _disc_bound(d, main)) is not None:
+            bounded.append([arb(0).union(U)])               # every modulus in [0, U]: decides stable only
+            contains("stability_margin", disc_margin(U))
         if "amplitude" in q:
             y = d.output(main)
             f = lambda X: taylor_enclosure(y.coeffs, X, TAYLOR_ORDER, (0,))[0]     # noqa: E731
@@ -487,6 +510,10 @@ def check(model, data: dict) -> list[CheckResult]:
                     contains("df_period_difference", 2 * main - Pdf)
                     contains("df_amplitude_difference", A - Adf)
     others, other_moduli = other_orbit_moduli(genuine, main, lambda th: _multipliers(d, th), contains)
+    for k, th in enumerate(others, start=2):
+        if k not in other_moduli and (U := _disc_bound(d, th)) is not None:
+            bounded.append([arb(0).union(U)])
+            contains(f"stability_margin_{k}", disc_margin(U))
     exhaustive = half_ok and w["covers_all"]
     all_moduli = ([moduli_main] if moduli_main is not None else []) + list(other_moduli.values())
     for cid, c in claims.items():
@@ -496,7 +523,7 @@ def check(model, data: dict) -> list[CheckResult]:
         else:
             say(cid, *redecide(cid, st, half_ok=half_ok, why=why, main=main, genuine=genuine, exhaustive=exhaustive,
                                moduli_ok=(moduli_main is not None and len(other_moduli) == len(others)),
-                               all_moduli=all_moduli))
+                               all_moduli=all_moduli, bounded=bounded))
     required = {"orbit_genuine": ("theta_star", "period"),
                 "initial_point": tuple(f"x0_{i}" for i in range(1, model.n + 1)),
                 "multipliers": tuple(f"multiplier_modulus_{j}" for j in range(1, model.n)),
@@ -527,4 +554,5 @@ def _rows(d: Diagonal, G: _G, rows, roots: list, kinds_w, main, moduli_main) -> 
             return moduli_main
         mm = _multipliers(d, th)
         return None if mm is None else [abs(z) for z in mm]
-    return check_root_rows(rows, d.n, roots, kinds, moduli_of, lambda lo, hi: _unique(G, lo, hi))
+    return check_root_rows(rows, d.n, roots, kinds, moduli_of, lambda lo, hi: _unique(G, lo, hi),
+                           lambda th: _disc_bound(d, th) is not None)

@@ -16,6 +16,8 @@ that wrote them; everything else is re-decided here from the checker's own enclo
 * its ``stable`` flag: ``true`` only when every recomputed modulus is certainly < 1, ``false`` only when one
   is certainly > 1, ``null`` claims nothing; a plant of dimension 1 has no multipliers (the monodromy on the
   0-dimensional section) and its flag follows :func:`.multipliers.decide_multipliers` (``true``);
+* a genuine row whose multipliers are not isolated states no moduli, and ``stable: true`` only when Gershgorin's
+  discs of the checker's own Jacobian bound every modulus certainly below 1;
 * a row of another kind (spurious, undecided) states no moduli and no flag.
 
 Guarantee: ``ok`` only when every row is re-decided as above by balls. Precision: the checker's. Fails when:
@@ -95,11 +97,14 @@ def _row_moduli(row: dict, dim: int, moduli) -> str:
     return ""
 
 
-def check_root_rows(rows, dim: int, roots: list, kinds: list | None, moduli_of, locate) -> tuple[bool, str]:
+def check_root_rows(rows, dim: int, roots: list, kinds: list | None, moduli_of, locate,
+                    stable_by_discs=None) -> tuple[bool, str]:
     """(ok, message) for the table ``rows`` (``extra.roots``) of a plant of dimension ``dim``. ``roots``:
     the re-verified roots in order with their re-verified ``kinds`` (None: the half-period was not
     re-verified); ``moduli_of(theta)``: the recomputed moduli of the orbit at the root ball theta (None: not
-    recomputed); ``locate(lo, hi)``: the enclosure of the unique root of g in [lo, hi] (None: not re-decided)."""
+    recomputed); ``locate(lo, hi)``: the enclosure of the unique root of g in [lo, hi] (None: not re-decided);
+    ``stable_by_discs(theta)``: whether Gershgorin's discs of the recomputed Jacobian bound every modulus
+    certainly below 1 (a row without moduli may then say ``stable: true``)."""
     if not isinstance(rows, list):
         return False, "extra.roots is not a list"
     problems: list[str] = []
@@ -135,7 +140,11 @@ def check_root_rows(rows, dim: int, roots: list, kinds: list | None, moduli_of, 
             continue
         if th is None:
             continue
-        why = _row_moduli(row, dim, None if dim == 1 else moduli_of(th))
+        moduli = None if dim == 1 else moduli_of(th)
+        if moduli is None and dim > 1 and row.get("moduli") == [] and row.get("stable") is True \
+                and stable_by_discs is not None and stable_by_discs(th):
+            continue        # stable by Gershgorin's discs; the multipliers are not isolated
+        why = _row_moduli(row, dim, moduli)
         if why:
             problems.append(f"root {k}: {why}")
     if problems:

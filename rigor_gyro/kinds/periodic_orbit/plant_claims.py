@@ -41,6 +41,7 @@ from .. import Attempt, Phases
 from .claims import RootVerdict, dyadic_up as _dyadic_up, g_series_function as _g_series_function, isolate_pieces as _isolate
 from .flow import DegenerateSpectrum, taylor_enclosure
 from .multipliers import decide_multipliers
+from .norm_stability import spectral_radius_bound
 from .plant_model import PlantModel, validate_plant
 from .plant_report import assemble
 from .plant_statements import GUARD_BITS, PLANT_CLAIMS, TAYLOR_ORDER
@@ -241,9 +242,11 @@ def plant_multipliers(sp: PlantSpectrum, v: RootVerdict) -> None:
         eig = list(acb_mat(J).eig(algorithm="rump"))
     except ValueError as e:
         v.multiplier_reason = f"eigenvalues of the Jacobian not isolated at this precision ({e})"
+        stable_by_discs(v, J)
         return
     if not all(z.is_finite() for z in eig):
         v.multiplier_reason = "eigenvalue enclosures not finite at this precision"
+        stable_by_discs(v, J)
         return
     liou = liouville_product(sp, v.theta, v.x0)
     prod = acb(1)
@@ -268,6 +271,18 @@ def plant_multipliers(sp: PlantSpectrum, v: RootVerdict) -> None:
                 eig[s] = z
                 v.jacobian_note += "; the smallest multiplier is enclosed as that product divided by the others"
     decide_multipliers(v, eig)
+
+
+def stable_by_discs(v: RootVerdict, J) -> None:
+    """Where the multipliers are not isolated (clustered, e.g. all about e^(-lambda theta*) with theta* ~ 1e6):
+    the orbit is stable when Gershgorin's discs of the Jacobian J (:func:`.norm_stability.spectral_radius_bound`,
+    rows or columns, with diagonal scalings) put every eigenvalue in |z| <= U with U certainly < 1. Sets
+    ``v.radius_bound`` = U and ``v.stable`` = True then; the multipliers stay unenclosed (``v.margin`` None)."""
+    U = spectral_radius_bound(acb_mat(J))
+    if U is not None and certainly_lt(U, 1):
+        v.radius_bound, v.stable = U, True
+        v.multiplier_reason += (f"; every multiplier modulus is at most {_fmt(U, 6)} < 1 all the same (Gershgorin "
+                                "discs of the Jacobian), so the orbit is stable")
 
 
 # ------------------------------------------------------------------------------ analysis

@@ -38,6 +38,11 @@ def select_orbit(genuine: list) -> tuple[Any, str]:
     return None, "no genuine orbit"
 
 
+def disc_margin(U: arb) -> arb:
+    """The stability margin 1 - max modulus enclosed from a bound U of every modulus alone: [1 - U, 1]."""
+    return (1 - U).union(arb(1))
+
+
 def _qb(x) -> arb:
     """The ball of an exact rational (no magnitude limit: a dyadic search bound may be below 1e-300)."""
     return arb(fmpq(x.numerator, x.denominator))
@@ -117,11 +122,15 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
             quantities[f"multiplier_{j}_re"] = z.real
             quantities[f"multiplier_{j}_im"] = z.imag
         quantities["stability_margin"] = main.margin
+    elif main is not None and main.radius_bound is not None:
+        quantities["stability_margin"] = disc_margin(main.radius_bound)
     others = [v for v in genuine if v is not main]
     for k, v in enumerate(others, start=2):
         quantities[f"theta_star_{k}"] = v.theta
         if v.margin is not None:
             quantities[f"stability_margin_{k}"] = v.margin
+        elif v.radius_bound is not None:
+            quantities[f"stability_margin_{k}"] = disc_margin(v.radius_bound)
     if "multipliers" in wanted:
         bad = [v for v in genuine if v.margin is None]
         if genuine and not bad:
@@ -140,9 +149,12 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
         if stable:
             s = main if main in stable else stable[0]
             top = (f"has max modulus {_fmt1(s.moduli[0], 10)} < 1" if s.moduli else
+                   f"has every multiplier modulus at most {_fmt(s.radius_bound, 6)} < 1 (Gershgorin discs of the "
+                   "Jacobian; the multipliers themselves are not isolated)" if s.radius_bound is not None else
                    "has no multipliers (dimension 1: the section is a point, a nearby solution reaches the switching "
                    "point and follows the orbit)")
-            st = (Status.PROVED, f"the orbit theta* = {_fmt(s.theta, 12)} {top}; stability margin {_fmt(s.margin, 10)}"
+            margin = s.margin if s.margin is not None else disc_margin(s.radius_bound)
+            st = (Status.PROVED, f"the orbit theta* = {_fmt(s.theta, 12)} {top}; stability margin {_fmt(margin, 10)}"
                   + (f"; {len(stable)} stable genuine orbits" if len(stable) > 1 else "")
                   + (f"; unstable: {', '.join(_fmt(v.theta, 8) for v in genuine if v.stable is False)}"
                      if any(v.stable is False for v in genuine) else ""))
@@ -200,6 +212,8 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
         if v.margin is not None:
             line += "; multipliers " + ", ".join(_fmt_c(z, 8) for z in v.multipliers) + "; moduli " + ", ".join(
                 _fmt1(m, 8) for m in v.moduli) + ("; STABLE" if v.stable else "; UNSTABLE" if v.stable is False else "")
+        elif v.radius_bound is not None:
+            line += f"; every multiplier modulus <= {_fmt(v.radius_bound, 6)} (Gershgorin discs); STABLE"
         rows.append({"theta": list(decimal_bounds(v.theta, 20)), "kind": v.kind, "reason": v.reason,
                      "moduli": [list(decimal_bounds_apart(m, 1, 12)) for m in v.moduli], "stable": v.stable})
         notes.append(line)
