@@ -529,6 +529,9 @@ def test_the_disc_bound_holds_the_isolated_moduli_and_decides_nothing_at_or_abov
     w = RootVerdict(arb(1), [], "genuine", "")
     stable_by_discs(w, arb_mat([[arb("0.5"), arb("0.25")], [arb(0), arb("0.5")]]))
     assert w.stable is True and w.radius_bound < 1
+    from rigor_gyro.kinds.periodic_orbit.plant_report import disc_margin
+    m = disc_margin(arb("0.25"))        # every modulus in [0, 1/4]: the margin anywhere in [3/4, 1]
+    assert m.contains(arb("0.75")) and m.contains(1)
 
 
 def test_the_checkers_disc_bound_is_none_at_or_above_1(monkeypatch):
