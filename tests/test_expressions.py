@@ -159,3 +159,30 @@ def test_polynomial_poles_are_exact_rational_roots_of_polynomial_denominators():
     assert poles("x/(x^2 + 1)") == [] and poles("x/(a - x)") == [] and poles("x/(sin(x) - 1)") == []
     assert poles("x/(x - b)", {"b": Fraction(2, 7)}) == [("x - b", Fraction(2, 7))]
     assert poles("sin(1/(3*x - 1))") == [("3*x - 1", Fraction(1, 3))]
+
+
+def test_a_named_sub_expression_reads_as_the_same_formula():
+    """unparse writes a non-integer number as a quotient in parentheses wherever '/' would need them, so the text
+    a message names parses back to the same value (0.5235^2 printed as '1047/2000^2' read as 1047/4000000)."""
+    from rigor_gyro.core.expression_domain import unparse
+    from rigor_gyro.core.expressions import UNARY_FUNCTIONS, evaluate_exact
+    for text in ("0.5235^2 - x^2", "x/0.5", "x/(1/3)", "1/3*x", "-x^2*0.25", "x^-2/(2/7 - x)", "sin(x/1.5)^3",
+                 "x - 1/4", "(x - 0.1)^(-3)"):
+        tree = parse(text, "t", names={"x"}, functions=UNARY_FUNCTIONS).tree
+        back = parse(unparse(tree), "t", names={"x"}, functions=UNARY_FUNCTIONS)
+        for x in (Fraction(1, 3), Fraction(-5, 7)):
+            if "sin" not in text:
+                assert evaluate_exact(back, {"x": x}) == evaluate_exact(parse(text, "t", names={"x"}), {"x": x}), text
+        assert unparse(back.tree) == unparse(tree), text
+    tree = parse("0.5235^2 - x^2", "t", names={"x"}).tree
+    assert unparse(tree) == "(1047/2000)^2 - x^2"
+
+
+def test_a_denominator_with_huge_coefficients_is_not_factored():
+    """1e400 (x + 1e-400)^64 + 1 (85000-bit coefficients) took FLINT 1.5 s to factor, before any time limit:
+    above MAX_POLE_HEIGHT_BITS nothing is claimed (no rational root reported, none looked for)."""
+    assert _poles("x/(1e400*(x + 1e-400)^64 + 1)") == []
+    assert _poles("x/(1e1300*x - 1)") == []                            # 4319 bits: not looked for
+    assert _poles("x/(1e1200*x - 1)")[0][1] == Fraction(1, 10 ** 1200)  # 3987 bits: found
+    assert _poles("x/(1e10*(x - 1e-10)^64)") == [("10000000000*(x - 1/10000000000)^64", Fraction(1, 10 ** 10))]
+    assert _poles("x/(1e18*(x - 1/2)^3)") == [(f"{10 ** 18}*(x - 1/2)^3", Fraction(1, 2))]

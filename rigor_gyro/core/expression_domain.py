@@ -12,7 +12,8 @@ Two tests, both certain and cheap:
   and is passed over.
 * :func:`polynomial_poles`: each denominator (and base of a negative power) that is a polynomial in one name
   with exact rational coefficients is expanded exactly; the zero polynomial, or its exact rational roots (FLINT's
-  factorisation over Q, degree at most :data:`MAX_POLE_DEGREE`), are points where the expression has no value.
+  factorisation over Q, degree at most :data:`MAX_POLE_DEGREE`, coefficients of at most
+  :data:`MAX_POLE_HEIGHT_BITS` bits), are points where the expression has no value.
 
 Guarantee: every finding is a proof that the expression has no (real) value at the point named, for every
 value of the names the caller left unknown (balls of infinite radius, or names outside the polynomial). None
@@ -25,10 +26,14 @@ from typing import Any, Callable, Mapping
 
 from flint import arb, fmpq, fmpq_poly
 
-__all__ = ["first_undefined", "polynomial_poles", "unparse", "ARB_DOMAINS", "MAX_POLE_DEGREE"]
+__all__ = ["first_undefined", "polynomial_poles", "unparse", "ARB_DOMAINS", "MAX_POLE_DEGREE", "MAX_POLE_HEIGHT_BITS"]
 
 #: a denominator polynomial of higher degree is not factored (the test stays cheap; nothing is claimed)
 MAX_POLE_DEGREE = 64
+#: nor one whose integer numerator has coefficients of more bits: FLINT's factorisation of a structured
+#: polynomial with huge coefficients (1e400 (x2 + 1e-400)^64 + 1: 85000 bits) takes seconds, and it runs before
+#: any time limit applies; below this cap it takes milliseconds
+MAX_POLE_HEIGHT_BITS = 4096
 
 
 def _certainly_negative(v) -> bool:
@@ -70,8 +75,11 @@ _PRECEDENCE = {"+": 1, "-": 1, "*": 2, "/": 2, "neg": 3, "^": 4}
 def unparse(t: tuple, outer: int = 0) -> str:
     """A tree as text in the grammar (parentheses only where precedence needs them)."""
     op = t[0]
-    if op == "num":
-        return str(t[1]) if t[1] >= 0 else f"({t[1]})"
+    if op == "num":                      # a non-integer reads as a quotient: parenthesised where "/" would be
+        q = t[1]
+        if q < 0 or (q.denominator != 1 and _PRECEDENCE["/"] < outer):
+            return f"({q})"
+        return str(q)
     if op == "name":
         return t[1]
     if op == "call":
@@ -205,7 +213,7 @@ def polynomial_poles(tree: tuple, name: str, consts: Mapping[str, Fraction]) -> 
         if p.is_zero():
             out.append((d, None))
             return
-        if not 1 <= p.degree() <= MAX_POLE_DEGREE:
+        if not 1 <= p.degree() <= MAX_POLE_DEGREE or p.numer().height_bits() > MAX_POLE_HEIGHT_BITS:
             return
         for factor, _ in p.factor()[1]:
             if factor.degree() == 1:
