@@ -296,7 +296,8 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
     used |= {v for pair in brackets for e in pair for v in e.names()}
     unused = sorted(set(params) - used)
     if unused:
-        raise ParameterError(f"parameter {unused[0]!r}: not used by any entry of [system] (a misspelt name?)")
+        raise ParameterError(f"parameter {unused[0]!r}: not used by any entry of [system] (a misspelt name?): remove it "
+                             "from [parameters], or use it in M, G, K, D, defs, brackets or hz_scale")
     if scene.paper:
         raise ParameterError("a [system] scene takes no [paper] table (the audit is the paper scene's)")
     return SystemModel(rational, params, n, M, G, K, D, tuple(defs), brackets, hz, rel, z, tuple(wanted), dict(table),
