@@ -7,6 +7,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from rigor_gyro import reproduce
 from rigor_gyro.certificate import digest
 from rigor_gyro.check import CertificateError, check_certificate, check_file
 from rigor_gyro.cli import main
@@ -29,6 +30,17 @@ def rudenko():
 @pytest.fixture(scope="module", params=CHECKED)
 def builtin(request):
     return _cert(request.param)
+
+
+@pytest.fixture(scope="module")
+def _agafonov():
+    return _cert("agafonov2013")
+
+
+@pytest.fixture
+def agafonov(_agafonov):
+    """A copy of the built-in agafonov2013 certificate, proved once for the tests that edit it."""
+    return copy.deepcopy(_agafonov)
 
 
 def _refix(data):
@@ -330,11 +342,9 @@ def test_stored_hull_contains_the_stored_decimals():
         number("1e-1000000")
 
 
-def test_the_direct_vdot_witness_is_re_verified():
+def test_the_direct_vdot_witness_is_re_verified(agafonov):
     """vdot_direct: a dropped (x2, t) box, a larger R_direct or a moved counterexample point is rejected."""
-    from rigor_gyro.prover import prove_scene
-    from rigor_gyro.scene import load_scene
-    data = json.loads(json.dumps(prove_scene(load_scene("agafonov2013")).to_json()))
+    data = agafonov
     assert check_certificate(data).ok
     w = data["witnesses"]["vdot_direct"]
     assert len(w["boxes"]) > 10 and "point" in w
@@ -351,12 +361,10 @@ def test_the_direct_vdot_witness_is_re_verified():
     assert bad(origin)
 
 
-def test_the_direct_test_over_mu_is_re_verified():
+def test_the_direct_test_over_mu_is_re_verified(agafonov):
     """best_mu_direct: a dropped mu piece or (x2, t) box, a larger R_direct_max, mu_direct moved out of (16),
     or the points replaced by a poor one (the bound re-derived above the stored one) is rejected."""
-    from rigor_gyro.prover import prove_scene
-    from rigor_gyro.scene import load_scene
-    data = json.loads(json.dumps(prove_scene(load_scene("agafonov2013")).to_json()))
+    data = agafonov
     assert check_certificate(data).ok
     w = data["witnesses"]["best_mu_direct"]
     assert len(w["boxes"]) > 10 and len(w["mu_pieces"]) > 4 and w["points"]
@@ -435,7 +443,9 @@ def test_the_c_star_of_an_inconclusive_estimate_is_re_derived():
     from rigor_gyro.scene import Scene
     sc = Scene(name="x", kind="lyapunov", source="", parameters=CSTAR_INCONCLUSIVE, options={"max_pieces": "4000"},
                claims_only=["constants", "vdot_nonpositive", "invariant_estimate"])
-    data = json.loads(json.dumps(prove_scene(sc, maxprec=64).to_json()))
+    raw = prove_scene(sc, maxprec=64).to_json()
+    reproduce.keep(raw)         # the texts check's re-proof of this scene at these settings is this very proof
+    data = json.loads(json.dumps(raw))
     inv = next(c for c in data["claims"] if c["id"] == "invariant_estimate")
     assert inv["status"] == "inconclusive" and "c_star" in data["quantities"]
     assert check_certificate(data).ok
@@ -451,15 +461,15 @@ def test_campaign_certificates_are_confirmed(params):
     from rigor_gyro.prover import prove_scene
     from rigor_gyro.scene import Scene
     sc = Scene(name="x", kind="lyapunov", source="", parameters=params, options={"max_pieces": "4000"})
-    data = json.loads(json.dumps(prove_scene(sc, maxprec=512).to_json()))
+    raw = prove_scene(sc, maxprec=512).to_json()
+    reproduce.keep(raw)         # the texts check's re-proof of this scene at these settings is this very proof
+    data = json.loads(json.dumps(raw))
     report = check_certificate(data)
     assert report.ok, report.first_failure
 
 
-def test_the_equilibria_witness_is_re_verified():
-    from rigor_gyro.prover import prove_scene
-    from rigor_gyro.scene import load_scene
-    data = json.loads(json.dumps(prove_scene(load_scene("agafonov2013")).to_json()))
+def test_the_equilibria_witness_is_re_verified(agafonov):
+    data = agafonov
     claim = next(c for c in data["claims"] if c["id"] == "equilibria")
     assert claim["status"] == "proved" and check_certificate(data).ok
 
