@@ -543,3 +543,31 @@ def test_the_checkers_disc_bound_is_none_at_or_above_1(monkeypatch):
     assert plant_check._disc_bound(None, arb(1)) is None
     monkeypatch.setattr(plant_check, "_spectrum", lambda d, th: (None, arb_mat([[arb("0.5")]])))
     assert plant_check._disc_bound(None, arb(1)) < 1
+
+
+def test_a_row_stable_by_the_provers_discs_is_confirmed_where_the_checker_isolates_the_multipliers():
+    """The integrator plant at h = 1e3: the prover's Jacobian (Arb's exponential) does not isolate the multipliers
+    (~1e-1739) at any precision up to 4096 bits and its discs prove stable; the checker's tighter Jacobian does
+    isolate them. Its row (moduli [], stable true) is re-decided from the checker's own moduli, so the honest
+    certificate is confirmed (it was rejected: 'a stability flag without moduli')."""
+    cert = json.loads(json.dumps(prove_scene(_scene(*CASES["integrator"][:4], h="1e3")).to_json()))
+    row = cert["extra"]["roots"][0]
+    assert row["moduli"] == [] and row["stable"] is True
+    rep = check_certificate(cert)
+    assert rep.ok, [r for r in rep.results if not r.ok]
+
+
+def test_a_box_whose_multipliers_are_not_isolated_is_stable_by_the_discs():
+    """The integrator plant at h = 1e6 with S = -d, d in 1 +- 1e-6: over the box the ball Jacobian's discs bound
+    every modulus (it crashed with an IndexError: the box path read the largest isolated modulus)."""
+    from rigor_gyro.margins.executors import Executor
+    from rigor_gyro.margins.paving import box_scene, pave
+    from rigor_gyro.margins.report import paving_json
+    scene = parse_scene('name = "t"\nkind = "periodic_orbit"\n[parameters]\nd = "1 +- 0.000001"\n[claims]\n'
+                        'only = ["orbit_genuine", "stable"]\n[options]\nbox_resolution = "1/4"\nmax_boxes = "4"\n'
+                        '[plant]\nM = [["0", "1", "0"], ["0", "0", "1"], ["0", "-2", "-3"]]\ne = ["0", "0", "1"]\n'
+                        'c = ["1", "0", "0"]\nS = "-d"\nh = "1e6"\n')
+    data = json.loads(json.dumps(paving_json(pave(box_scene(scene), Executor(1)))))
+    assert [(c["id"], c["status"]) for c in data["claims"]] == [("orbit_genuine", "proved"), ("stable", "proved")]
+    rep = check_certificate(data)
+    assert rep.ok, [r for r in rep.results if not r.ok]

@@ -56,6 +56,7 @@ from .plant_model import PlantModel
 from .norm_stability import eigen_coordinate_family, largest_modulus_range
 from .plant_orbit import PlantMode, PlantSpectrum, g_coeffs, jacobian, section_index
 from .plant_statements import TAYLOR_ORDER
+from .texts import upper_text
 
 __all__ = ["PLANT_BOX_CLAIMS", "PlantBoxSpectrum", "plant_balls", "validate_plant_box", "evaluate_plant_box"]
 
@@ -327,6 +328,10 @@ def evaluate_plant_box(model: PlantModel, box: Box, claims: list[str]) -> dict[s
             out["orbit_genuine"] = ("proved", head)
         if "stable" in claims and out["stable"][0] != "proved":
             plant_multipliers(sp, w)
+            if w.stable is True and w.radius_bound is not None:     # the multipliers not isolated over the box
+                out["stable"] = ("proved", head + f"; every multiplier modulus <= {upper_text(w.radius_bound)} < 1 (the "
+                                 "Gershgorin discs of the Jacobian over the box; the multipliers are not isolated)")
+                continue
             if w.stable is True:
                 mx = w.moduli[0]
                 for m in w.moduli[1:]:

@@ -16,8 +16,9 @@ that wrote them; everything else is re-decided here from the checker's own enclo
 * its ``stable`` flag: ``true`` only when every recomputed modulus is certainly < 1, ``false`` only when one
   is certainly > 1, ``null`` claims nothing; a plant of dimension 1 has no multipliers (the monodromy on the
   0-dimensional section) and its flag follows :func:`.multipliers.decide_multipliers` (``true``);
-* a genuine row whose multipliers are not isolated states no moduli, and ``stable: true`` only when Gershgorin's
-  discs of the checker's own Jacobian bound every modulus certainly below 1;
+* a genuine row whose multipliers the prover did not isolate states no moduli, and ``stable: true`` only when
+  the checker's own moduli are certainly below 1 or, where it does not isolate them either, Gershgorin's discs
+  of its own Jacobian bound every modulus certainly below 1;
 * a row of another kind (spurious, undecided) states no moduli and no flag.
 
 Guarantee: ``ok`` only when every row is re-decided as above by balls. Precision: the checker's. Fails when:
@@ -141,9 +142,10 @@ def check_root_rows(rows, dim: int, roots: list, kinds: list | None, moduli_of, 
         if th is None:
             continue
         moduli = None if dim == 1 else moduli_of(th)
-        if moduli is None and dim > 1 and row.get("moduli") == [] and row.get("stable") is True \
-                and stable_by_discs is not None and stable_by_discs(th):
-            continue        # stable by Gershgorin's discs; the multipliers are not isolated
+        if dim > 1 and row.get("moduli") == [] and row.get("stable") is True and (
+                all(certainly_lt(m, 1) for m in moduli) if moduli is not None else
+                stable_by_discs is not None and stable_by_discs(th)):
+            continue        # the prover's multipliers were not isolated (stable by its discs): stable re-decided
         why = _row_moduli(row, dim, moduli)
         if why:
             problems.append(f"root {k}: {why}")

@@ -47,7 +47,7 @@ from .plant_report import assemble
 from .plant_statements import GUARD_BITS, PLANT_CLAIMS, TAYLOR_ORDER
 from .plant_orbit import (PlantSpectrum, g_coeffs, jacobian, leading_coefficient, liouville_product, near_zero_bound,
                           near_zero_order, orbit_output, section_index, tail_bound, x0_at)
-from .texts import interval_text as _fmt
+from .texts import interval_text as _fmt, upper_text
 
 __all__ = ["PLANT_CLAIMS", "validate", "statements", "attempt", "analyse", "classify", "plant_multipliers",
            "tail_point", "theta_min"]
@@ -281,7 +281,7 @@ def stable_by_discs(v: RootVerdict, J) -> None:
     U = spectral_radius_bound(acb_mat(J))
     if U is not None and certainly_lt(U, 1):
         v.radius_bound, v.stable = U, True
-        v.multiplier_reason += (f"; every multiplier modulus is at most {_fmt(U, 6)} < 1 all the same (Gershgorin "
+        v.multiplier_reason += (f"; every multiplier modulus is at most {upper_text(U)} < 1 all the same (Gershgorin "
                                 "discs of the Jacobian), so the orbit is stable")
 
 

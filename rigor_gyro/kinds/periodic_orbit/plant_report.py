@@ -23,7 +23,7 @@ from .genuine_outcome import no_orbit_record, orbit_genuine_outcome
 from .plant_df import describing_function
 from .plant_orbit import amplitude, neutral_multiplier
 from .plant_statements import GUARD_BITS, PLANT_CLAIMS
-from .texts import complex_text as _fmt_c, interval_text as _fmt, modulus_text as _fmt1, stored_bounds as _bounds
+from .texts import complex_text as _fmt_c, interval_text as _fmt, upper_text, modulus_text as _fmt1, stored_bounds as _bounds
 
 __all__ = ["assemble", "select_orbit"]
 
@@ -39,8 +39,11 @@ def select_orbit(genuine: list) -> tuple[Any, str]:
 
 
 def disc_margin(U: arb) -> arb:
-    """The stability margin 1 - max modulus enclosed from a bound U of every modulus alone: [1 - U, 1]."""
-    return (1 - U).union(arb(1))
+    """The stability margin 1 - max modulus enclosed from a bound U of every modulus alone: [1 - U, 1] (the
+    union taken with guard bits, so that its upper end stays 1 where the lower end's bits allow)."""
+    lo = (1 - U).lower()
+    with working_precision(current_precision() + GUARD_BITS):
+        return arb(lo).union(arb(1))
 
 
 def _qb(x) -> arb:
@@ -149,7 +152,7 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
         if stable:
             s = main if main in stable else stable[0]
             top = (f"has max modulus {_fmt1(s.moduli[0], 10)} < 1" if s.moduli else
-                   f"has every multiplier modulus at most {_fmt(s.radius_bound, 6)} < 1 (Gershgorin discs of the "
+                   f"has every multiplier modulus at most {upper_text(s.radius_bound)} < 1 (Gershgorin discs of the "
                    "Jacobian; the multipliers themselves are not isolated)" if s.radius_bound is not None else
                    "has no multipliers (dimension 1: the section is a point, a nearby solution reaches the switching "
                    "point and follows the orbit)")
@@ -213,7 +216,7 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
             line += "; multipliers " + ", ".join(_fmt_c(z, 8) for z in v.multipliers) + "; moduli " + ", ".join(
                 _fmt1(m, 8) for m in v.moduli) + ("; STABLE" if v.stable else "; UNSTABLE" if v.stable is False else "")
         elif v.radius_bound is not None:
-            line += f"; every multiplier modulus <= {_fmt(v.radius_bound, 6)} (Gershgorin discs); STABLE"
+            line += f"; every multiplier modulus <= {upper_text(v.radius_bound)} (Gershgorin discs); STABLE"
         rows.append({"theta": list(decimal_bounds(v.theta, 20)), "kind": v.kind, "reason": v.reason,
                      "moduli": [list(decimal_bounds_apart(m, 1, 12)) for m in v.moduli], "stable": v.stable})
         notes.append(line)

@@ -11,13 +11,18 @@ from flint import acb, arb
 
 from ...core.balls import decimal_bounds, decimal_bounds_apart
 
-__all__ = ["interval_text", "stored_bounds", "modulus_text", "complex_text"]
+__all__ = ["interval_text", "upper_text", "stored_bounds", "modulus_text", "complex_text"]
 
 
 def interval_text(x: arb, digits: int = 12) -> str:
     """[lo, hi] to ``digits`` significant digits, rounded outward."""
     lo, hi = decimal_bounds(x, digits)
     return f"[{lo}, {hi}]"
+
+
+def upper_text(x: arb, digits: int = 6) -> str:
+    """An upper bound of the ball (its upper end rounded up) to ``digits`` significant digits."""
+    return decimal_bounds(x, digits)[1]
 
 
 def stored_bounds(x: arb) -> list[str]:
