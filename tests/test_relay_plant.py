@@ -571,3 +571,18 @@ def test_a_box_whose_multipliers_are_not_isolated_is_stable_by_the_discs():
     assert [(c["id"], c["status"]) for c in data["claims"]] == [("orbit_genuine", "proved"), ("stable", "proved")]
     rep = check_certificate(data)
     assert rep.ok, [r for r in rep.results if not r.ok]
+
+
+def test_a_row_emptied_of_moduli_may_say_stable_only_where_every_recomputed_modulus_is_below_1():
+    """relay_two_modes: a stable row emptied of its moduli is still re-decided stable (the checker's moduli are
+    below 1), the unstable middle orbit's row emptied and marked stable is not."""
+    cert = json.loads(json.dumps(prove_scene(load_scene(PLANTS + "relay_two_modes.toml")).to_json()))
+    rows = cert["extra"]["roots"]
+    up = next(i for i, r in enumerate(rows) if r["stable"] is False)
+    down = next(i for i, r in enumerate(rows) if r["stable"] is True)
+    ok = copy.deepcopy(cert)
+    ok["extra"]["roots"][down]["moduli"] = []
+    assert _items(ok)["extra.roots"]
+    bad = copy.deepcopy(cert)
+    bad["extra"]["roots"][up].update(moduli=[], stable=True)
+    assert not _items(bad)["extra.roots"]
