@@ -344,8 +344,14 @@ def test_9_the_exact_pole_of_r2_makes_brackets_9_and_10_undefined_at_once():
         assert c.status is Status.REFUTED and "undefined" in c.counterexample
 
 
-def test_9_a_width_set_by_a_subdivision_tolerance_is_not_escalated():
-    cert = prove_scene(dataclasses.replace(LYAP, name="mu", parameters=dict(LYAP.parameters, mu="0.01333333334")))
+@pytest.fixture(scope="module")
+def tiny_c_star():
+    """agafonov2013 at mu = 0.01333333334, just inside (16) (c* about 1e-16): one proof for issues 9 and 10."""
+    return prove_scene(dataclasses.replace(LYAP, name="mu", parameters=dict(LYAP.parameters, mu="0.01333333334")))
+
+
+def test_9_a_width_set_by_a_subdivision_tolerance_is_not_escalated(tiny_c_star):
+    cert = tiny_c_star
     assert max(cert.precisions_tried) <= 256           # two doublings without progress, then stop
     assert any("did not shrink" in n for n in cert.notes)
 
@@ -378,8 +384,8 @@ def test_9_a_claim_without_a_deciding_ball_may_always_progress():
 
 # ------------------------------------------------------------------ 10. a tiny positive c* is certified
 
-def test_10_invariant_estimate_with_a_tiny_positive_c_star_is_proved():
-    cert = prove_scene(dataclasses.replace(LYAP, name="mu", parameters=dict(LYAP.parameters, mu="0.01333333334")))
+def test_10_invariant_estimate_with_a_tiny_positive_c_star_is_proved(tiny_c_star):
+    cert = tiny_c_star
     assert cert.claim("invariant_estimate").status is Status.PROVED
     c = cert.quantities["c_star"]
     assert c.lower() > 0 and c.upper() < 1e-15
