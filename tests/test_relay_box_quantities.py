@@ -33,9 +33,10 @@ def test_box_quantities_hold_samples_of_a_half_percent_box():
     assert set(q) == set(BOX_QUANTITIES)
     th, per, mx, margin = (q[k].value for k in ("theta_star", "period", "max_modulus", "stability_margin"))
     assert BOX_QUANTITIES["stability_margin"].claim == "stable" and margin.lower() > 0
-    for k in range(10):
-        n = lo + (hi - lo) * Fraction(k, 9)
-        t = _theta_mp(_params(m, n=n), float(th.lower()) - 1e-6, float(th.upper()) + 1e-6)
+    # mpmath's theta* at 10 points of the box (2 s each), for the enclosures and for the branch below
+    samples = [(n, _theta_mp(_params(m, n=n), float(th.lower()) - 1e-6, float(th.upper()) + 1e-6))
+               for n in (lo + (hi - lo) * Fraction(k, 9) for k in range(10))]
+    for n, t in samples:
         assert th.contains(arb(mp.nstr(t, 18))) and per.contains(arb(mp.nstr(2 * t, 18)))
         mods = [abs(z) for z in approx.approx_multipliers(_params(m, n=n), float(t))]
         assert mx.lower() < max(mods) < mx.upper() and margin.lower() < 1 - max(mods) < margin.upper()
@@ -43,9 +44,7 @@ def test_box_quantities_hold_samples_of_a_half_percent_box():
     br = q["theta_star"].branch
     assert all(q[k].branch is br for k in BOX_QUANTITIES) and list(br.centre) == ["n"] and br.centre["n"] == 50
     assert br.unique_in.contains(br.key) and br.key.contains(br.at_centre)
-    for k in range(10):
-        n = lo + (hi - lo) * Fraction(k, 9)
-        t = _theta_mp(_params(m, n=n), float(th.lower()) - 1e-6, float(th.upper()) + 1e-6)
+    for n, t in samples:
         assert (br.at_centre + br.gradient["n"] * (arb(n.numerator) / n.denominator - 50)).contains(arb(mp.nstr(t, 18)))
 
 
