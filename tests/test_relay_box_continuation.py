@@ -63,14 +63,31 @@ def _theta_mp(params, lo: float, hi: float):
             Phi = mp.matrix([[E[i, j] for j in range(5)] for i in range(5)])
             return mp.lu_solve(mp.eye(5) + Phi, -mp.matrix([E[i, 5] for i in range(5)]))[0]
         a, b = mp.mpf(lo), mp.mpf(hi)
-        ga = g(a)
-        assert ga * g(b) < 0, "no sign change of g across the certified ball (widened by 1e-6)"
-        for _ in range(45):
-            c = (a + b) / 2
-            if g(c) * ga > 0:
-                a = c
+        ga, gb = g(a), g(b)
+        assert ga * gb < 0, "no sign change of g across the certified ball (widened by 1e-6)"
+        # the bracket shrunk to (hi - lo) / 2^45, as 45 bisections would: Illinois steps (regula falsi, the end
+        # kept twice running has its value halved), a bisection whenever a step did not halve the bracket
+        width, kept, fa, fb = (b - a) / 2 ** 45, 0, ga, gb
+        while b - a > width:
+            before = b - a
+            c = (a * fb - b * fa) / (fb - fa)
+            if not a < c < b:
+                c = (a + b) / 2
+            gc = g(c)
+            if gc * ga > 0:
+                a, fa = c, gc
+                fb, kept = (fb / 2, kept) if kept > 0 else (fb, 1)
             else:
-                b = c
+                b, fb = c, gc
+                fa, kept = (fa / 2, kept) if kept < 0 else (fa, -1)
+            if b - a > before / 2:
+                c = (a + b) / 2
+                gc = g(c)
+                if gc * ga > 0:
+                    a, fa = c, gc
+                else:
+                    b, fb = c, gc
+                kept = 0
         return (a + b) / 2
 
 
