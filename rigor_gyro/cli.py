@@ -679,9 +679,11 @@ def _check_files(args, ex, check_file, CertificateError) -> int:
     from .core.deadline import TimeLimitReached, time_limit
     for path in args.certs:
         try:
-            with time_limit(args.time_limit):
+            with time_limit(args.time_limit) as budget:
                 report = check_file(path, samples=args.samples, executor=ex if args.workers > 1 else None,
                                     stop_at_failure=args.quiet)
+            if budget.fired:        # the alarm went off, but its exception was swallowed (inside a C or GC
+                raise TimeLimitReached(budget.reason())     # callback) or turned into a failed check: undecided
         except TimeLimitReached:
             _say(f"{path}: not decided: the time limit of {args.time_limit:g} s (--time-limit) ran out before "
                  "every check ran (neither confirmed nor failed); give it more time")
