@@ -26,6 +26,8 @@ from typing import Any, Callable, Mapping
 
 from flint import arb, fmpq, fmpq_poly
 
+from .expressions import Expr
+
 __all__ = ["first_undefined", "polynomial_poles", "unparse", "ARB_DOMAINS", "MAX_POLE_DEGREE", "MAX_POLE_HEIGHT_BITS"]
 
 #: a denominator polynomial of higher degree is not factored (the test stays cheap; nothing is claimed)
@@ -109,40 +111,21 @@ def first_undefined(tree: tuple, env: Mapping[str, Any], number: Callable[[Fract
     class _Found(Exception):
         pass
 
-    def ev(t):
-        op = t[0]
-        if op == "num":
-            return number(t[1])
-        if op == "name":
-            return env[t[1]]
-        if op == "neg":
-            return -ev(t[1])
-        if op == "call":
-            u = ev(t[2][0])
+    def guard(t, values):
+        if t[0] == "call":
             test = domains.get(t[1])
-            if test is not None and test[0](u):
-                arg, val = unparse(t[2][0]), _show(u)
+            if test is not None and test[0](values[0]):
+                arg, val = unparse(t[2][0]), _show(values[0])
                 value = f"is {val}" if arg == val else f"{arg} is {val}{at}"
                 raise _Found(t, f"{unparse(t)} has no real value: its argument {value}, certainly outside "
                                 f"{t[1]}'s domain {test[1]}")
-            return functions[t[1]](u)
-        if op == "^":
-            base, n = ev(t[1]), t[2]
-            if n < 0 and exactly_zero(base):
+        elif t[0] == "^":
+            if t[2] < 0 and exactly_zero(values[0]):
                 raise _Found(t, f"{unparse(t)} divides by {unparse(t[1])}, which is exactly 0{at}")
-            return power(base, n)
-        x, y = ev(t[1]), ev(t[2])
-        if op == "+":
-            return x + y
-        if op == "-":
-            return x - y
-        if op == "*":
-            return x * y
-        if exactly_zero(y):
+        elif exactly_zero(values[1]):
             raise _Found(t, f"it divides by {unparse(t[2])}, which is exactly 0{at}")
-        return x / y
     try:
-        ev(tree)
+        Expr(tree, "", "").evaluate(env, number, functions, power, guard=guard)
     except _Found as found:
         return found.args[0], found.args[1]
     return None

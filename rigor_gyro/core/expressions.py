@@ -108,11 +108,14 @@ class Expr:
         return not self.names()
 
     def evaluate(self, env: Mapping[str, Any], number: Callable[[Fraction], Any] = lambda q: q,
-                 functions: Mapping[str, Callable] | None = None, power: Callable[[Any, int], Any] | None = None) -> Any:
+                 functions: Mapping[str, Callable] | None = None, power: Callable[[Any, int], Any] | None = None,
+                 guard: Callable[[tuple, tuple], None] | None = None) -> Any:
         """The value with ``env[name]`` for each name and ``number(q)`` for each written rational q
         (default: the Fraction itself); ``power(base, n)`` for each integer power when given (n of either sign;
-        default ``base ** n``, and 1/base^-n for n < 0). An exact division by zero (ZeroDivisionError of the
-        values' arithmetic) is a ParameterError naming ``where``."""
+        default ``base ** n``, and 1/base^-n for n < 0). ``guard(sub_tree, operand values)``, when given, sees
+        each function call, integer power and division before it is done (it may raise: how
+        :mod:`.expression_domain` finds where an expression has no value). An exact division by zero
+        (ZeroDivisionError of the values' arithmetic) is a ParameterError naming ``where``."""
         fns = functions or {}
 
         def ev(t):
@@ -124,9 +127,14 @@ class Expr:
             if op == "neg":
                 return -ev(t[1])
             if op == "call":
-                return fns[t[1]](*(ev(a) for a in t[2]))
+                args = tuple(ev(a) for a in t[2])
+                if guard is not None:
+                    guard(t, args)
+                return fns[t[1]](*args)
             if op == "^":
                 base, n = ev(t[1]), t[2]
+                if guard is not None:
+                    guard(t, (base,))
                 if power is not None:
                     return power(base, n)
                 if n < 0:
@@ -139,6 +147,8 @@ class Expr:
                 return x - y
             if op == "*":
                 return x * y
+            if guard is not None:
+                guard(t, (x, y))
             return x / y
         try:
             return ev(self.tree)
