@@ -496,13 +496,13 @@ def test_clustered_multipliers_stable_by_gershgorin_discs_and_confirmed():
     rep = check_certificate(cert)
     assert rep.ok, [r for r in rep.results if not r.ok]
     from rigor_gyro.kinds.periodic_orbit import plant_check
-    saved = plant_check._disc_bound     # a checker whose discs decide nothing: stable and the row not confirmed
+    saved = plant_check._bound_below_1     # a checker whose discs decide nothing: stable and the row not confirmed
     try:
-        plant_check._disc_bound = lambda d, th: None
+        plant_check._bound_below_1 = lambda J: None
         failed = {r.item for r in check_certificate(cert).results if not r.ok}
         assert {"stable", "extra.roots"} <= failed
     finally:
-        plant_check._disc_bound = saved
+        plant_check._bound_below_1 = saved
 
 
 def test_the_disc_bound_holds_the_isolated_moduli_and_decides_nothing_at_or_above_1():
@@ -529,7 +529,7 @@ def test_the_disc_bound_holds_the_isolated_moduli_and_decides_nothing_at_or_abov
     w = RootVerdict(arb(1), [], "genuine", "")
     stable_by_discs(w, arb_mat([[arb("0.5"), arb("0.25")], [arb(0), arb("0.5")]]))
     assert w.stable is True and w.radius_bound < 1
-    from rigor_gyro.kinds.periodic_orbit.plant_report import disc_margin
+    from rigor_gyro.kinds.periodic_orbit.multipliers import disc_margin
     m = disc_margin(arb("0.25"))        # every modulus in [0, 1/4]: the margin anywhere in [3/4, 1]
     assert m.contains(arb("0.75")) and m.contains(1)
 

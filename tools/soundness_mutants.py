@@ -158,7 +158,7 @@ MUTANTS = [
      "                all(certainly_lt(m, 1) for m in moduli) if moduli is not None else",
      "                True if moduli is not None else",
      "a roots' table row emptied of its moduli may say stable whatever the checker's own moduli"),
-    ("disc_margin_one_sided", "rigor_gyro/kinds/periodic_orbit/plant_report.py",
+    ("disc_margin_one_sided", "rigor_gyro/kinds/periodic_orbit/multipliers.py",
      "        return arb(lo).union(arb(1))",
      "        return arb(lo)",
      "the stability margin from a modulus bound U alone stored as 1 - U (the margin may be up to 1)"),

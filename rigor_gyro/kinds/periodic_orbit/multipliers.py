@@ -15,9 +15,13 @@ from __future__ import annotations
 
 from flint import acb, arb
 
-from ...core.balls import certainly_gt, certainly_lt, certainly_negative, certainly_positive
+from ...core.balls import (certainly_gt, certainly_lt, certainly_negative, certainly_positive, current_precision,
+                           working_precision)
 
-__all__ = ["decide_multipliers"]
+__all__ = ["decide_multipliers", "disc_margin"]
+
+#: bits above the working precision for the margin of :func:`disc_margin` (its union of two exact ends)
+_MARGIN_GUARD = 64
 
 
 def decide_multipliers(v, eig: list) -> None:
@@ -45,3 +49,12 @@ def decide_multipliers(v, eig: list) -> None:
         v.stable = True
     elif any(certainly_gt(m, 1) for m in v.moduli):
         v.stable = False
+
+
+def disc_margin(U: arb) -> arb:
+    """The stability margin 1 - max modulus enclosed from a bound U of every modulus alone (the multipliers not
+    isolated): [1 - U, 1], the union taken with guard bits so that its upper end stays 1 where the lower end's bits
+    allow. Shared by the prover and the checker (a two-line formula, not a decision)."""
+    lo = (1 - U).lower()
+    with working_precision(current_precision() + _MARGIN_GUARD):
+        return arb(lo).union(arb(1))

@@ -43,7 +43,7 @@ from .check_verdicts import other_orbit_moduli, redecide
 from .flow import ExpSum, taylor_enclosure
 from .plant_check_rows import check_root_rows, encloses
 from .plant_df import describing_function
-from .plant_report import disc_margin
+from .multipliers import disc_margin
 from .norm_stability import spectral_radius_bound
 from .plant_orbit import leading_coefficient, matrix_ball, near_zero_bound, near_zero_order, section_index
 from .plant_statements import AMPLITUDE_REL, TAYLOR_ORDER
@@ -339,9 +339,12 @@ def _disc_bound(d: Diagonal, theta: arb) -> arb | None:
     """Where the multipliers are not isolated: Gershgorin's bound U of every modulus when certainly < 1, else None
     (the prover's :func:`.plant_claims.stable_by_discs`, recomputed on this checker's own Jacobian)."""
     mults, J = _spectrum(d, theta)
-    if mults is not None or J is None:
-        return None
-    U = spectral_radius_bound(acb_mat(J))
+    return None if mults is not None else _bound_below_1(J)
+
+
+def _bound_below_1(J: arb_mat | None) -> arb | None:
+    """Gershgorin's bound of every eigenvalue modulus of J when certainly < 1, else None."""
+    U = None if J is None else spectral_radius_bound(acb_mat(J))
     return U if U is not None and certainly_lt(U, 1) else None
 
 
@@ -478,7 +481,7 @@ def check(model, data: dict) -> list[CheckResult]:
         contains("period", 2 * main)
         for i, x in enumerate(d.x0(main), start=1):
             contains(f"x0_{i}", x)
-        mults = _multipliers(d, main)
+        mults, J = _spectrum(d, main)
         if mults is not None:
             moduli_main = [abs(z) for z in mults]
             for j, (z, m) in enumerate(zip(mults, moduli_main), start=1):
@@ -489,7 +492,7 @@ def check(model, data: dict) -> list[CheckResult]:
             for m in moduli_main[1:]:
                 mx = mx.max(m)
             contains("stability_margin", 1 - mx)
-        elif (U := _disc_bound(d, main)) is not None:
+        elif (U := _bound_below_1(J)) is not None:
             bounded.append([arb(0).union(U)])               # every modulus in [0, U]: decides stable only
             contains("stability_margin", disc_margin(U))
         if "amplitude" in q:

@@ -21,6 +21,7 @@ from ...core.stored import exact_text
 from .. import Attempt, Phases
 from .genuine_outcome import no_orbit_record, orbit_genuine_outcome
 from .plant_df import describing_function
+from .multipliers import disc_margin
 from .plant_orbit import amplitude, neutral_multiplier
 from .plant_statements import GUARD_BITS, PLANT_CLAIMS
 from .texts import complex_text as _fmt_c, interval_text as _fmt, upper_text, modulus_text as _fmt1, stored_bounds as _bounds
@@ -36,14 +37,6 @@ def select_orbit(genuine: list) -> tuple[Any, str]:
     if genuine:
         return genuine[0], "the shortest genuine orbit (none is certified stable)"
     return None, "no genuine orbit"
-
-
-def disc_margin(U: arb) -> arb:
-    """The stability margin 1 - max modulus enclosed from a bound U of every modulus alone: [1 - U, 1] (the
-    union taken with guard bits, so that its upper end stays 1 where the lower end's bits allow)."""
-    lo = (1 - U).lower()
-    with working_precision(current_precision() + GUARD_BITS):
-        return arb(lo).union(arb(1))
 
 
 def _qb(x) -> arb:
