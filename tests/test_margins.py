@@ -757,3 +757,32 @@ def test_even_in_evaluates_a_box_and_its_mirror_image_once_and_gives_both_the_sa
         assert len(calls) == 4
         zero = g({"u": arb("0", "0.5"), "v": arb("1")})             # midpoint 0: not mirrored
         assert calls[-1]["u"][0] == 0 and zero.is_finite() and zero.contains(arb(1))
+
+
+def test_spread_takes_points_evenly_with_both_ends():
+    from rigor_gyro.margins.point_proofs import spread
+    assert spread(list(range(10)), 4) == [0, 3, 6, 9] and spread(list(range(64)), 16)[-1] == 63
+    assert spread(list(range(5)), 5) == list(range(5)) == spread(list(range(5)), 16)
+    assert spread(list(range(7)), 1) == [3] and spread(list(range(7)), 0) == []
+    got = spread(list(range(1000)), 16)
+    assert len(set(got)) == 16 and max(b - a for a, b in zip(got, got[1:])) <= 67
+
+
+def test_midpoints_proved_point_by_point_are_spread_over_the_box_and_find_a_counterexample():
+    """A relay plant box in h straddling the existence threshold h = G(0) = 0.0282916536...: 64 % of the box has
+    no orbit, but the first 16 undecided sub-boxes in order all lie below the threshold, where the orbit exists
+    (fuzz report: the paving said inconclusive with 'refuted: 0'). Spread over the box, the point proofs find a
+    certified counterexample, so orbit_genuine is refuted over the box; the checker re-derives the points."""
+    from rigor_gyro.check import check_certificate
+    scene = parse_scene('name = "straddle"\nkind = "periodic_orbit"\n[parameters]\nd = "1"\n'
+                        'hh = "[0.02829165, 0.02829166]"\n[claims]\nonly = ["orbit_genuine"]\n[plant]\n'
+                        'M = [["0", "1", "0", "0"], ["0", "0", "1", "0"], ["0", "0", "0", "1"], '
+                        '["-70692227/1000000", "-10237449/100000", "-535843/10000", "-121/10"]]\n'
+                        'e = ["0", "0", "0", "2"]\nc = ["1", "0", "0", "0"]\nS = "-d"\nh = "hh"\n')
+    data = json.loads(json.dumps(paving_json(pave(box_scene(scene), Executor(1)))))
+    c = data["claims"][0]
+    points = [p for p in c["points"] if p["box_outcome"] == "undecided"]
+    assert len(points) == 16 and {p["status"] for p in points} == {"proved", "refuted"}
+    assert c["status"] == "refuted" and data["verdict"] == "refuted"
+    rep = check_certificate(data)
+    assert rep.ok, [r for r in rep.results if not r.ok]

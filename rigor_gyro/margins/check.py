@@ -62,6 +62,7 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES, executor=No
     (:class:`.executors.Executor`): where the decided sub-boxes are re-evaluated (default: here)."""
     from .order import check_priority
     from .paving import box_scene, evaluate_task, point_task
+    from .point_proofs import spread
     from .report import claim_numbers
     out: list = []
     add = out.append
@@ -166,11 +167,11 @@ def check_paving(data: dict[str, Any], samples: int = SAMPLED_BOXES, executor=No
         ok = c.get("reasons") == dict(sorted(reasons.items()))
         add(CheckResult(cid, ok, "the reasons re-derived (the first sub-box of each status)" if ok else
                         "the stored reasons are not the sub-boxes' own (re-evaluated in pave's order)"))
-        # the point proofs are exactly pave's: the midpoints of the first max_points refuted and the
-        # first max_points undecided sub-boxes, in order, every parameter as the scene has it
+        # the point proofs are exactly pave's: the midpoints of max_points refuted and max_points undecided
+        # sub-boxes spread evenly over each list in order, every parameter as the scene has it
         expected = []
         for outcome in ("refuted", "undecided"):
-            for b, _ in [x for x in boxes if x[1] == outcome][:bs.max_points]:
+            for b, _ in spread([x for x in boxes if x[1] == outcome], bs.max_points):
                 expected.append((outcome, bs.point_parameters(b.midpoint())))
         stored = [(p.get("box_outcome"), p.get("point")) for p in c["points"]]
         if isinstance(data.get("stopped"), str) and data["stopped"] and not stored:

@@ -8,8 +8,9 @@ until ``max_boxes`` evaluations were spent. Every sub-box ends, per claim, as
 
 * ``proved``: the claim holds for every parameter value in the sub-box (certified on balls);
 * ``refuted``: the claim fails for every parameter value in it (certified on balls); its midpoint is
-  re-proved refuted by the point prover (up to ``max_points`` points per claim), a counterexample
-  anyone can re-check with ``rigor-gyro prove``;
+  re-proved refuted by the point prover (up to ``max_points`` points per claim, spread evenly over the refuted
+  sub-boxes in order, as are those of the undecided ones), a counterexample anyone can re-check with
+  ``rigor-gyro prove``;
 * ``undecided``: neither, at the resolution and budget; its midpoint is proved by the point prover,
   and a refutation there is a certified counterexample inside the box.
 
@@ -60,7 +61,7 @@ from ..kinds import KINDS, box_claims, kind_module, optional_module, scene_claim
 from ..scene import Scene
 from .executors import Executor
 from .models import scene_model as _model, settings_json
-from .point_proofs import point_task
+from .point_proofs import point_task, spread
 from .order import DEFAULT_PRIORITY, Frontier, Group, check_priority, volume_depth
 from .ranges import quantities_module, quantity_specs, search_ranges
 
@@ -482,7 +483,7 @@ def _pave(bs: BoxScene, executor, progress, time_limit, box_budget, state, check
         ptasks, owners = [], []
         for c, cp in result.items():
             for outcome in ("refuted", "undecided"):
-                for b, s in [x for x in cp.boxes if x[1] == outcome][:bs.max_points]:
+                for b, s in spread([x for x in cp.boxes if x[1] == outcome], bs.max_points):
                     params = bs.point_parameters(b.midpoint())
                     ptasks.append((bs.scene.kind, json.dumps(params, sort_keys=True), oj, c, bs.point_prec,
                                    bs.point_maxprec))

@@ -12,7 +12,7 @@ from typing import Any
 from ..core.balls import DEFAULT_MAXPREC, DEFAULT_PREC
 from .models import task_scene
 
-__all__ = ["point_task"]
+__all__ = ["point_task", "spread"]
 
 
 def point_task(kind: str, params_json: str, options_json: str, claim: str, prec: int = DEFAULT_PREC,
@@ -22,3 +22,17 @@ def point_task(kind: str, params_json: str, options_json: str, claim: str, prec:
     scene = task_scene("point", kind, "margin point", json.loads(params_json), options_json, [claim])
     c = prove_scene(scene, prec=prec, maxprec=maxprec).claim(claim)
     return {"status": c.status.value, "reason": c.reason, "precision_bits": c.precision_bits}
+
+
+def spread(items: list, k: int) -> list:
+    """``k`` of ``items`` evenly spread over the list, its first and last included (all of them when ``k`` >= their
+    number; the middle one when ``k`` = 1): where a paving proves its sub-boxes' midpoints point by point, so that
+    the points sample the whole box and not only its first sub-boxes in order."""
+    n = len(items)
+    if k >= n:
+        return list(items)
+    if k <= 0:
+        return []
+    if k == 1:
+        return [items[n // 2]]
+    return [items[(i * (n - 1) + (k - 1) // 2) // (k - 1)] for i in range(k)]
