@@ -122,6 +122,19 @@ def test_summarise_uses_only_the_enclosures_given():
     assert "sensitivities" not in q
 
 
+def test_a_point_below_the_enclosed_parts_bound_is_reported_first_not_as_a_negative_gap(paving):
+    """Where only part of the box was enclosed, a certified point value outside that part may lie below the part's
+    lower bound: the report then leads with the point's value and says no bound over the whole box is certified
+    (it printed ">= the part's bound for every parameter value in the box" with a negative gap)."""
+    data = paving_json(paving)
+    m = next(q for q in data["quantities"] if q.get("worst_case"))
+    m["enclosed_fraction"] = "1/2"
+    m["worst_case"].update(lower_bound="-0.25", attained_at_most="-0.5", gap="-0.25", relative_gap="-0.5")
+    line = next(l for l in render_paving(data).splitlines() if l.startswith(f"- **{m['description']}"))
+    assert ": a value <= -0.5 is attained at" in line and "below -0.25, the certified lower bound (on the 0.5 of" in line
+    assert "no lower bound over the whole box is certified" in line and ">= -0.25**" not in line
+
+
 def test_the_checker_confirms_the_ranges_and_rejects_each_edit(paving, fake, tmp_path):
     js, _ = write_paving(paving, tmp_path)
     rep = check_file(js)

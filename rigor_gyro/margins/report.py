@@ -203,10 +203,15 @@ def _render_ranges(data: dict[str, Any]) -> list[str]:
         if w is None:
             continue
         where = "" if it["enclosed_fraction"] == "1" else f" (on the {decimal_text(Fraction(it['enclosed_fraction']), 4)} of the box's volume where it was enclosed)"
+        at = _point_text(it['points']['low']['point'])
+        if Fraction(w["gap"]) < 0:      # a point outside the enclosed part goes below its bound: say so first
+            out.append(f"- **{it['description']}: a value <= {w['attained_at_most']} is attained at {at}** (certified), "
+                       f"below {w['lower_bound']}, the certified lower bound{where}: the point lies outside that part, "
+                       "and no lower bound over the whole box is certified.")
+            continue
         rel = f", relative gap {w['relative_gap']}" if w["relative_gap"] is not None else ""
         out.append(f"- **{it['description']} >= {w['lower_bound']}** for every parameter value in the box{where} "
-                   f"(certified); a value <= {w['attained_at_most']} is attained at {_point_text(it['points']['low']['point'])} "
-                   f"(gap {w['gap']}{rel}).")
+                   f"(certified); a value <= {w['attained_at_most']} is attained at {at} (gap {w['gap']}{rel}).")
     if out:
         out = ["Worst cases over the box (claim margins: the claim holds where the margin is > 0):", ""] + out + [""]
     out.append("| quantity | unit | every value in the box lies in (certified) | every value here is taken (certified) | "
