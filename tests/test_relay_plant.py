@@ -505,6 +505,26 @@ def test_clustered_multipliers_stable_by_gershgorin_discs_and_confirmed():
         plant_check._bound_below_1 = saved
 
 
+def test_clustered_multipliers_say_how_many_bits_isolating_them_would_take_and_stop_the_escalation():
+    """At h = 1e6 the multipliers (~e^(-4e6), e^(-8e6)) cannot be resolved at any allowed precision: the reason gives
+    Liouville's estimate of the bits (about 8.7 million), not python-flint's own advice, and the escalation stops
+    (it used to climb to 4096 bits and suggest --maxprec 8192)."""
+    cert = prove_scene(_scene(*CASES["integrator"][:4], h="1e6"))
+    c = next(c for c in cert.claims if c.id == "multipliers")
+    assert c.status.value == "inconclusive" and "escalation stopped" in c.reason and "--maxprec 8192" not in c.reason
+    assert "nonstop" not in c.reason and "roughly 8656176 bits" in c.reason, c.reason
+    assert c.precision_bits <= 128 and cert.precision_bits <= 128
+
+
+def test_tiny_product_bits_from_liouvilles_product():
+    from rigor_gyro.kinds.periodic_orbit.plant_claims import tiny_product_bits
+    assert tiny_product_bits(arb(2) ** -100, 2) == 50
+    assert tiny_product_bits(-(arb(2) ** -99), 3) == 33
+    assert tiny_product_bits(arb("0.5") ** 3, 1) == 3
+    assert tiny_product_bits(arb(1), 2) is None and tiny_product_bits(arb(3), 1) is None
+    assert tiny_product_bits(arb(0, 1e-30), 2) is None and tiny_product_bits(arb("inf"), 2) is None
+
+
 def test_the_disc_bound_holds_the_isolated_moduli_and_decides_nothing_at_or_above_1():
     """Where the multipliers are isolated, Gershgorin's bound U lies above every certified modulus; a Jacobian
     with an eigenvalue 1 or above (1; 3; 3/2 of [[1/2, 1], [1, 1/2]]) is never called stable."""

@@ -219,6 +219,8 @@ class RootVerdict:
     #: where the multipliers are not isolated: an upper bound of every multiplier's modulus (Gershgorin discs of
     #: the Jacobian, :mod:`.norm_stability`), set only when certainly < 1 (then ``stable`` is True)
     radius_bound: arb | None = None
+    #: why no allowed precision is likely to isolate the multipliers ("" when more precision may)
+    precision_hopeless: str = ""
     #: the witness of "genuine": beta' > 0 on [0, d1], beta' < 0 on [right_start, theta], beta > 0 on
     #: the middle pieces (exact endpoints), for rigor-gyro check
     d1: arb | None = None
@@ -313,8 +315,9 @@ def _multipliers(sp: Spectrum, v: RootVerdict) -> None:
     J = sp.jacobian(v.theta, v.x0)
     try:
         eig = sp.multipliers(J, v.theta)
-    except ValueError as e:
-        v.multiplier_reason = f"eigenvalues of the Jacobian not isolated at this precision ({e})"
+    except ValueError:
+        v.multiplier_reason = ("eigenvalues of the Jacobian not isolated at this precision (Rump's method: they are "
+                               "clustered or multiple at its resolution)")
         return
     if not all(z.is_finite() for z in eig):
         v.multiplier_reason = "eigenvalue enclosures not finite at this precision"
