@@ -25,7 +25,9 @@ whose enclosure is not finite gives no chain for its rows (they keep the exact r
 """
 from __future__ import annotations
 
+from dataclasses import replace
 from fractions import Fraction
+from functools import partial
 from typing import Any
 
 from flint import acb, arb, arb_mat, ctx, fmpq, fmpq_poly
@@ -34,6 +36,7 @@ from ...core.balls import ball, ball_key, certainly_negative, certainly_positive
 from ...core.digit_edits import edits_into
 from ...core.chain_classify import chain_window, decide, print_value
 from ...core.paper_chain import DEFAULT_SLACK, Chain, exact_value, relation_refs, rounding_interval
+from ...core.staged_build import StagedBuilds
 from .paper_identities import printed_rows, relations
 from .paper_forms import a_from_exponents, alpha_of_omega, b_coefficients, k_of_c, quartic_of_k, table1
 
@@ -95,6 +98,17 @@ class _Reader:
                 self.candidates[rid] = cand[0].intended
         return read(txt)
 
+
+    def snapshot(self) -> tuple:
+        """Copies of what the reader has accumulated (its Chain objects are shared: no one mutates a Chain
+        after its take; :func:`relay_chains` replaces the ones it annotates)."""
+        return tuple(self.order), dict(self.chains), dict(self.fixes), dict(self.candidates), dict(self.strong)
+
+    def restore(self, snap: tuple) -> None:
+        """Continue from a :meth:`snapshot` (copied again: this reader appends to its own)."""
+        order, chains, fixes, candidates, strong = snap
+        self.order, self.chains, self.fixes = list(order), dict(chains), dict(fixes)
+        self.candidates, self.strong = dict(candidates), dict(strong)
 
     def _narrow(self, rid: str, txt: str, value: arb, slack: int) -> tuple[arb, list[str]]:
         """``value`` narrowed by the identities of ``rid`` that meet its window, and their names; memoised
@@ -226,8 +240,19 @@ def _binom(n: int, k: int) -> int:
     return comb(n, k)
 
 
-def _build(paper: dict[str, Any], P, prints, rels, keep=(), forced: dict | None = None, memo: dict | None = None) -> _Reader:
-    R = _Reader(prints, rels, keep, forced, memo)
+def _stages(paper: dict[str, Any], P) -> list:
+    """The author's computation (module docstring) as stages ``(reader, state) -> state | None`` (None: the
+    chain stops there), one per step and one per Table 2 time, so that a build that differs from an earlier
+    one from some row on restarts at that row's stage (:class:`rigor_gyro.core.staged_build.StagedBuilds`).
+    No stage mutates a container of the state it reads (each returns a new dict)."""
+    fixed = [_s_exponents, _s_a, _s_theta, _s_z, _s_D, _s_form, _s_alpha]
+    t2 = [partial(_s_table2, t, vals) for t, vals in paper.get("table2", {}).items()]
+    tail = [_s_xstar, _s_b, _s_h, _s_c, _s_k, _s_quartic, _s_lambda]
+    return [partial(s, paper, P) for s in fixed] + [partial(s, paper, P) for s in t2] + \
+        [partial(s, paper, P) for s in tail]
+
+
+def _s_exponents(paper, P, R: _Reader, st: dict) -> dict | None:
     S = ball(P.S)
     a17S, a47S = -ball(P.K * P.p / P.H) * S, ball(P.p) * S
     # the cubic (4) has no chain: it is where the reading of B is decided (its row keeps the exact value)
@@ -237,21 +262,29 @@ def _build(paper: dict[str, Any], P, prints, rels, keep=(), forced: dict | None 
     for k, j in (("mu1", 0), ("omega", 1), ("mu2", 2)):
         ex[k] = R.take(k, paper.get(k), roots[j] if roots else None, "root of the printed cubic")
     if any(ex[k] is None for k in ex) or inv_sig is None:
-        return R
-    mu1, om, mu2 = ex["mu1"], ex["omega"], ex["mu2"]
-    a_chain = a_from_exponents(mu1, om, mu2, inv_sig, P)
+        return None
+    return {"S": S, "a17S": a17S, "a47S": a47S, "inv_sig": inv_sig, "mu1": ex["mu1"], "om": ex["omega"],
+            "mu2": ex["mu2"]}
+
+
+def _s_a(paper, P, R: _Reader, st: dict) -> dict | None:
+    a_chain = a_from_exponents(st["mu1"], st["om"], st["mu2"], st["inv_sig"], P)
     a: dict[tuple[int, int], arb] = {}
     for (G, j), v in a_chain.items():
         txt = paper.get("a", {}).get(f"a{G}{j}")
         exact = (G, j) in ((1, 7), (4, 7))
         a[(G, j)] = R.take(f"a{G}{j}", txt, v, "the printed mu1, omega, mu2, 1/sigma in (7)'s eigenvectors",
                            0 if exact else DEFAULT_SLACK, exact=exact) if txt else v
+    if not paper.get("theta_star"):
+        return None
+    return {**st, "a": a}
+
+
+def _s_theta(paper, P, R: _Reader, st: dict) -> dict:
     # theta*: (12) with the printed a_ij read within their rounding does not bound a root (its enclosure
     # is some 4e4 wide near theta*: a45 = 23299.0 enters with cancellation); with the printed numbers read
     # exactly it brackets one (a sign change, certified): that is theta*'s chain (a narrower definition,
     # said in its source); the later stages read the printed theta*
-    if not paper.get("theta_star"):
-        return R
     key = (tuple(sorted(paper.get("a", {}).items())), tuple(paper.get(k) for k in ("mu1", "omega", "mu2", "inv_sigma",
                                                                                "theta_star")), ctx.prec)
     if key not in _THETA:
@@ -261,14 +294,24 @@ def _build(paper: dict[str, Any], P, prints, rels, keep=(), forced: dict | None 
     R.take("theta*", paper["theta_star"], th, "a root of (12) with the printed a_ij, mu1, omega, mu2, 1/sigma read "
            "exactly (certified sign change; read within their rounding, (12) bounds no root)")
     theta = rounding_interval(paper["theta_star"])
+    mu1, om, mu2, inv_sig = st["mu1"], st["om"], st["mu2"], st["inv_sig"]
     e1 = (-mu1 * theta).exp() * (om * theta).sin()
     e2 = (-mu1 * theta).exp() * (om * theta).cos()
     e3, e4 = (-mu2 * theta).exp(), (-inv_sig * theta).exp()
-    for j, v in enumerate((e1, e2, e3, e4), start=1):
+    return {**st, "theta": theta, "e": (e1, e2, e3, e4)}
+
+
+def _s_z(paper, P, R: _Reader, st: dict) -> dict:
+    for j, v in enumerate(st["e"], start=1):
         txt = (paper.get("table4", {}).get("z") or [None] * 4)[j - 1] if len(paper.get("table4", {}).get("z", [])) >= j else None
         R.take(f"z{j} (eps{j})", txt, v, "(10) at the printed theta* with the printed exponents")
+    return st
+
+
+def _s_D(paper, P, R: _Reader, st: dict) -> dict | None:
     # D1..D5 from (9) at the printed theta*, without its third row (beta'(theta*) = -beta'(0)): the five
     # rows the printed D satisfy (with the third dropped they agree to 6-7 digits; each other choice to 3-5)
+    a, (e1, e2, e3, e4), theta, S = st["a"], st["e"], st["theta"], st["S"]
     r = {}
     for G in (3, 4):
         r[(G, 1)] = a[(G, 1)] * e1 + a[(G, 3)] * (e2 + 1)
@@ -285,11 +328,16 @@ def _build(paper: dict[str, Any], P, prints, rels, keep=(), forced: dict | None 
     try:
         Dm = Mx.solve(rhs)
     except (ZeroDivisionError, ValueError):
-        return R
+        return None
     Dp = paper.get("D", [])
     D = [R.take(f"D{j}", Dp[j - 1] if len(Dp) >= j else None, Dm[j - 1, 0], "(9) at the printed theta* with the "
                 "printed a_ij") for j in range(1, 6)]
+    return {**st, "D": D}
+
+
+def _s_form(paper, P, R: _Reader, st: dict) -> dict:
     # the closed form (7)
+    a, D, a17S, a47S, S = st["a"], st["D"], st["a17S"], st["a47S"], st["S"]
     orbit = paper.get("orbit", {})
     src = "the printed a_ij times the printed D"
     form = {
@@ -311,95 +359,177 @@ def _build(paper: dict[str, Any], P, prints, rels, keep=(), forced: dict | None 
             used[comp].append(R.take(rid, txt, v, src if not exact else "an exact constant (a17 S, a47 S or S)",
                                      0 if exact else DEFAULT_SLACK, exact=exact) if v is not None else
                               (rounding_interval(txt) if txt else None))
-    om_c = used["Omega"][:4]
-    al = alpha_of_omega(om_c, mu1, om, mu2, inv_sig, theta) if all(x is not None for x in om_c) else None
-    if al is not None:
-        vals = orbit.get("alpha", [""] * 6)
-        used["alpha"] = []
-        for k, lab in enumerate(ORBIT_LABELS):
-            kk = {"sin": 0, "cos": 1, "e^-mu2t": 2, "e^-t/sigma": 3, "const": 4}.get(lab)
-            txt = vals[k] if k < len(vals) else ""
-            if lab == "const":      # alpha = -(B/H) beta': the constant is -(B/H) a17 S exactly (0.0006)
-                used["alpha"].append(R.take("alpha const", txt, -ball(P.B / P.H) * a17S,
-                                            "-(B/H) a17 S (alpha = -(B/H) beta', exact)", 0, exact=True))
-                continue
-            used["alpha"].append(R.take(f"alpha {lab}", txt, al[kk], "the quadrature (14)-(15) of the printed Omega "
-                                        "row") if kk is not None else None)
-    # Table 2: the printed closed form at t (alpha, beta, Omega, beta', i, I)
-    order = [("alpha", "alpha"), ("beta", "beta"), ("Omega", "Omega"), ("beta'", "beta_dot"), ("i", "i"), ("I", "I")]
+    return {**st, "used": used}
 
-    def at(comp: str, t: arb) -> arb | None:
-        cf = used.get(comp)
-        if not cf:
-            return None
-        basis = [(-mu1 * t).exp() * (om * t).sin(), (-mu1 * t).exp() * (om * t).cos(), (-mu2 * t).exp(),
-                 (-inv_sig * t).exp(), t, arb(1)]
-        tot = arb(0)
-        for c_, b_ in zip(cf, basis):
-            if c_ is not None:
-                tot += c_ * b_
-        return tot
-    row0 = {}
-    for t, vals in paper.get("table2", {}).items():
-        tt = theta if t == "theta" else exact_value(t)
-        for (nm, comp), txt in zip(order, vals):
-            v = at(comp, tt)
-            if v is not None:
-                got = R.take(f"Table 2 t={t} {nm}", txt, v, "the printed closed form (7) at t")
-                if t == "0":
-                    row0[nm] = got
+
+def _s_alpha(paper, P, R: _Reader, st: dict) -> dict:
+    used = st["used"]
+    om_c = used["Omega"][:4]
+    al = alpha_of_omega(om_c, st["mu1"], st["om"], st["mu2"], st["inv_sig"], st["theta"]) \
+        if all(x is not None for x in om_c) else None
+    if al is None:
+        return st
+    vals = paper.get("orbit", {}).get("alpha", [""] * 6)
+    alpha: list = []
+    for k, lab in enumerate(ORBIT_LABELS):
+        kk = {"sin": 0, "cos": 1, "e^-mu2t": 2, "e^-t/sigma": 3, "const": 4}.get(lab)
+        txt = vals[k] if k < len(vals) else ""
+        if lab == "const":      # alpha = -(B/H) beta': the constant is -(B/H) a17 S exactly (0.0006)
+            alpha.append(R.take("alpha const", txt, -ball(P.B / P.H) * st["a17S"],
+                                "-(B/H) a17 S (alpha = -(B/H) beta', exact)", 0, exact=True))
+            continue
+        alpha.append(R.take(f"alpha {lab}", txt, al[kk], "the quadrature (14)-(15) of the printed Omega "
+                            "row") if kk is not None else None)
+    return {**st, "used": {**used, "alpha": alpha}}
+
+
+#: Table 2's columns: (name in the row id, component of the closed form)
+_T2_ORDER = [("alpha", "alpha"), ("beta", "beta"), ("Omega", "Omega"), ("beta'", "beta_dot"), ("i", "i"), ("I", "I")]
+
+
+def _basis(st: dict, t: arb) -> list[arb]:
+    """The functions of the closed form (7) at t (the order of :data:`ORBIT_LABELS`)."""
+    mu1, om, mu2, inv_sig = st["mu1"], st["om"], st["mu2"], st["inv_sig"]
+    return [(-mu1 * t).exp() * (om * t).sin(), (-mu1 * t).exp() * (om * t).cos(), (-mu2 * t).exp(),
+            (-inv_sig * t).exp(), t, arb(1)]
+
+
+def _at(st: dict, comp: str, basis: list[arb]) -> arb | None:
+    """The printed closed form of ``comp`` at the t of ``basis`` (None without its coefficients)."""
+    cf = st["used"].get(comp)
+    if not cf:
+        return None
+    tot = arb(0)
+    for c_, b_ in zip(cf, basis):
+        if c_ is not None:
+            tot += c_ * b_
+    return tot
+
+
+def _s_table2(t: str, vals: list, paper, P, R: _Reader, st: dict) -> dict:
+    # Table 2: the printed closed form at t (alpha, beta, Omega, beta', i, I); the basis at t is computed
+    # once per row (the same operations on the same balls: the same ball as once per column)
+    basis = _basis(st, st["theta"] if t == "theta" else exact_value(t))
+    for (nm, comp), txt in zip(_T2_ORDER, vals):
+        v = _at(st, comp, basis)
+        if v is not None:
+            R.take(f"Table 2 t={t} {nm}", txt, v, "the printed closed form (7) at t")
+    return st
+
+
+def _s_xstar(paper, P, R: _Reader, st: dict) -> dict:
     # Table 4: x* (the t = 0 point), then Table 3, h, c, k, the quartic and its roots
     t4 = paper.get("table4", {})
+    basis = _basis(st, arb(0))
     xs = []
     for j, (nm, comp) in enumerate((("beta'*", "beta_dot"), ("Omega*", "Omega"), ("i*", "i"), ("I*", "I"))):
         txt = t4.get("x_star", [None] * 4)[j] if len(t4.get("x_star", [])) > j else None
-        xs.append(R.take(nm, txt, at(comp, arb(0)), "the printed closed form (7) at t = 0"))
+        xs.append(R.take(nm, txt, _at(st, comp, basis), "the printed closed form (7) at t = 0"))
     zp = t4.get("z", [])
     eps = [rounding_interval(zp[j]) if len(zp) > j and f"z{j + 1} (eps{j + 1})" not in R.fixes else
-           (rounding_interval(R.fixes[f"z{j + 1} (eps{j + 1})"]) if len(zp) > j else (e1, e2, e3, e4)[j])
+           (rounding_interval(R.fixes[f"z{j + 1} (eps{j + 1})"]) if len(zp) > j else st["e"][j])
            for j in range(4)]
+    return {**st, "xs": xs, "eps": eps}
+
+
+def _s_b(paper, P, R: _Reader, st: dict) -> dict | None:
     try:
-        bch = b_coefficients(a, S)
+        bch = b_coefficients(st["a"], st["S"])
     except (ZeroDivisionError, ValueError):
-        return R
+        return None
     b = {}
     for (G, j), v in bch.items():
         txt = paper.get("table3", {}).get(f"b{G}_{j}")
         exact = (G, j) in ((1, 19), (2, 18), (4, 18), (5, 1), (5, 2))
         b[(G, j)] = R.take(f"b{G},{j}", txt, v, "(16) from the printed a_ij", 0 if exact else DEFAULT_SLACK,
                            exact=exact) if txt else v
-    if any(x is None for x in xs):
-        return R
-    h, c = table1(b, xs, eps, mu1, om, mu2, inv_sig)
+    if any(x is None for x in st["xs"]):
+        return None
+    return {**st, "b": b}
+
+
+def _s_h(paper, P, R: _Reader, st: dict) -> dict:
+    h, c = table1(st["b"], st["xs"], st["eps"], st["mu1"], st["om"], st["mu2"], st["inv_sig"])
+    t4 = paper.get("table4", {})
     hv = {}
     for (G, j), v in h.items():
         hv[(G, j)] = R.take(f"h{G}{j}", t4.get("h", {}).get(f"h{G}{j}"), v, "Table 1 with the printed b, x*")
-    # c_G5 from the printed h (the author's order: h first, then c)
-    e1p, e2p, e3p, e4p = eps
+    return {**st, "c_table1": c, "hv": hv}
+
+
+def _s_c(paper, P, R: _Reader, st: dict) -> dict:
+    # c_G5 from the printed h (the author's order: h first, then c); a copy of Table 1's c (the state's is
+    # never mutated)
+    c, hv, b = dict(st["c_table1"]), st["hv"], st["b"]
+    mu1, om, mu2, inv_sig = st["mu1"], st["om"], st["mu2"], st["inv_sig"]
+    e1p, e2p, e3p, e4p = st["eps"]
     for G in (1, 2, 3, 4):
         c[(G, 5)] = ((-mu1 * e1p + om * e2p) * hv[(G, 1)] - (mu1 * e2p + om * e1p) * hv[(G, 2)]
                      - mu2 * e3p * hv[(G, 3)] - e4p * hv[(G, 4)] * inv_sig) + (b[(1, 19)] if G == 1 else 0)
     c[(5, 5)] = -e4p * hv[(5, 4)] * inv_sig
+    t4 = paper.get("table4", {})
     cv = {}
     for (G, j), v in c.items():
         exact = G == 5 and j < 4
         cv[(G, j)] = R.take(f"c{G}{j}", t4.get("c", {}).get(f"c{G}{j}"), v, "Table 1 with the printed b, h, z",
                             0 if exact else DEFAULT_SLACK, exact=exact)
-    kk = k_of_c(cv)
+    return {**st, "cv": cv}
+
+
+def _s_k(paper, P, R: _Reader, st: dict) -> dict:
+    t4 = paper.get("table4", {})
     kv = {}
-    for (g, j), v in kk.items():
+    for (g, j), v in k_of_c(st["cv"]).items():
         kv[(g, j)] = R.take(f"k{g}{j}", t4.get("k", {}).get(f"k{g}{j}"), v, "(24) with the printed c")
-    q = quartic_of_k(kv)
+    return {**st, "kv": kv}
+
+
+def _s_quartic(paper, P, R: _Reader, st: dict) -> dict:
+    q = quartic_of_k(st["kv"])
     qp = paper.get("quartic", [])
     qu = [R.take(f"quartic (25): coefficient of lambda^{3 - j}", qp[j] if len(qp) > j else None, q[j],
                  "det(lambda I + K) with the printed k") for j in range(4)]
-    rts = _quartic_roots(qu)
+    return {**st, "qu": qu}
+
+
+def _s_lambda(paper, P, R: _Reader, st: dict) -> dict:
+    rts = _quartic_roots(st["qu"])
     lam = paper.get("lambda", {})
     if rts:
         for key, rid in (("lambda1", "lambda1"), ("lambda3", "lambda3"), ("re_complex", "Re lambda2,4"),
                          ("im_complex", "|Im lambda2,4|"), ("modulus", "|lambda2| = |lambda4|")):
             R.take(rid, lam.get(key), rts[key], "roots of the printed quartic (25)")
-    return R
+    return st
+
+
+def _changed(rels, a: tuple, b: tuple) -> set[str]:
+    """The rows whose takes may differ between two build configurations ``(prints, keep, forced)``: kept as
+    printed in one only, forced to another text, or narrowed by an identity that reads a print that differs
+    (:meth:`_Reader._narrow` reads the prints of every row of the row's identities; nothing else of the
+    configuration reaches a take)."""
+    (pa, ka, fa), (pb, kb, fb) = a, b
+    out = set(ka ^ kb)
+    out.update(r for r in fa.keys() | fb.keys() if fa.get(r) != fb.get(r))
+    if pa is not pb:
+        for o in pa.keys() | pb.keys():
+            if pa.get(o) != pb.get(o):
+                for rel in (rels.get(o, ()) if isinstance(rels, dict) else rels):
+                    out.update(r for r, _ in rel.terms)
+    return out
+
+
+def _build(paper: dict[str, Any], P, prints, rels, keep=(), forced: dict | None = None, memo: dict | None = None,
+           builds: StagedBuilds | None = None, need: set | None = None) -> _Reader:
+    """The chain built with ``prints`` for the identities, the rows ``keep`` read as printed and the rows
+    ``forced`` read as the given text. ``builds``: the earlier builds of the same :func:`relay_chains` call
+    (same paper, parameters, identities and precision): the build starts from the state of one of them after
+    the last stage before its first row whose take differs (:func:`_changed`), exactly what it would compute
+    (:mod:`rigor_gyro.core.staged_build`). ``need``: the rows the caller reads; the build may stop once it
+    has taken them all."""
+    R = _Reader(prints, rels, keep, forced, memo)
+    if builds is None:
+        builds = StagedBuilds(_stages(paper, P), partial(_changed, rels))
+    return builds.run(R, (prints, R.keep, R.forced), need)
 
 
 def _paper_parameters(paper: dict[str, Any], P):
@@ -432,19 +562,29 @@ def relay_chains(paper: dict[str, Any], P) -> tuple[dict[str, Chain], dict[str, 
         for r_, _ in rel.terms:
             rels.setdefault(r_, []).append(rel)
 
+    seen: dict[int, tuple[Chain, bool]] = {}
+
     def inside(ch: dict[str, Chain]) -> set[str]:
+        # whether a row's print is in its chain's window, memoised by the Chain object (the builds share the
+        # objects of the rows before their first difference; a Chain's value and slack are never reassigned,
+        # and the entry holds the object, so its id is not reused)
         out = set()
         for k, c in ch.items():
-            txt = orig.get(k)
-            w = _w(txt, c.value, c.slack) if txt else None
-            if w is not None and w[0] <= print_value(txt.strip()) <= w[1]:
+            hit = seen.get(id(c))
+            if hit is None or hit[0] is not c:
+                txt = orig.get(k)
+                w = _w(txt, c.value, c.slack) if txt else None
+                hit = seen[id(c)] = (c, w is not None and w[0] <= print_value(txt.strip()) <= w[1])
+            if hit[1]:
                 out.add(k)
         return out
     forced: dict[str, str] = {}
     memo: dict = {}
-    full = _build(paper, P, prints, rels, memo=memo)
+    # every build below starts from the state of an earlier one where their inputs agree (staged_build)
+    builds = StagedBuilds(_stages(paper, P), partial(_changed, rels))
+    full = _build(paper, P, prints, rels, memo=memo, builds=builds)
     for _ in range(2):          # the identities read the other rows as corrected by the previous pass
-        again = _build(paper, P, {**prints, **full.strong}, rels, memo=memo)
+        again = _build(paper, P, {**prints, **full.strong}, rels, memo=memo, builds=builds)
         if again.fixes == full.fixes:
             break
         full = again
@@ -454,7 +594,7 @@ def relay_chains(paper: dict[str, Any], P) -> tuple[dict[str, Chain], dict[str, 
     for rid, intended in list(full.candidates.items()):
         if rid.startswith("Table 2 ") or rid in _LEAVES:
             continue                # no later stage reads it: no downstream evidence to find
-        trial = _build(paper, P, prints, rels, forced={**forced, rid: intended}, memo=memo)
+        trial = _build(paper, P, prints, rels, forced={**forced, rid: intended}, memo=memo, builds=builds)
         got = inside(trial.chains)
         gained = sorted(got - base - {rid})
         if gained and not (base - got - {rid}):
@@ -462,26 +602,27 @@ def relay_chains(paper: dict[str, Any], P) -> tuple[dict[str, Chain], dict[str, 
             why[rid] = ", ".join(gained[:4]) + (" ..." if len(gained) > 4 else "")
             base = got
     if forced:
-        full = _build(paper, P, prints, rels, forced=forced, memo=memo)
-    chains = full.chains
-    for rid in forced:
+        full = _build(paper, P, prints, rels, forced=forced, memo=memo, builds=builds)
+    chains = full.chains            # the reader's own dict; its Chain objects may be shared with other
+    for rid in forced:              # builds' snapshots: the annotated ones are replaced, not mutated
         if rid in chains:
-            chains[rid].accepted = forced[rid]
-            chains[rid].evidence = f"downstream rows reproduce only with {forced[rid]}: {why[rid]}"
+            chains[rid] = replace(chains[rid], accepted=forced[rid], cache={},
+                                  evidence=f"downstream rows reproduce only with {forced[rid]}: {why[rid]}")
     # alternates: only for rows no chain explains, and only where the build with every correction left as
     # printed reproduces them (then one build per earlier correction names the one that does)
     lost = [k for k in full.order if k in orig and k not in full.fixes and decide(orig[k], chains[k])[0] == "none"]
     if lost and full.fixes:
-        raw = _build(paper, P, prints, rels, keep=set(full.fixes), forced=forced, memo=memo)
+        raw = _build(paper, P, prints, rels, keep=set(full.fixes), forced=forced, memo=memo, builds=builds,
+                     need=set(lost))
         lost = [k for k in lost if k in raw.chains and _in(orig[k], raw.chains[k])]
         pos = {k: i for i, k in enumerate(full.order)}
         for rid in sorted(full.fixes, key=lambda r: pos.get(r, 0)):
             todo = [k for k in lost if pos[k] > pos.get(rid, 0)]
             if not todo:
                 continue
-            alt = _build(paper, P, prints, rels, keep={rid}, forced=forced, memo=memo)
+            alt = _build(paper, P, prints, rels, keep={rid}, forced=forced, memo=memo, builds=builds, need=set(todo))
             for k in todo:
                 if k in alt.chains and _in(orig[k], alt.chains[k]):
-                    chains[k].alternates = chains[k].alternates + ((alt.chains[k].value, rid),)
+                    chains[k] = replace(chains[k], alternates=chains[k].alternates + ((alt.chains[k].value, rid),), cache={})
                     lost.remove(k)
     return chains, dict(full.fixes)
