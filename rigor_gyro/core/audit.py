@@ -23,7 +23,7 @@ import re
 from decimal import Decimal
 from fractions import Fraction
 
-from flint import arb, fmpq
+from flint import arb, ctx, fmpq
 
 from .balls import ball_key, certainly_gt, certainly_le, exact_endpoints
 from .errors import SceneError
@@ -122,7 +122,25 @@ def _correct_rounding(printed: Fraction, half: Fraction, value: arb) -> AuditSta
 
 
 def audit_printed(printed: str, value: arb) -> tuple[AuditStatus, str]:
-    """(status, note) for a printed decimal against a certified ball; the note gives the digits."""
+    """(status, note) for a printed decimal against a certified ball; the note gives the digits. Memoised
+    for a finite ball by (print, the ball's exact midpoint and radius, the working precision): the result is
+    a function of these (the audit of a row and its classification ask the same question)."""
+    if not value.is_finite():
+        return _audit_printed(printed, value)
+    key = (printed, ball_key(value), ctx.prec)
+    hit = _AUDITED.get(key)
+    if hit is None:
+        if len(_AUDITED) > 4096:
+            _AUDITED.clear()
+        hit = _AUDITED[key] = _audit_printed(printed, value)
+    return hit
+
+
+_AUDITED: dict = {}
+
+
+def _audit_printed(printed: str, value: arb) -> tuple[AuditStatus, str]:
+    """:func:`audit_printed` without its memo."""
     p = Fraction(printed.strip())
     status = _correct_rounding(p, half_unit(printed), value)
     d = agreeing_digits(printed, value)

@@ -17,7 +17,7 @@ from typing import Any
 
 from flint import arb
 
-from .balls import quantity
+from .balls import decimal_bounds
 
 __all__ = ["Status", "AuditStatus", "Claim", "AuditRow"]
 
@@ -108,9 +108,11 @@ class AuditRow:
     formula_edits: dict | None = field(default=None, compare=False, repr=False)
 
     def to_json(self) -> dict[str, Any]:
-        q = quantity(self.value) if self.value is not None else {"lo": "", "hi": ""}
-        out = {"id": self.id, "printed": self.printed, "reading": self.reading, "lo": q["lo"],
-               "hi": q["hi"], "status": self.status.value, "note": self.note}
+        # the row stores the ball's outward-rounded ends only: those of balls.quantity, without its midpoint and
+        # radius (decimal_bounds is where quantity takes them from: the same strings)
+        lo, hi = decimal_bounds(self.value) if self.value is not None else ("", "")
+        out = {"id": self.id, "printed": self.printed, "reading": self.reading, "lo": lo,
+               "hi": hi, "status": self.status.value, "note": self.note}
         if self.formula_edits is not None:
             out["formula_edits"] = self.formula_edits
         return out

@@ -1,0 +1,47 @@
+"""The memoised audit of a print and the stored ends of an audit row are the unmemoised ones (issue 41)."""
+from __future__ import annotations
+
+import random
+
+from flint import arb
+
+from rigor_gyro.core import audit
+from rigor_gyro.core.balls import Quantity, quantity, working_precision
+from rigor_gyro.core.outcome import AuditRow, AuditStatus
+
+
+def _balls(n: int = 200):
+    rnd = random.Random(41)
+    for _ in range(n):
+        mid = rnd.uniform(-2, 2) * 10 ** rnd.randint(-8, 6)
+        yield arb(mid, abs(mid) * 10 ** -rnd.randint(2, 14))
+
+
+def test_the_memoised_audit_of_a_print_is_the_unmemoised_one():
+    rnd = random.Random(7)
+    for x in _balls():
+        printed = f"{float(x.mid()):.{rnd.randint(1, 9)}g}"
+        for prec in (53, 64, 200):
+            with working_precision(prec):
+                assert audit.audit_printed(printed, x) == audit._audit_printed(printed, x)
+                assert audit.audit_printed(printed, x) == audit._audit_printed(printed, x)      # now a hit
+    inf = arb("inf")
+    assert audit.audit_printed("1.5", inf) == audit._audit_printed("1.5", inf)
+
+
+def test_the_memo_separates_the_precisions():
+    audit._AUDITED.clear()
+    x = arb(1)
+    with working_precision(64):
+        audit.audit_printed("1.0", x)
+    with working_precision(128):
+        audit.audit_printed("1.0", x)
+    assert len(audit._AUDITED) == 2
+
+
+def test_an_audit_rows_stored_ends_are_those_of_quantity():
+    for x in list(_balls(100)) + [Quantity.of_exact(__import__("fractions").Fraction(3, 40)), arb("inf")]:
+        row = AuditRow("r", "1.0", "", x, AuditStatus.AGREES).to_json()
+        q = quantity(x)
+        assert (row["lo"], row["hi"]) == (q["lo"], q["hi"])
+    assert AuditRow("r", "1.0", "", None, AuditStatus.UNDECIDED).to_json()["lo"] == ""
