@@ -45,3 +45,39 @@ def test_an_audit_rows_stored_ends_are_those_of_quantity():
         q = quantity(x)
         assert (row["lo"], row["hi"]) == (q["lo"], q["hi"])
     assert AuditRow("r", "1.0", "", None, AuditStatus.UNDECIDED).to_json()["lo"] == ""
+
+
+def test_the_integer_ends_of_a_ball_are_its_exact_ends():
+    from fractions import Fraction
+
+    from flint import fmpq
+
+    from rigor_gyro.core.balls import exact_endpoint_integers, exact_endpoints
+    rnd = random.Random(3)
+    balls = [arb(0), arb(0, 1), arb(5), arb(-3, 2 ** -80), arb(fmpq(1, 3)), arb(2) ** 200 + arb(0, 1)]
+    for _ in range(2000):
+        m = rnd.uniform(-1, 1) * 10 ** rnd.randint(-30, 30) if rnd.random() > 0.05 else 0
+        r = rnd.uniform(0, 1) * 10 ** rnd.randint(-40, 30) if rnd.random() > 0.1 else 0
+        balls.append(arb(m, r))
+    for prec in (53, 200):
+        with working_precision(prec):
+            for x in balls:
+                ln, ld, hn, hd = exact_endpoint_integers(x)
+                assert ld > 0 and hd > 0 and (Fraction(ln, ld), Fraction(hn, hd)) == exact_endpoints(x)
+
+
+def test_chain_text_rounds_the_exact_ends_outward_at_the_print_place_plus_two():
+    from decimal import Decimal
+    from fractions import Fraction
+    from math import ceil, floor
+
+    from rigor_gyro.core.balls import exact_endpoints
+    from rigor_gyro.core.chain_classify import chain_text
+    rnd = random.Random(9)
+    for x in _balls(500):
+        printed = f"{float(x.mid()):.{rnd.randint(1, 8)}f}"
+        e = Decimal(printed).as_tuple().exponent - 2
+        lo, hi = exact_endpoints(x)
+        a = format(Decimal(floor(lo / Fraction(10) ** e)).scaleb(e), "f")
+        b = format(Decimal(ceil(hi / Fraction(10) ** e)).scaleb(e), "f")
+        assert chain_text(x, printed) == (a if a == b else f"[{a}, {b}]")

@@ -25,7 +25,7 @@ from fractions import Fraction
 
 from flint import arb, ctx, fmpq
 
-from .balls import ball_key, certainly_gt, certainly_le, exact_endpoints
+from .balls import ball_key, certainly_gt, certainly_le, exact_endpoint_integers
 from .errors import SceneError
 from .outcome import AuditStatus
 
@@ -199,6 +199,5 @@ def _endpoint_integers(value: arb) -> tuple[int, int, int, int]:
     if hit is None:
         if len(_ENDS) > 4096:
             _ENDS.clear()
-        lo, hi = exact_endpoints(value)
-        hit = _ENDS[key] = (lo.numerator, lo.denominator, hi.numerator, hi.denominator)
+        hit = _ENDS[key] = exact_endpoint_integers(value)
     return hit

@@ -425,6 +425,22 @@ def exact_endpoints(x: arb) -> tuple[Fraction, Fraction]:
     return mid - rad, mid + rad
 
 
+def exact_endpoint_integers(x: arb) -> tuple[int, int, int, int]:
+    """(ln, ld, hn, hd): the exact ends of a finite ball, mid - rad = ln / ld and mid + rad = hn / hd, with
+    ld = hd a power of two (not reduced to lowest terms: compare them by cross-multiplication), from the
+    ball's exact midpoint and radius (:func:`ball_key`) in Python integers (no Fraction, no gcd)."""
+    m, e, rm, re = ball_key(x)
+    if not rm:
+        re = e
+    elif not m:
+        e = re
+    E = min(e, re)
+    mid, rad = m << (e - E), rm << (re - E)
+    if E >= 0:
+        return (mid - rad) << E, 1, (mid + rad) << E, 1
+    return mid - rad, 1 << -E, mid + rad, 1 << -E
+
+
 def exact_endpoints_fmpq(x: arb) -> tuple[fmpq, fmpq]:
     """:func:`exact_endpoints` as flint rationals (the same exact numbers; C arithmetic, several times faster
     than Fraction where a loop compares many of them)."""

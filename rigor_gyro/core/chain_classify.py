@@ -30,7 +30,7 @@ from fractions import Fraction
 from flint import arb, fmpq
 
 from .audit import audit_printed, half_unit
-from .balls import ball_key, exact_endpoints, exact_endpoints_fmpq
+from .balls import ball_key, exact_endpoint_integers, exact_endpoints_fmpq
 from .classification import Classification
 from .digit_edits import edits_into
 from .paper_chain import Chain
@@ -84,15 +84,15 @@ def chain_text(value: arb, printed: str) -> str:
     """The chain's ball at the print's place plus two digits, [lo, hi] rounded outward (or one number)."""
     if not value.is_finite():
         return "(not finite)"
-    lo, hi = exact_endpoints(value)
+    ln, ld, hn, hd = exact_endpoint_integers(value)
     e = Decimal(printed.strip()).as_tuple().exponent - 2
-    q = Fraction(10) ** e
 
-    def fmt(x: Fraction, up: bool) -> str:
-        n = x / q
-        m = -((-n.numerator) // n.denominator) if up else n.numerator // n.denominator
+    def fmt(num: int, den: int, up: bool) -> str:
+        # num / den in units of 10^e, rounded down or up (integers: den > 0)
+        num, den = (num, den * 10 ** e) if e >= 0 else (num * 10 ** -e, den)
+        m = -((-num) // den) if up else num // den
         return format(Decimal(m).scaleb(e), "f")
-    a, b = fmt(lo, False), fmt(hi, True)
+    a, b = fmt(ln, ld, False), fmt(hn, hd, True)
     return a if a == b else f"[{a}, {b}]"
 
 

@@ -510,7 +510,7 @@ def _changed(rels, a: tuple, b: tuple) -> set[str]:
     (pa, ka, fa), (pb, kb, fb) = a, b
     out = set(ka ^ kb)
     out.update(r for r in fa.keys() | fb.keys() if fa.get(r) != fb.get(r))
-    if pa is not pb:
+    if pa is not pb and pa != pb:           # (the passes build equal prints as new dicts)
         for o in pa.keys() | pb.keys():
             if pa.get(o) != pb.get(o):
                 for rel in (rels.get(o, ()) if isinstance(rels, dict) else rels):
