@@ -81,3 +81,25 @@ def test_chain_text_rounds_the_exact_ends_outward_at_the_print_place_plus_two():
         a = format(Decimal(floor(lo / Fraction(10) ** e)).scaleb(e), "f")
         b = format(Decimal(ceil(hi / Fraction(10) ** e)).scaleb(e), "f")
         assert chain_text(x, printed) == (a if a == b else f"[{a}, {b}]")
+
+
+def test_quantity_from_integer_ends_is_quantity_from_fractions():
+    """decimal_bounds and quantity round the ends, midpoint and radius from integer ratios: the strings of
+    the same roundings of the Fraction ends (the form they had before issue 41)."""
+    from rigor_gyro.core.balls import _digits_for, _round_decimal, decimal_bounds, exact_endpoints
+    rnd = random.Random(11)
+    balls = [arb(0), arb(0, 1), arb(-3, 2 ** -80), arb(2) ** 200 + arb(0, 1)]
+    for _ in range(1500):
+        m = rnd.uniform(-1, 1) * 10 ** rnd.randint(-300, 300) if rnd.random() > 0.05 else 0
+        r = abs(m) * 10 ** -rnd.randint(0, 18) if rnd.random() > 0.1 else rnd.random() * 10 ** rnd.randint(-300, 300)
+        balls.append(arb(m, r))
+    for prec in (53, 200):
+        with working_precision(prec):
+            for x in balls:
+                a, b = exact_endpoints(x)
+                for digits in (None, 3, 12):
+                    d = digits or _digits_for(x)
+                    want = {"lo": _round_decimal(a, d, "down"), "hi": _round_decimal(b, d, "up"),
+                            "mid": _round_decimal((a + b) / 2, d, "nearest"), "rad": _round_decimal((b - a) / 2, 3, "up")}
+                    assert quantity(x, digits) == want
+                    assert decimal_bounds(x, digits) == (want["lo"], want["hi"])

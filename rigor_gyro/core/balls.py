@@ -291,10 +291,12 @@ def _exponent10_int(n: int, d: int) -> int:
     return e
 
 
-def _round_decimal(q: Fraction, digits: int, mode: str) -> str:
+def _round_decimal(q: Fraction | tuple[int, int], digits: int, mode: str) -> str:
     """q rounded to ``digits`` significant decimal digits: mode 'down', 'up' or 'nearest' (ties to
-    even). Exact integer arithmetic (no Fraction products: the certificate writes thousands)."""
-    num, den = q.numerator, q.denominator
+    even). ``q``: a Fraction, or (numerator, positive denominator) in any terms (the result depends on the
+    value only: the decade, the floor and the remainder's ratio to the denominator). Exact integer
+    arithmetic (no Fraction products: the certificate writes thousands)."""
+    num, den = q if isinstance(q, tuple) else (q.numerator, q.denominator)
     if num == 0:
         return "0"
     e = _exponent10_int(abs(num), den)
@@ -532,7 +534,13 @@ def decimal_bounds(x: arb, digits: int | None = None) -> tuple[str, str]:
     if exact is None and x.is_finite() and _far(x):
         d = digits or _digits_for(x)
         return tuple(_far_end(w, d, mode) for w, mode in ((x.lower(), "down"), (x.upper(), "up")))
-    a, b = (exact, exact) if exact is not None else _endpoints(x)
+    if exact is not None:
+        a = b = exact
+    elif x.is_finite():             # the exact ends as integer ratios (no Fraction: rows and quantities by the hundred)
+        ln, ld, hn, hd = exact_endpoint_integers(x)
+        a, b = (ln, ld), (hn, hd)
+    else:
+        a, b = _endpoints(x)
     d = digits or (max(6, len(rational_text(exact))) if exact is not None else _digits_for(x))
     lo = _round_decimal(a, d, "down") if a is not None else "-inf"
     hi = _round_decimal(b, d, "up") if b is not None else "+inf"
@@ -589,9 +597,9 @@ def quantity(x: arb, digits: int | None = None) -> dict[str, str]:
     d = digits or _digits_for(x)
     if _far(x):
         return {"lo": lo, "hi": hi, "mid": _far_end(x.mid(), d, "nearest"), "rad": _far_end(arb(x.rad()), 3, "up")}
-    a, b = exact_endpoints(x)
-    mid = _round_decimal((a + b) / 2, d, "nearest")
-    rad = _round_decimal((b - a) / 2, 3, "up")
+    ln, ld, hn, hd = exact_endpoint_integers(x)
+    mid = _round_decimal((ln * hd + hn * ld, 2 * ld * hd), d, "nearest")
+    rad = _round_decimal((hn * ld - ln * hd, 2 * ld * hd), 3, "up")
     return {"lo": lo, "hi": hi, "mid": mid, "rad": rad}
 
 
