@@ -397,7 +397,8 @@ def test_rho_lower_is_a_tight_lower_bound_of_rho(params, mu, x2):
     """rho = max_i |(ci1, ci3)| / ci0 at a point, +inf where some ci0 <= 0 (mutmut: a floor of 1 on the
     bound, 'ci0 <= 1' for 'ci0 <= 0', and |(ci1, ci3)|'s upper end survived: rho is about 25 wherever the
     tests looked). The bound at 64 bits must lie below rho enclosed at 256 bits, and within 1e-15 of it."""
-    from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters, rho_lower
+    from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters
+    from rigor_gyro.kinds.lyapunov.mu_claims import rho_lower
     g, _ = gimbal_from_parameters(params or load_scene("agafonov2013").parameters)
 
     def direct():
@@ -419,7 +420,8 @@ def test_rho_lower_is_a_tight_lower_bound_of_rho(params, mu, x2):
 def test_rho_lower_over_a_ball_lies_below_rho_at_every_point_of_it():
     """Over a wide x2 ball the bound must stay below rho at each point of the ball (kills |(ci1, ci3)|'s
     upper end used in place of its lower end, which a point test cannot see at 1e-19)."""
-    from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters, rho_lower
+    from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters
+    from rigor_gyro.kinds.lyapunov.mu_claims import rho_lower
     g, _ = gimbal_from_parameters(load_scene("agafonov2013").parameters)
     with working_precision(64):
         low = rho_lower(g, arb("0.3", "0.02"), g.c.mu)
@@ -436,7 +438,7 @@ def test_a_direct_search_that_misses_the_minimiser_searches_again(monkeypatch):
     certification fails at a point where A/|B| is lower; the direct test searches again from there and
     certifies a radius below the supremum, with a certified point above it (stress scene x2* near pi/2:
     inconclusive after 4096 bits before)."""
-    from rigor_gyro.kinds.lyapunov import claims as C
+    from rigor_gyro.kinds.lyapunov import direct_claims as C
     g = validate(load_scene("agafonov2013")).gimbal
     real = C.direct_point_search
     calls = []
@@ -447,7 +449,7 @@ def test_a_direct_search_that_misses_the_minimiser_searches_again(monkeypatch):
         return (est * 1.3, 0.0, 0.25, amin) if start is None else (est, u, s, amin)
     monkeypatch.setattr(C, "direct_point_search", missing)
     with working_precision(64):
-        d = C._certify_direct(g, 4000)
+        d = C.certify_direct(g, 4000)
         assert d.cert.status is Status.PROVED and d.point is not None
         assert len(calls) >= 2 and calls[0] is None and calls[1] is not None
         R, up = Fraction(d.R_text), Fraction(d.up_text)
@@ -457,7 +459,7 @@ def test_a_direct_search_that_misses_the_minimiser_searches_again(monkeypatch):
 
 def test_a_failed_direct_certification_without_a_lower_point_does_not_search_again():
     from rigor_gyro.core.subdivision import BoxPositivity
-    from rigor_gyro.kinds.lyapunov import claims as C
+    from rigor_gyro.kinds.lyapunov import direct_claims as C
     g = validate(load_scene("agafonov2013")).gimbal
     with working_precision(64):
         sup = C.direct_point_search(g)[0]

@@ -183,7 +183,8 @@ def test_rho_at_a_point_is_a_rounded_down_lower_bound_in_range_and_0_beyond():
     mpmath value (approx.MpGimbal.psi_true, 60 digits) and within 1e-15 of it; 0 beyond x2*."""
     import mpmath
     from rigor_gyro.kinds.lyapunov.approx import AGAFONOV2013, MpGimbal
-    from rigor_gyro.kinds.lyapunov.claims import rho_function, validate
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    from rigor_gyro.kinds.lyapunov.mu_claims import rho_function
     from rigor_gyro.core.balls import exact_fraction
     params = dict(AGAFONOV2013)
     with mpmath.workdps(60):
@@ -390,7 +391,8 @@ def test_r_sup_piece_upper_is_1_over_the_largest_rho_lower_in_range_rounded_up(a
     end (not its lower: 1/L is a ball of a few ulps), at or above 1 / rho at the best point for each mu of
     the piece, whatever the points' order; points beyond x2* skipped (rho is larger there); +inf (nothing
     bounded) with no point in range."""
-    from rigor_gyro.kinds.lyapunov.claims import rho_function, rho_lower, validate
+    from rigor_gyro.kinds.lyapunov.claims import validate
+    from rigor_gyro.kinds.lyapunov.mu_claims import rho_function, rho_lower
     wb = agafonov["witnesses"]["best_mu"]
     with working_precision(128):            # the checker's (2 x 64 bits): the points at x2* are in range there
         g = validate(load_scene("agafonov2013")).gimbal

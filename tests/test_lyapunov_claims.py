@@ -12,6 +12,8 @@ import pytest
 from flint import arb, fmpq
 
 import rigor_gyro.kinds.lyapunov.claims as C
+import rigor_gyro.kinds.lyapunov.direct_claims as DC
+import rigor_gyro.kinds.lyapunov.mu_claims as MC
 from rigor_gyro import load_scene
 from rigor_gyro.check import check_certificate
 from rigor_gyro.core.balls import certainly_lt, working_precision
@@ -263,12 +265,12 @@ def test_vdot_direct_states_an_upper_bound_only_at_a_point_where_vdot_is_positiv
     """A search that puts the supremum 10 % too low: A - R |B| > 0 is still certified there (below the
     supremum), but every candidate point above it lies where Vdot < 0, so no upper bound of the supremum
     may be stated; the checker confirms what is stated."""
-    real = C.direct_point_search
+    real = DC.direct_point_search
 
     def low(g, *args):
         est, u0, s0, amin = real(g, *args)
         return 0.9 * est, u0, s0, amin
-    monkeypatch.setattr(C, "direct_point_search", low)
+    monkeypatch.setattr(DC, "direct_point_search", low)
     data = _prove("paper", "vdot_direct")
     claim = next(c for c in data["claims"] if c["id"] == "vdot_direct")
     assert claim["status"] == "proved" and "R_direct_upper" not in data["quantities"], claim["reason"]
@@ -281,10 +283,10 @@ def test_a_decimal_inside_an_open_interval_is_inside_it():
     60 digits near mu fits."""
     lo, hi = Fraction(1, 3), Fraction(2, 3)
     for mu in (lo + Fraction(1, 10 ** 15), hi - Fraction(1, 10 ** 15), Fraction(1, 2), lo + Fraction(1, 10 ** 40)):
-        got = C._decimal_inside(mu, arb(fmpq(1, 3)), arb(fmpq(2, 3)))
+        got = MC._decimal_inside(mu, arb(fmpq(1, 3)), arb(fmpq(2, 3)))
         assert got is not None and lo < Fraction(got) < hi and abs(Fraction(got) - mu) < Fraction(1, 10 ** 11), (mu, got)
     tiny = Fraction(1, 3) + Fraction(1, 10 ** 70)
-    assert C._decimal_inside(tiny, arb(fmpq(1, 3)), arb(fmpq(tiny.numerator, tiny.denominator))) is None
+    assert MC._decimal_inside(tiny, arb(fmpq(1, 3)), arb(fmpq(tiny.numerator, tiny.denominator))) is None
 
 
 def test_rho_is_infinite_where_a_disc_coefficient_is_not_positive():
@@ -295,9 +297,9 @@ def test_rho_is_infinite_where_a_disc_coefficient_is_not_positive():
     with working_precision(64):
         (c10, _, _), _ = g.psi_coefficients(arb("0.3"))
         assert c10 < 0
-        assert not C.rho_function(g)(arb("0.3")).is_finite()
+        assert not MC.rho_function(g)(arb("0.3")).is_finite()
         g2, _ = C.gimbal_from_parameters(dict(CSTAR_CASE, mu="0.016"))
-        r = C.rho_function(g2)(arb("0.3"))
+        r = MC.rho_function(g2)(arb("0.3"))
         assert r.is_finite() and r > 0
 
 
@@ -315,7 +317,7 @@ def test_the_r_sup_search_finds_the_float_sides_r_sup_and_where_it_is_attained(p
     full = dict(load_scene("agafonov2013").parameters, **params)
     g, _ = C.gimbal_from_parameters(full)
     with working_precision(64):
-        est, at = C._r_sup_search(g, g.c.x2_star)
+        est, at = MC._r_sup_search(g, g.c.x2_star)
         xs = g.c.x2_star
     with mpmath.workdps(30):
         mg = MpGimbal(full)

@@ -432,7 +432,8 @@ def test_the_gimbal_extremes_are_classified_at_64_bits(which):
 
 
 def _extreme_rows(params):
-    from rigor_gyro.kinds.lyapunov.claims import _Ctx, _equilibria_claim
+    from rigor_gyro.kinds.lyapunov.claim_context import ClaimContext as _Ctx
+    from rigor_gyro.kinds.lyapunov.claims import _equilibria_claim
     model = validate(dataclasses.replace(load_scene("agafonov2013"), parameters=params))
     with working_precision(64):
         ctx = _Ctx(model, 64)

@@ -6,7 +6,7 @@ import math
 from flint import arb
 
 from rigor_gyro.core.balls import working_precision
-from rigor_gyro.kinds.lyapunov import claims as C
+from rigor_gyro.kinds.lyapunov import direct_claims as DC, mu_claims as MC
 from rigor_gyro.kinds.lyapunov import direct_mu, float_twin, sublevel
 from rigor_gyro.kinds.lyapunov.approx import AGAFONOV2013
 from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters
@@ -38,7 +38,7 @@ def test_the_twin_agrees_with_the_ball_midpoints():
                 a, b = fg.vdot_polar(fg.xs * u, math.pi * s)
                 scale = abs(float(A.mid())) + abs(float(B.mid()))
                 assert _close(a, A, scale) and _close(b, B, scale)
-                rho = C.rho_function(g)(X.mid())
+                rho = MC.rho_function(g)(X.mid())
                 assert _close(fg.rho(fg.xs * u), rho, float(rho.mid()))
                 if law == "sine":
                     al, be, ga = v_polar(g, X, T)
@@ -102,7 +102,7 @@ def _liar(monkeypatch):
 
     def make(g):
         return Liar(g)
-    for mod in (float_twin, C, direct_mu, sublevel):
+    for mod in (float_twin, MC, direct_mu, sublevel):
         monkeypatch.setattr(mod, "float_twin", make)
 
 
@@ -114,13 +114,13 @@ def test_a_lying_twin_leaves_every_certified_number_true(monkeypatch):
     g = _gimbal()
     with working_precision(64):
         honest_s = sublevel.largest_sublevel(g, 3000)
-        honest_d = C._certify_direct(g, 3000)
-        honest_r = C._r_sup_search(g, g.c.x2_star)
+        honest_d = DC.certify_direct(g, 3000)
+        honest_r = MC._r_sup_search(g, g.c.x2_star)
     _liar(monkeypatch)
     with working_precision(64):
         lied_s = sublevel.largest_sublevel(g, 3000)
-        lied_d = C._certify_direct(g, 3000)
-        est, at = C._r_sup_search(g, g.c.x2_star)
+        lied_d = DC.certify_direct(g, 3000)
+        est, at = MC._r_sup_search(g, g.c.x2_star)
     if lied_s.c_lower is not None:
         assert float(lied_s.c_lower) <= float(honest_s.c_upper)
     if lied_d.cert is not None and lied_d.cert.status.value == "proved":

@@ -4,7 +4,7 @@ the precision and, for the bounds over mu pieces, the piece)."""
 from flint import arb, fmpq
 
 from rigor_gyro.core.balls import working_precision
-from rigor_gyro.kinds.lyapunov import claims as C
+from rigor_gyro.kinds.lyapunov import mu_claims as C
 from rigor_gyro.kinds.lyapunov import direct_mu
 from rigor_gyro.kinds.lyapunov.approx import AGAFONOV2013
 from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters

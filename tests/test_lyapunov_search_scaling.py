@@ -62,7 +62,8 @@ def test_a_1e300_meets_the_widths_at_64_bits_and_decides_the_linear_row():
     from rigor_gyro.core.balls import working_precision
     from rigor_gyro.core.outcome import AuditStatus
     from rigor_gyro.kinds.lyapunov.approx import MpGimbal
-    from rigor_gyro.kinds.lyapunov.claims import _Ctx, validate
+    from rigor_gyro.kinds.lyapunov.claim_context import ClaimContext as _Ctx
+    from rigor_gyro.kinds.lyapunov.claims import validate
     from rigor_gyro.kinds.lyapunov.moments import MOMENTS
     from rigor_gyro.kinds.lyapunov.paper import linear_section_rows
     scene = _extreme_scene("a", "1e-300")

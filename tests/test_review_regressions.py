@@ -111,7 +111,7 @@ def test_2_a_refutation_without_a_counterexample_is_a_bug_not_a_verdict():
 
 def test_3_best_mu_states_a_search_result_and_certifies_how_good_it_is():
     from rigor_gyro.core.exact import parse_exact
-    from rigor_gyro.kinds.lyapunov import claims as lyap
+    from rigor_gyro.kinds.lyapunov import claims as lyap, mu_claims as lyap_mu
     cert = prove_scene(load_scene("agafonov2013"))
     claim = cert.claim("best_mu")
     assert claim.status is Status.PROVED
@@ -124,7 +124,7 @@ def test_3_best_mu_states_a_search_result_and_certifies_how_good_it_is():
     with working_precision(64):
         xs = model.gimbal.x2_star.ball()
         for mu in ("0.014", "0.018", "0.02", "0.022", "0.03"):
-            R, _ = lyap.r_sup(model.gimbal.with_mu(parse_exact(mu).fmpq()), xs)
+            R, _ = lyap_mu.r_sup(model.gimbal.with_mu(parse_exact(mu).fmpq()), xs)
             assert R.lower() <= U.upper(), mu
 
 
@@ -548,15 +548,15 @@ def test_an_inconclusive_best_mu_states_no_quantity_its_checker_cannot_confirm(m
     re-certified and the claim ended inconclusive; the checker verifies those only from a proved best_mu, so it
     rejected the certificate. Here R_max's re-certification is made to fail."""
     from rigor_gyro.check import check_certificate
-    from rigor_gyro.kinds.lyapunov import claims as lyap
-    real = lyap._vdot_claim
+    from rigor_gyro.kinds.lyapunov import mu_claims as lyap      # best_mu's own reference to _vdot_claim
+    real = lyap.vdot_claim
 
     def failing(ctx, R, how, cid="vdot_nonpositive"):
         claim, info = real(ctx, R, how, cid)
         if how.startswith("at mu = mu_best"):
             claim = dataclasses.replace(claim, status=Status.INCONCLUSIVE, reason="made to fail")
         return claim, info
-    monkeypatch.setattr(lyap, "_vdot_claim", failing)
+    monkeypatch.setattr(lyap, "vdot_claim", failing)
     scene = dataclasses.replace(load_scene("agafonov2013"), claims_only=["constants", "best_mu"])
     data = prove_scene(scene, maxprec=64).to_json()          # one attempt: precision cannot help here
     best = next(c for c in data["claims"] if c["id"] == "best_mu")

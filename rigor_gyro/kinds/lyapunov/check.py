@@ -48,7 +48,7 @@ from ...core.stored import encloses, fmpq_of, interval as stored_interval, meets
 from ...core.boxes import Box, tiles_by_bisection
 from ...core.exact import Exact
 from ...core.roots import RootStatus, enclose_f_df, newton_root
-from .claims import rho_function, rho_lower
+from .mu_claims import rho_function, rho_lower
 from .direct_mu import piece_upper as direct_piece_upper
 from .direct_face import face_margin
 from .sublevel import box_lower_bound
