@@ -13,7 +13,10 @@ Each printed input is the interval of its rounding, an exact constant (S, a17 S,
 an upstream print that the stage's own classification finds to be a misprint (one edit lands it in its
 chain window, :mod:`rigor_gyro.core.digit_edits`) is replaced downstream by its intended value. The
 chain is built once with every correction, then once per correction with that one print left as
-printed (the alternates that name a ``propagated-misprint``).
+printed (the alternates that name a ``propagated-misprint``). The computation runs as stages
+(:func:`_stages`); each build after the first starts from an earlier build's state after the last stage
+before its first row whose inputs differ (:mod:`rigor_gyro.core.staged_build`: the same balls and decisions
+as a build from the start, only without repeating them).
 
 The consistency identities of :mod:`.paper_identities` narrow a stage's chain where they agree with it
 (the same number printed elsewhere, a row sum, the orbit's symmetry), and name themselves in the row.
