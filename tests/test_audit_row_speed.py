@@ -29,6 +29,18 @@ def test_the_memoised_audit_of_a_print_is_the_unmemoised_one():
     assert audit.audit_printed("1.5", inf) == audit._audit_printed("1.5", inf)
 
 
+def test_the_status_alone_is_the_status_of_the_audit():
+    rnd = random.Random(8)
+    seen = set()
+    for x in _balls():
+        printed = f"{float(x.mid()) * (1 + rnd.uniform(-1e-6, 1e-6)):.{rnd.randint(1, 9)}g}"
+        with working_precision(rnd.choice((53, 128))):
+            st = audit.printed_status(printed, x)
+            assert st is audit._audit_printed(printed, x)[0]
+            seen.add(st)
+    assert {AuditStatus.AGREES, AuditStatus.DISAGREES} <= seen
+
+
 def test_the_memo_separates_the_precisions():
     audit._AUDITED.clear()
     x = arb(1)

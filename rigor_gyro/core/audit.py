@@ -29,7 +29,7 @@ from .balls import ball_key, certainly_gt, certainly_le, exact_endpoint_integers
 from .errors import SceneError
 from .outcome import AuditStatus
 
-__all__ = ["audit_printed", "agreeing_digits", "half_unit", "check_printed", "NUMBER", "TEXT", "numbers", "keys",
+__all__ = ["audit_printed", "printed_status", "agreeing_digits", "half_unit", "check_printed", "NUMBER", "TEXT", "numbers", "keys",
            "PRINTED_NUMBER"]
 
 #: a number as a paper prints it: optional sign, ASCII digits, a point, an exponent; at most 60 characters
@@ -137,6 +137,12 @@ def audit_printed(printed: str, value: arb) -> tuple[AuditStatus, str]:
 
 
 _AUDITED: dict = {}
+
+
+def printed_status(printed: str, value: arb) -> AuditStatus:
+    """The status :func:`audit_printed` gives, without its note (no digit count): for a search that only
+    asks whether a value gives the print (the same exact comparison)."""
+    return _correct_rounding(Fraction(printed.strip()), half_unit(printed), value)
 
 
 def _audit_printed(printed: str, value: arb) -> tuple[AuditStatus, str]:

@@ -40,7 +40,7 @@ from typing import Callable
 
 from flint import arb, fmpq
 
-from .audit import audit_printed
+from .audit import printed_status
 from .outcome import AuditStatus
 
 __all__ = ["FormulaEdit", "EditSearch", "single_edits", "parse_formula", "evaluate", "show", "search_single_edits"]
@@ -328,7 +328,7 @@ def search_single_edits(text: str, env: dict[str, arb], printed: str, defs: dict
     def decide(v: arb) -> bool | None:
         if reproduces is not None:
             return reproduces(v)
-        status, _ = audit_printed(res.printed, v)
+        status = printed_status(res.printed, v)
         return True if status is AuditStatus.AGREES else None if status is AuditStatus.UNDECIDED else False
 
     base = dict(env)                    # the unedited definitions, for edits made elsewhere
