@@ -112,6 +112,7 @@ def test_quantity_from_integer_ends_is_quantity_from_fractions():
                 for digits in (None, 3, 12):
                     d = digits or _digits_for(x)
                     want = {"lo": _round_decimal(a, d, "down"), "hi": _round_decimal(b, d, "up"),
-                            "mid": _round_decimal((a + b) / 2, d, "nearest"), "rad": _round_decimal((b - a) / 2, 3, "up")}
+                            "mid": _round_decimal((a + b) / 2, d, "nearest"),
+                            "rad": _round_decimal((b - a) / 2, 3, "up")}
                     assert quantity(x, digits) == want
                     assert decimal_bounds(x, digits) == (want["lo"], want["hi"])

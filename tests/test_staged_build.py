@@ -78,13 +78,18 @@ def test_a_build_stops_once_it_has_the_rows_it_needs_and_a_later_one_continues()
     assert whole.order == ["a", "b", "c", "d"] and builds.skipped == 2
 
 
-def test_a_store_made_at_another_precision_reuses_nothing():
+def test_a_build_reuses_only_builds_made_at_its_own_precision():
     with working_precision(64):
         builds = StagedBuilds(_toy_stages(), _toy_changed)
         builds.run(_Toy({}), {})
     with working_precision(128):
         builds.run(_Toy({}), {})
-    assert builds.skipped == 0
+        assert builds.skipped == 0
+        builds.run(_Toy({}), {})
+        assert builds.skipped == 3          # the build at 128 bits
+    with working_precision(64):
+        builds.run(_Toy({"d": 1}), {"d": 1})
+        assert builds.skipped == 3 + 2      # the first build, at 64 bits
 
 
 def _signature(R) -> tuple:

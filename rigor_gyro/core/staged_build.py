@@ -4,7 +4,7 @@ about nine times per audit, each build differing from an earlier one only from s
 A *build* runs a fixed list of stages in order. Each stage reads the state the earlier stages left (a dict,
 never mutated afterwards: a stage returns a new dict, or None to end the build) and asks a *reader* to take
 rows, in order (the reader's ``order`` lists the rows it took). Within one :class:`StagedBuilds` (one call
-of the caller, one working precision) a build is a deterministic function of its *configuration*, and a row's
+of the caller) and one working precision, a build is a deterministic function of its *configuration*, and a row's
 take depends on the configuration only through that row's part of it; ``changed(a, b)`` names every row whose
 part differs between two configurations. So when build C's configuration agrees with an earlier build B's on
 every row B took before position p, C's stages up to the last one that ended before p compute what B's did
@@ -14,9 +14,10 @@ that stage and runs only the rest. A build that agrees with B everywhere B went 
 Guarantee: a resumed build's reader and result are those of the build run from its first stage, provided
 (i) each stage is a deterministic function of its state, of the fixed inputs and of the reader's answers,
 (ii) no stage mutates a container of an earlier state, (iii) ``changed`` covers everything a take reads
-from the configuration, and (iv) the reader's ``snapshot``/``restore`` copy all it accumulates. The precision
-is checked (a store made at another precision reuses nothing). Failure mode: a ``changed`` that misses an
-input would reuse a stale prefix; the tests compare resumed builds with builds run from the start.
+from the configuration, and (iv) the reader's ``snapshot``/``restore`` copy all it accumulates. The
+precision is checked (a build reuses only the builds made at its own working precision). Failure mode: a
+``changed`` that misses an input would reuse a stale prefix; the tests compare resumed builds with builds run
+from the start.
 """
 from __future__ import annotations
 
@@ -43,6 +44,8 @@ class _Snapshot:
 @dataclass
 class _Record:
     config: Any
+    #: the working precision the build ran at
+    prec: int
     #: the rows the build took, in order (the reader's own list at the end of the build)
     order: list
     snaps: list
@@ -61,7 +64,6 @@ class StagedBuilds:
 
     def __init__(self, stages: list[Callable], changed: Callable[[Any, Any], set]):
         self.stages, self.changed = stages, changed
-        self.prec = ctx.prec
         self.records: list[_Record] = []
         #: how many stages the builds ran and skipped (for the benchmarks and the tests)
         self.ran = self.skipped = 0
@@ -69,10 +71,9 @@ class StagedBuilds:
     def _start(self, config) -> tuple[list, _Snapshot | None]:
         """The snapshots to inherit and the latest one a build with ``config`` may start from."""
         best: tuple[list, _Snapshot | None] = ([], None)
-        if ctx.prec != self.prec:
-            return best
         for rec in self.records:
-            if not rec.snaps or (best[1] is not None and rec.snaps[-1].stage <= best[1].stage):
+            if rec.prec != ctx.prec or not rec.snaps or (best[1] is not None
+                                                         and rec.snaps[-1].stage <= best[1].stage):
                 continue
             pos = rec.position()
             first = min((pos[r] for r in self.changed(rec.config, config) if r in pos), default=len(rec.order))
@@ -106,5 +107,5 @@ class StagedBuilds:
             snaps.append(_Snapshot(i, state, reader.snapshot(), len(reader.order), done))
             if need is not None and not done and need.issubset(reader.order):
                 break
-        self.records.append(_Record(config, reader.order, snaps))
+        self.records.append(_Record(config, ctx.prec, reader.order, snaps))
         return reader

@@ -626,6 +626,7 @@ def relay_chains(paper: dict[str, Any], P) -> tuple[dict[str, Chain], dict[str, 
             alt = _build(paper, P, prints, rels, keep={rid}, forced=forced, memo=memo, builds=builds, need=set(todo))
             for k in todo:
                 if k in alt.chains and _in(orig[k], alt.chains[k]):
-                    chains[k] = replace(chains[k], alternates=chains[k].alternates + ((alt.chains[k].value, rid),), cache={})
+                    chains[k] = replace(chains[k], cache={},
+                                        alternates=chains[k].alternates + ((alt.chains[k].value, rid),))
                     lost.remove(k)
     return chains, dict(full.fixes)
