@@ -679,7 +679,7 @@ def test_a_split_point_of_a_box_spectrum_is_where_g_has_a_sign():
     """Over a box a root of g is spread over an interval; a split inside that spread can never be
     decided, so a box spectrum's pieces are split where g has a certain sign (the first of the
     tried fractions), the midpoint otherwise; a point spectrum always at the midpoint."""
-    from rigor_gyro.kinds.periodic_orbit.claims import _split_point
+    from rigor_gyro.kinds.periodic_orbit.g_roots import _split_point
     a, b = arb(0), arb(1)
     # g's ball contains 0 on [0.45, 0.55] (the spread), has a sign elsewhere
     g = lambda x, n: [arb(0, 1) if 0.45 <= float(x.mid()) <= 0.55 else arb(float(x.mid()) - 0.5)]

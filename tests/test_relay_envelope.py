@@ -12,7 +12,8 @@ from rigor_gyro import load_scene, prove_scene
 from rigor_gyro.certificate import digest
 from rigor_gyro.check import check_certificate
 from rigor_gyro.core.balls import certainly_positive, interval, working_precision
-from rigor_gyro.kinds.periodic_orbit.claims import envelope_test, validate
+from rigor_gyro.kinds.periodic_orbit.claims import validate
+from rigor_gyro.kinds.periodic_orbit.g_roots import envelope_test
 from rigor_gyro.kinds.periodic_orbit.flow import Spectrum, envelope_margin, pole_free_coeffs
 
 SCENES = ("stress_relay_H_1e4", "roitenberg1947")

@@ -16,8 +16,10 @@ from flint import arb, arb_poly, fmpq, fmpq_poly
 from rigor_gyro.core.balls import series_coefficients, working_precision
 from rigor_gyro.core.roots import RootStatus
 from rigor_gyro.kinds.periodic_orbit import claims
-from rigor_gyro.kinds.periodic_orbit.claims import (ENVELOPE_REASON, RootVerdict, _critical_split, _g_series_function, _isolate,
-                                                    _monotone_side, _newton_bracket, _select, _split_point)
+from rigor_gyro.kinds.periodic_orbit.claims import RootVerdict, _select
+from rigor_gyro.kinds.periodic_orbit.g_roots import (ENVELOPE_REASON, _critical_split, _monotone_side, _newton_bracket,
+                                                     _split_point, g_series_function as _g_series_function,
+                                                     isolate_pieces as _isolate)
 
 
 def poly_coeffs(coefficients, derivative_scale=1):

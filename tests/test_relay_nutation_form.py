@@ -1,5 +1,5 @@
 """The nutation form of the pole-free G (kinds/periodic_orbit/nutation_form.py) and the fast-nutation root search
-that uses it (claims.isolation_coeffs with T, _quadratic_start, the clipped bracket of _newton_bracket).
+that uses it (g_roots.isolation_coeffs with T, _quadratic_start, the clipped bracket of _newton_bracket).
 
 Oracles: G and its derivatives recomputed in mpmath from M's eigen-decomposition (50 digits), sampled over a
 ball; the roots of the fast-nutation search compared with the default search's and with mpmath signs."""
@@ -11,7 +11,7 @@ from flint import arb
 
 from rigor_gyro.core.balls import exact_fraction, interval, working_precision
 from rigor_gyro.core.roots import RootStatus
-from rigor_gyro.kinds.periodic_orbit import claims as C
+from rigor_gyro.kinds.periodic_orbit import g_roots as C
 from rigor_gyro.kinds.periodic_orbit import nutation_form as NF
 from rigor_gyro.kinds.periodic_orbit.flow import RelayParams, Spectrum, pole_free_coeffs, system_matrix
 
@@ -116,7 +116,7 @@ def _roots(H: str, fast: bool, monkeypatch, lo: str, hi: str):
         sp = Spectrum(_params(H=H))
         coeffs, _ = C.isolation_coeffs(sp)
         assert coeffs.nutation == fast
-        iso = C._isolate(C._g_series_function(sp, coeffs), arb(lo), arb(hi), coeffs=coeffs,
+        iso = C.isolate_pieces(C.g_series_function(sp, coeffs), arb(lo), arb(hi), coeffs=coeffs,
                          root_free=C.envelope_test(sp))
     assert not iso.unknown
     return iso
@@ -147,8 +147,8 @@ def test_a_bracket_next_to_an_end_is_clipped_to_that_end(monkeypatch):
     with working_precision(64):
         sp = Spectrum(_params(H="1e4"))
         coeffs, _ = C.isolation_coeffs(sp)
-        f = C._g_series_function(sp, coeffs)
-        iso = C._isolate(f, arb("0.001"), arb("0.03"), coeffs=coeffs, root_free=C.envelope_test(sp))
+        f = C.g_series_function(sp, coeffs)
+        iso = C.isolate_pieces(f, arb("0.001"), arb("0.03"), coeffs=coeffs, root_free=C.envelope_test(sp))
         r = iso.roots[len(iso.roots) // 2]
         a, b = (r.mid() - arb("1e-14")).mid(), (r.mid() + arb("1e-7")).mid()
         ga = C._sign(coeffs(a, 1)[0])

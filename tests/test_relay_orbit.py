@@ -342,7 +342,7 @@ def test_taylor_enclosure_contains_the_function_on_the_whole_box(order):
 def test_the_memo_of_g_coefficients_keys_on_the_whole_ball():
     """A ball and its own midpoint have the same centre: the memo must not hand back the point's
     coefficients for the ball (they would enclose G at one point only)."""
-    from rigor_gyro.kinds.periodic_orbit.claims import isolation_coeffs
+    from rigor_gyro.kinds.periodic_orbit.g_roots import isolation_coeffs
     from rigor_gyro.kinds.periodic_orbit import validate
     m = validate(load_scene("roitenberg1947"))
     with working_precision(128):

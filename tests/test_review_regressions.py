@@ -48,7 +48,9 @@ def test_1_g_coeffs_beyond_the_default_cap_are_the_true_coefficients():
 @pytest.mark.parametrize("order", [8, 12, 16])
 @pytest.mark.parametrize("H, roots", [("100", 6), ("1e3", 16)])
 def test_1_relay_roots_do_not_depend_on_the_taylor_order(monkeypatch, order, H, roots):
-    monkeypatch.setattr(relay_claims, "TAYLOR_ORDER", order)
+    from rigor_gyro.kinds.periodic_orbit import g_roots
+    monkeypatch.setattr(relay_claims, "TAYLOR_ORDER", order)        # the classification's enclosures
+    monkeypatch.setattr(g_roots, "TAYLOR_ORDER", order)             # the root search's
     cert = prove_scene(_relay(f"order{order}", H=H))
     assert cert.verdict is Status.PROVED
     assert len(cert.extra["roots"]) == roots

@@ -355,7 +355,7 @@ MUTANTS = [
      "    fixed = {k: _q(box.interval(k)[0]) for k in AMPLITUDE_PARAMETERS if k in box.names}",
      "    fixed = {k: _q(box.interval(k)[0]) for k in box.names}",
      "every parameter of a relay box taken at its lower end (not only S, p, K)"),
-    ("relay_memo_key_without_radius", "rigor_gyro/kinds/periodic_orbit/claims.py",
+    ("relay_memo_key_without_radius", "rigor_gyro/kinds/periodic_orbit/g_roots.py",
      "        key = (current_precision(), *ball_key(ctr), n)",
      "        key = (current_precision(), *ball_key(ctr)[:2], n)",
      "G's memoised Taylor coefficients at a point handed back for a ball around it"),

@@ -35,7 +35,8 @@ from flint import acb, acb_mat, arb
 from ...check import CheckResult
 from ...core.balls import (ball, certainly_gt, certainly_lt, certainly_negative, certainly_positive, interval)
 from ...core.stored import encloses, fmpq_of, interval as stored_interval, number
-from .claims import TAYLOR_ORDER, RootVerdict
+from .claims import RootVerdict
+from .g_roots import TAYLOR_ORDER
 from .tracked import nearest_root
 from .tracked_claims import TRACKED
 from .check_verdicts import other_orbit_moduli, redecide

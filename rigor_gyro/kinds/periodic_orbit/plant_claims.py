@@ -7,7 +7,7 @@ same things of y = c . x:
 * ``half_period``: every root of g(theta) = c . x0(theta) - h on (0, oo) isolated: (0, theta_min] root-free
   by the exact near-0 bound (:func:`~.plant_orbit.near_zero_bound`), [theta_min, T] tiled by pieces each
   root-free or with exactly one root (interval Newton on Taylor models of the pole-free G = g K,
-  :func:`.claims.isolate_pieces`), (T, oo) root-free by the tail bound (or the searched (0, T_max] stated); each
+  :func:`.g_roots.isolate_pieces`), (T, oo) root-free by the tail bound (or the searched (0, T_max] stated); each
   root classified genuine (y > -h on (0, theta)) or spurious with a certified witness;
 * ``orbit_genuine``: for the scene's orbit, y(t) + h > 0 on the whole open interval (0, theta*): near 0 by an
   enclosure of y + h (h > 0) or of y' > 0 (h = 0), near theta* by y' < 0, in between by subdivision;
@@ -38,7 +38,8 @@ from ...core.outcome import Status
 from ...core.roots import RootStatus, newton_root
 from ...core.subdivision import certify_positive
 from .. import Attempt, Phases
-from .claims import RootVerdict, dyadic_up as _dyadic_up, g_series_function as _g_series_function, isolate_pieces as _isolate
+from .claims import RootVerdict
+from .g_roots import dyadic_up as _dyadic_up, g_series_function as _g_series_function, isolate_pieces as _isolate
 from .flow import DegenerateSpectrum, taylor_enclosure
 from .multipliers import decide_multipliers
 from .norm_stability import spectral_radius_bound
