@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-from flint import arb, fmpq
+from flint import arb
 
 from ...core.audit import half_unit
 from ...core.balls import certainly_lt, certainly_positive, decimal_bounds

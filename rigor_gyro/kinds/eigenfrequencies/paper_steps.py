@@ -21,7 +21,7 @@ from __future__ import annotations
 from flint import arb, fmpq, fmpq_mpoly_ctx, fmpq_poly
 
 from ...core.balls import certainly_gt, certainly_lt, certainly_negative, certainly_positive, decimal_bounds
-from ...core.dual_balls import Dual, constant, variable
+from ...core.dual_balls import Dual, variable
 from ...core.outcome import AuditRow, AuditStatus
 from .model import Params, quartic_value
 

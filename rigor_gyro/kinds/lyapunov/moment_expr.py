@@ -655,7 +655,7 @@ def _refuse_undefined(f: Expr, params: Mapping[str, Fraction], x2_star: Exact | 
         env0 = {k: arb(_q(v)) for k, v in params.items()}
         env0["a"] = arb(0, "inf")
         for x in points:
-            inside = f" (inside |x2| <= x2*, the range the claims use)" if x else ""
+            inside = " (inside |x2| <= x2*, the range the claims use)" if x else ""
             found = first_undefined(f.tree, {**env0, "x2": arb(_q(x))}, lambda q: arb(_q(q)), _FUNCTIONS, _power,
                                     at=f" at x2 = {x}{inside}")
             if found is None:

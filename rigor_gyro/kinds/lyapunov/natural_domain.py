@@ -46,7 +46,7 @@ from fractions import Fraction
 
 from flint import arb, fmpq
 
-from ...core.balls import certainly_le, certainly_lt, certainly_negative, certainly_positive, decimal_bounds, exact_fraction
+from ...core.balls import certainly_le, certainly_negative, certainly_positive, decimal_bounds, exact_fraction
 from ...core.boxes import Box
 from ...core.exact import Exact
 from ...core.stored import pieces_text

@@ -30,7 +30,7 @@ from contextlib import nullcontext
 
 from flint import acb, arb, arb_series, ctx
 
-from ...core.balls import current_precision, series_coefficients, series_length
+from ...core.balls import current_precision, series_length
 
 __all__ = ["NutationForm", "nutation_form", "fast_form", "FAST_NUTATION_RATIO"]
 

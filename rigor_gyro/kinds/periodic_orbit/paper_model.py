@@ -25,14 +25,12 @@ from __future__ import annotations
 
 from typing import Any
 
-from flint import acb, arb, arb_mat, fmpq
+from flint import acb, arb, arb_mat
 
-from ...core.audit import NUMBER, TEXT, agreeing_digits, audit_printed, half_unit, keys, numbers
-from ...core.balls import ball, certainly_negative, certainly_positive, decimal_bounds
-from ...core.outcome import AuditRow, AuditStatus
+from ...core.audit import NUMBER, TEXT, keys, numbers
+from ...core.balls import ball, decimal_bounds
 from .paper_forms import b_coefficients
-from .flow import (ExpSum, amplitude_similarity, Spectrum, half_period_jacobian, nutation_cubic, orbit_expsums, phi_at,
-                   vector_field)
+from .flow import ExpSum, Spectrum, half_period_jacobian, orbit_expsums, phi_at, vector_field
 
 __all__ = ["PAPER_SCHEMA", "formula_table", "paper_coefficients", "orbit_quantities", "determinant_12", "fmt_ball", "form7",
            "alpha_form", "paper_tables", "modes_of"]
