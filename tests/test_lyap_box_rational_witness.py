@@ -16,7 +16,7 @@ from rigor_gyro.core.balls import working_precision
 from rigor_gyro.kinds.lyapunov.approx import MpGimbal
 from rigor_gyro.kinds.lyapunov.check import check
 from rigor_gyro.kinds.lyapunov.claims import validate
-from rigor_gyro.kinds.lyapunov.model import rational_points_inside
+from rigor_gyro.kinds.lyapunov.vdot_tests import rational_points_inside
 from rigor_gyro.scene import load_scene, parse_scene
 
 

@@ -18,7 +18,7 @@ from rigor_gyro.kinds.lyapunov.approx import AGAFONOV2013, MpGimbal
 from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters
 from rigor_gyro.kinds.lyapunov.direct_face import face_margin, face_min_lower, face_polish, face_series
 from rigor_gyro.kinds.lyapunov.direct_mu import piece_upper
-from rigor_gyro.kinds.lyapunov.model import DIRECT_DOMAIN, symmetric_in_x2
+from rigor_gyro.kinds.lyapunov.polar_forms import DIRECT_DOMAIN, symmetric_in_x2
 
 from tests.forgery import certificate
 

@@ -128,7 +128,7 @@ def test_the_direct_radius_bound_holds_at_every_mu_of_a_ball():
     """direct_radius_upper over a mu ball (monotone end or ball evaluation) is >= the point value A/|B| at
     every mu sampled in the ball, at several (x2, t) points, and never below R_dsup at those mu."""
     from flint import fmpq
-    from rigor_gyro.kinds.lyapunov.model import direct_radius_upper, vdot_polar
+    from rigor_gyro.kinds.lyapunov.polar_forms import direct_radius_upper, vdot_polar
     g = validate(scene()).gimbal
     xs = g.c.x2_star
     cases = [(u, s, a, b) for u, s in ((fmpq(-1), fmpq(1, 2)), (fmpq(-1), fmpq(1, 3)), (fmpq(1, 3), fmpq(1, 5)),
@@ -476,7 +476,7 @@ def test_a_psi_counterexample_lies_in_the_disc_for_every_radius_in_the_ball():
     value in the ball, with Psi certainly <= 0 there (mutmut: the disc taken at R.upper() put the
     point outside the region for the smaller radii, a counterexample to nothing)."""
     from rigor_gyro.core.balls import certainly_le
-    from rigor_gyro.kinds.lyapunov.model import psi_counterexample
+    from rigor_gyro.kinds.lyapunov.vdot_tests import psi_counterexample
     g = validate(load_scene("agafonov2013")).gimbal
     with working_precision(64):
         x2 = arb("0.3")
@@ -499,7 +499,7 @@ def test_a_vdot_witness_lies_in_the_region_for_every_radius_in_the_ball():
     disc of radius R.lower(), where Vdot <= 0, so it finds nothing (mutmut-style: circles of R.upper()
     found a point with Vdot > 0 outside the region for the smaller radii); with R = 0.05 it finds one,
     certainly inside that disc."""
-    from rigor_gyro.kinds.lyapunov.model import vdot_witness
+    from rigor_gyro.kinds.lyapunov.vdot_tests import vdot_witness
     g = validate(load_scene("agafonov2013")).gimbal
     points = [arb(j) / 20 for j in range(-6, 7)]
     with working_precision(64):

@@ -254,7 +254,7 @@ def test_the_cylinder_samples_lie_on_the_cylinder_and_in_range():
     an angle of 2 pi / 32 and a hair); each sample ball holds a point of x1^2 + x3^2 = R^2, at |x2| = 0,
     x2*/2, x2*: so V's smallest sample bounds V's minimum on the cylinder from above."""
     import math
-    from rigor_gyro.kinds.lyapunov.model import CIRCLE_DIRECTIONS, cylinder_points
+    from rigor_gyro.kinds.lyapunov.closed_forms import CIRCLE_DIRECTIONS, cylinder_points
     assert len(CIRCLE_DIRECTIONS) == 32 and all(c * c + s * s == 1 for c, s in CIRCLE_DIRECTIONS)
     angles = sorted(math.atan2(s, c) % (2 * math.pi) for c, s in CIRCLE_DIRECTIONS)
     gaps = [b - a for a, b in zip(angles, angles[1:] + [angles[0] + 2 * math.pi])]
@@ -275,7 +275,7 @@ def test_c_star_upper_is_the_smallest_upper_end_of_v_on_the_cylinder():
     above the smallest upper end of V over the cylinder points (an upper end, not a lower one) and within
     1e-25 of it, and with the minimiser inside also at most phi(x2*)'s upper end."""
     from rigor_gyro.kinds.lyapunov.claims import validate
-    from rigor_gyro.kinds.lyapunov.model import cylinder_points
+    from rigor_gyro.kinds.lyapunov.closed_forms import cylinder_points
     with working_precision(128):
         g = validate(load_scene("agafonov2013")).gimbal
         xs = g.c.x2_star
@@ -302,7 +302,7 @@ def test_c_star_upper_is_the_smallest_upper_end_of_v_on_the_cylinder():
 def test_c_star_lower_is_the_faces_lower_end_or_the_cylinders_bound_whichever_is_smaller():
     """c_star_lower(face, cyl, inside): with the faces' minimiser inside, the smaller of phi(x2*)'s lower end
     (not its upper end: a c_set between the two would pass) and cyl; else cyl alone."""
-    from rigor_gyro.kinds.lyapunov.model import c_star_lower
+    from rigor_gyro.kinds.lyapunov.closed_forms import c_star_lower
     face, cyl = arb(23, 1e-3), _q("40")
     assert c_star_lower(face, cyl, True) == face.lower() and face.lower() < 23 - arb("0.00099")
     assert c_star_lower(face, cyl, False) == cyl

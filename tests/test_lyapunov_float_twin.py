@@ -10,7 +10,7 @@ from rigor_gyro.kinds.lyapunov import direct_claims as DC, mu_claims as MC
 from rigor_gyro.kinds.lyapunov import direct_mu, float_twin, sublevel
 from rigor_gyro.kinds.lyapunov.approx import AGAFONOV2013
 from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters
-from rigor_gyro.kinds.lyapunov.model import v_polar, vdot_polar
+from rigor_gyro.kinds.lyapunov.polar_forms import v_polar, vdot_polar
 from rigor_gyro.kinds.lyapunov.search import grid_then_compass
 
 
@@ -139,7 +139,7 @@ def test_a_twin_value_rounded_to_zero_never_stops_the_direct_search():
     from rigor_gyro.kinds.lyapunov.claims import validate
     from rigor_gyro.kinds.lyapunov.direct_mu import direct_point_search
     from rigor_gyro.kinds.lyapunov.float_twin import float_twin
-    from rigor_gyro.kinds.lyapunov.model import vdot_polar
+    from rigor_gyro.kinds.lyapunov.polar_forms import vdot_polar
     from rigor_gyro.scene import load_scene, parse_scene
     text = load_scene("agafonov2013").parameters
     params = "\n".join(f'{k} = "{v}"' for k, v in text.items() if k != "mu")

@@ -10,7 +10,8 @@ from flint import arb
 from rigor_gyro.core.balls import working_precision
 from rigor_gyro.kinds.lyapunov.approx import AGAFONOV2013, MpGimbal
 from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters
-from rigor_gyro.kinds.lyapunov.model import certainly_positive, square_from_ends, v_polar
+from rigor_gyro.core.balls import certainly_positive
+from rigor_gyro.kinds.lyapunov.polar_forms import square_from_ends, v_polar
 
 NEAR = dict(AGAFONOV2013, x2_star="1.56979632679489661923132169163975144")
 

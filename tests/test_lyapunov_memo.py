@@ -126,7 +126,7 @@ def test_the_polar_forms_are_symmetric_under_x2_to_minus_x2(num, radexp, snum, l
     """The premise of symmetric_in_x2, for both laws (odd by their formulas): A(-x2, t) = A(x2, t),
     B(-x2, t) = -B(x2, t), and V, Vdot even under p -> -p, checked on balls (the two enclosures of one
     value must overlap)."""
-    from rigor_gyro.kinds.lyapunov.model import vdot_polar
+    from rigor_gyro.kinds.lyapunov.polar_forms import vdot_polar
     from rigor_gyro.kinds.lyapunov.moments import MOMENTS
     g = G
     if linear:
@@ -150,7 +150,7 @@ def test_the_polar_forms_are_symmetric_under_x2_to_minus_x2(num, radexp, snum, l
 
 
 def test_the_symmetry_is_used_only_for_an_odd_law():
-    from rigor_gyro.kinds.lyapunov.model import symmetric_in_x2
+    from rigor_gyro.kinds.lyapunov.polar_forms import symmetric_in_x2
     from rigor_gyro.kinds.lyapunov.moments import SineMoment
 
     class NotOdd(SineMoment):
@@ -176,7 +176,7 @@ def test_the_mirrored_bisection_is_the_bisection_without_the_symmetry():
     from fractions import Fraction
     from rigor_gyro.core.boxes import Box
     from rigor_gyro.core.subdivision import certify_positive_on_box
-    from rigor_gyro.kinds.lyapunov.model import DIRECT_DOMAIN, direct_margin, symmetric_in_x2
+    from rigor_gyro.kinds.lyapunov.polar_forms import DIRECT_DOMAIN, direct_margin, symmetric_in_x2
     R = arb(fmpq(2416695292, 10 ** 11))
     whole = Box.of(DIRECT_DOMAIN)
     with working_precision(64):

@@ -16,13 +16,14 @@ from flint import arb, fmpq
 from rigor_gyro.core.balls import certainly_gt, certainly_le, exact_endpoints, working_precision
 from rigor_gyro.core.boxes import Box
 from rigor_gyro.core.outcome import Status
-from rigor_gyro.kinds.lyapunov import model as M
+from rigor_gyro.kinds.lyapunov import vdot_tests as M
 from rigor_gyro.kinds.lyapunov.approx import MpGimbal, _r12, float_constants
 from rigor_gyro.kinds.lyapunov.claims import validate
-from rigor_gyro.kinds.lyapunov.model import (Dual, certify_vdot_nonpositive, closed_form_constants,
-                                             cylinder_lower_bound, direct_margin, hypot_ball, psi_min_functions,
-                                             sin_cos, slice_extent, slice_in_region, sublevel_lower_bound, v_polar,
-                                             vdot_polar)
+from rigor_gyro.kinds.lyapunov.model import Dual, hypot_ball, sin_cos
+from rigor_gyro.kinds.lyapunov.polar_forms import (direct_margin, slice_extent, slice_in_region, sublevel_lower_bound,
+                                                   v_polar, vdot_polar)
+from rigor_gyro.kinds.lyapunov.closed_forms import closed_form_constants, cylinder_lower_bound
+from rigor_gyro.kinds.lyapunov.vdot_tests import certify_vdot_nonpositive, psi_min_functions
 from rigor_gyro.scene import load_scene
 from tests.test_properties_lyapunov import contains_mp
 

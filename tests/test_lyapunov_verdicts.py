@@ -14,7 +14,7 @@ from rigor_gyro.core.balls import working_precision
 from rigor_gyro.core.boxes import Box
 from rigor_gyro.kinds.lyapunov.approx import MpGimbal
 from rigor_gyro.kinds.lyapunov.claims import validate
-from rigor_gyro.kinds.lyapunov.model import direct_margin
+from rigor_gyro.kinds.lyapunov.polar_forms import direct_margin
 from rigor_gyro.scene import load_scene
 
 

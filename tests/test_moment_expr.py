@@ -20,7 +20,8 @@ from rigor_gyro.core.balls import working_precision
 from rigor_gyro.core.errors import ParameterError
 from rigor_gyro.core.exact import parse_exact
 from rigor_gyro.core.expressions import UNARY_FUNCTIONS, derivative, parity, parse
-from rigor_gyro.kinds.lyapunov.model import Dual, law_is_odd
+from rigor_gyro.kinds.lyapunov.model import Dual
+from rigor_gyro.kinds.lyapunov.polar_forms import law_is_odd
 from rigor_gyro.kinds.lyapunov import moment_scene
 from rigor_gyro.kinds.lyapunov.moment_expr import FINITE, expression_law, exact_value
 from rigor_gyro.kinds.lyapunov.moment_table import natural_spline, table_law

@@ -13,7 +13,7 @@ from rigor_gyro.core.balls import working_precision
 from rigor_gyro.core.outcome import AuditStatus
 from rigor_gyro.kinds.lyapunov.approx import AGAFONOV2013, MpGimbal, _r12, mp_constants
 from rigor_gyro.kinds.lyapunov.claims import gimbal_from_parameters
-from rigor_gyro.kinds.lyapunov.model import closed_form_constants
+from rigor_gyro.kinds.lyapunov.closed_forms import closed_form_constants
 from rigor_gyro.kinds.lyapunov.paper_open import best_formula_mu_row, invariance_row, label_rows, rho1_row
 
 DPS = 30

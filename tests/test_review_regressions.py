@@ -535,7 +535,7 @@ def test_closed_form_radii_at_k_equal_to_mu_a0_are_finite():
     from flint import arb
     from rigor_gyro.core.balls import square
     from rigor_gyro.kinds.lyapunov.claims import validate
-    from rigor_gyro.kinds.lyapunov.model import closed_form_constants
+    from rigor_gyro.kinds.lyapunov.closed_forms import closed_form_constants
     scene = load_scene("agafonov2013")
     g = validate(dataclasses.replace(scene, parameters=dict(scene.parameters, k="0.254"))).gimbal   # mu A0 = 0.254
     with working_precision(128):

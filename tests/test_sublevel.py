@@ -271,7 +271,7 @@ def test_slice_in_region_needs_a_non_empty_slice_inside_the_disc(example):
     """slice_in_region: the slice {V(., x2, .) < c} certainly non-empty with its centre inside the disc
     (true at x2 = 0 for c = c_set; false at x2 = x2*, where phi = c* > c_set, and for a tiny disc)."""
     from rigor_gyro.kinds.lyapunov.claims import validate
-    from rigor_gyro.kinds.lyapunov.model import slice_in_region
+    from rigor_gyro.kinds.lyapunov.polar_forms import slice_in_region
     inv = next(c for c in example["claims"] if c["id"] == "invariant_estimate")
     c = Fraction(inv["details"]["c_set"])
     R = Fraction(example["quantities"]["R_used"]["lo"])
@@ -287,7 +287,7 @@ def test_slice_in_region_needs_a_non_empty_slice_inside_the_disc(example):
 def _exact_min_on_half_line(g, x2, t):
     """min of V(r cos t, x2, r sin t) over r != 0 with A + r B <= 0 at an exact point, in closed form (the
     vertex of the quadratic clamped into the half-line r B <= -A), as a ball; None where undecided."""
-    from rigor_gyro.kinds.lyapunov.model import v_polar, vdot_polar
+    from rigor_gyro.kinds.lyapunov.polar_forms import v_polar, vdot_polar
     A, B = vdot_polar(g, x2, t)
     al, be, ga = v_polar(g, x2, t)
     if not (A > 0) or B.contains(0):
@@ -305,7 +305,7 @@ def test_the_sublevel_bound_is_below_the_exact_minimum_at_points_of_each_box():
     half-line at points of the box (computed in closed form, not through the bound's code): a bound taken
     on the wrong side of r = 0 or from the wrong vertex would exceed it somewhere."""
     from rigor_gyro.kinds.lyapunov.claims import validate
-    from rigor_gyro.kinds.lyapunov.model import sublevel_lower_bound
+    from rigor_gyro.kinds.lyapunov.polar_forms import sublevel_lower_bound
     g = validate(load_scene("agafonov2013")).gimbal
     rng = random.Random(11)
     checked = 0
@@ -411,7 +411,7 @@ def test_a_point_of_n_is_returned_only_where_vdot_is_certainly_positive():
     """_point_of_n: asked for a radius well inside {Vdot < 0} (0.3 of the boundary along the search's ray) it
     finds nothing; asked just beyond the boundary it returns exact rationals with |x2| <= x2* where Vdot > 0
     (an mpmath evaluation at 40 digits, not the code's), and V's enclosure there."""
-    from rigor_gyro.kinds.lyapunov.model import vdot_polar
+    from rigor_gyro.kinds.lyapunov.polar_forms import vdot_polar
     from rigor_gyro.kinds.lyapunov.sublevel import _point_of_n, _search
     mpmath.mp.dps = 40
     for xs in ("1/10", "pi/6"):

@@ -36,7 +36,8 @@ from flint import arb
 from ...core.balls import certainly_lt, certainly_positive
 from ...core.subdivision import certify_positive, enclose_max
 from .box_forms import CentredBox, balls_of, parameter_balls
-from .model import Dual, Gimbal, ParameterBalls, law_is_odd
+from .model import Dual, Gimbal, ParameterBalls
+from .polar_forms import law_is_odd
 from .moments import LinearMoment, SineMoment
 
 __all__ = ["c_star_centred", "G_dual", "CYL_PIECES", "A_LINEAR_LAWS"]

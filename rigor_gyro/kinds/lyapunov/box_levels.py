@@ -35,7 +35,8 @@ from flint import arb
 from ...core.balls import certainly_lt, certainly_positive
 from ...core.subdivision import enclose_max
 from .box_cstar import c_star_centred
-from .model import c_star_upper, cylinder_lower_bound, law_is_odd
+from .polar_forms import law_is_odd
+from .closed_forms import c_star_upper, cylinder_lower_bound
 
 __all__ = ["c_star_box", "v_positive_margin_box", "V_PROBES"]
 

@@ -43,7 +43,8 @@ from .box_forms import CentredBox, balls_of, radius_formula, w_enclosure
 from .box_vdot import radius_bounds
 from .boxes import boxed_model, raw_intervals
 from .claims import maximum_M
-from .model import law_is_odd, rational_points_inside
+from .polar_forms import law_is_odd
+from .vdot_tests import rational_points_inside
 
 __all__ = ["BOX_QUANTITIES", "quantities_box", "PSI_STEPS"]
 

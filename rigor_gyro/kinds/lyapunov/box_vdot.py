@@ -24,7 +24,7 @@ from flint import arb
 from ...core.balls import certainly_positive, decimal_bounds
 from ...core.subdivision import certify_positive
 from .box_forms import CentredBox, balls_of, psi_disc_margin, radius_formula, w_enclosure
-from .model import law_is_odd
+from .polar_forms import law_is_odd
 
 __all__ = ["decide_vdot_box", "radius_bounds", "MAX_PIECES"]
 

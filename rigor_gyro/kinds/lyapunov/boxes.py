@@ -64,7 +64,7 @@ class BoxGimbal(Gimbal):
     def __init__(self, base: Gimbal, raw: dict[str, tuple]):
         super().__init__(base.A0, base.B0, base.C0, base.H, base.k, base.a, base.mu, base.x2_star, base.law)
         self.raw = raw          # name -> (lo, hi) exact rationals, for every rational parameter
-        # m and M (claims._Ctx) are shared through this cache by boxes with the same intervals of the
+        # m and M (claim_context.ClaimContext) are shared through this cache by boxes with the same intervals of the
         # parameters they depend on (and the same law and x2*)
         self.extrema_cache = _EXTREMA_CACHE
         self.extrema_key = (base.law.name, str(base.x2_star.ball().mid()),

@@ -56,9 +56,11 @@ from .equilibria import Equilibrium, classify as classify_equilibrium, jacobian 
 from .trajectory_claims import check_initial_point, check_paving, check_region_exit
 from .trajectories import equilibrium_other_than_origin
 from .natural_domain import band_function, exact_range, natural_lower_bound, positivity_functions, with_range
-from .model import (DIRECT_DOMAIN, c_star_lower, c_star_upper, closed_form_constants, cylinder_lower_bound,
-                    damping_margin, faces_minimiser_inside, mean_value_enclosure, psi_min_functions, slice_extent,
-                    slice_in_region, symmetric_in_x2, vdot_polar)
+from .model import mean_value_enclosure
+from .polar_forms import DIRECT_DOMAIN, slice_extent, slice_in_region, symmetric_in_x2, vdot_polar
+from .closed_forms import (c_star_lower, c_star_upper, closed_form_constants, cylinder_lower_bound, damping_margin,
+                           faces_minimiser_inside)
+from .vdot_tests import psi_min_functions
 
 __all__ = ["check"]
 
@@ -232,7 +234,7 @@ def _direct_boxes_hold(g, R: arb, stored_boxes, cert_prec: int) -> bool:
 
 
 def rho_lower_at(rho, x2: arb, xs: arb) -> arb:
-    """A lower bound of rho(x2) = max_i |(ci1, ci3)| / ci0 (``rho`` from claims.rho_function): its lower end
+    """A lower bound of rho(x2) = max_i |(ci1, ci3)| / ci0 (``rho`` from mu_claims.rho_function): its lower end
     at x2 (an exact point, rounded down) when x2 is certainly in [-x2*, x2*], else 0 (no bound: R_sup is
     1 / the maximum of rho over the range only)."""
     return rho(x2).lower() if _within(abs(x2), arb(0), xs) else arb(0)

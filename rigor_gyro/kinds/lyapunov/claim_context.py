@@ -13,7 +13,9 @@ from ...core.balls import certainly_lt, certainly_positive, decimal_bounds, Quan
 from ...core.exact import Exact
 from ...core.outcome import Claim, Status
 from ...core.subdivision import certify_positive, enclose_max
-from .model import Gimbal, certify_psi_test, certify_vdot_nonpositive, closed_form_constants, mean_value_enclosure
+from .model import Gimbal, mean_value_enclosure
+from .closed_forms import closed_form_constants
+from .vdot_tests import certify_psi_test, certify_vdot_nonpositive
 from .declarations import CLAIMS
 
 @dataclass

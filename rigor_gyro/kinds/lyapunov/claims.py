@@ -70,7 +70,9 @@ from ...core.subdivision import certify_positive
 from .. import Attempt, Phases
 from .equilibria import equilibria
 from .trajectory_claims import initial_point_claim, parse_initial_point, paving_claim, region_not_invariant_claim
-from .model import Gimbal, damping_margin, rational_points_inside
+from .model import Gimbal
+from .closed_forms import damping_margin
+from .vdot_tests import rational_points_inside
 from .moment_scene import KNOWN as KNOWN_MOMENTS, scene_moment_law
 from .moment_expr import QuadratureBudgetSpent, quadrature_budget
 from .paper import PAPER_SCHEMA, audit as audit_paper

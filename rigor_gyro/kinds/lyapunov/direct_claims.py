@@ -20,7 +20,8 @@ from ...core.boxes import Box
 from ...core.subdivision import certify_positive_on_box
 from .direct_mu import direct_point_search
 from .direct_face import face_margin, face_polish
-from .model import DIRECT_DOMAIN, Gimbal, symmetric_in_x2, vdot_polar
+from .model import Gimbal
+from .polar_forms import DIRECT_DOMAIN, symmetric_in_x2, vdot_polar
 from .claim_context import ClaimContext, make_claim, to_fmpq, fmt, exact_ball, relative_gap, searched
 
 # ------------------------------------------------------------------------------------ Vdot < 0 directly

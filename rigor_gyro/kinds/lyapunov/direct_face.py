@@ -31,7 +31,8 @@ from fractions import Fraction
 from flint import arb, arb_series, fmpq
 
 from ...core.balls import certainly_negative, certainly_positive, current_precision, exact_fraction
-from .model import Dual, Gimbal, direct_margin, vdot_polar
+from .model import Dual, Gimbal
+from .polar_forms import direct_margin, vdot_polar
 
 __all__ = ["face_series", "face_min_lower", "face_margin", "face_polish", "FACE_BOX_U", "FACE_BOX_S"]
 

@@ -26,7 +26,8 @@ from ...core.balls import ball_key, certainly_gt, certainly_le, certainly_lt, ex
 from ...core.subdivision import best_first_bisection
 from .direct_face import face_polish
 from .float_twin import float_twin, in_safe_range
-from .model import Gimbal, direct_radius_upper, vdot_polar
+from .model import Gimbal
+from .polar_forms import direct_radius_upper, vdot_polar
 from .search import compass, grid_then_compass, scaled_ratio
 
 __all__ = ["direct_sup_upper_bound", "direct_point_search", "piece_upper"]

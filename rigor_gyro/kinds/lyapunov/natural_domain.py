@@ -51,7 +51,8 @@ from ...core.boxes import Box
 from ...core.exact import Exact
 from ...core.stored import pieces_text
 from ...core.subdivision import certify_positive, lower_bound_on_box
-from .model import DIRECT_DOMAIN, Dual, Gimbal, sublevel_lower_bound, symmetric_in_x2, v_polar, vdot_polar
+from .model import Dual, Gimbal
+from .polar_forms import DIRECT_DOMAIN, sublevel_lower_bound, symmetric_in_x2, v_polar, vdot_polar
 from .sublevel import certified_point_of_n, search_over_n
 
 __all__ = ["NaturalSublevel", "natural_sublevel", "natural_lower_bound", "with_range", "range_exact",

@@ -21,7 +21,8 @@ from ...core.balls import certainly_gt, certainly_lt, certainly_nonzero, certain
 from ...core.formula_edits import search_single_edits
 from ...core.outcome import AuditRow, AuditStatus, Status
 from ...core.subdivision import enclose_max
-from .model import Dual, Gimbal, certify_vdot_nonpositive
+from .model import Dual, Gimbal
+from .vdot_tests import certify_vdot_nonpositive
 from .moments import MOMENTS
 from .paper_open import best_formula_mu_row, invariance_row, label_rows, rho1_row
 

@@ -15,7 +15,8 @@ from flint import arb, fmpq
 from ...core.balls import certainly_gt, certainly_lt, certainly_positive, decimal_bounds, exact_fraction
 from ...core.outcome import AuditRow, AuditStatus
 from ...core.subdivision import best_first_bisection, enclose_max
-from .model import Gimbal, closed_form_constants, hypot_ball
+from .model import Gimbal, hypot_ball
+from .closed_forms import closed_form_constants
 from .trajectories import fraction_text, region_exit
 
 __all__ = ["label_rows", "rho1_row", "best_formula_mu_row", "invariance_row"]

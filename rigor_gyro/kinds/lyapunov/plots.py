@@ -56,7 +56,7 @@ def build_figures(scene, cert) -> dict:
 
     from .approx import FloatGimbal
     from .claims import validate
-    from .model import psi_min_functions
+    from .vdot_tests import psi_min_functions
 
     model = validate(scene)
     g = model.gimbal

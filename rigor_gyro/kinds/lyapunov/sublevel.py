@@ -40,7 +40,9 @@ from flint import arb, fmpq
 from ...core.balls import certainly_gt, certainly_le, certainly_lt, certainly_positive, decimal_bounds, enclosure_text, exact_fraction
 from ...core.boxes import Box
 from ...core.subdivision import lower_bound_on_box
-from .model import DIRECT_DOMAIN, GIMBAL_LOCK_COS, Gimbal, square_from_ends, sublevel_lower_bound, symmetric_in_x2, v_polar, vdot_polar
+from .model import Gimbal
+from .polar_forms import (DIRECT_DOMAIN, GIMBAL_LOCK_COS, square_from_ends, sublevel_lower_bound, symmetric_in_x2,
+                          v_polar, vdot_polar)
 from .float_twin import float_twin, half_line_value
 from .search import grid_then_compass
 

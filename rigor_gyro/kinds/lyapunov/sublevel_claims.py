@@ -17,8 +17,8 @@ from ...core.stored import ball_text, pieces_text
 from ...core.subdivision import certify_positive, enclose_max
 from .sublevel import GAP as SUBLEVEL_GAP, largest_sublevel
 from .natural_domain import NATURAL_GAP, natural_sublevel
-from .model import (c_star_lower, c_star_upper, cylinder_lower_bound, faces_minimiser_inside, slice_extent,
-                    slice_in_region)
+from .polar_forms import slice_extent, slice_in_region
+from .closed_forms import c_star_lower, c_star_upper, cylinder_lower_bound, faces_minimiser_inside
 from .declarations import OPT_IN_CLAIMS
 from .claim_context import ClaimContext, make_claim, to_fmpq, fmt, exact_ball
 

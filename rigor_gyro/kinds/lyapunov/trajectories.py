@@ -32,7 +32,8 @@ from flint import arb, fmpq
 
 from ...core.balls import certainly_gt, certainly_le, certainly_lt, exact_endpoints
 from ...core.validated_flow import Flow, validated_flow
-from .model import Gimbal, law_is_odd
+from .model import Gimbal
+from .polar_forms import law_is_odd
 
 __all__ = ["FLOW_ORDER", "EXIT_TIME", "gimbal_field", "exact_ball", "exact_box", "certainly_outside_region",
            "certainly_inside_region", "region_exit_point", "region_exit", "in_estimate", "enters_estimate",

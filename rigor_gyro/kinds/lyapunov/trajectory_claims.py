@@ -23,7 +23,8 @@ from ...core.balls import certainly_gt, certainly_le, decimal_bounds
 from ...core.exact import Exact, parse_exact
 from ...core.errors import ParameterError
 from ...core.outcome import Claim, Status
-from .model import Gimbal, law_is_odd
+from .model import Gimbal
+from .polar_forms import law_is_odd
 from .trajectories import (FLOW_ORDER, enters_estimate, equilibrium_other_than_origin, exact_ball, exact_box,
                            fraction_text, parse_fraction, region_exit)
 

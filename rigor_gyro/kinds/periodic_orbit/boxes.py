@@ -30,7 +30,7 @@ projectors depend on the parameters independently, so on a box the spectral form
 from matrix powers, certified tail) that :func:`.flow.g_coeffs` uses up to its reach.
 
 Over a box a root of g is an interval (its value for each member). The root search therefore splits a
-piece where g has a certain sign for every member (:func:`.claims._split_point`), so that a root's
+piece where g has a certain sign for every member (:func:`.g_roots._split_point`), so that a root's
 whole spread stays in one piece, and a root whose beta'(0) has no certain sign over the box is still
 proved spurious by a point where beta is certainly negative (:func:`.claims.classify_root`).
 
