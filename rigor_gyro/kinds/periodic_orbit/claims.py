@@ -211,8 +211,6 @@ class RootVerdict:
     #: where the multipliers are not isolated: an upper bound of every multiplier's modulus (Gershgorin discs of
     #: the Jacobian, :mod:`.norm_stability`), set only when certainly < 1 (then ``stable`` is True)
     radius_bound: arb | None = None
-    #: why no allowed precision is likely to isolate the multipliers ("" when more precision may)
-    precision_hopeless: str = ""
     #: the witness of "genuine": beta' > 0 on [0, d1], beta' < 0 on [right_start, theta], beta > 0 on
     #: the middle pieces (exact endpoints), for rigor-gyro check
     d1: arb | None = None

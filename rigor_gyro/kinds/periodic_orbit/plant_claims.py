@@ -32,7 +32,7 @@ from fractions import Fraction
 
 from flint import acb, acb_mat, arb, fmpq
 
-from ...core.balls import (MAX_PREC, ball, certainly_lt, certainly_negative, certainly_positive,
+from ...core.balls import (ball, certainly_gt, certainly_lt, certainly_negative, certainly_positive,
                            current_precision, exact_fraction, interval, working_precision)
 from ...core.outcome import Status
 from ...core.roots import RootStatus, newton_root
@@ -244,11 +244,11 @@ def plant_multipliers(sp: PlantSpectrum, v: RootVerdict) -> None:
         eig = list(acb_mat(J).eig(algorithm="rump"))
     except ValueError:
         v.multiplier_reason = ("eigenvalues of the Jacobian not isolated at this precision (Rump's method: they are "
-                               "clustered or multiple at its resolution)" + tiny_product_note(liou, k, v))
+                               "clustered or multiple at its resolution)" + tiny_product_note(liou, k))
         stable_by_discs(v, J)
         return
     if not all(z.is_finite() for z in eig):
-        v.multiplier_reason = "eigenvalue enclosures not finite at this precision" + tiny_product_note(liou, k, v)
+        v.multiplier_reason = "eigenvalue enclosures not finite at this precision" + tiny_product_note(liou, k)
         stable_by_discs(v, J)
         return
     prod = acb(1)
@@ -275,39 +275,34 @@ def plant_multipliers(sp: PlantSpectrum, v: RootVerdict) -> None:
     decide_multipliers(v, eig)
 
 
-#: above this many bits (the largest --maxprec), :func:`tiny_product_note` says no allowed precision is likely to help
-HOPELESS_BITS = MAX_PREC
-
-
 def tiny_product_bits(liou: arb, k: int) -> int | None:
     """log2 of 1 / the geometric mean of the k multipliers' moduli, |det J|^(-1/k), from Liouville's product
     ``liou`` (enclosed without cancellation: an exponential times a quotient), rounded down (from the ball's
-    midpoint: an estimate); None when it is
-    not finite, not certainly nonzero, or the mean is not below 1. At least one multiplier has a modulus at most
-    2^-N. A hint, not a claim: the Jacobian's entries come from O(1) quantities that cancel down to such moduli,
-    so resolving the multipliers from them takes about N bits or more."""
+    midpoint: an estimate, exact integers throughout, so no exponent overflows); None when it is not finite, not
+    certainly nonzero, or the mean is not below 1. At least one multiplier has a modulus at most about 2^-N."""
     if k < 1 or not liou.is_finite() or not certainly_positive(abs(liou)):
         return None
     log2 = abs(liou).log() / arb(2).log()
     if not log2.is_finite() or not certainly_lt(log2, 0):
         return None
-    return int(math.floor(float((-log2 / k).mid()) + 1e-9))     # an estimate: an exact power of 2 gives its exponent
+    m = (-log2 / k).mid()                       # exact; an integer already when it has more bits than the precision
+    n = m.floor().unique_fmpz()
+    if n is None:
+        return None
+    return int(n) + (1 if certainly_gt(m - n, 1 - arb("1e-9")) else 0)     # an exact power of 2 gives its exponent
 
 
-def tiny_product_note(liou: arb, k: int, v: RootVerdict) -> str:
-    """The reason's addendum where the multipliers lie far below the precision's resolution (2^-N with N more than
-    twice the working precision, :func:`tiny_product_bits`): how many bits isolating them would take, roughly.
-    Beyond HOPELESS_BITS it also sets ``v.precision_hopeless`` (the prover then stops raising the precision for
-    the multipliers claim: inconclusive, never refuted)."""
+def tiny_product_note(liou: arb, k: int) -> str:
+    """The reason's addendum where the multipliers may lie far below the precision's resolution (their geometric
+    mean 2^-N with N more than twice the working precision, :func:`tiny_product_bits`): a hint, not a claim. One
+    tiny multiplier alone does not stop Rump's method (it gets its own disc near 0), so nothing is decided from
+    it: the prover keeps raising the precision as for any undecided claim."""
     n = tiny_product_bits(liou, k)
     if n is None or n <= 2 * current_precision():
         return ""
-    beyond = ""
-    if n > HOPELESS_BITS:
-        beyond = f", more than the largest --maxprec ({MAX_PREC}) allows"
-        v.precision_hopeless = f"isolating the multipliers would take roughly {n} bits (see the reason)"
     return (f"; Liouville's product of the {k} multipliers has modulus about 2^-{k * n}, so one has modulus at most "
-            f"about 2^-{n}: resolving them from the Jacobian's entries would take roughly {n} bits or more{beyond}")
+            f"about 2^-{n}: if several are that small, resolving them from the Jacobian's entries takes roughly {n} "
+            "bits")
 
 
 def stable_by_discs(v: RootVerdict, J) -> None:

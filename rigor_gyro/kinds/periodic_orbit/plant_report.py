@@ -140,8 +140,6 @@ def assemble(model, an, wanted: list[str], phase: Phases) -> Attempt:
             st = (Status.INCONCLUSIVE, "; ".join(v.multiplier_reason for v in bad) or
                   "no genuine orbit certified yet" + beyond)
         claims.append(_claim("multipliers", *st))
-        if bad and claims[-1].status is Status.INCONCLUSIVE and all(v.precision_hopeless for v in bad):
-            claims[-1].precision_cannot_help = bad[0].precision_hopeless
     if "stable" in wanted:
         stable = [v for v in genuine if v.stable is True]
         if stable:
