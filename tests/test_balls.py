@@ -443,3 +443,26 @@ def test_ball_key_remembers_a_ball_by_identity_only():
     assert ball_key(a) is k and ball_key(arb(2) / 7) == k
     keys = {ball_key(arb(j) / 7) for j in range(200)}          # 200 short-lived balls: 200 different keys
     assert len(keys) == 200
+
+
+def test_a_ball_with_a_far_tiny_radius_keeps_its_accuracy_in_print():
+    """A normal midpoint with a radius below 2^-2^20 (the far path): the printed ends were those of Arb's
+    lower()/upper() at the working precision, [1 - 2^-53, 1 + 2^-52] for 1 +- 2^-2^21 (fuzz report 12: two roots
+    1e-400 apart were stored as the same interval, and the checker rejected the honest certificate). The ends
+    must contain the ball and be as tight as the digits asked for."""
+    from fractions import Fraction
+    from rigor_gyro.core.balls import decimal_bounds, quantity, working_precision
+    with working_precision(53):
+        x = arb(1) + arb(0, arb(2) ** -(2 ** 21))
+        for digits in (5, 30, 400):
+            lo, hi = decimal_bounds(x, digits)
+            assert Fraction(lo) < 1 < Fraction(hi)
+            assert Fraction(hi) - Fraction(lo) <= Fraction(3, 10 ** (digits - 1)), (digits, lo, hi)
+        q = quantity(x)
+        assert Fraction(q["hi"]) - Fraction(q["lo"]) < Fraction(1, 10 ** 3000)
+    with working_precision(4096):
+        y = arb(1) + arb(2) ** -1300 + arb(0, arb(2) ** -(2 ** 21))      # a midpoint off every short decimal
+    with working_precision(53):
+        lo, hi = decimal_bounds(y, 500)
+        exact = 1 + Fraction(1, 2 ** 1300)
+        assert Fraction(lo) < exact < Fraction(hi) and Fraction(hi) - Fraction(lo) < Fraction(1, 10 ** 498)

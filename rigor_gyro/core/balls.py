@@ -470,6 +470,8 @@ STORED_EXPONENT = 999999
 #: binary exponents beyond +-2^20 (about 10^+-315653) are printed from the ball's own exponent
 #: (:func:`_far_round`): the exact rational path would need 10^e with e in the millions (minutes of work)
 FAR_EXPONENT = 2 ** 20
+#: bits per decimal digit (log2 10 = 3.32, rounded up) of the precision a far ball's ends are taken at
+FAR_END_BITS_PER_DIGIT = 4
 
 
 def is_far(x: arb) -> bool:
@@ -533,7 +535,12 @@ def decimal_bounds(x: arb, digits: int | None = None) -> tuple[str, str]:
     exact = getattr(x, "exact", None)
     if exact is None and x.is_finite() and _far(x):
         d = digits or _digits_for(x)
-        return tuple(_far_end(w, d, mode) for w, mode in ((x.lower(), "down"), (x.upper(), "up")))
+        # the ends at a precision the digits need (Arb rounds lower() and upper() outward at the working
+        # precision: at 53 bits a ball 1 +- 2^-2^21 printed as [1 - 2^-53, 1 + 2^-52], 10^380 times wider than its
+        # accuracy, which no longer told two roots 1e-400 apart (fuzz report 12))
+        with working_precision(max(current_precision(), FAR_END_BITS_PER_DIGIT * d + 64)):
+            ends = x.lower(), x.upper()
+        return tuple(_far_end(w, d, mode) for w, mode in zip(ends, ("down", "up")))
     if exact is not None:
         a = b = exact
     elif x.is_finite():             # the exact ends as integer ratios (no Fraction: rows and quantities by the hundred)
