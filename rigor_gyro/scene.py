@@ -247,9 +247,12 @@ def parse_scene(text: str, where: str = "<string>") -> Scene:
     if unknown:
         raise SceneError(f"{where}: unknown top-level key or table {unknown[0]!r}{_did_you_mean(unknown[0], TOP_LEVEL)}; "
                          f"a scene has {', '.join(TOP_LEVEL)} (kind-specific settings go in [options])")
-    for key in ("name", "kind", "parameters"):
+    for key in ("name", "kind"):
         if key not in data:
             raise SceneError(f"{where}: missing top-level key {key!r}")
+    if "parameters" not in data:
+        raise SceneError(f"{where}: missing the table [parameters] (a scene without parameters writes an empty "
+                         "[parameters] line; every number a model uses is named there)")
     name = check_name(data["name"], where)
     kind = data["kind"]
     if not isinstance(kind, str) or kind not in KINDS:

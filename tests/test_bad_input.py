@@ -87,6 +87,8 @@ SCENES = [
     ("claims only as a string", scene(extra='[claims]\nonly = "roots"\n'), "only"),
     ("kind missing", scene(head='name = "t"\n'), "kind"),
     ("name missing", scene(head='kind = "eigenfrequencies"\n'), "name"),
+    ("[parameters] missing: says to write an empty table",
+     'name = "t"\nkind = "eigenfrequencies"\n[system]\nM = [["1"]]\nK = [["1"]]\n', "empty [parameters]"),
     ("empty name", scene(head='name = ""\nkind = "eigenfrequencies"\n'), "name"),
     ("name with a space", scene(head='name = "a b"\nkind = "eigenfrequencies"\n'), "name"),
     ("kind misspelt", scene(head='name = "t"\nkind = "eigenfrequency"\n'), "did you mean"),
