@@ -92,6 +92,26 @@ def frequency_data(model: SystemModel) -> tuple[fmpq_poly, int, list[int], fmpq_
     return P, mu, odd, Q / Q.leading_coefficient()
 
 
+def _holds_for(Q: fmpq_poly | None) -> bool:
+    """Q squarefree (exact) with every root real and positive (Sturm count == degree): the roots
+    lambda = +-i sqrt(omega) simple and on the imaginary axis."""
+    return (Q is not None and Q.gcd(Q.derivative()).degree() == 0 and Q(0) != 0
+            and positive_root_count(Q) == Q.degree())
+
+
+def stability_facts(P: fmpq_poly, mu: int, odd: list[int], z: int) -> tuple[bool, fmpq_poly | None]:
+    """(whether claim ``stability`` holds, the frequency polynomial it rests on) when lambda = 0 has multiplicity
+    mu != z = zero_roots: false when mu >= 2 and mu > z (a multiple zero root beyond the declared ones);
+    otherwise (mu < z, or mu = 1 > z = 0) decided on P / lambda^mu: no odd term, its Q squarefree with all roots
+    real and positive. Re-derived here from the Laplace expansion (not the prover's interpolation)."""
+    if mu >= 2 and mu > z or odd:
+        return False, None
+    even = P.coeffs()[mu::2]
+    Q = fmpq_poly([x if k % 2 == 0 else -x for k, x in enumerate(even)])
+    Q = Q / Q.leading_coefficient()
+    return _holds_for(Q), Q
+
+
 def check_system(model: SystemModel, data: dict) -> list[CheckResult]:
     """Re-decide every claim of a ``[system]`` certificate; see the module docstring."""
     out: list[CheckResult] = []
@@ -106,6 +126,8 @@ def check_system(model: SystemModel, data: dict) -> list[CheckResult]:
         positive = positive_root_count(Q) if squarefree and Q(0) != 0 else None
     m = Q.degree() if structural_ok else None
     holds = structural_ok and squarefree and positive == m
+    stable, Q_stability = (holds, Q) if mu == model.zero_roots else stability_facts(P, mu, odd, model.zero_roots)
+    frequency = {"roots": Q, "stability": Q_stability}     # the frequency polynomial each claim rests on
     # the stored roots
     names = sorted((k for k in q if k.startswith("omega_")), key=lambda k: int(k.split("_")[1]))
     omegas = None
@@ -162,7 +184,9 @@ def check_system(model: SystemModel, data: dict) -> list[CheckResult]:
         facts = (f"lambda = 0 of multiplicity {mu} (declared {model.zero_roots}); odd terms {odd}; squarefree Q: "
                  f"{squarefree}; positive real roots by Sturm: {positive} of {m}")
         if cid == "stability":
-            say(cid, holds if proved else not holds, "re-derived by Laplace expansion and Sturm: " + facts)
+            if mu != model.zero_roots:
+                facts += f"; stability on P / lambda^{mu}: {stable}"
+            say(cid, stable if proved else not stable, "re-derived by Laplace expansion and Sturm: " + facts)
         elif cid == "roots":
             if proved:
                 wide = [n for n in names if (lambda lo, hi: hi - lo > rel * abs(lo))(*interval(q[n]))]
@@ -198,6 +222,7 @@ def check_system(model: SystemModel, data: dict) -> list[CheckResult]:
             say(cid, False, f"unknown claim {cid!r} for a [system] scene")
             continue
         if not proved and cid in ("roots", "stability") and c.get("counterexample"):
+            Q = frequency[cid]
             say(f"{cid} counterexample", *counterexample_ok(c["counterexample"], P, mu, odd, Q, model.zero_roots))
     unverified = sorted(set(q) - verified)
     say("quantities", not unverified, f"{len(verified)} stored enclosures verified"
@@ -240,11 +265,12 @@ def counterexample_ok(ce: dict, P, mu: int, odd: list[int], Q, zero_roots: int) 
     """A refuted claim's stored counterexample re-derived: its exact parts (the characteristic and frequency
     polynomials' coefficients, the zero-root multiplicity, the odd terms) equal to the checker's own (Laplace
     expansion), and each stored root box certainly holding a root of that polynomial (Arb's roots of the
-    checker's exact polynomial at its precision)."""
+    checker's exact polynomial at its precision). ``odd``: the powers of P (not of P / lambda^mu) above
+    lambda^mu whose odd distance from mu has a nonzero coefficient, as :func:`frequency_data` gives them."""
     c = P.coeffs()
     checks = {"characteristic_coefficients": [str(x) for x in c],
               "zero_root_multiplicity": mu, "zero_roots_declared": zero_roots,
-              "odd_powers": [k + mu for k in odd], "odd_coefficients": [str(c[k + mu]) for k in odd]}
+              "odd_powers": list(odd), "odd_coefficients": [str(c[k]) for k in odd]}   # odd: powers of P
     if Q is not None:
         checks["frequency_polynomial"] = [str(x) for x in Q.coeffs()]
         checks["gcd_with_derivative"] = str(Q.gcd(Q.derivative()))

@@ -8,8 +8,12 @@ eigenfrequencies, its gyroscopic stability, the user's brackets.
   odd terms of P~, the exact gcd(Q, Q'), or the certified non-real / non-positive roots (the pairs
   lambda = +-i sqrt(omega) that are not on the imaginary axis).
 * ``stability``: gyroscopic stability, every root of P other than the z declared zero roots simple and on the
-  imaginary axis. Equivalent to the first part of ``roots`` without the width requirement, decided by the same
-  exact tests; refuted with the same certified data.
+  imaginary axis. When lambda = 0 has multiplicity mu = z exactly: the first part of ``roots`` without the width
+  requirement, decided by the same exact tests and refuted with the same certified data. When mu != z
+  (``roots`` refuted by the multiplicity): refuted by it when mu >= 2 and mu > z (lambda = 0 a multiple root
+  beyond the declared ones); otherwise (mu < z: every zero root is among the declared; or mu = 1 > z = 0, a
+  simple root on the axis) decided by the same exact tests on P / lambda^mu (:func:`stability_at_multiplicity`),
+  no root stored.
 * ``brackets``: each user bracket [lo_j, hi_j] (expressions, Arb balls) contains omega_j; decided per root:
   proved when every one is certified, refuted when one is certainly violated (or has no real value, a
   certainly negative square root), the others listed in ``details.per_root``.
@@ -29,7 +33,7 @@ from ...core.polyroots import isolate_polynomial
 from .. import Attempt, Phases
 from .system_model import NotRealBound, SystemModel, frequency_polynomial
 
-__all__ = ["SYSTEM_CLAIMS", "attempt_system", "polynomial_facts"]
+__all__ = ["SYSTEM_CLAIMS", "attempt_system", "polynomial_facts", "stability_at_multiplicity"]
 
 SYSTEM_CLAIMS = {
     "roots": "The characteristic polynomial det(lambda^2 M + lambda (G + D) + K) is lambda^z times an even polynomial "
@@ -59,13 +63,14 @@ def polynomial_facts(model: SystemModel):
     return P, mu, Q, odd
 
 
-def _structural(model: SystemModel, P, mu: int, odd: list[int]) -> tuple[str, dict]:
-    """Why P is not lambda^z times an even polynomial (exact), and the counterexample."""
-    z = model.zero_roots
+def _structural(model: SystemModel, P, mu: int, odd: list[int], z: int | None = None) -> tuple[str, dict]:
+    """Why P is not lambda^z times an even polynomial (exact; z = zero_roots unless given), and the
+    counterexample."""
+    z = model.zero_roots if z is None else z
     if mu != z:
         return (f"lambda = 0 is a root of multiplicity {mu} exactly (P's lowest nonzero coefficient is that of "
                 f"lambda^{mu}), not zero_roots = {z}" + (": a zero root beyond the declared ones is not simple"
-                                                          if mu > z else ""),
+                                                          if mu > max(z, 1) else ""),
                 {"zero_root_multiplicity": mu, "zero_roots_declared": z,
                  "characteristic_coefficients": [str(c) for c in P.coeffs()]})
     c = P.coeffs()
@@ -98,14 +103,22 @@ def attempt_system(model: SystemModel, prec: int, wanted=None) -> Attempt:
     omegas: list[arb] = []
     width_met = True
     details = {"dof": model.n, "zero_roots": mu}
+    only_stability = False        # Q below is P / lambda^mu's, for stability alone (roots refuted: mu != z)
     if Q is None:
         why, ce = _structural(model, P, mu, odd)
         st = Status.REFUTED
         stab = (Status.REFUTED, why, ce)
-    else:
-        details["frequencies"] = Q.degree()
+        roots_verdict = (st, why, ce)
+        if stability_at_multiplicity(model.zero_roots, mu):
+            only_stability = True
+            _, Q, odd = frequency_polynomial(P, mu)
+            if Q is None:
+                stab = (Status.REFUTED, *_structural(model, P, mu, odd, z=mu))
+    if Q is not None:
+        if not only_stability:
+            details["frequencies"] = Q.degree()
         with phase("roots: isolation"):
-            pr = isolate_polynomial(Q, rel_tol=rel)
+            pr = isolate_polynomial(Q, rel_tol=None if only_stability else rel)
         ce = None
         if not pr.squarefree:
             st, why = Status.REFUTED, f"Q(omega) has a multiple root ({pr.reason}), exactly: lambda = +-i sqrt(omega) is multiple"
@@ -138,7 +151,16 @@ def attempt_system(model: SystemModel, prec: int, wanted=None) -> Attempt:
                                           f"{len(omegas)} roots of Q with imaginary part exactly 0, each confirmed by an "
                                           f"exact sign change, all > 0")
         stab = (st, why, ce)
-        if pr.verified and not pr.nonreal:
+        if only_stability:        # the roots other than lambda = 0 decide it; no root is stored (roots refuted)
+            if st is Status.PROVED:
+                why = (f"lambda = 0 is a root of multiplicity {mu} exactly ({model.zero_roots} declared), and "
+                       + why)
+            elif ce is not None:
+                ce = {"zero_root_multiplicity": mu, **ce}
+            stab = (st, why, ce)
+            st, why, ce = roots_verdict
+            omegas = []
+        if pr.verified and not pr.nonreal and not only_stability:
             for j, w in enumerate(pr.real, start=1):
                 quantities[f"omega_{j}"] = w
         # refuted with no root stored (a multiple or non-real root): no width is asked of anything, so the
@@ -171,6 +193,15 @@ def attempt_system(model: SystemModel, prec: int, wanted=None) -> Attempt:
     return Attempt(claims, quantities, [], [], [], width_met, phase_seconds=phase.seconds,
                    width_quantities=tuple(k for k in quantities if k.startswith(("omega_", "freq_hz_"))
                                           and not rel_width_at_most(quantities[k], rel)))
+
+
+def stability_at_multiplicity(z: int, mu: int) -> bool:
+    """Whether claim ``stability`` is decided by the roots of P / lambda^mu (mu the exact multiplicity of
+    lambda = 0, z = zero_roots declared) when mu != z: when mu < z (over-declared: every zero root is among the
+    declared ones, the statement is about the others alone) and when mu = 1 > z = 0 (lambda = 0 is then a
+    simple root on the imaginary axis). False when mu >= 2 and mu > z: lambda = 0 is then a multiple root beyond
+    the declared ones, not simple, and the claim is refuted by the multiplicity alone."""
+    return mu != z and (mu < z or mu == 1)
 
 
 def _brackets_claim(model: SystemModel, omegas: list[arb], quantities: dict[str, arb]) -> Claim:

@@ -1,0 +1,77 @@
+"""The declared zero roots (option zero_roots) against the exact multiplicity mu of lambda = 0 (a fuzzer's
+false refutation, 2026-12-07): ``roots`` states P = lambda^z P~ with z declared, so any mismatch refutes it;
+``stability`` states that every root other than the declared lambda = 0 roots is simple and on the imaginary
+axis, so an over-declared z (mu < z) leaves it to the other roots, a multiple zero root beyond the declared ones
+(mu >= 2, mu > z) refutes it, and a simple zero root (mu = 1, z = 0) is on the axis. The checker re-decides the
+same way, and re-derives the counterexamples of systems with zero roots and damping."""
+import copy
+
+import pytest
+
+from .forgery import claim, items, refix
+from .test_eig_system import confirmed, proved, system
+
+I2 = [["1", "0"], ["0", "1"]]
+
+
+def test_over_declared_zero_roots_refute_roots_but_not_a_true_stability():
+    """The fuzzer's scene: P = (lambda^2 + 1)(lambda^2 + 2), lambda = 0 is no root, zero_roots = 2 declared."""
+    data = proved(system([["a", "0"], ["0", "1"]], [["1", "0"], ["0", "2"]], params={"a": "1"},
+                         options={"zero_roots": "2"}))
+    assert claim(data, "roots")["status"] == "refuted"
+    assert claim(data, "roots")["counterexample"]["zero_root_multiplicity"] == 0
+    s = claim(data, "stability")
+    assert s["status"] == "proved", s
+    assert "multiplicity 0 exactly (2 declared)" in s["reason"]
+    assert not any(k.startswith("omega_") for k in data["quantities"])     # roots refuted: none stored
+    assert confirmed(data)
+    f = copy.deepcopy(data)                    # the old, false verdict is refused by the checker
+    claim(f, "stability")["status"] = "refuted"
+    assert items(refix(f))["stability"] is False
+
+
+@pytest.mark.parametrize("K,G,why,key", [
+    ([["-1", "0"], ["0", "-2"]], None, "certainly < 0", "negative_roots"),            # divergence, z over-declared
+    ([["-1", "0"], ["0", "-1"]], [["0", "1"], ["-1", "0"]], "non-real", "nonreal_roots"),   # flutter
+])
+def test_over_declared_zero_roots_still_refute_a_false_stability(K, G, why, key):
+    data = proved(system(I2, K, G=G, options={"zero_roots": "2"}))
+    s = claim(data, "stability")
+    assert s["status"] == "refuted" and why in s["reason"], s
+    assert s["counterexample"]["zero_root_multiplicity"] == 0 and key in s["counterexample"]
+    assert confirmed(data)                     # the counterexample re-derived on P / lambda^0's Q
+    f = copy.deepcopy(data)
+    claim(f, "stability")["status"] = "proved"
+    claim(f, "stability").pop("counterexample")
+    assert items(refix(f))["stability"] is False
+
+
+def test_under_declared_zero_roots_refute_stability_by_the_multiple_zero_root():
+    """M = I, K = 0, G = 0: lambda = 0 of multiplicity 4; zero_roots = 2 leaves a double root at 0."""
+    data = proved(system(I2, [["0", "0"], ["0", "1"]], options={"zero_roots": "0"}))
+    s = claim(data, "stability")
+    assert s["status"] == "refuted" and "not simple" in s["reason"]
+    assert s["counterexample"]["zero_root_multiplicity"] == 2
+    assert confirmed(data)
+    f = copy.deepcopy(data)
+    claim(f, "stability")["status"] = "proved"
+    claim(f, "stability").pop("counterexample")
+    assert items(refix(f))["stability"] is False
+
+
+def test_a_simple_zero_root_is_not_called_multiple_and_the_damped_rest_refutes():
+    """M = 1, D = 1, K = 0: P = lambda (lambda + 1); lambda = 0 is simple (on the axis), lambda = -1 is not."""
+    data = proved(system([["1"]], [["0"]], D=[["1"]]))
+    for cid in ("roots", "stability"):
+        assert "not simple" not in claim(data, cid)["reason"]
+    s = claim(data, "stability")
+    assert s["status"] == "refuted" and s["counterexample"]["offaxis_roots"], s
+    assert confirmed(data)
+
+
+def test_the_checker_re_derives_the_odd_terms_of_a_damped_system_with_zero_roots():
+    """zero_roots = 2 and damping: P = lambda^2 (lambda^2 + d lambda + 1); the stored odd power 3 is P's (the
+    checker once shifted it by mu twice and crashed)."""
+    data = proved(system(I2, [["1", "0"], ["0", "0"]], D=[["1/10", "0"], ["0", "0"]], options={"zero_roots": "2"}))
+    assert claim(data, "stability")["counterexample"]["odd_powers"] == [3]
+    assert confirmed(data)
