@@ -153,7 +153,7 @@ class _Family:
         return value, deriv
 
 
-def system_box_roots(model: SystemModel, box: Box) -> tuple[list[arb] | None, str, bool]:
+def system_box_roots(model: SystemModel, box: Box, stability: bool = False) -> tuple[list[arb] | None, str, bool]:
     """(balls omega_1 < ... < omega_m, each holding exactly one root of Q for every member of the box, all
     certainly positive, or None; the reason; whether the structure fails for every member, a refutation).
 
@@ -161,7 +161,10 @@ def system_box_roots(model: SystemModel, box: Box) -> tuple[list[arb] | None, st
     lambda^z divides P for every member when c_0 .. c_(z-1) are the zero polynomial and c_z excludes 0 on the box;
     P is even when every odd coefficient above is the zero polynomial. The family Q~(omega; p) is evaluated in
     centred form about the box's midpoint (exact there), its roots verified by one interval Newton step each from
-    the midpoint's exact roots."""
+    the midpoint's exact roots. ``stability``: claim stability's roots instead, for which an over-declared
+    zero_roots is no refutation (:func:`.system_claims.stability_at_multiplicity`): where lambda = 0 has one
+    multiplicity mu < zero_roots for every member (the lower coefficients the zero polynomial, c_mu excluding 0),
+    the roots of P / lambda^mu."""
     z, n = model.zero_roots, model.n
     names = box.names
     values = _values(model, box)
@@ -178,6 +181,8 @@ def system_box_roots(model: SystemModel, box: Box) -> tuple[list[arb] | None, st
     if not all(certainly_nonzero(mpoly_ball(L, balls)) for L in factors):
         return None, "an entry's denominator is not certainly nonzero on this box", False
     low = [k for k in range(z) if not c[k].is_zero()]
+    if stability and low and certainly_nonzero(mpoly_ball(c[low[0]], balls)):
+        z, low = low[0], []          # mu = low[0] < zero_roots for every member: the declared roots exempt all
     if low:
         if any(certainly_nonzero(mpoly_ball(c[k], balls)) for k in low):
             return None, (f"lambda^{z} does not divide P for any parameter in the box (the coefficient of lambda^{low[0]} "
@@ -221,7 +226,9 @@ def evaluate_system_box(model: SystemModel, box: Box, claims: list[str]) -> dict
     out: dict[str, tuple[str, str]] = {}
     for cid in claims:
         if cid in ("roots", "stability"):
-            out[cid] = ("proved", why) if roots is not None else (("refuted" if fails else "undecided"), why)
+            r, w, f = (system_box_roots(model, box, stability=True) if cid == "stability" and fails
+                       else (roots, why, fails))
+            out[cid] = ("proved", w) if r is not None else (("refuted" if f else "undecided"), w)
         elif cid == "brackets":
             out[cid] = _brackets(model, box, roots)
     return out
