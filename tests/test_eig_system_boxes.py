@@ -144,10 +144,13 @@ def test_symmetry_must_hold_on_the_whole_box():
     fixed_m = {"g": "3", "k1": "-1", "k2": "-1"}      # p, q unused once M is fixed (an unused parameter is bad input)
     skew = dataclasses.replace(scene, parameters=fixed_m,
                                model={**scene.model, "M": [["1", "0"], ["0", "1"]], "G": [["0", "g"], ["-(g)", "0"]]})
-    validate_box(validate(skew), Box.of({"g": (F("2.9"), F("3.1"))}))   # -(g) is the tree of -g
-    bad = dataclasses.replace(scene, parameters=fixed_m,
-                              model={**scene.model, "M": [["1", "0"], ["0", "1"]], "G": [["0", "g"], ["-g*1", "0"]]})
-    with pytest.raises(ParameterError, match=r"G\[1\]\[2\] = 'g' and G\[2\]\[1\] = '-g\*1'.*skew-symmetric on the whole box"):
+    validate_box(validate(skew), Box.of({"g": (F("2.9"), F("3.1"))}))   # -(g) is the function -g
+    same = dataclasses.replace(scene, parameters=fixed_m,
+                               model={**scene.model, "M": [["1", "0"], ["0", "1"]], "G": [["0", "g"], ["-g*1", "0"]]})
+    validate_box(validate(same), Box.of({"g": (F("2.9"), F("3.1"))}))   # -g*1 too (decided as functions)
+    bad = dataclasses.replace(scene, parameters=fixed_m, model={**scene.model, "M": [["1", "0"], ["0", "1"]],
+                                                                "G": [["0", "g"], ["-g+(g-3)^2", "0"]]})
+    with pytest.raises(ParameterError, match=r"G\[1\]\[2\] = 'g' and G\[2\]\[1\] = '-g\+\(g-3\)\^2'.*skew-symmetric on the whole box"):
         validate_box(validate(bad), Box.of({"g": (F("2.9"), F("3.1"))}))
 
 

@@ -69,11 +69,15 @@ _RANK = {"refuted": 0, "undecided": 1, "proved": 2}
 def _eigenfrequency_margins(model, box: Box, claims: list[str]) -> dict[str, float | None]:
     """The smallest of each claim's gaps (:class:`rigor_gyro.kinds.eigenfrequencies.slack_forms.GapSet`: a
     bracket's omega_j - lower and upper - omega_j, the ordering, branch and bound gaps) at the point ``box``,
-    as the float midpoint of its ball; None where a gap is not enclosed (or for ``roots``, which has none)."""
+    as the float midpoint of its ball; None where a gap is not enclosed (or for ``roots``, which has none), and
+    for every claim of a ``[system]`` model (no gaps: the probes' statuses alone rank its candidates)."""
     from ..core.centred_forms import exact_ball
     from ..core.dual_balls import constant
     from ..kinds.eigenfrequencies.boxes import box_roots
     from ..kinds.eigenfrequencies.slack_forms import GapSet
+    from ..kinds.eigenfrequencies.system_model import SystemModel
+    if isinstance(model, SystemModel):
+        return {c: None for c in claims}
     roots, _ = box_roots(model, box)
     gaps = GapSet(model, box, roots)
     duals = {k: constant(exact_ball(lo)) for k, lo, _ in box.edges}

@@ -22,7 +22,8 @@ over a box states real, positive, simple roots for every member, without the poi
 Precision: the caller's working precision; the box width dominates.
 
 Fails when: a box edge is not a parameter of the scene, or a mirrored pair of matrix entries that a tolerance
-enters is not written alike (symmetry must hold on the whole box): ParameterError naming it.
+enters is not the same rational function of the box's parameters (G: opposite ones, a zero diagonal; decided
+exactly, symmetry must hold on the whole box): ParameterError naming it.
 """
 from __future__ import annotations
 
@@ -38,14 +39,14 @@ from ...core.family_roots import family_real_roots
 from ...core.polyroots import isolate_polynomial
 from .system_claims import SYSTEM_CLAIMS
 from .system_model import NotRealBound, SystemModel, ball_value
-from .system_symbolic import characteristic_mpolys, mpoly_ball
+from .system_symbolic import characteristic_mpolys, entry_functions, mpoly_ball, same_function
 
 __all__ = ["SYSTEM_BOX_CLAIMS", "validate_system_box", "evaluate_system_box", "system_box_roots"]
 
 #: the claims a [system] scene decides over a box, with what each states at every point of it
 SYSTEM_BOX_CLAIMS = {
-    "roots": "For every parameter value in the box, the characteristic polynomial is lambda^z times an even polynomial "
-             "whose frequency polynomial Q(omega) has only real, positive, simple roots.",
+    "roots": "The characteristic polynomial is lambda^z times an even polynomial whose frequency polynomial Q(omega) "
+             "has only real, positive, simple roots.",
     "stability": SYSTEM_CLAIMS["stability"],
     "brackets": SYSTEM_CLAIMS["brackets"],
 }
@@ -55,26 +56,47 @@ def validate_system_box(model: SystemModel, box: Box) -> None:
     """Every edge of the box names a parameter of the scene (not a def), and the symmetry of M, K, D and the
     skew-symmetry of G hold for every member of the box, not only at the midpoint where the scene was
     validated: a mirrored pair of entries that depends on a toleranced parameter (directly or through a def)
-    must be written alike (G: one the negation of the other). ParameterError naming the pair otherwise."""
+    must be the same rational function of the box's parameters (G: one the negation of the other, its diagonal
+    the zero function), decided exactly (:func:`.system_symbolic.same_function`: any two spellings of one
+    function pass, ``-h/2`` and ``-(h/2)`` alike; different functions, which differ somewhere in a box with
+    interior, are refused). ParameterError naming the pair otherwise."""
     bad = [n for n in box.names if n not in model.params]
     if bad:
         raise ParameterError(f"parameter {bad[0]!r}: a [system] scene takes tolerances only on its parameters "
                              f"{sorted(model.params)}")
     moving = _moving_names(model, set(box.names))
+    pairs = []                          # (key, sign, i, j): the mirrored pairs a tolerance enters
     for key, sign in (("M", 1), ("K", 1), ("D", 1), ("G", -1)):
         rows = getattr(model, key)
         if rows is None:
             continue
         for i in range(model.n):
             for j in range(i, model.n):
-                a, b = rows[i][j], rows[j][i]
-                if not (a.names() | b.names()) & moving:
-                    continue            # fixed on the box: checked exactly at validation
-                if not _mirrored(a.tree, b.tree, sign):
-                    what = "alike" if sign > 0 else "as each other's negation (and a zero diagonal)"
-                    raise ParameterError(f"[system] {key}[{i + 1}][{j + 1}] = {a.text!r} and {key}[{j + 1}][{i + 1}] = "
-                                         f"{b.text!r} depend on a toleranced parameter: write them {what}, so that "
-                                         f"{key} stays {'symmetric' if sign > 0 else 'skew-symmetric'} on the whole box")
+                if (rows[i][j].names() | rows[j][i].names()) & moving:
+                    pairs.append((key, sign, i, j))     # the others are fixed on the box: checked exactly at validation
+    if not pairs:
+        return
+    exprs = [e for key, _, i, j in pairs for e in (getattr(model, key)[i][j], getattr(model, key)[j][i])]
+    try:
+        fns = entry_functions(model, box.names, _values(model, box), exprs)
+    except ZeroDivisionError:
+        raise ParameterError("[system]: an entry divides by an expression that is zero for every value in the box: "
+                             "rewrite it") from None
+    for k, (key, sign, i, j) in enumerate(pairs):
+        a, b = getattr(model, key)[i][j], getattr(model, key)[j][i]
+        fa, fb = fns[2 * k], fns[2 * k + 1]
+        if sign < 0 and i == j:
+            if not fa.num.is_zero():
+                raise ParameterError(f"[system] G[{i + 1}][{i + 1}] = {a.text!r} depends on a toleranced parameter and "
+                                     "is not 0 for every value in the box: the diagonal of G (skew-symmetric) must be "
+                                     "0 (a term q_i' there is damping: move it to D)")
+        elif not same_function(fa, fb, sign):
+            what = ("the same function of the box's parameters (write them alike)" if sign > 0 else
+                    f"each other's negation for every value in the box (write {key}[{j + 1}][{i + 1}] as "
+                    f"'-({a.text})')")
+            raise ParameterError(f"[system] {key}[{i + 1}][{j + 1}] = {a.text!r} and {key}[{j + 1}][{i + 1}] = "
+                                 f"{b.text!r} depend on a toleranced parameter but are not {what}, so {key} would "
+                                 f"not stay {'symmetric' if sign > 0 else 'skew-symmetric'} on the whole box")
 
 
 def _moving_names(model: SystemModel, varied: set[str]) -> set[str]:
@@ -84,13 +106,6 @@ def _moving_names(model: SystemModel, varied: set[str]) -> set[str]:
         if e.names() & out:
             out.add(name)
     return out
-
-
-def _mirrored(a: tuple, b: tuple, sign: int) -> bool:
-    """Whether the entries are identically equal (sign 1) or opposite (sign -1), read from their trees."""
-    if sign > 0:
-        return a == b
-    return a == ("neg", b) or b == ("neg", a)
 
 
 def _values(model: SystemModel, box: Box) -> dict[str, Fraction]:

@@ -195,6 +195,10 @@ def _structure(key: str, rows: tuple, values: dict, sign: int) -> fmpq_mat:
             if exact[i][j] != sign * exact[j][i]:
                 what = "symmetric" if sign > 0 else "skew-symmetric (G[i][j] = -G[j][i], zero diagonal)"
                 hint = " (its skew part belongs in G)" if key == "D" else ""
+                if i == j:          # only a skew matrix fails on its diagonal: x != -x means x != 0
+                    raise ParameterError(f"[system] {key} must be {what}: {key}[{i + 1}][{i + 1}] = {rows[i][i].text!r} = "
+                                         f"{exact[i][i]}, but the diagonal of {key} must be 0 (a term q_i' there is "
+                                         "damping: move it to D)")
                 raise ParameterError(f"[system] {key} must be {what}{hint}: {key}[{i + 1}][{j + 1}] = {rows[i][j].text!r} = "
                                      f"{exact[i][j]} but {key}[{j + 1}][{i + 1}] = {rows[j][i].text!r} = {exact[j][i]}")
     return fmpq_mat(exact)

@@ -25,7 +25,7 @@ from flint import arb, fmpq, fmpq_mpoly_ctx
 
 from .system_model import SystemModel
 
-__all__ = ["RationalFunction", "characteristic_mpolys", "mpoly_ball"]
+__all__ = ["RationalFunction", "characteristic_mpolys", "mpoly_ball", "entry_functions", "same_function"]
 
 
 @dataclass(frozen=True)
@@ -82,10 +82,11 @@ def _lift(x, like: RationalFunction) -> RationalFunction:
     return RationalFunction(ctx.constant(q), ctx.constant(1))
 
 
-def characteristic_mpolys(model: SystemModel, names: tuple[str, ...], fixed: dict[str, Fraction]):
-    """(context, [c_0, ..., c_2n], [L_1, ..., L_n]): the coefficients of det of the row-scaled matrix polynomial
-    as exact polynomials in ``names`` (the other parameters at their exact values in ``fixed``), and the row
-    factors L_i (see the module docstring)."""
+def _environment(model: SystemModel, names: tuple[str, ...], fixed: dict[str, Fraction]):
+    """(context, env, number): the parameters in ``names`` as the variables of an ``fmpq_mpoly`` context, the
+    others at their exact values in ``fixed``, and the rational defs (the only ones matrix entries may use), as
+    RationalFunctions; ``number`` lifts an exact constant. ZeroDivisionError when a def divides by an identically
+    zero expression."""
     ctx = fmpq_mpoly_ctx.get(tuple(names), "lex")
     one = ctx.constant(1)
     env: dict = {}
@@ -98,6 +99,29 @@ def characteristic_mpolys(model: SystemModel, names: tuple[str, ...], fixed: dic
     for name, e in model.defs:
         if name in model.values:          # the rational defs (the matrices use no other)
             env[name] = e.evaluate(env, number=number)
+    return ctx, env, number
+
+
+def entry_functions(model: SystemModel, names: tuple[str, ...], fixed: dict[str, Fraction], exprs) -> list:
+    """The entries ``exprs`` (parsed matrix entries) as exact RationalFunctions of the parameters ``names`` (the
+    others at their values in ``fixed``): two spellings of one function give equal functions
+    (:func:`same_function`). ZeroDivisionError when an entry divides by an identically zero expression."""
+    ctx, env, number = _environment(model, names, fixed)
+    return [e.evaluate(env, number=number) for e in exprs]
+
+
+def same_function(a: RationalFunction, b: RationalFunction, sign: int = 1) -> bool:
+    """Whether a = sign * b identically (exactly: a.num b.den - sign b.num a.den is the zero polynomial). On a box
+    with interior this is the same as a = sign * b at every point of it where both are defined."""
+    return (a.num * b.den - b.num * a.den * sign).is_zero()
+
+
+def characteristic_mpolys(model: SystemModel, names: tuple[str, ...], fixed: dict[str, Fraction]):
+    """(context, [c_0, ..., c_2n], [L_1, ..., L_n]): the coefficients of det of the row-scaled matrix polynomial
+    as exact polynomials in ``names`` (the other parameters at their exact values in ``fixed``), and the row
+    factors L_i (see the module docstring)."""
+    ctx, env, number = _environment(model, names, fixed)
+    one = ctx.constant(1)
     zero = RationalFunction(ctx.constant(0), one)
 
     def entry(key: str, i: int, j: int) -> RationalFunction:
