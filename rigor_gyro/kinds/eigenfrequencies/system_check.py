@@ -116,8 +116,14 @@ def check_system(model: SystemModel, data: dict) -> list[CheckResult]:
     """Re-decide every claim of a ``[system]`` certificate; see the module docstring."""
     out: list[CheckResult] = []
     say = lambda item, ok, msg: out.append(CheckResult(item, bool(ok), msg))
-    q = data["quantities"]
+    q = dict(data["quantities"])
     verified: set[str] = set()
+    for name in list(q):                 # "nan", "inf": no enclosure (an older prover stored a bracket's nan bound)
+        try:
+            interval(q[name])
+        except (ValueError, TypeError, KeyError) as e:
+            say(name, False, f"the stored enclosure is not a finite interval ({e})")
+            del q[name]
     P, mu, odd, Q = frequency_data(model)
     structural_ok = Q is not None
     squarefree = positive = None

@@ -16,7 +16,9 @@ eigenfrequencies, its gyroscopic stability, the user's brackets.
   no root stored.
 * ``brackets``: each user bracket [lo_j, hi_j] (expressions, Arb balls) contains omega_j; decided per root:
   proved when every one is certified, refuted when one is certainly violated (or has no real value, a
-  certainly negative square root), the others listed in ``details.per_root``.
+  certainly negative square root), the others listed in ``details.per_root``. A bound that certainly divides by
+  zero is bad input at validation (:mod:`.system_bounds`); one that is not a finite ball with no such reason
+  leaves its root undecided, and no non-finite bound or slack is stored.
 
 Guarantee and precision: as :mod:`.claims` (balls at the prover's precision, escalated to meet rel_width).
 
@@ -217,8 +219,11 @@ def _brackets_claim(model: SystemModel, omegas: list[arb], quantities: dict[str,
             per_root.append({"root": f"omega_{j}", "status": "refuted", "reason": f"no real value: {e}"})
             violations.append({"root": f"omega_{j}", "not_real": str(e), "radicand": _bounds(e.radicand)})
             continue
-        quantities[f"bracket_{j}_lo"], quantities[f"bracket_{j}_hi"] = lo, hi
-        quantities[f"bracket_{j}_slack"] = (w - lo).min(hi - w)
+        # a bound that is not a finite ball here (no certain reason found: system_bounds) is not stored: a
+        # certificate holds finite enclosures only ("nan" is no number the checker can read)
+        for name, x in ((f"bracket_{j}_lo", lo), (f"bracket_{j}_hi", hi), (f"bracket_{j}_slack", (w - lo).min(hi - w))):
+            if x.is_finite():
+                quantities[name] = x
         if certainly_le(lo, w) and certainly_le(w, hi):
             per_root.append({"root": f"omega_{j}", "status": "proved"})
         elif certainly_gt(lo, w) or certainly_gt(w, hi):

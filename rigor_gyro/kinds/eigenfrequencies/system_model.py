@@ -49,6 +49,7 @@ from ...core.errors import ParameterError
 from ...core.exact import Exact, option_count, option_number, parse_exact, parse_options
 from ...core.expressions import MAX_DEGREE, Expr, degree, parse
 from ...core.polymat import det_by_interpolation
+from .system_bounds import check_bracket_values
 
 __all__ = ["SystemModel", "validate_system", "SYSTEM_OPTIONS", "SYSTEM_KEYS", "frequency_polynomial",
            "characteristic_polynomial", "NotRealBound", "MAX_DOF", "ball_value"]
@@ -304,8 +305,10 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
                              "from [parameters], or use it in M, G, K, D, defs, brackets or hz_scale")
     if scene.paper:
         raise ParameterError("a [system] scene takes no [paper] table (the audit is the paper scene's)")
-    return SystemModel(rational, params, n, M, G, K, D, tuple(defs), brackets, hz, rel, z, tuple(wanted), dict(table),
-                       exact)
+    model = SystemModel(rational, params, n, M, G, K, D, tuple(defs), brackets, hz, rel, z, tuple(wanted), dict(table),
+                        exact)
+    check_bracket_values(model)          # a bound that divides by an exact 0 (through sqrt too): bad input
+    return model
 
 
 def _uses_sqrt(e: Expr) -> bool:
