@@ -48,7 +48,10 @@ def test_the_fuzzers_scene_exits_2_naming_the_bracket(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("brackets,defs", [([["1/sqrt(4)", "2"]], None),             # sqrt(4) = 2 exactly: fine
-                                           ([["1/2", "2"], ["1", "3"]], ["S = 1/(sqrt(a) - 1)"])])  # S unused
+                                           ([["1/2", "2"], ["1", "3"]], ["S = 1/(sqrt(a) - 1)"]),   # S unused
+                                           ([["1/(sqrt(2)^3 - 2) - 2", "2"]], None),    # an odd power: not 2
+                                           ([["1/(sqrt(1/2) - 1) + 3", "2"]], None),    # 1/2 is no square
+                                           ([["1/(sqrt(2) - 1) - 2", "2"]], None)])
 def test_a_defined_bound_or_an_unused_def_is_no_reason(brackets, defs):
     data = proved(system(I2, K, params={"a": "1"}, brackets=brackets, defs=defs))
     assert claim(data, "brackets")["status"] == "proved"
