@@ -171,7 +171,7 @@ def frequency_polynomial(P: fmpq_poly, z: int) -> tuple[int, fmpq_poly | None, l
 
 # ------------------------------------------------------------------------------ validation
 
-def _matrix(table: dict, key: str, n: int | None, names: set[str]) -> tuple:
+def _matrix(table: dict, key: str, n: int | None, names: set[str], defs: set[str] = frozenset()) -> tuple:
     rows = table[key]
     where = f"[system] {key}"
     if not isinstance(rows, list) or not rows or not all(isinstance(r, list) for r in rows):
@@ -182,8 +182,23 @@ def _matrix(table: dict, key: str, n: int | None, names: set[str]) -> tuple:
     for i, r in enumerate(rows, start=1):
         if len(r) != size:
             raise ParameterError(f"{where}: row {i} has {len(r)} entries; the matrix must be square ({size} x {size})")
-    return tuple(tuple(parse(e, f"{where}[{i}][{j}]", names) for j, e in enumerate(r, start=1))
+    return tuple(tuple(_entry(e, f"{where}[{i}][{j}]", names, defs) for j, e in enumerate(r, start=1))
                  for i, r in enumerate(rows, start=1))
+
+
+def _entry(text, where: str, names: set[str], defs: set[str]):
+    """A matrix entry parsed over the exact names; one that uses a def with a square root is refused naming it
+    (it read "unknown name 'r'", though r is defined: matrix entries are exact rationals of the parameters)."""
+    try:
+        return parse(text, where, names)
+    except ParameterError:
+        if isinstance(text, str):
+            used = [d for d in sorted(defs - names) if re.search(rf"\b{re.escape(d)}\b", text)]
+            if used:
+                raise ParameterError(f"{where}: uses the def {used[0]!r}, which takes a square root: M, G, K and D "
+                                     "must be rational in the parameters (sqrt is allowed in brackets and in defs "
+                                     "only they use)") from None
+        raise
 
 
 def _structure(key: str, rows: tuple, values: dict, sign: int) -> fmpq_mat:
@@ -237,7 +252,9 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
         name = name.strip()
         if not eq or not _NAME.match(name):
             raise ParameterError(f"[system] defs[{i}]: expected \"name = expression\", got {d!r}")
-        if name in values or name in ("sqrt",):
+        if name in ("sqrt",):
+            raise ParameterError(f"[system] defs[{i}]: the name {name!r} is a function's; choose another name")
+        if name in values:
             raise ParameterError(f"[system] defs[{i}]: the name {name!r} is already a parameter or an earlier def")
         e = parse(text, f"[system] defs[{i}] ({name})", set(values), _FUNCTIONS)
         def_degrees[name] = degree(e, def_degrees)
@@ -249,13 +266,13 @@ def validate_system(scene, wanted: tuple) -> SystemModel:
         if not _uses_sqrt(e) and set(e.names()) <= set(rational):
             rational[name] = _exact(e, rational)
     exact_names = set(rational)
-    M = _matrix(table, "M", None, exact_names)
+    M = _matrix(table, "M", None, exact_names, set(values))
     n = len(M)
     if n > MAX_DOF:
         raise ParameterError(f"[system] M: {n} degrees of freedom; at most {MAX_DOF} are supported")
-    G = _matrix(table, "G", n, exact_names) if "G" in table else None
-    K = _matrix(table, "K", n, exact_names)
-    D = _matrix(table, "D", n, exact_names) if "D" in table else None
+    G = _matrix(table, "G", n, exact_names, set(values)) if "G" in table else None
+    K = _matrix(table, "K", n, exact_names, set(values))
+    D = _matrix(table, "D", n, exact_names, set(values)) if "D" in table else None
     exact = {"M": _structure("M", M, rational, +1), "K": _structure("K", K, rational, +1)}
     if G is not None:
         exact["G"] = _structure("G", G, rational, -1)
