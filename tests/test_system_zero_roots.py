@@ -112,3 +112,42 @@ def test_over_declared_zero_roots_over_a_box(tmp_path, K, want):
 
 def test_under_declared_zero_roots_over_a_box_refute_stability(tmp_path):
     assert paved(tmp_path, "0", '[["0", "0"], ["0", "1"]]') == {"roots": "refuted", "stability": "refuted"}
+
+
+def test_a_multiplicity_of_zero_below_zero_roots_not_fixed_on_a_box_never_refutes_stability(tmp_path):
+    """Review: K = diag(a^2, 3, 3 + 1e-9), a in [1/4, 3/4], zero_roots = 4: lambda = 0 is no root anywhere in the box
+    and stability holds at every point, but the ball of a^2 on a wide sub-box contains 0, so no one multiplicity
+    is known there; the box path then refuted stability from a higher coefficient (certainly nonzero), and the
+    checker confirmed the false refutation. Such a sub-box is undecided; the claim is never refuted."""
+    import json
+
+    from rigor_gyro.check import check_file
+    from rigor_gyro.cli import main
+    text = ('name = "z4lo"\nkind = "eigenfrequencies"\n[parameters]\na = "[1/4, 3/4]"\n[options]\nzero_roots = "4"\n'
+            '[claims]\nonly = ["stability"]\n[system]\nM = [["1", "0", "0"], ["0", "1", "0"], ["0", "0", "1"]]\n'
+            'K = [["a^2", "0", "0"], ["0", "3", "0"], ["0", "0", "3 + 1/1000000000"]]\n')
+    (tmp_path / "z.toml").write_text(text)
+    code = main(["prove", str(tmp_path / "z.toml"), "-o", str(tmp_path / "o"), "-q", "-j", "1",
+                 "--prec", "16", "--maxprec", "16"])
+    data = json.loads((tmp_path / "o" / "z4lo.json").read_text())
+    status = {c["id"]: c["status"] for c in data["claims"]}["stability"]
+    assert status != "refuted" and code != 1, status
+    assert check_file(tmp_path / "o" / "z4lo.json").ok
+
+
+def test_a_rational_off_axis_root_stored_as_a_point_is_checked_exactly():
+    """Review: a damped system whose P has the rational root lambda = 1 stores it as the point box [1, 1]; the
+    checker fitted Arb's ball around the root inside the box, which a point can never hold, and rejected the
+    honest refutation. A point box is now decided exactly (p(x + i y) = 0); a point that is no root is rejected."""
+    data = proved(system(M=[["1", "2"], ["2", "2"]], G=[["0", "2"], ["-2", "0"]], D=[["-1", "1"], ["1", "0"]],
+                         K=[["-1", "-1"], ["-1", "-2"]]))
+    assert claim(data, "roots")["status"] == "refuted"
+    boxes = claim(data, "roots")["counterexample"]["offaxis_roots"]
+    assert {"re": ["1", "1"], "im": ["0", "0"]} in boxes
+    assert confirmed(data)
+    forged = copy.deepcopy(data)
+    for c in forged["claims"]:
+        for b in c["counterexample"]["offaxis_roots"]:
+            if b == {"re": ["1", "1"], "im": ["0", "0"]}:
+                b["re"] = ["2", "2"]
+    assert not items(forged)["roots counterexample"]

@@ -199,8 +199,12 @@ def system_box_roots(model: SystemModel, box: Box, stability: bool = False) -> t
     if stability and low and certainly_nonzero(mpoly_ball(c[low[0]], balls)):
         z, low = low[0], []          # mu = low[0] < zero_roots for every member: the declared roots exempt all
     if low:
-        if any(certainly_nonzero(mpoly_ball(c[k], balls)) for k in low):
-            return None, (f"lambda^{z} does not divide P for any parameter in the box (the coefficient of lambda^{low[0]} "
+        if stability:       # mu < zero_roots somewhere, not one mu for the whole box: no refutation from it (review)
+            return None, (f"the multiplicity of lambda = 0 is below zero_roots = {z} but not known to be one number on the "
+                          f"whole box (the coefficient of lambda^{low[0]} may vanish in it)"), False
+        sure = [k for k in low if certainly_nonzero(mpoly_ball(c[k], balls))]
+        if sure:
+            return None, (f"lambda^{z} does not divide P for any parameter in the box (the coefficient of lambda^{sure[0]} "
                           "is certainly nonzero): zero_roots is not the model's"), True
         return None, f"lambda^{z} divides P only where the coefficient of lambda^{low[0]} vanishes", False
     if not certainly_nonzero(mpoly_ball(c[z], balls)):

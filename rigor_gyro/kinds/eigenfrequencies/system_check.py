@@ -22,7 +22,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-from flint import arb, fmpq_poly
+from flint import arb, fmpq, fmpq_poly
 
 from ...check import CheckResult
 from ...core.balls import ball, certainly_gt, certainly_le, current_precision, working_precision
@@ -248,6 +248,22 @@ def _box_holds_root(box: dict, roots: list) -> bool:
     return False
 
 
+def _is_point(box: dict) -> bool:
+    (rl, rh), (il, ih) = interval(box["re"]), interval(box["im"])
+    return rl == rh and il == ih
+
+
+def _exact_root(poly, box: dict) -> bool:
+    """Whether the point box {"re": [x, x], "im": [y, y]} is exactly a root of the exact polynomial: p(x + i y) = 0
+    by Horner's rule in exact complex rationals (review: a rational root stored as [1, 1] was rejected, Arb's ball
+    around it never fitting inside a point)."""
+    x, y = fmpq_of(interval(box["re"])[0]), fmpq_of(interval(box["im"])[0])
+    re, im = fmpq(0), fmpq(0)
+    for c in reversed(poly.coeffs()):
+        re, im = re * x - im * y + c, re * y + im * x
+    return re == 0 and im == 0
+
+
 #: the highest precision at which the checker computes a polynomial's roots to fit them in stored boxes
 ROOT_BOX_MAXPREC = 8192
 
@@ -256,6 +272,13 @@ def _boxes_hold_roots(poly, boxes: list) -> bool:
     """Whether each stored box certainly holds a root of ``poly`` (exact): Arb's roots at the checker's precision,
     doubled (up to ROOT_BOX_MAXPREC) while a box is narrower than they are (the prover may store boxes refined
     beyond the certificate's precision)."""
+    # a box of zero width (a rational root, stored as [r, r]) can hold no ball of positive radius: decided exactly
+    point = [b for b in boxes if _is_point(b)]
+    if not all(_exact_root(poly, b) for b in point):
+        return False
+    boxes = [b for b in boxes if not _is_point(b)]
+    if not boxes:
+        return True
     p = current_precision()
     while True:
         with working_precision(p):
