@@ -158,3 +158,29 @@ def test_the_box_statement_of_roots_is_not_doubled(tmp_path):
     roots = next(c for c in data["claims"] if c["id"] == "roots")
     assert roots["statement"].startswith("For every parameter value in the box: The characteristic polynomial")
 
+
+
+@pytest.mark.parametrize("K,brackets", [
+    ('[["2+a", "(1/a)^0 - 1"], ["(1/a)^0 - 1", "5"]]', ""),
+    ('[["2+a", "0/a"], ["0/a", "5"]]', ""),
+    ('[["2+a", "a/a - 1"], ["a/a - 1", "5"]]', ""),
+], ids=["power0", "zero_over_a", "a_over_a"])
+def test_a_box_holding_a_point_without_a_value_is_never_proved(tmp_path, K, brackets):
+    """Review: entries that simplify to a function defined everywhere ((1/a)^0 - 1 is 0) but have no value at
+    a = 0 were proved over a box holding 0 (the checker confirmed): every divisor an entry meets must be nonzero
+    on a sub-box, not only the denominator left after simplifying."""
+    text = ('name = "pz"\nkind = "eigenfrequencies"\n[parameters]\na = "[-1/2, 1]"\n[system]\n'
+            f'M = [["1", "0"], ["0", "1"]]\nK = {K}\n')
+    code, data, checked = run(tmp_path, text, "pz")
+    assert code != 0 and all(c["status"] != "proved" for c in data["claims"]), [c["status"] for c in data["claims"]]
+
+
+def test_a_bracket_bound_to_the_power_0_of_a_pole_is_never_proved_over_a_box(tmp_path):
+    """Review: python-flint's nan ** 0 is 1, so (1/(a - 1))^0 over a box holding a = 1 had the value 1 and the
+    brackets were proved there; a power 0 of a ball that is not finite now stays not finite."""
+    text = ('name = "pbr"\nkind = "eigenfrequencies"\n[parameters]\na = "[1/2, 7/4]"\n[system]\n'
+            'M = [["1", "0"], ["0", "1"]]\nK = [["a", "0"], ["0", "2"]]\n'
+            'brackets = [["0", "2*(1/(a-1))^0"], ["(1/(a-1))^0", "3"]]\n')
+    code, data, checked = run(tmp_path, text, "pbr")
+    br = next(c for c in data["claims"] if c["id"] == "brackets")
+    assert br["status"] != "proved" and code != 0

@@ -159,7 +159,12 @@ class Expr:
 def _int_power(base, n: int):
     """``base ** n`` (n >= 0), except where a ball type returns nan for it (python-flint's ``arb ** n`` of a ball
     centred exactly at 0 with a positive radius, e.g. a parameter's box [-1, 1]): there the product of n
-    factors, which encloses every x^n of the ball (wider for even n: it has negative values)."""
+    factors, which encloses every x^n of the ball (wider for even n: it has negative values); and a ball that is
+    not finite to the power 0 stays not finite (its base may have no value: (1/(a - 1))^0 over a box holding 1)."""
+    if n == 0:          # x^0 = 1 only where x has a value: a ball that is not finite (a pole inside) stays so
+        finite = getattr(base, "is_finite", None)
+        if finite is not None and not finite():
+            return base * 0             # nan or [+/- inf]: decides nothing (python-flint's nan ** 0 is 1: review)
     y = base ** n
     is_nan = getattr(y, "is_nan", None)
     if is_nan is not None and n >= 2 and is_nan() and base.is_finite():

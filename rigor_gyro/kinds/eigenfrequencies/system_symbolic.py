@@ -18,7 +18,7 @@ point of the parameter balls (term by term). Fails when: an entry divides by an 
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 
 from flint import arb, fmpq, fmpq_mpoly_ctx
@@ -30,21 +30,25 @@ __all__ = ["RationalFunction", "characteristic_mpolys", "mpoly_ball", "entry_fun
 
 @dataclass(frozen=True)
 class RationalFunction:
-    """num / den, both ``fmpq_mpoly`` of one context (den never the zero polynomial)."""
+    """num / den, both ``fmpq_mpoly`` of one context (den never the zero polynomial); ``guards``: every divisor
+    met on the way (non-constant), which must be nonzero for the expression written to have a value, even where
+    the function simplifies it away ((1/a)^0 - 1 is the function 0, with no value at a = 0: review)."""
 
     num: object
     den: object
+    guards: tuple = field(default=(), compare=False)
 
     def __add__(self, o):
         o = _lift(o, self)
+        g = self.guards + o.guards
         if self.den == o.den:
-            return RationalFunction(self.num + o.num, self.den)
-        return RationalFunction(self.num * o.den + o.num * self.den, self.den * o.den)
+            return RationalFunction(self.num + o.num, self.den, g)
+        return RationalFunction(self.num * o.den + o.num * self.den, self.den * o.den, g)
 
     __radd__ = __add__
 
     def __neg__(self):
-        return RationalFunction(-self.num, self.den)
+        return RationalFunction(-self.num, self.den, self.guards)
 
     def __sub__(self, o):
         return self + (-_lift(o, self))
@@ -54,7 +58,7 @@ class RationalFunction:
 
     def __mul__(self, o):
         o = _lift(o, self)
-        return RationalFunction(self.num * o.num, self.den * o.den)
+        return RationalFunction(self.num * o.num, self.den * o.den, self.guards + o.guards)
 
     __rmul__ = __mul__
 
@@ -62,13 +66,14 @@ class RationalFunction:
         o = _lift(o, self)
         if o.num.is_zero():
             raise ZeroDivisionError("division by an identically zero rational function")
-        return RationalFunction(self.num * o.den, self.den * o.num)
+        extra = () if o.num.is_constant() else (o.num,)
+        return RationalFunction(self.num * o.den, self.den * o.num, self.guards + o.guards + extra)
 
     def __rtruediv__(self, o):
         return _lift(o, self) / self
 
     def __pow__(self, n: int):
-        out = RationalFunction(self.num.context().constant(1), self.num.context().constant(1))
+        out = RationalFunction(self.num.context().constant(1), self.num.context().constant(1), self.guards)
         for _ in range(n):
             out = out * self
         return out
@@ -119,7 +124,8 @@ def same_function(a: RationalFunction, b: RationalFunction, sign: int = 1) -> bo
 def characteristic_mpolys(model: SystemModel, names: tuple[str, ...], fixed: dict[str, Fraction]):
     """(context, [c_0, ..., c_2n], [L_1, ..., L_n]): the coefficients of det of the row-scaled matrix polynomial
     as exact polynomials in ``names`` (the other parameters at their exact values in ``fixed``), and the row
-    factors L_i (see the module docstring)."""
+    factors L_i (see the module docstring) followed by every other divisor an entry met (its ``guards``): the
+    caller needs all of them nonzero on its box."""
     ctx, env, number = _environment(model, names, fixed)
     one = ctx.constant(1)
     zero = RationalFunction(ctx.constant(0), one)
@@ -187,6 +193,15 @@ def characteristic_mpolys(model: SystemModel, names: tuple[str, ...], fixed: dic
         return total
     c = minor(0, 0)
     c = c + [ctx.constant(0)] * (2 * n + 1 - len(c))
+    # every divisor an entry met must be nonzero too (not only the denominators left after simplifying): checked
+    # by the caller with the row factors, never used in the scaling
+    for key in ("M", "G", "D", "K"):
+        rows = getattr(model, key)
+        for i in range(n if rows is not None else 0):
+            for j in range(n):
+                for g in rows[i][j].evaluate(env, number=number).guards:
+                    if not g.is_constant() and g not in factors:
+                        factors.append(g)
     return ctx, c, factors
 
 
