@@ -37,7 +37,7 @@ class LyapunovModel:
 
 
 def make_claim(cid: str, status: Status, reason: str, counterexample: dict | None = None, decides: arb | None = None,
-           **details) -> Claim:
+               **details) -> Claim:
     return Claim(cid, CLAIMS[cid], status, reason, details=details, counterexample=counterexample, decides=decides)
 
 

@@ -192,10 +192,10 @@ def _equilibria_claim(ctx: ClaimContext, inv: Claim | None, R: arb | None) -> Cl
     undecided = [r for r in rows if r["stability"] == "undecided" or r["estimate"] == "undecided"]
     if not E.complete or undecided:
         return make_claim("equilibria", Status.INCONCLUSIVE,
-                      (E.reason if not E.complete else f"{len(undecided)} equilibria with undecided stability or "
+                          (E.reason if not E.complete else f"{len(undecided)} equilibria with undecided stability or "
                        "membership: raise --maxprec") + "; found: " + "; ".join(texts), equilibria=rows)
     return make_claim("equilibria", Status.PROVED, f"{len(rows)} equilibria with |x2| <= pi: " + "; ".join(texts),
-                  equilibria=rows)
+                      equilibria=rows)
 
 
 # ------------------------------------------------------------------------------------ V > 0
@@ -228,16 +228,16 @@ def _v_positive_claim(ctx: ClaimContext) -> Claim:
             v = g.V(x1q, x2, x3q)
             if certainly_le(v, 0):
                 return make_claim("v_positive", Status.REFUTED,
-                              f"V = {fmt(v, 6)} <= 0 at x1 = {fmt(x1q)}, x2 = {fmt(x2)}, x3 = {fmt(x3q)} "
-                              + ("(certified; psi <= 0 there, i.e. mu H - q + ... fails)" if key == "psi" else
+                                  f"V = {fmt(v, 6)} <= 0 at x1 = {fmt(x1q)}, x2 = {fmt(x2)}, x3 = {fmt(x3q)} "
+                                  + ("(certified; psi <= 0 there, i.e. mu H - q + ... fails)" if key == "psi" else
                                  "(certified; f <= 0 at a point of (0, x2*]: the law destabilises)"),
-                              {"point": {"x1": ball_text(x1q), "x2": ball_text(x2), "x3": ball_text(x3q)},
+                                  {"point": {"x1": ball_text(x1q), "x2": ball_text(x2), "x3": ball_text(x3q)},
                                "V": fmt(v, 20)},
-                              witness={"x1": fmt(x1q, 20), "x2": fmt(x2, 20), "x3": fmt(x3q, 20)})
+                                  witness={"x1": fmt(x1q, 20), "x2": fmt(x2, 20), "x3": fmt(x3q, 20)})
         hint = ("certified false at that point, so no precision changes it (V itself was not certified <= 0 at a "
                 "rational point there)" if r.status is Status.REFUTED else "try --maxprec or max_pieces")
         return make_claim("v_positive", Status.INCONCLUSIVE, f"could not certify {text} on [0, x2*]: {r.reason}; {hint}",
-                      decides=r.stuck_value)
+                          decides=r.stuck_value)
     return make_claim("v_positive", Status.PROVED,
                   "on [0, x2*]: " +
                   "; ".join(t for t, _ in steps) + f" certified on {pieces} pieces (S, f/x and psi are even); hence "
@@ -324,8 +324,8 @@ def _attempt(ctx: "ClaimContext", model: LyapunovModel, wanted: list[str]) -> At
             margin, binding, each = damping_margin(ctx.g, k["k_min"])
             quantities["damping_margin"] = margin
             claims.append(make_claim("damping_condition", st, why + f"; design margin in k = min(k/k_min, k/(mu A0)) - 1 = "
-                                 f"{fmt(margin, 6)}, binding: {binding}", ce, decides, binding=binding,
-                                 margins={n: fmt(v, 6) for n, v in each.items()}))
+                                     f"{fmt(margin, 6)}, binding: {binding}", ce, decides, binding=binding,
+                                     margins={n: fmt(v, 6) for n, v in each.items()}))
         R, how = (None, "")
         if any(c in wanted for c in ("vdot_nonpositive", "psi_test", "invariant_estimate")):
             R, how = ctx.R_used()
@@ -360,8 +360,8 @@ def _attempt(ctx: "ClaimContext", model: LyapunovModel, wanted: list[str]) -> At
             else:
                 dep = vclaim if vclaim.status is not Status.PROVED else pclaim
                 claims.append(make_claim("invariant_estimate", Status.INCONCLUSIVE,
-                                     "rests on vdot_nonpositive and v_positive, which are not both proved",
-                                     decides=dep.decides if dep.status is Status.INCONCLUSIVE else None))
+                                         "rests on vdot_nonpositive and v_positive, which are not both proved",
+                                         decides=dep.decides if dep.status is Status.INCONCLUSIVE else None))
                 if dep.status is Status.REFUTED:
                     claims[-1].precision_cannot_help = f"it rests on {dep.id}, which is refuted"
         if "largest_sublevel" in wanted:
@@ -401,7 +401,7 @@ def _attempt(ctx: "ClaimContext", model: LyapunovModel, wanted: list[str]) -> At
         for cid in wanted:
             if cid not in done_ids and cid in CLAIMS:
                 c = make_claim(cid, Status.INCONCLUSIVE, f"undecided: {e}; a law with a closed-form G (moment = \"table\", "
-                           "or a built-in law) or a shorter x2* avoids the quadrature")
+                               "or a built-in law) or a shorter x2* avoids the quadrature")
                 c.precision_cannot_help = "the quadrature budget of the [moment] law was spent"
                 claims.append(c)
         notes.append(str(e))

@@ -136,8 +136,8 @@ def vdot_direct_claim(ctx: ClaimContext, quantities: dict[str, arb]) -> Claim:
     cert, R_text = d.cert, d.R_text
     if cert.status is not Status.PROVED:
         return make_claim("vdot_direct", Status.INCONCLUSIVE,
-                      f"A - R |B| > 0 not certified at R = {R_text} (search estimate {est:.10g}): {cert.reason}; "
-                      "try a larger max_pieces or --maxprec")
+                          f"A - R |B| > 0 not certified at R = {R_text} (search estimate {est:.10g}): {cert.reason}; "
+                          "try a larger max_pieces or --maxprec")
     R_direct = searched(Fraction(R_text))
     point = d.point
     ctx.witnesses["vdot_direct"] = {"R": R_text, "boxes": [b.to_json() for b in cert.leaves]}

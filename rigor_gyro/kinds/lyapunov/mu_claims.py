@@ -199,9 +199,9 @@ def _no_mu_interval(cid: str, lo: arb, hi: arb) -> Claim:
     """The claim over (16) when (16) is not certainly non-empty: refuted when it is certainly empty."""
     empty = certainly_le(hi, lo)
     return make_claim(cid, Status.REFUTED if empty else Status.INCONCLUSIVE,
-                  f"the mu interval (16) ({fmt(lo)}, {fmt(hi)}) is " + ("empty: no admissible mu" if empty else
-                                                                          "not certainly non-empty"),
-                  {"mu_min": fmt(lo, 20), "mu_max": fmt(hi, 20)} if empty else None)
+                      f"the mu interval (16) ({fmt(lo)}, {fmt(hi)}) is " + ("empty: no admissible mu" if empty else
+                                                                        "not certainly non-empty"),
+                      {"mu_min": fmt(lo, 20), "mu_max": fmt(hi, 20)} if empty else None)
 
 
 def best_mu_claim(ctx: ClaimContext, quantities: dict[str, arb]) -> Claim:
@@ -234,8 +234,8 @@ def best_mu_claim(ctx: ClaimContext, quantities: dict[str, arb]) -> Claim:
     mu_text = _decimal_inside(mu_mid, lo, hi)
     if mu_text is None:
         return make_claim("best_mu", Status.INCONCLUSIVE,
-                      f"no decimal mu certainly inside (16) near the optimum {float(mu_mid):.15g} (the interval is "
-                      f"({fmt(lo)}, {fmt(hi)})): raise --maxprec")
+                          f"no decimal mu certainly inside (16) near the optimum {float(mu_mid):.15g} (the interval is "
+                          f"({fmt(lo)}, {fmt(hi)})): raise --maxprec")
     mu_best = to_fmpq(Fraction(mu_text))
     gb = g.with_mu(mu_best)
     # to rel_width, on at most 2000 pieces (R_max keeps 10 digits: a wider R_sup only costs digits)
@@ -259,7 +259,7 @@ def best_mu_claim(ctx: ClaimContext, quantities: dict[str, arb]) -> Claim:
     if claim.status is not Status.PROVED:
         unstate(quantities, "mu_best", "R_sup_at_mu_best")
         return make_claim("best_mu", Status.INCONCLUSIVE, f"R_max could not be re-certified: {claim.reason}",
-                      decides=claim.decides)
+                          decides=claim.decides)
     quantities["R_max"] = searched(R_max)
     # how good is R_max: a certified upper bound of sup over (16) of R_sup (branch and bound over mu,
     # on the hull of (16), which contains it)
@@ -273,7 +273,7 @@ def best_mu_claim(ctx: ClaimContext, quantities: dict[str, arb]) -> Claim:
     if not (U.is_finite() and certainly_le(exact_ball(R_max), U)):
         unstate(quantities, "mu_best", "R_sup_at_mu_best", "R_max")
         return make_claim("best_mu", Status.INCONCLUSIVE, f"no finite upper bound of sup R_sup over (16): {fmt(U)}",
-                      decides=U)
+                          decides=U)
     # stored as its 15-digit decimal rounded up: a re-derivation on the same pieces at another precision
     # differs in the last bits of arb's radius arithmetic (30-bit radii on wide mu pieces; 1.4e-24 relative
     # seen), so the exact upper end of U would be a bound only this run can confirm
@@ -317,7 +317,7 @@ def best_mu_direct_claim(ctx: ClaimContext, quantities: dict[str, arb]) -> Claim
         mu = to_fmpq(Fraction(mu_text))
         known = piece_upper(g, exact_ball(mu), points)            # certified, at mu_direct: the radius is at most this
         d = certify_direct(g.with_mu(mu), min(ctx.m.max_pieces, DIRECT_MU_BOXES),
-                            float(known.lower()) if known.is_finite() else None)
+                           float(known.lower()) if known.is_finite() else None)
         # a warm-started point search stuck in a local minimum overestimates the radius (and stops the branch
         # and bound early at a poor mu): the whole-grid search at mu_direct tells; then every point is searched cold
         if not (math.isfinite(d.est) and d.est < best_est * (1 - 1e-6)):

@@ -42,11 +42,11 @@ def largest_sublevel_claim(ctx: ClaimContext, quantities: dict[str, arb]) -> Cla
         if r.unbounded:
             # an enclosure unbounded below on the whole box budget: the boxes' width decides it, not the precision
             claim = make_claim("largest_sublevel", Status.INCONCLUSIVE,
-                           r.reason + f": {r.unbounded}; more precision cannot bound it (try a smaller x2*)")
+                               r.reason + f": {r.unbounded}; more precision cannot bound it (try a smaller x2*)")
             claim.precision_cannot_help = f"the lower bound of V over {{Vdot >= 0}} is unbounded below: {r.unbounded}"
             return claim
         return make_claim("largest_sublevel", Status.INCONCLUSIVE, r.reason + "; try a larger max_pieces or --maxprec",
-                      decides=r.bound)
+                          decides=r.bound)
     lo, hi = exact_ball(to_fmpq(Fraction(r.c_lower))), exact_ball(to_fmpq(Fraction(r.c_upper)))
     quantities["c_max_lower"], quantities["c_max_upper"] = lo, hi
     quantities["vdot_level_lower"] = exact_ball(to_fmpq(Fraction(r.n_lower)))
@@ -185,9 +185,9 @@ def invariant_claim(ctx: ClaimContext, R: arb, quantities: dict[str, arb]) -> Cl
         quantities["cylinder_margin_lower"] = exact_ball(to_fmpq(Fraction(margin_text)))
     if not certainly_positive(cstar):
         return make_claim("invariant_estimate", Status.INCONCLUSIVE,
-                      f"c* = {fmt(cstar)} is not certainly positive (cylinder bound on {cyl.pieces} pieces); "
-                      "try a larger max_pieces or higher --maxprec (a smaller R makes c* smaller too)",
-                      decides=cstar, pieces=cyl.pieces)
+                          f"c* = {fmt(cstar)} is not certainly positive (cylinder bound on {cyl.pieces} pieces); "
+                          "try a larger max_pieces or higher --maxprec (a smaller R makes c* smaller too)",
+                          decides=cstar, pieces=cyl.pieces)
     # the set is {V < c_set}, c_set = c*'s certified lower end, less a margin of 4 relative widths of R
     # (c* moves like R^2: a checker with its own enclosure of R must still find c_set below its bound),
     # rounded down to 10 digits (exact)
